@@ -1,0 +1,24 @@
+# CppUTest through pkg-config, and one CTest entry per test group (discovered after the build,
+# keeping labels and RUN_SERIAL, which CppUTest's own discovery script drops).
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(CPPUTEST REQUIRED IMPORTED_TARGET cpputest)
+
+# palpa_add_cpputest(NAME SOURCES ... LIBS ... [LABELS ...] [SERIAL_GROUPS ...])
+function(palpa_add_cpputest name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS;LABELS;SERIAL_GROUPS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES} ${PROJECT_SOURCE_DIR}/tests/support/all_tests_main.cc)
+  target_link_libraries(${name} PRIVATE ${ARG_LIBS} PkgConfig::CPPUTEST)
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)
+  palpa_warnings(${name})
+  set(listing "${CMAKE_CURRENT_BINARY_DIR}/${name}_tests.cmake")
+  add_custom_command(TARGET ${name} POST_BUILD
+    COMMAND ${CMAKE_COMMAND} -DEXECUTABLE=$<TARGET_FILE:${name}> -DNAME=${name}
+            "-DLABELS=${ARG_LABELS}" "-DSERIAL_GROUPS=${ARG_SERIAL_GROUPS}" -DOUTPUT=${listing}
+            -P ${PROJECT_SOURCE_DIR}/cmake/PalpaDiscoverCppUTest.cmake
+    VERBATIM)
+  set(loader "${CMAKE_CURRENT_BINARY_DIR}/${name}_include.cmake")
+  file(WRITE ${loader}
+    "if(EXISTS \"${listing}\")\n  include(\"${listing}\")\nelse()\n"
+    "  add_test(${name}_NOT_BUILT ${name}_NOT_BUILT)\nendif()\n")
+  set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${loader})
+endfunction()
