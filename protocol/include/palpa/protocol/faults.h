@@ -1,0 +1,35 @@
+// Fault bits of the supervisor's latched bitmap, as carried in telemetry and Diagnostics.
+#pragma once
+
+#include <cstdint>
+
+namespace palpa::protocol {
+
+enum class Fault : uint8_t {
+  kHostSilence = 0,        ///< no valid frame within the host-silence timeout
+  kOverLimit = 1,          ///< a raw reading beyond the line's limits
+  kImplausibleSensor = 2,  ///< sensor disagrees with the regulator model, or stuck
+  kConfigCrc = 3,          ///< live configuration no longer matches its CRC
+  kUnexpectedReset = 4,    ///< board came up from a watchdog, fault handler or brown-out
+  kLeak = 5,               ///< pressure or vacuum not reached in time
+  kEStopCommand = 6,       ///< EStop message
+  kEStopPin = 7,           ///< E-stop input asserted
+  kPumpRunTime = 8,        ///< vacuum pump ran longer than allowed
+  kCount
+};
+
+inline constexpr const char* const kFaultNames[] = {
+    "host_silence", "over_limit",   "implausible_sensor", "config_crc",    "unexpected_reset",
+    "leak",         "estop_command", "estop_pin",         "pump_run_time"};
+static_assert(sizeof(kFaultNames) / sizeof(kFaultNames[0]) == static_cast<unsigned>(Fault::kCount));
+
+constexpr uint32_t FaultBit(Fault f) { return 1u << static_cast<uint8_t>(f); }
+inline constexpr uint32_t kAllFaults = (1u << static_cast<uint8_t>(Fault::kCount)) - 1u;
+
+constexpr const char* FaultName(Fault f) {
+  return static_cast<unsigned>(f) < static_cast<unsigned>(Fault::kCount)
+             ? kFaultNames[static_cast<unsigned>(f)]
+             : "unknown";
+}
+
+}  // namespace palpa::protocol
