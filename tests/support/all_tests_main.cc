@@ -1,0 +1,4 @@
+// Entry point shared by every CppUTest executable.
+#include "CppUTest/CommandLineTestRunner.h"
+
+int main(int argc, char** argv) { return CommandLineTestRunner::RunAllTests(argc, argv); }
