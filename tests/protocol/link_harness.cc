@@ -33,11 +33,7 @@ TestBoard::TestBoard(uint32_t catalog_hash, uint16_t rx_buffer_bytes, uint32_t s
   Reboot();
 }
 
-void TestBoard::Reboot() {
-  boot_nonce_ = static_cast<uint32_t>(rng_());
-  session_ = false;
-  heartbeat_.Reset();
-}
+void TestBoard::Reboot() { session_ = pp::BoardSession(static_cast<uint32_t>(rng_())); }
 
 template <class M>
 void TestBoard::Reply(const M& m, uint8_t seq, uint8_t flags,
@@ -61,25 +57,27 @@ void TestBoard::Handle(const pp::Frame& frame, std::vector<std::vector<uint8_t>>
   const uint8_t seq = frame.header.seq;
   const bool reliable = (frame.header.flags & pp::flags::kReliable) != 0;
   const uint8_t answer_flags = reliable ? pp::flags::kReliable : 0;
-  if (pp::BoardAdmit(session_, type) != pp::Status::kOk) {
-    Reply(pp::Nack{boot_nonce_, type, pp::Status::kNoSession, 0}, seq, answer_flags, out);
+  const uint32_t boot_nonce = session_.boot_nonce();
+  pp::ReliableReceiver& receiver = session_.receiver();
+  if (session_.Admit(type) != pp::Status::kOk) {
+    Reply(pp::Nack{boot_nonce, type, pp::Status::kNoSession, 0}, seq, answer_flags, out);
     return;
   }
   if (reliable) {
     const pp::CachedOutcome* cached = nullptr;
-    switch (receiver_.Classify(seq, &cached)) {
+    switch (receiver.Classify(seq, &cached)) {
       case pp::ReliableReceiver::Verdict::kApply:
         break;
       case pp::ReliableReceiver::Verdict::kDuplicate:
         if (cached->status == pp::Status::kOk) {
-          Reply(pp::Ack{boot_nonce_, cached->type}, seq, pp::flags::kReliable, out);
+          Reply(pp::Ack{boot_nonce, cached->type}, seq, pp::flags::kReliable, out);
         } else {
-          Reply(pp::Nack{boot_nonce_, cached->type, cached->status, cached->detail}, seq,
+          Reply(pp::Nack{boot_nonce, cached->type, cached->status, cached->detail}, seq,
                 pp::flags::kReliable, out);
         }
         return;
       case pp::ReliableReceiver::Verdict::kGap:
-        Reply(pp::Nack{boot_nonce_, type, pp::Status::kSeqGap, receiver_.expected()}, seq,
+        Reply(pp::Nack{boot_nonce, type, pp::Status::kSeqGap, receiver.expected()}, seq,
               pp::flags::kReliable, out);
         return;
       case pp::ReliableReceiver::Verdict::kIgnore:
@@ -90,17 +88,10 @@ void TestBoard::Handle(const pp::Frame& frame, std::vector<std::vector<uint8_t>>
   const pp::Status decoded = pp::DispatchFrame(frame, [&](const auto& m, const pp::Header&) {
     using M = std::decay_t<decltype(m)>;
     if constexpr (std::is_same_v<M, pp::Hello>) {
-      // A repeated Hello of the open session is answered again, never re-applied.
-      if (!session_ || m.host_nonce != host_nonce_) {
-        session_ = true;
-        host_nonce_ = m.host_nonce;
-        ++sessions;
-        receiver_.Reset(m.initial_seq);
-        heartbeat_.Reset();
-      }
+      if (session_.OnHello(m)) ++sessions;  // a repeated Hello is only answered again
       pp::HelloReply r{};
       r.host_nonce = m.host_nonce;
-      r.boot_nonce = boot_nonce_;
+      r.boot_nonce = boot_nonce;
       r.catalog_hash = catalog_hash_;
       r.rx_buffer_bytes = rx_buffer_bytes_;
       r.firmware_minor = 1;
@@ -109,27 +100,27 @@ void TestBoard::Handle(const pp::Frame& frame, std::vector<std::vector<uint8_t>>
       if (m.mask == 0) {
         status = pp::Status::kOutOfRange;  // an "out of limit" command: Nacked, not applied
       } else {
-        applied.push_back(Applied{boot_nonce_, m.mask});
+        applied.push_back(Applied{boot_nonce, m.mask});
       }
     } else if constexpr (std::is_same_v<M, pp::Heartbeat>) {
-      heartbeat_.Accept(m.generation);
+      session_.heartbeat().Accept(m.generation);
     } else if constexpr (std::is_same_v<M, pp::EStop>) {
-      Reply(pp::Ack{boot_nonce_, type}, seq, 0, out);
+      Reply(pp::Ack{boot_nonce, type}, seq, 0, out);
     }
   });
   if (type == static_cast<uint8_t>(pp::MessageType::kHello)) return;
   if (decoded != pp::Status::kOk) status = decoded;
   if (!reliable) return;
   if (type == static_cast<uint8_t>(pp::MessageType::kUpdateQuery) && status == pp::Status::kOk) {
-    receiver_.Complete(type, status, 0, true);
-    Reply(pp::UpdateStatus{boot_nonce_, 1, 1234, {}, false}, seq, pp::flags::kReliable, out);
+    receiver.Complete(type, status, 0, true);
+    Reply(pp::UpdateStatus{boot_nonce, 1, 1234, {}, false}, seq, pp::flags::kReliable, out);
     return;
   }
-  receiver_.Complete(type, status, 0, false);
+  receiver.Complete(type, status, 0, false);
   if (status == pp::Status::kOk) {
-    Reply(pp::Ack{boot_nonce_, type}, seq, pp::flags::kReliable, out);
+    Reply(pp::Ack{boot_nonce, type}, seq, pp::flags::kReliable, out);
   } else {
-    Reply(pp::Nack{boot_nonce_, type, status, 0}, seq, pp::flags::kReliable, out);
+    Reply(pp::Nack{boot_nonce, type, status, 0}, seq, pp::flags::kReliable, out);
   }
 }
 

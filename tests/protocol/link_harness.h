@@ -57,8 +57,8 @@ class TestBoard {
     uint32_t command_id;
   };
   std::vector<Applied> applied;
-  uint32_t boot_nonce() const { return boot_nonce_; }
-  uint32_t applied_heartbeat() const { return heartbeat_.applied(); }
+  uint32_t boot_nonce() const { return session_.boot_nonce(); }
+  uint32_t applied_heartbeat() const { return session_.heartbeat().applied(); }
   uint32_t sessions = 0;
 
  private:
@@ -69,12 +69,8 @@ class TestBoard {
   uint32_t catalog_hash_;
   uint16_t rx_buffer_bytes_;
   std::mt19937 rng_;
-  uint32_t boot_nonce_ = 0;
-  uint32_t host_nonce_ = 0;
-  bool session_ = false;
+  pp::BoardSession session_{0};
   pp::OwningFrameDecoder decoder_;
-  pp::ReliableReceiver receiver_;
-  pp::GenerationGate heartbeat_;
 };
 
 /// A host that opens a session, streams ClearFault commands with unique ids through the reliable

@@ -6,6 +6,8 @@
 
 #include "palpa/protocol/catalog.h"
 #include "palpa/protocol/messages_bootstrap.h"
+#include "palpa/protocol/reliable_receiver.h"
+#include "palpa/protocol/sequence.h"
 #include "palpa/protocol/status.h"
 
 namespace palpa::protocol {
@@ -18,6 +20,48 @@ constexpr Status BoardAdmit(bool session_open, uint8_t type) {
   }
   return session_open ? Status::kOk : Status::kNoSession;
 }
+
+/// Board side of a session: the boot nonce, the host's Hello, the reliable receiver and the
+/// latest-wins gates, all reset together by a new Hello.
+class BoardSession {
+ public:
+  explicit BoardSession(uint32_t boot_nonce) : boot_nonce_(boot_nonce) {}
+
+  /// Applies a Hello. A repeat of the open session's Hello (same nonce) changes nothing, so a
+  /// retried or duplicated Hello never rewinds the sequence. Returns true when a session started.
+  bool OnHello(const Hello& hello) {
+    if (open_ && hello.host_nonce == host_nonce_) return false;
+    open_ = true;
+    host_nonce_ = hello.host_nonce;
+    receiver_.Reset(hello.initial_seq);
+    setpoints_.Reset();
+    targets_.Reset();
+    heartbeat_.Reset();
+    return true;
+  }
+
+  Status Admit(uint8_t type) const { return BoardAdmit(open_, type); }
+
+  bool open() const { return open_; }
+  uint32_t boot_nonce() const { return boot_nonce_; }
+  uint32_t host_nonce() const { return host_nonce_; }
+  ReliableReceiver& receiver() { return receiver_; }
+  GenerationGate& setpoints() { return setpoints_; }
+  GenerationGate& targets() { return targets_; }
+  GenerationGate& heartbeat() { return heartbeat_; }
+  const GenerationGate& setpoints() const { return setpoints_; }
+  const GenerationGate& targets() const { return targets_; }
+  const GenerationGate& heartbeat() const { return heartbeat_; }
+
+ private:
+  uint32_t boot_nonce_;
+  uint32_t host_nonce_ = 0;
+  bool open_ = false;
+  ReliableReceiver receiver_;
+  GenerationGate setpoints_;
+  GenerationGate targets_;
+  GenerationGate heartbeat_;
+};
 
 /// Host side of a session: matches HelloReply to our Hello, notices board resets from the boot
 /// nonce in every board frame, and refuses non-bootstrap traffic across a catalog mismatch.
