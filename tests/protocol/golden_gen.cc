@@ -62,7 +62,7 @@ void Bootstrap() {
   r.rollback_counter = 3;
   r.host_timeout_us = 100000;
   r.fault_bitmap = 0;
-  r.config_name = Text<16>("thesis-5finger");
+  r.config_name = Text<24>("thesis-5finger");
   r.line_count = 7;
   for (uint8_t i = 0; i < 7; ++i) {
     const bool vacuum = i >= 5;
@@ -185,7 +185,9 @@ void Configuration() {
   const float params[] = {1.0f, 0.5f, 0.25f, 0.0f, 5000.0f};
   for (int i = 0; i < 5; ++i) finger.params[i] = params[i];
   Add("configure_finger_jamming", finger, 22, reliable);
-  Add("configure_board", pp::ConfigureBoard{}, 23, reliable);
+  pp::ConfigureBoard board{};
+  board.config_name = Text<24>("thesis-pneumatic-3");
+  Add("configure_board", board, 23, reliable);
   Add("staged_begin", pp::StagedBegin{600}, 24, reliable);
   pp::StagedPart part{0, pp::kMaxStagedChunk, {}};
   part.data.fill(0xFF);

@@ -75,7 +75,7 @@ struct HelloReply {
   uint32_t rollback_counter = 0;
   uint32_t host_timeout_us = 0; ///< host-silence timeout in board time
   uint32_t fault_bitmap = 0;
-  std::array<char, 16> config_name{};
+  std::array<char, 24> config_name{};
   uint8_t line_count = 0;
   std::array<LineSummary, kMaxLines> lines{};
   uint8_t finger_count = 0;

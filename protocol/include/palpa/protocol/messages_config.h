@@ -131,7 +131,8 @@ struct ConfigureFinger {
 struct ConfigureBoard {
   static constexpr MessageInfo kInfo{MessageType::kConfigureBoard, "ConfigureBoard",
                                      Sender::kHost, Delivery::kReliable,
-                                     "host-silence timeout, telemetry rate and batching, monitors"};
+                                     "name, host-silence timeout, telemetry rate and batching, monitors, homing"};
+  std::array<char, 24> config_name{};
   uint32_t host_timeout_us = 100000;
   uint16_t telemetry_decimation = 1;  ///< one sample every N ticks
   uint8_t telemetry_batch = 2;        ///< samples per telemetry frame
@@ -140,8 +141,10 @@ struct ConfigureBoard {
   uint32_t pump_max_run_ms = 600000;
   uint16_t sensor_window_ms = 2000;   ///< implausible-sensor comparison window
   int32_t sensor_tolerance_pa = 5000;
+  uint16_t home_dwell_ms = 300;       ///< vented / released time before a compensator re-homes
   template <class V, class M>
   static constexpr void Fields(V& v, M& m) {
+    v.Text("config_name", m.config_name);
     v.Field("host_timeout_us", m.host_timeout_us, 10000u, 10000000u);
     v.Field("telemetry_decimation", m.telemetry_decimation, 1, 1000);
     v.Field("telemetry_batch", m.telemetry_batch, 1, 16);
@@ -150,6 +153,7 @@ struct ConfigureBoard {
     v.Field("pump_max_run_ms", m.pump_max_run_ms, 1000u, 3600000u);
     v.Field("sensor_window_ms", m.sensor_window_ms, 100, 60000);
     v.Field("sensor_tolerance_pa", m.sensor_tolerance_pa, 100, 100000);
+    v.Field("home_dwell_ms", m.home_dwell_ms, 0, 10000);
   }
 };
 

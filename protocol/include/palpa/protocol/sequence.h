@@ -27,6 +27,10 @@ class GenerationGate {
     has_applied_ = true;
     return true;
   }
+  /// Would Accept() apply this generation? (Lets a receiver validate before committing.)
+  bool WouldAccept(uint32_t generation) const {
+    return !has_applied_ || GenerationNewer(generation, applied_);
+  }
   /// Forget history: a new session starts its streams afresh.
   void Reset() {
     has_applied_ = false;
