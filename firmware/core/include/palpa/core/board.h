@@ -1,0 +1,145 @@
+// The board's brain: configuration, session, supervisor, fingers and lines, run from a loop shell
+// that calls Step(). Talks to hardware only through hal interfaces.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "palpa/core/board_config.h"
+#include "palpa/core/config_store.h"
+#include "palpa/core/finger.h"
+#include "palpa/core/line_pipeline.h"
+#include "palpa/core/supervisor.h"
+#include "palpa/core/tick_pacer.h"
+#include "palpa/core/tx_queue.h"
+#include "palpa/hal/analog_input.h"
+#include "palpa/hal/analog_output.h"
+#include "palpa/hal/byte_link.h"
+#include "palpa/hal/clock.h"
+#include "palpa/hal/digital_io.h"
+#include "palpa/hal/flash.h"
+#include "palpa/protocol/framing.h"
+#include "palpa/protocol/session.h"
+
+namespace palpa::core {
+
+/// Hardware the core drives. Line i uses DAC channel i and ADC channel i.
+struct BoardIo {
+  hal::Clock& clock;
+  hal::AnalogOutput& dac;
+  hal::AnalogInput* adc;             ///< nullptr: no sensors fitted
+  hal::DigitalOutput& supply_enable; ///< pulsing enable of the normally-closed supply shut-off
+  hal::DigitalOutput& dump_enable;   ///< pulsing enable of the normally-open dump valve
+  hal::DigitalOutput& pump_enable;
+  hal::DigitalInput* estop;          ///< nullptr: no E-stop input; high = asserted
+  hal::ByteLink& link;
+  hal::Flash* flash;                 ///< nullptr: nothing persists
+  uint32_t flash_config_base = 0;
+};
+
+struct BoardIdentity {
+  protocol::BoardKind kind = protocol::BoardKind::kSim;
+  uint32_t board_id = 0;
+  uint8_t firmware_major = 0, firmware_minor = 1, firmware_patch = 0;
+  bool plant_simulated = false;
+  float time_scale = 1.0f;
+  protocol::ResetCause reset_cause = protocol::ResetCause::kPowerOn;
+  uint32_t boot_nonce = 0;
+  uint32_t boot_count = 0;
+  uint8_t active_slot = 0;
+  uint32_t rollback_counter = 0;
+  uint16_t rx_buffer_bytes = 1024;
+};
+
+class Board {
+ public:
+  static constexpr uint32_t kTickUs = 1000;
+
+  Board(const BoardConfig& factory, BoardIo io, BoardIdentity identity);
+
+  /// Outputs safe, configuration loaded (flash or factory), unexpected resets latched.
+  void Start();
+  /// One pass of the main loop: a control tick when due, then link input and output.
+  /// Returns true when a tick ran (the shell kicks the watchdog only then).
+  bool Step();
+
+  // Views for tests, the simulator and diagnostics.
+  const BoardConfig& config() const { return live_; }
+  uint32_t latched_faults() const { return supervisor_.latched; }
+  uint32_t active_conditions() const { return supervisor_.active; }
+  bool safe() const { return safe_; }
+  const LineOutput& line_output(uint8_t line) const { return line_out_[line]; }
+  const LineState& line_state(uint8_t line) const { return line_state_[line]; }
+  const TickStats& tick_stats() const { return pacer_.stats(); }
+  const protocol::FramingCounters& rx_counters() const { return decoder_.counters(); }
+  const TxQueue& tx() const { return tx_; }
+  bool config_is_default() const { return config_is_default_; }
+  /// The live configuration's memory, for tests that corrupt it on purpose.
+  BoardConfig& live_config_for_test() { return live_; }
+
+ private:
+  friend class BoardDispatch;
+  friend class BoardReports;
+
+  void Tick(uint64_t now_us);
+  void ReadInputs(uint64_t now_us, SupervisorInput& in);
+  void ComputeSetpoints(uint64_t now_us, float* setpoints);
+  void WriteOutputs();
+  void CheckConfigIntegrity(uint64_t now_us);
+  void SampleTelemetry(uint64_t now_us, bool fault_report);
+  void Poll(uint64_t now_us);
+  void ApplyLive(uint64_t now_us);
+  void Hold();  ///< outputs safe until new setpoints arrive; compensators re-home
+
+  BoardConfig factory_;
+  BoardIo io_;
+  BoardIdentity identity_;
+  BoardConfig live_{};
+  BoardConfig candidate_{};  ///< configuration being validated before it replaces live_
+  ConfigStore store_;
+  bool config_is_default_ = true;
+
+  protocol::BoardSession session_;
+  protocol::OwningFrameDecoder decoder_;
+  TxQueue tx_;
+  uint64_t last_host_frame_us_ = 0;
+
+  TickPacer pacer_{kTickUs};
+  SupervisorSettings settings_{};
+  SupervisorState supervisor_{};
+  bool released_ = false;  ///< new setpoints arrived since the last shutdown or clear
+  bool safe_ = true;
+  bool estop_requested_ = false;
+
+  std::array<LineParams, protocol::kMaxLines> line_params_{};
+  std::array<LineState, protocol::kMaxLines> line_state_{};
+  std::array<LineOutput, protocol::kMaxLines> line_out_{};
+  std::array<float, protocol::kMaxLines> raw_setpoint_pa_{};
+  std::array<float, protocol::kMaxLines> measured_pa_{};
+  std::array<bool, protocol::kMaxLines> measured_valid_{};
+  std::array<uint32_t, protocol::kMaxLines> raw_counts_{};
+  std::array<FingerParams, protocol::kMaxFingers> finger_params_{};
+  std::array<FingerState, protocol::kMaxFingers> finger_state_{};
+  std::array<uint8_t, protocol::kMaxLines> line_owner_{};
+
+  hal::PulsingEnable supply_pulse_;
+  hal::PulsingEnable dump_pulse_;
+
+  // Integrity of the live configuration: a CRC over its memory, recomputed a slice per tick.
+  uint32_t config_memory_crc_ = 0;
+  uint32_t check_crc_ = 0;
+  uint32_t check_offset_ = 0;
+  uint64_t next_check_us_ = 0;
+  bool config_intact_ = true;
+
+  // Telemetry batching.
+  protocol::Telemetry batch_{};
+  uint32_t tick_index_ = 0;
+
+  // Staged configuration upload.
+  std::array<uint8_t, protocol::kMaxStagedBytes> staged_{};
+  uint16_t staged_expected_ = 0;
+  uint16_t staged_received_ = 0;
+};
+
+}  // namespace palpa::core

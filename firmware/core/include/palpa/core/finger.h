@@ -1,0 +1,57 @@
+// A finger: target mode (compensator → line setpoints, with homing) or raw mode. Pure: no I/O.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "palpa/protocol/enums.h"
+#include "palpa/protocol/messages_config.h"
+
+namespace palpa::core {
+
+/// Per-finger constants derived from a ConfigureFinger when it is applied.
+struct FingerParams {
+  protocol::FingerKind kind = protocol::FingerKind::kPneumatic;
+  protocol::CompensatorKind compensator = protocol::CompensatorKind::kNone;
+  uint8_t line_a = 0;
+  uint8_t line_b = protocol::kNoLine;
+  float bias_pa = 0;
+  uint8_t inverse_count = 0;
+  std::array<float, protocol::kMaxInversePoints> inverse_output{};
+  std::array<float, protocol::kMaxInversePoints> inverse_setpoint{};
+  int32_t max_target = 0;  ///< largest output the inverse covers; beyond it targets are refused
+};
+
+FingerParams MakeFingerParams(const protocol::ConfigureFinger& finger);
+
+protocol::OutputUnit UnitOf(protocol::FingerKind kind);
+
+enum class HomePhase : uint8_t { kNeedsHoming, kHoming, kHomed };
+
+struct FingerState {
+  protocol::FingerMode mode = protocol::FingerMode::kTarget;
+  float target = 0;  ///< in the finger's output unit
+  HomePhase phase = HomePhase::kNeedsHoming;
+  uint64_t homed_at_us = 0;  ///< when the homing dwell ends
+};
+
+struct FingerOutput {
+  float setpoint_a = 0;  ///< pressure (pneumatic) or bias (jamming) line
+  float setpoint_b = 0;  ///< vacuum line (jamming)
+  bool homing = false;
+};
+
+/// The finger must re-home before following targets again (leaving the safe state, switching
+/// back to target mode, new configuration).
+inline void RequireHoming(FingerState& s) { s.phase = HomePhase::kNeedsHoming; }
+
+/// One tick in target mode. `applied_pa` is the pressure actually applied on the driven line
+/// (measured, or the regulator model where there is no sensor): compensators with memory update
+/// from it, not from what they asked for.
+FingerOutput StepFinger(const FingerParams& p, FingerState& s, uint64_t now_us,
+                        uint32_t home_dwell_us, float applied_pa);
+
+/// The static inverse: output unit → line setpoint; target 0 → 0 Pa.
+float StaticInverse(const FingerParams& p, float target);
+
+}  // namespace palpa::core

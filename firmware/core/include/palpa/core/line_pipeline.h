@@ -1,0 +1,66 @@
+// One regulated line per tick (2-DOF): slew → feed-forward through the static correction → PI
+// trim against the regulator-model reference → final clamp → DAC counts. Pure: no I/O.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "palpa/protocol/messages_config.h"
+
+namespace palpa::core {
+
+inline constexpr uint8_t kMaxDeadTicks = 32;
+
+/// Per-line constants, derived once from a ConfigureLine when it is applied.
+struct LineParams {
+  bool has_sensor = false;
+  float limit_min_pa = 0, limit_max_pa = 0;  ///< already intersected with the hard ceiling
+  float safe_pa = 0;
+  float max_step_pa = 0;                     ///< slew per tick; 0 = none
+  float regulator_min_pa = 0;
+  float command_min_pa = 0, command_span_pa = 1;  ///< pressure at 0 % and span to 100 %
+  float counts_low = 0, counts_high = 0;          ///< DAC codes at 0 % and 100 % of the signal
+  uint32_t max_counts = 0;
+  float kp = 0, ki_dt = 0;                   ///< ki already multiplied by the tick period
+  float authority_pa = 0, dead_band_pa = 0;
+  float model_alpha = 1;                     ///< regulator-model lag per tick
+  uint8_t dead_ticks = 0;
+  uint8_t correction_count = 0;
+  std::array<float, protocol::kMaxCorrectionPoints> correction_command{};
+  std::array<float, protocol::kMaxCorrectionPoints> correction_rising{};
+  std::array<float, protocol::kMaxCorrectionPoints> correction_falling{};
+};
+
+LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us);
+
+struct LineState {
+  float slewed_pa = 0;     ///< setpoint after the slew limiter
+  float integrator_pa = 0;
+  float reference_pa = 0;  ///< regulator-model output: where the pressure should be now
+  std::array<float, kMaxDeadTicks> delay{};  ///< slewed setpoints, oldest at delay_index
+  uint8_t delay_index = 0;
+  bool rising = true;      ///< direction for the correction branch, kept while steady
+};
+
+/// Resets the state to hold `pa` steadily (after configuration, or leaving the safe state).
+void ResetLineState(const LineParams& p, LineState& s, float pa);
+
+struct LineInput {
+  float setpoint_pa = 0;
+  bool safe = false;          ///< shutdown: write the safe value now, bypassing the slew
+  bool measured_valid = false;
+  float measured_pa = 0;
+};
+
+struct LineOutput {
+  uint32_t counts = 0;
+  float command_pa = 0;  ///< pressure the regulator is commanded to (after trim and clamp)
+  uint8_t status = 0;    ///< protocol::line_status bits
+};
+
+LineOutput StepLine(const LineParams& p, LineState& s, const LineInput& in);
+
+/// DAC code for a commanded pressure (clamped to the DAC's range).
+uint32_t CountsFor(const LineParams& p, float command_pa);
+
+}  // namespace palpa::core

@@ -1,0 +1,82 @@
+// The supervisor: one latched fault bitmap, one shutdown path. Pure: observations in, faults out.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "palpa/protocol/faults.h"
+#include "palpa/protocol/messages_config.h"
+#include "palpa/protocol/messages_report.h"
+#include "palpa/protocol/status.h"
+
+namespace palpa::core {
+
+struct SupervisorSettings {
+  uint64_t host_timeout_us = 100000;
+  uint64_t leak_timeout_us = 5000000;
+  uint64_t pump_max_run_us = 600000000;
+  uint64_t sensor_window_us = 3000000;
+  float tolerance_pa = 5000;
+};
+
+SupervisorSettings MakeSupervisorSettings(const protocol::ConfigureBoard& board);
+
+/// What the tick saw on one line.
+struct LineObservation {
+  bool configured = false;
+  bool active = false;        ///< commanding pressure (not safe, above the regulator minimum)
+  bool has_sensor = false;
+  bool sensor_valid = false;  ///< conversion succeeded and the counts are inside the sensor's span
+  uint32_t raw_counts = 0;
+  float measured_pa = 0;
+  float reference_pa = 0;     ///< regulator-model output
+  float setpoint_pa = 0;
+  float limit_min_pa = 0, limit_max_pa = 0;
+  bool vacuum_demand = false; ///< the pump is needed for this line
+};
+
+struct SupervisorInput {
+  uint64_t now_us = 0;
+  bool session_open = false;
+  uint64_t last_host_frame_us = 0;
+  bool estop_pin = false;
+  bool config_intact = true;  ///< the periodic CRC of the live configuration matched
+  bool safe = false;          ///< outputs are in the safe state this tick
+  std::array<LineObservation, protocol::kMaxLines> lines{};
+};
+
+struct LineMonitor {
+  uint64_t implausible_since = 0;
+  uint64_t leak_since = 0;
+  uint64_t stuck_since = 0;
+  uint32_t stuck_counts = 0;
+  float stuck_reference = 0;
+  bool implausible_timing = false;
+  bool leak_timing = false;
+};
+
+struct SupervisorState {
+  uint32_t latched = 0;  ///< faults latched until ClearFault
+  uint32_t active = 0;   ///< conditions present now
+  std::array<LineMonitor, protocol::kMaxLines> lines{};
+  bool pump_on = false;
+  uint64_t pump_on_since = 0;
+  std::array<protocol::FaultRecord, protocol::kMaxFaultRecords> history{};  ///< ring
+  uint8_t history_count = 0;
+  uint8_t history_next = 0;
+};
+
+/// Latches a fault (and records it) — the single entry into the safe state.
+void LatchFault(SupervisorState& s, protocol::Fault fault, uint64_t now_us, int32_t detail);
+
+/// Evaluates every condition for this tick, latches new faults and decides the pump.
+/// Returns the bits newly latched.
+uint32_t Supervise(const SupervisorSettings& settings, SupervisorState& s, const SupervisorInput& in);
+
+/// ClearFault: refused (kConditionPersists) while any masked fault's condition is still present.
+protocol::Status ClearFaults(SupervisorState& s, uint32_t mask);
+
+/// Copies the history ring oldest-first.
+uint8_t FaultHistory(const SupervisorState& s, protocol::FaultRecord* out);
+
+}  // namespace palpa::core

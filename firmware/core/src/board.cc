@@ -1,0 +1,203 @@
+// The control tick: inputs → supervisor → fingers → lines → outputs → telemetry.
+#include "palpa/core/board.h"
+
+#include <cstring>
+
+#include "palpa/protocol/crc32.h"
+
+namespace palpa::core {
+namespace {
+
+using protocol::Fault;
+using protocol::kMaxLines;
+using protocol::kNoLine;
+
+uint32_t MemoryCrc(const BoardConfig& config) {
+  return protocol::Crc32(reinterpret_cast<const uint8_t*>(&config), sizeof(config));
+}
+
+constexpr uint32_t kCrcSliceBytes = 512;  // per tick: a 6 KB configuration every ~12 ticks
+
+}  // namespace
+
+Board::Board(const BoardConfig& factory, BoardIo io, BoardIdentity identity)
+    : factory_(factory),
+      io_(io),
+      identity_(identity),
+      store_(io.flash, io.flash_config_base),
+      session_(identity.boot_nonce),
+      supply_pulse_(io.supply_enable),
+      dump_pulse_(io.dump_enable) {}
+
+void Board::Start() {
+  // Critical for safety: every output to its safe code before anything else happens.
+  const uint64_t now = io_.clock.NowMicros();
+  std::memset(&live_, 0, sizeof(live_));  // padding too: the integrity CRC covers raw memory
+  config_is_default_ = store_.Load(factory_, live_) == ConfigStore::Source::kFactory;
+  ApplyLive(now);
+  WriteOutputs();
+  switch (identity_.reset_cause) {
+    case protocol::ResetCause::kWatchdog:
+    case protocol::ResetCause::kBrownOut:
+    case protocol::ResetCause::kFaultHandler:
+      LatchFault(supervisor_, Fault::kUnexpectedReset, now, static_cast<int32_t>(identity_.reset_cause));
+      break;
+    default:
+      break;
+  }
+  pacer_.Start(now);
+}
+
+bool Board::Step() {
+  const uint64_t now = io_.clock.NowMicros();
+  bool ticked = false;
+  if (pacer_.Due(now)) {
+    Tick(now);
+    ticked = true;
+  }
+  Poll(io_.clock.NowMicros());
+  return ticked;
+}
+
+void Board::ApplyLive(uint64_t now_us) {
+  settings_ = MakeSupervisorSettings(live_.board);
+  for (uint8_t i = 0; i < kMaxLines; ++i) {
+    line_owner_[i] = FingerOfLine(live_, i);
+    if (i < live_.line_count) {
+      line_params_[i] = MakeLineParams(live_.lines[i], kTickUs);
+      ResetLineState(line_params_[i], line_state_[i], line_params_[i].safe_pa);
+      raw_setpoint_pa_[i] = line_params_[i].safe_pa;
+    }
+  }
+  for (uint8_t f = 0; f < live_.finger_count; ++f) {
+    finger_params_[f] = MakeFingerParams(live_.fingers[f]);
+    finger_state_[f].target = 0;
+  }
+  config_memory_crc_ = MemoryCrc(live_);
+  check_offset_ = 0;
+  check_crc_ = 0;
+  next_check_us_ = now_us;
+  config_intact_ = true;
+  Hold();
+}
+
+void Board::Hold() {
+  released_ = false;
+  for (FingerState& f : finger_state_) RequireHoming(f);
+}
+
+void Board::Tick(uint64_t now_us) {
+  pacer_.BeginTick(now_us);
+  SupervisorInput in;
+  ReadInputs(now_us, in);
+  CheckConfigIntegrity(now_us);
+  in.config_intact = config_intact_;
+  if (estop_requested_) {
+    LatchFault(supervisor_, Fault::kEStopCommand, now_us, 0);
+    estop_requested_ = false;
+  }
+  const uint32_t newly = Supervise(settings_, supervisor_, in);
+  const bool was_safe = safe_;
+  safe_ = supervisor_.latched != 0 || !released_;
+  if (safe_ && !was_safe) Hold();
+
+  float setpoints[kMaxLines] = {};
+  ComputeSetpoints(now_us, setpoints);
+  for (uint8_t i = 0; i < live_.line_count; ++i) {
+    LineInput line_in{setpoints[i], safe_, measured_valid_[i], measured_pa_[i]};
+    line_out_[i] = StepLine(line_params_[i], line_state_[i], line_in);
+    const uint8_t owner = line_owner_[i];
+    if (owner != kNoLine && finger_state_[owner].mode == protocol::FingerMode::kRaw) {
+      line_out_[i].status |= protocol::line_status::kRaw;
+    }
+    if (line_params_[i].has_sensor && !measured_valid_[i]) line_out_[i].status |= protocol::line_status::kSensorFault;
+  }
+  WriteOutputs();
+  SampleTelemetry(now_us, newly != 0);
+  pacer_.EndTick(io_.clock.NowMicros());
+}
+
+void Board::ReadInputs(uint64_t now_us, SupervisorInput& in) {
+  in.now_us = now_us;
+  in.session_open = session_.open();
+  in.last_host_frame_us = last_host_frame_us_;
+  in.estop_pin = io_.estop != nullptr && io_.estop->Read();
+  in.safe = safe_;
+  for (uint8_t i = 0; i < live_.line_count; ++i) {
+    const protocol::ConfigureLine& c = live_.lines[i];
+    const LineParams& p = line_params_[i];
+    LineObservation& o = in.lines[i];
+    o.configured = true;
+    o.has_sensor = p.has_sensor && io_.adc != nullptr;
+    measured_valid_[i] = false;
+    if (o.has_sensor) {
+      const auto counts = io_.adc->Read(i);
+      // Readings outside the sensor's output span (open or shorted wire) are not pressures.
+      const uint32_t margin = (c.sensor_counts_max - c.sensor_counts_min) / 50;
+      const bool in_span = counts.ok() && counts.value + margin >= c.sensor_counts_min &&
+                           counts.value <= c.sensor_counts_max + margin;
+      if (in_span) {
+        const float scale = static_cast<float>(c.sensor_max_pa - c.sensor_min_pa) /
+                            static_cast<float>(c.sensor_counts_max - c.sensor_counts_min);
+        measured_pa_[i] = static_cast<float>(c.sensor_min_pa) +
+                          (static_cast<float>(counts.value) - static_cast<float>(c.sensor_counts_min)) * scale;
+        measured_valid_[i] = true;
+      }
+      raw_counts_[i] = counts.ok() ? counts.value : 0;
+    }
+    o.sensor_valid = measured_valid_[i];
+    o.raw_counts = raw_counts_[i];
+    o.measured_pa = measured_pa_[i];
+    o.reference_pa = line_state_[i].reference_pa;
+    o.setpoint_pa = line_state_[i].slewed_pa;
+    o.limit_min_pa = p.limit_min_pa;
+    o.limit_max_pa = p.limit_max_pa;
+    o.active = !safe_ && (line_out_[i].status & protocol::line_status::kOpenLoop) == 0;
+    o.vacuum_demand = c.kind == protocol::LineKind::kVacuum && line_out_[i].command_pa < -p.regulator_min_pa;
+  }
+}
+
+void Board::ComputeSetpoints(uint64_t now_us, float* setpoints) {
+  for (uint8_t i = 0; i < live_.line_count; ++i) setpoints[i] = raw_setpoint_pa_[i];
+  if (safe_) return;
+  const uint32_t dwell_us = static_cast<uint32_t>(live_.board.home_dwell_ms) * 1000;
+  for (uint8_t f = 0; f < live_.finger_count; ++f) {
+    FingerState& s = finger_state_[f];
+    const FingerParams& p = finger_params_[f];
+    if (s.mode != protocol::FingerMode::kTarget) continue;
+    const uint8_t driven = p.line_b != kNoLine ? p.line_b : p.line_a;
+    const float applied = measured_valid_[driven] ? measured_pa_[driven] : line_state_[driven].reference_pa;
+    const FingerOutput out = StepFinger(p, s, now_us, dwell_us, applied);
+    setpoints[p.line_a] = out.setpoint_a;
+    if (p.line_b != kNoLine) setpoints[p.line_b] = out.setpoint_b;
+  }
+}
+
+void Board::WriteOutputs() {
+  for (uint8_t i = 0; i < live_.line_count; ++i) {
+    if (safe_) line_out_[i].counts = CountsFor(line_params_[i], line_params_[i].safe_pa);
+    io_.dac.Write(i, line_out_[i].counts);
+  }
+  // Critical for safety: valves and pump are held only while the board is not safe.
+  supply_pulse_.Tick(!safe_);
+  dump_pulse_.Tick(!safe_);
+  io_.pump_enable.Set(!safe_ && supervisor_.pump_on);
+}
+
+void Board::CheckConfigIntegrity(uint64_t now_us) {
+  if (check_offset_ == 0) {  // a pass starts every check period and takes a few ticks
+    if (now_us < next_check_us_) return;
+    next_check_us_ = now_us + static_cast<uint64_t>(live_.board.config_check_period_ms) * 1000;
+  }
+  const auto* bytes = reinterpret_cast<const uint8_t*>(&live_);
+  const uint32_t remaining = static_cast<uint32_t>(sizeof(live_)) - check_offset_;
+  const uint32_t slice = remaining < kCrcSliceBytes ? remaining : kCrcSliceBytes;
+  check_crc_ = protocol::Crc32Update(check_crc_, bytes + check_offset_, slice);
+  check_offset_ += slice;
+  if (check_offset_ < sizeof(live_)) return;
+  config_intact_ = check_crc_ == config_memory_crc_;
+  check_offset_ = 0;
+  check_crc_ = 0;
+}
+
+}  // namespace palpa::core

@@ -1,0 +1,36 @@
+// Piecewise-linear interpolation and monotonicity checks.
+#include "palpa/core/curve.h"
+
+namespace palpa::core {
+
+float Interpolate(const float* x, const float* y, uint8_t count, float at) {
+  if (count == 0) return at;
+  if (count == 1) return y[0];
+  const bool rising = x[count - 1] > x[0];
+  auto before = [rising](float a, float b) { return rising ? a <= b : a >= b; };
+  if (before(at, x[0])) return y[0];
+  if (before(x[count - 1], at)) return y[count - 1];
+  uint8_t i = 1;
+  while (i < count - 1 && before(x[i], at)) ++i;
+  const float span = x[i] - x[i - 1];
+  const float t = span != 0.0f ? (at - x[i - 1]) / span : 0.0f;
+  return y[i - 1] + t * (y[i] - y[i - 1]);
+}
+
+int Direction(const int32_t* values, uint8_t count, bool strict) {
+  int direction = 0;
+  for (uint8_t i = 1; i < count; ++i) {
+    const int32_t a = values[i - 1];
+    const int32_t b = values[i];
+    if (a == b) {
+      if (strict) return 2;
+      continue;
+    }
+    const int step = b > a ? 1 : -1;
+    if (direction != 0 && step != direction) return 2;
+    direction = step;
+  }
+  return direction;
+}
+
+}  // namespace palpa::core

@@ -1,0 +1,139 @@
+// The line pipeline: the only code between a setpoint and a DAC code.
+#include "palpa/core/line_pipeline.h"
+
+#include "palpa/core/ceilings.h"
+#include "palpa/core/curve.h"
+#include "palpa/protocol/enums.h"
+
+namespace palpa::core {
+namespace {
+
+namespace ls = protocol::line_status;
+
+float Clamp(float v, float lo, float hi) { return v < lo ? lo : (v > hi ? hi : v); }
+float Abs(float v) { return v < 0 ? -v : v; }
+
+/// Command that makes the regulator produce `pa`, from its measured static curve (rising or
+/// falling branch); the nominal scaling when the line has no correction.
+float FeedForward(const LineParams& p, float pa, bool rising) {
+  if (p.correction_count < 2) return pa;
+  const float* produced = rising ? p.correction_rising.data() : p.correction_falling.data();
+  return Interpolate(produced, p.correction_command.data(), p.correction_count, pa);
+}
+
+}  // namespace
+
+LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us) {
+  LineParams p;
+  const Ceiling ceiling = CeilingFor(line.kind);
+  const float dt = static_cast<float>(tick_us) * 1e-6f;
+  p.has_sensor = line.sensor == protocol::SensorKind::kAnalog;
+  p.limit_min_pa = static_cast<float>(line.limit_min_pa > ceiling.min_pa ? line.limit_min_pa : ceiling.min_pa);
+  p.limit_max_pa = static_cast<float>(line.limit_max_pa < ceiling.max_pa ? line.limit_max_pa : ceiling.max_pa);
+  p.safe_pa = Clamp(static_cast<float>(line.safe_pa), p.limit_min_pa, p.limit_max_pa);
+  p.max_step_pa = static_cast<float>(line.slew_pa_per_s) * dt;
+  p.regulator_min_pa = static_cast<float>(line.regulator_min_pa);
+  p.command_min_pa = static_cast<float>(line.command_min_pa);
+  p.command_span_pa = static_cast<float>(line.command_max_pa - line.command_min_pa);
+  p.max_counts = (1u << line.dac_bits) - 1u;
+  // A 4-20 mA output is a 0-20 mA DAC: 0 % of the signal is 4 mA, a fifth of full scale.
+  p.counts_low = line.dac_signal == protocol::SignalRange::kMilliamp4To20 ? 0.2f * static_cast<float>(p.max_counts) : 0.0f;
+  p.counts_high = static_cast<float>(p.max_counts);
+  p.kp = line.trim_kp;
+  p.ki_dt = line.trim_ki_per_s * dt;
+  p.authority_pa = static_cast<float>(line.trim_authority_pa);
+  p.dead_band_pa = static_cast<float>(line.trim_dead_band_pa);
+  const float tau = static_cast<float>(line.model_tau_us) * 1e-6f;
+  p.model_alpha = tau > 0 ? dt / (tau + dt) : 1.0f;
+  const uint32_t dead = tick_us > 0 ? (line.model_dead_time_us + tick_us / 2) / tick_us : 0;
+  p.dead_ticks = static_cast<uint8_t>(dead < kMaxDeadTicks ? dead : kMaxDeadTicks - 1);
+  p.correction_count = line.correction_count;
+  for (uint8_t i = 0; i < line.correction_count; ++i) {
+    p.correction_command[i] = static_cast<float>(line.correction[i].command_pa);
+    p.correction_rising[i] = static_cast<float>(line.correction[i].rising_pa);
+    p.correction_falling[i] = static_cast<float>(line.correction[i].falling_pa);
+  }
+  return p;
+}
+
+void ResetLineState(const LineParams& p, LineState& s, float pa) {
+  s.slewed_pa = pa;
+  s.integrator_pa = 0;
+  s.reference_pa = pa;
+  for (float& d : s.delay) d = pa;
+  s.delay_index = 0;
+  s.rising = true;
+  (void)p;
+}
+
+uint32_t CountsFor(const LineParams& p, float command_pa) {
+  const float fraction = Clamp((command_pa - p.command_min_pa) / p.command_span_pa, 0.0f, 1.0f);
+  const float counts = p.counts_low + fraction * (p.counts_high - p.counts_low) + 0.5f;
+  return counts >= static_cast<float>(p.max_counts) ? p.max_counts : static_cast<uint32_t>(counts);
+}
+
+LineOutput StepLine(const LineParams& p, LineState& s, const LineInput& in) {
+  LineOutput out;
+  if (in.safe) {  // Critical for safety: the shutdown bypasses slew, trim and model.
+    ResetLineState(p, s, p.safe_pa);
+    out.command_pa = p.safe_pa;
+    out.counts = CountsFor(p, p.safe_pa);
+    out.status = ls::kSafe | ls::kOpenLoop;
+    return out;
+  }
+  // 1. Slew limit.
+  const float target = Clamp(in.setpoint_pa, p.limit_min_pa, p.limit_max_pa);
+  float step = target - s.slewed_pa;
+  if (p.max_step_pa > 0 && Abs(step) > p.max_step_pa) {
+    step = step > 0 ? p.max_step_pa : -p.max_step_pa;
+    out.status |= ls::kSlewing;
+  }
+  const float previous = s.slewed_pa;
+  s.slewed_pa += step;
+  if (Abs(s.slewed_pa) > Abs(previous)) s.rising = true;
+  if (Abs(s.slewed_pa) < Abs(previous)) s.rising = false;
+
+  // 2. Regulator model (dead time + lag): the reference the trim compares the sensor with.
+  const float delayed = s.delay[s.delay_index];
+  s.delay[s.delay_index] = s.slewed_pa;
+  s.delay_index = static_cast<uint8_t>(p.dead_ticks == 0 ? 0 : (s.delay_index + 1) % p.dead_ticks);
+  s.reference_pa += p.model_alpha * ((p.dead_ticks == 0 ? s.slewed_pa : delayed) - s.reference_pa);
+
+  // 3. Below the regulator's minimum set pressure: command 0, integrator off.
+  if (Abs(s.slewed_pa) < p.regulator_min_pa) {
+    s.integrator_pa = 0;
+    out.command_pa = 0;
+    out.counts = CountsFor(p, 0);
+    out.status |= ls::kOpenLoop;
+    return out;
+  }
+
+  // 4. Feed-forward through the static correction, plus the PI trim where a sensor exists.
+  const float feed_forward = FeedForward(p, s.slewed_pa, s.rising);
+  float trim = 0;
+  if (p.has_sensor && in.measured_valid) {
+    const float error = s.reference_pa - in.measured_pa;
+    const float effective = Abs(error) <= p.dead_band_pa ? 0.0f : error;
+    s.integrator_pa += p.ki_dt * effective;
+    const float unclamped = p.kp * effective + s.integrator_pa;
+    trim = Clamp(unclamped, -p.authority_pa, p.authority_pa);
+    if (trim != unclamped) {
+      s.integrator_pa += trim - unclamped;  // back-calculation at the authority clamp
+      out.status |= ls::kTrimClamped;
+    }
+  } else {
+    out.status |= ls::kOpenLoop;
+  }
+
+  // 5. Final clamp to the line's limits, with back-calculation into the integrator.
+  const float unclamped_command = feed_forward + trim;
+  out.command_pa = Clamp(unclamped_command, p.limit_min_pa, p.limit_max_pa);
+  if (out.command_pa != unclamped_command) {
+    s.integrator_pa = Clamp(s.integrator_pa + (out.command_pa - unclamped_command), -p.authority_pa, p.authority_pa);
+    out.status |= ls::kSaturated;
+  }
+  out.counts = CountsFor(p, out.command_pa);
+  return out;
+}
+
+}  // namespace palpa::core

@@ -1,0 +1,165 @@
+// Supervisor: every fault path latches, ClearFault is refused while the cause persists.
+#include "palpa/core/supervisor.h"
+
+#include "CppUTest/TestHarness.h"
+
+namespace pc = palpa::core;
+namespace pp = palpa::protocol;
+using pp::Fault;
+using pp::FaultBit;
+
+namespace {
+
+struct Fixture {
+  pc::SupervisorSettings settings;
+  pc::SupervisorState state;
+  pc::SupervisorInput in;
+  Fixture() {
+    settings.host_timeout_us = 100000;
+    settings.sensor_window_us = 3000000;
+    settings.leak_timeout_us = 5000000;
+    settings.pump_max_run_us = 60000000;
+    settings.tolerance_pa = 5000;
+    in.session_open = true;
+    pc::LineObservation& o = in.lines[0];
+    o.configured = o.has_sensor = o.sensor_valid = o.active = true;
+    o.limit_min_pa = 0;
+    o.limit_max_pa = 100000;
+  }
+  uint32_t At(uint64_t now_us) {
+    in.now_us = now_us;
+    return pc::Supervise(settings, state, in);
+  }
+  void Line(float setpoint, float reference, float measured, uint32_t counts) {
+    pc::LineObservation& o = in.lines[0];
+    o.setpoint_pa = setpoint;
+    o.reference_pa = reference;
+    o.measured_pa = measured;
+    o.raw_counts = counts;
+  }
+};
+
+}  // namespace
+
+TEST_GROUP(Supervisor){};
+
+TEST(Supervisor, HostSilenceLatchesAfterTheTimeoutAndClearsOnlyWhenTheHostIsBack) {
+  Fixture f;
+  f.in.last_host_frame_us = 1000000;
+  LONGS_EQUAL(0, f.At(1100000));
+  LONGS_EQUAL(FaultBit(Fault::kHostSilence), f.At(1100001));
+  LONGS_EQUAL((int)pp::Status::kConditionPersists, (int)pc::ClearFaults(f.state, pp::kAllFaults));
+  f.in.last_host_frame_us = 1200000;
+  f.At(1200001);
+  LONGS_EQUAL((int)pp::Status::kOk, (int)pc::ClearFaults(f.state, pp::kAllFaults));
+  LONGS_EQUAL(0, f.state.latched);
+}
+
+TEST(Supervisor, NoHostSilenceWithoutASession) {
+  Fixture f;
+  f.in.session_open = false;
+  LONGS_EQUAL(0, f.At(100000000));
+}
+
+TEST(Supervisor, OverLimitReadingLatchesAtOnce) {
+  Fixture f;
+  f.in.last_host_frame_us = 0;
+  f.Line(50000, 50000, 105001, 100);
+  LONGS_EQUAL(FaultBit(Fault::kOverLimit), f.At(1000));
+}
+
+TEST(Supervisor, ReadingOutsideTheSensorSpanIsImplausibleAtOnce) {
+  Fixture f;
+  f.in.lines[0].sensor_valid = false;
+  LONGS_EQUAL(FaultBit(Fault::kImplausibleSensor), f.At(1000));
+}
+
+TEST(Supervisor, SensorAboveTheModelLongerThanTheWindowIsImplausible) {
+  Fixture f;
+  f.Line(20000, 20000, 40000, 100);
+  for (uint64_t t = 1000; t <= 3000000; t += 100000) {
+    f.in.last_host_frame_us = t;
+    f.in.lines[0].raw_counts = static_cast<uint32_t>(t);  // noise: not stuck
+    LONGS_EQUAL(0, f.At(t));
+  }
+  f.in.last_host_frame_us = 3100000;
+  LONGS_EQUAL(FaultBit(Fault::kImplausibleSensor), f.At(3100000));
+}
+
+TEST(Supervisor, ShortTransientsAreNotImplausible) {
+  Fixture f;
+  for (uint64_t t = 0; t < 20000000; t += 100000) {
+    const bool transient = (t / 1000000) % 2 == 0;  // 1 s over, 1 s fine
+    f.Line(20000, 20000, transient ? 40000 : 20000, static_cast<uint32_t>(t));
+    f.in.last_host_frame_us = t;
+    LONGS_EQUAL(0, f.At(t));
+  }
+}
+
+TEST(Supervisor, StuckSensorWhileTheCommandMovesIsImplausible) {
+  Fixture f;
+  for (uint64_t t = 0; t <= 3200000; t += 100000) {
+    const float reference = static_cast<float>(t) / 100.0f;  // ramps 0 → 32 kPa
+    f.Line(reference, reference, 0, 777);  // same counts all along, reading stays at 0
+    f.in.last_host_frame_us = t;
+    f.At(t);
+  }
+  CHECK(f.state.latched & FaultBit(Fault::kImplausibleSensor));
+}
+
+TEST(Supervisor, LeakWhenTheChamberNeverReachesASettledSetpoint) {
+  Fixture f;
+  uint32_t newly = 0;
+  for (uint64_t t = 0; t <= 5200000; t += 100000) {
+    f.Line(50000, 50000, 30000, static_cast<uint32_t>(t));
+    f.in.last_host_frame_us = t;
+    newly |= f.At(t);
+  }
+  LONGS_EQUAL(FaultBit(Fault::kLeak), newly);
+}
+
+TEST(Supervisor, EStopPinLatchesAndBlocksClearingWhileAsserted) {
+  Fixture f;
+  f.in.estop_pin = true;
+  LONGS_EQUAL(FaultBit(Fault::kEStopPin), f.At(1));
+  f.in.last_host_frame_us = 2;
+  f.At(2);
+  LONGS_EQUAL((int)pp::Status::kConditionPersists, (int)pc::ClearFaults(f.state, FaultBit(Fault::kEStopPin)));
+  f.in.estop_pin = false;
+  f.At(3);
+  LONGS_EQUAL((int)pp::Status::kOk, (int)pc::ClearFaults(f.state, FaultBit(Fault::kEStopPin)));
+}
+
+TEST(Supervisor, ConfigCrcFailureLatches) {
+  Fixture f;
+  f.in.config_intact = false;
+  LONGS_EQUAL(FaultBit(Fault::kConfigCrc), f.At(1));
+}
+
+TEST(Supervisor, PumpRunsOnlyOnDemandAndNeverLongerThanAllowed) {
+  Fixture f;
+  f.in.lines[0].vacuum_demand = true;
+  f.At(1);
+  CHECK(f.state.pump_on);
+  for (uint64_t t = 1; t < 60000000; t += 1000000) {
+    f.in.last_host_frame_us = t;
+    f.in.lines[0].raw_counts = static_cast<uint32_t>(t);
+    f.Line(0, 0, 0, static_cast<uint32_t>(t));
+    f.At(t);
+  }
+  f.in.last_host_frame_us = 60000002;
+  CHECK(f.At(60000002) & FaultBit(Fault::kPumpRunTime));
+  CHECK_FALSE(f.state.pump_on);
+}
+
+TEST(Supervisor, HistoryKeepsTheLatestSixteenOldestFirst) {
+  pc::SupervisorState s;
+  for (int i = 0; i < 20; ++i) {
+    pc::LatchFault(s, static_cast<Fault>(i % 9), static_cast<uint64_t>(i), i);
+    s.latched = 0;  // let the same fault latch again
+  }
+  pp::FaultRecord records[pp::kMaxFaultRecords];
+  LONGS_EQUAL(16, pc::FaultHistory(s, records));
+  LONGS_EQUAL(4, records[0].time_us);
+  LONGS_EQUAL(19, records[15].time_us);
+}
