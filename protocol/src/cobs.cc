@@ -1,9 +1,42 @@
 // COBS encoder (Cheshire & Baker 1999), one pass, bounded by the caller's buffer.
 #include "palpa/protocol/cobs.h"
 
+#include "palpa/protocol/wire.h"
+
 namespace palpa::protocol {
+namespace {
+
+// The common case, when the caller's buffer is large enough for the worst case: no bounds checks
+// per byte (the telemetry frame is encoded every couple of ticks on a small MCU).
+size_t CobsEncodeUnchecked(const uint8_t* in, size_t size, uint8_t* out) {
+  const uint8_t* const end = in + size;
+  uint8_t* code_at = out;
+  uint8_t* dst = out + 1;
+  uint8_t code = 1;
+  while (in != end) {
+    const uint8_t byte = *in++;
+    if (byte == 0) {
+      *code_at = code;
+      code_at = dst++;
+      code = 1;
+      continue;
+    }
+    *dst++ = byte;
+    if (++code == 0xFF) {
+      *code_at = code;
+      code = 1;
+      if (in == end) return static_cast<size_t>(dst - out);  // a full block ends the input
+      code_at = dst++;
+    }
+  }
+  *code_at = code;
+  return static_cast<size_t>(dst - out);
+}
+
+}  // namespace
 
 size_t CobsEncode(const uint8_t* in, size_t size, uint8_t* out, size_t out_capacity) {
+  if (out_capacity >= CobsMaxEncodedSize(size)) return CobsEncodeUnchecked(in, size, out);
   if (out_capacity == 0) return 0;
   size_t code_index = 0;
   size_t write = 1;

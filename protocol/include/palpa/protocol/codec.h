@@ -63,10 +63,10 @@ Result<size_t> EncodePacket(const M& m, uint8_t seq, uint8_t header_flags, uint8
 template <class M>
 Result<size_t> EncodeMessageFrame(const M& m, uint8_t seq, uint8_t header_flags, uint8_t* out,
                                   size_t capacity, FieldError* error = nullptr) {
-  uint8_t packet[kMaxPacketSize];
-  const Result<size_t> size = EncodePacket(m, seq, header_flags, packet, sizeof(packet), error);
+  uint8_t packet[kMaxPacketSize + kCrcSize];
+  const Result<size_t> size = EncodePacket(m, seq, header_flags, packet, kMaxPacketSize, error);
   if (!size.ok()) return size.status;
-  return EncodeFrame(packet, size.value, out, capacity);
+  return EncodeFrameInPlace(packet, size.value, out, capacity);
 }
 
 /// Decodes a frame's body as the message its header names and calls handler(message, header).

@@ -75,4 +75,9 @@ class OwningFrameDecoder : public FrameDecoder {
 Result<size_t> EncodeFrame(const uint8_t* packet, size_t packet_size, uint8_t* out,
                            size_t out_capacity);
 
+/// As EncodeFrame, for a packet in a buffer with kCrcSize spare bytes after it: the CRC is
+/// appended in place, which saves copying the packet.
+Result<size_t> EncodeFrameInPlace(uint8_t* packet, size_t packet_size, uint8_t* out,
+                                  size_t out_capacity);
+
 }  // namespace palpa::protocol
