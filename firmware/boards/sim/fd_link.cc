@@ -1,0 +1,162 @@
+// TCP and pty transports for palpa-sim.
+#include "fd_link.h"
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <pty.h>
+#include <sys/socket.h>
+#include <termios.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+namespace palpa::sim {
+namespace {
+
+void NonBlocking(int fd) { fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) | O_NONBLOCK); }
+
+}  // namespace
+
+FdLink::~FdLink() {
+  Disconnect();
+  if (listen_fd_ >= 0) close(listen_fd_);
+  if (pty_slave_ >= 0) close(pty_slave_);
+  if (!symlink_.empty()) unlink(symlink_.c_str());
+}
+
+bool FdLink::Open(const std::string& spec, std::string* error) {
+  if (spec.rfind("tcp:", 0) == 0) {
+    const std::string rest = spec.substr(4);
+    const size_t colon = rest.rfind(':');
+    if (colon == std::string::npos) {
+      *error = "--listen " + spec + ": expected tcp:HOST:PORT";
+      return false;
+    }
+    const std::string host = rest.substr(0, colon);
+    char* end = nullptr;
+    const long port = std::strtol(rest.c_str() + colon + 1, &end, 10);
+    if (*end != '\0' || port < 0 || port > 65535 || colon + 1 == rest.size()) {
+      *error = "--listen " + spec + ": the port must be a number from 0 to 65535";
+      return false;
+    }
+    sockaddr_in addr{};
+    addr.sin_family = AF_INET;
+    addr.sin_port = htons(static_cast<uint16_t>(port));
+    if (inet_pton(AF_INET, host.c_str(), &addr.sin_addr) != 1) {
+      *error = "--listen " + spec + ": '" + host + "' is not an IPv4 address";
+      return false;
+    }
+    listen_fd_ = socket(AF_INET, SOCK_STREAM, 0);
+    const int one = 1;
+    setsockopt(listen_fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof(one));
+    if (bind(listen_fd_, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)) != 0 || listen(listen_fd_, 1) != 0) {
+      *error = "--listen " + spec + ": " + std::strerror(errno);
+      return false;
+    }
+    socklen_t len = sizeof(addr);
+    getsockname(listen_fd_, reinterpret_cast<sockaddr*>(&addr), &len);
+    NonBlocking(listen_fd_);
+    address_ = "tcp:" + host + ":" + std::to_string(ntohs(addr.sin_port));
+    return true;
+  }
+  if (spec.rfind("pty:", 0) == 0) {
+    symlink_ = spec.substr(4);
+    if (symlink_.empty()) {
+      *error = "--listen " + spec + ": expected pty:PATH";
+      return false;
+    }
+    int master = -1;
+    char name[256];
+    if (openpty(&master, &pty_slave_, name, nullptr, nullptr) != 0) {
+      *error = std::string("--listen ") + spec + ": openpty: " + std::strerror(errno);
+      return false;
+    }
+    termios raw{};
+    tcgetattr(pty_slave_, &raw);
+    cfmakeraw(&raw);
+    tcsetattr(pty_slave_, TCSANOW, &raw);
+    unlink(symlink_.c_str());
+    if (symlink(name, symlink_.c_str()) != 0) {
+      *error = "--listen " + spec + ": cannot create the symlink: " + std::strerror(errno);
+      symlink_.clear();
+      close(master);
+      return false;
+    }
+    NonBlocking(master);
+    io_fd_ = master;
+    is_pty_ = true;
+    address_ = "serial:" + symlink_;
+    return true;
+  }
+  *error = "--listen " + spec + ": expected tcp:HOST:PORT or pty:PATH";
+  return false;
+}
+
+void FdLink::Disconnect() {
+  if (io_fd_ >= 0 && !is_pty_) {
+    close(io_fd_);
+    io_fd_ = -1;
+  }
+  tx_.clear();
+}
+
+void FdLink::Pump() {
+  if (!is_pty_ && io_fd_ < 0 && listen_fd_ >= 0) {
+    const int client = accept(listen_fd_, nullptr, nullptr);
+    if (client >= 0) {
+      NonBlocking(client);
+      const int one = 1;
+      setsockopt(client, IPPROTO_TCP, TCP_NODELAY, &one, sizeof(one));
+      io_fd_ = client;
+    }
+  }
+  if (io_fd_ < 0) return;
+  uint8_t buffer[4096];
+  for (;;) {
+    const ssize_t n = read(io_fd_, buffer, sizeof(buffer));
+    if (n > 0) {
+      rx_.insert(rx_.end(), buffer, buffer + n);
+      continue;
+    }
+    if (n == 0 && !is_pty_) Disconnect();  // the host closed the connection
+    break;                                  // EAGAIN, or EIO on a pty with no client
+  }
+  if (io_fd_ < 0) return;
+  while (!tx_.empty()) {
+    const ssize_t n = write(io_fd_, tx_.data(), tx_.size());
+    if (n <= 0) break;
+    tx_.erase(tx_.begin(), tx_.begin() + n);
+  }
+  if (is_pty_ && tx_.size() > kTxCapacity / 2) tx_.clear();  // nobody reading the pty
+}
+
+std::vector<int> FdLink::PollFds() const {
+  std::vector<int> fds;
+  if (io_fd_ >= 0) fds.push_back(io_fd_);
+  if (listen_fd_ >= 0 && io_fd_ < 0) fds.push_back(listen_fd_);
+  return fds;
+}
+
+size_t FdLink::DoRead(uint8_t* out, size_t capacity) {
+  size_t n = 0;
+  while (n < capacity && rx_read_ < rx_.size()) out[n++] = rx_[rx_read_++];
+  if (rx_read_ == rx_.size()) {
+    rx_.clear();
+    rx_read_ = 0;
+  }
+  return n;
+}
+
+size_t FdLink::DoWrite(const uint8_t* data, size_t size) {
+  if (io_fd_ < 0) return size;  // no host: the bytes go nowhere, as on an unplugged UART
+  const size_t n = size < DoWriteSpace() ? size : DoWriteSpace();
+  tx_.insert(tx_.end(), data, data + n);
+  return n;
+}
+
+size_t FdLink::DoWriteSpace() const { return tx_.size() < kTxCapacity ? kTxCapacity - tx_.size() : 0; }
+
+}  // namespace palpa::sim

@@ -1,0 +1,85 @@
+// palpa-sim: the firmware core on the plant model, on a pty or TCP port, in (scaled) real time.
+#include <poll.h>
+#include <signal.h>
+
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "fd_link.h"
+#include "sim_board.h"
+#include "sim_options.h"
+#include "truth_stream.h"
+
+namespace {
+
+volatile sig_atomic_t g_stop = 0;
+
+void OnSignal(int) { g_stop = 1; }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using palpa::sim::SimCommandLine;
+  SimCommandLine cmd;
+  std::string error;
+  if (!palpa::sim::ParseSimCommandLine(std::vector<std::string>(argv + 1, argv + argc), cmd, &error)) {
+    std::fprintf(stderr, "palpa-sim: %s\n(see palpa-sim --help)\n", error.c_str());
+    return 2;
+  }
+  if (cmd.help) {
+    std::fputs(palpa::sim::kSimUsage, stdout);
+    return 0;
+  }
+  palpa::sim::FdLink link;
+  if (!link.Open(cmd.listen, &error)) {
+    std::fprintf(stderr, "palpa-sim: %s\n", error.c_str());
+    return 1;
+  }
+  palpa::sim::TruthStream truth;
+  if (!cmd.truth.empty() && !truth.Open(cmd.truth, &error)) {
+    std::fprintf(stderr, "palpa-sim: %s\n", error.c_str());
+    return 1;
+  }
+  auto sim = palpa::sim::SimBoard::Create(cmd.board, link, &error);
+  if (!sim) {
+    std::fprintf(stderr, "palpa-sim: --config %s\n", error.c_str());
+    return 2;
+  }
+  struct sigaction action {};
+  action.sa_handler = OnSignal;
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+  signal(SIGPIPE, SIG_IGN);
+
+  std::printf("palpa-sim: %s, plant level %d, unit %u, seed %u, speed %gx\n", cmd.board.config.c_str(),
+              cmd.board.plant.level, cmd.board.plant.unit, cmd.board.plant.seed, static_cast<double>(cmd.speed));
+  std::printf("palpa-sim: listening on %s\n", link.address().c_str());
+  if (!cmd.truth.empty()) std::printf("palpa-sim: truth on %s\n", truth.address().c_str());
+  std::fflush(stdout);
+
+  const auto start = std::chrono::steady_clock::now();
+  const uint64_t truth_every_us = static_cast<uint64_t>(cmd.truth_every_ms) * 1000;
+  uint64_t next_truth_us = 0;
+  while (!g_stop) {
+    const double wall_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+    link.Pump();
+    truth.Pump();
+    sim->AdvanceTo(static_cast<uint64_t>(wall_us * cmd.speed));
+    link.Pump();
+    if (!cmd.truth.empty() && sim->now_us() >= next_truth_us) {
+      truth.Write(sim->plant().Truth(), sim->now_us());
+      next_truth_us = sim->now_us() - sim->now_us() % truth_every_us + truth_every_us;
+    }
+    // Sleep until the next 1 ms step is due, or until the host sends something.
+    const double next_step_wall_us = static_cast<double>((sim->now_us() / 1000 + 1) * 1000) / cmd.speed;
+    const double wait_us = next_step_wall_us - wall_us;
+    std::vector<pollfd> fds;
+    for (int fd : link.PollFds()) fds.push_back(pollfd{fd, POLLIN, 0});
+    const timespec timeout{0, wait_us > 0 ? static_cast<long>(wait_us * 1000) : 0};
+    ppoll(fds.data(), fds.size(), &timeout, nullptr);
+  }
+  std::printf("palpa-sim: stopped\n");
+  return 0;
+}

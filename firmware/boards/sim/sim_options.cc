@@ -1,0 +1,132 @@
+// Parsing of palpa-sim's arguments, with an error that names the argument at fault.
+#include "sim_options.h"
+
+#include <cstdio>
+#include <cstdlib>
+
+namespace palpa::sim {
+
+const char* const kSimUsage =
+    "usage: palpa-sim --config NAME --listen tcp:HOST:PORT|pty:PATH [options]\n"
+    "\n"
+    "The simulated palpa board: the firmware core on a plant model, speaking the wire protocol.\n"
+    "\n"
+    "  --config NAME        board configuration: thesis-pneumatic-3, thesis-jamming-2,\n"
+    "                       thesis-5finger, full-8\n"
+    "  --listen SPEC        tcp:127.0.0.1:PORT (0 = any free port) or pty:PATH (a symlink)\n"
+    "  --unit N             simulated actuator unit (0 = nominal; others differ as real units do)\n"
+    "  --seed N             regulator and sensor units, noise (default 1)\n"
+    "  --speed X            virtual seconds per real second, 0.01 to 100 (default 1)\n"
+    "  --plant LEVEL        0 ideal, 1 regulator, 2 actuator hysteresis, 3 sensors and rig (default 3)\n"
+    "  --effects LIST       creep, rate, history=FRACTION (jamming vacuum-history effect)\n"
+    "  --no-static-errors   regulators without static errors\n"
+    "  --truth SPEC         stream true pressures, deformations and stiffnesses as JSON lines to\n"
+    "                       file:PATH or tcp:127.0.0.1:PORT (a side channel: not in the protocol)\n"
+    "  --truth-every-ms N   truth sample period in virtual ms (default 10)\n"
+    "  --help               this text\n";
+
+namespace {
+
+bool Number(const std::string& name, const std::string& text, double lo, double hi, double& out,
+            std::string* error) {
+  char* end = nullptr;
+  out = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !(out >= lo && out <= hi)) {
+    char range[64];
+    std::snprintf(range, sizeof(range), "%g to %g", lo, hi);
+    *error = name + " " + text + ": expected a number from " + range;
+    return false;
+  }
+  return true;
+}
+
+bool ParseEffects(const std::string& list, Effects& effects, std::string* error) {
+  size_t at = 0;
+  while (at <= list.size()) {
+    const size_t comma = list.find(',', at);
+    const std::string item = list.substr(at, comma == std::string::npos ? std::string::npos : comma - at);
+    if (item == "creep") {
+      effects.creep = true;
+    } else if (item == "rate") {
+      effects.rate = true;
+    } else if (item.rfind("history=", 0) == 0) {
+      double h = 0;
+      if (!Number("--effects history", item.substr(8), 0.0, 0.5, h, error)) return false;
+      effects.history = static_cast<float>(h);
+    } else {
+      *error = "--effects " + list + ": unknown effect '" + item + "' (expected creep, rate, history=FRACTION)";
+      return false;
+    }
+    if (comma == std::string::npos) break;
+    at = comma + 1;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool ParseSimCommandLine(const std::vector<std::string>& args, SimCommandLine& out, std::string* error) {
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    if (arg == "--help" || arg == "-h") {
+      out.help = true;
+      return true;
+    }
+    if (arg == "--no-static-errors") {
+      out.board.plant.static_errors = false;
+      continue;
+    }
+    if (arg.rfind("--", 0) != 0) {
+      *error = "unexpected argument '" + arg + "'";
+      return false;
+    }
+    if (i + 1 >= args.size()) {
+      *error = arg + ": a value is missing";
+      return false;
+    }
+    const std::string& value = args[++i];
+    double n = 0;
+    if (arg == "--config") {
+      out.board.config = value;
+    } else if (arg == "--listen") {
+      out.listen = value;
+    } else if (arg == "--unit") {
+      if (!Number(arg, value, 0, 1000, n, error)) return false;
+      out.board.plant.unit = static_cast<uint32_t>(n);
+    } else if (arg == "--seed") {
+      if (!Number(arg, value, 0, 4294967295.0, n, error)) return false;
+      out.board.plant.seed = static_cast<uint32_t>(n);
+    } else if (arg == "--speed") {
+      if (!Number(arg, value, 0.01, 100, n, error)) return false;
+      out.speed = static_cast<float>(n);
+    } else if (arg == "--plant") {
+      if (!Number(arg, value, 0, 3, n, error) || n != static_cast<int>(n)) {
+        *error = "--plant " + value + ": expected a level 0, 1, 2 or 3";
+        return false;
+      }
+      out.board.plant.level = static_cast<int>(n);
+    } else if (arg == "--effects") {
+      if (!ParseEffects(value, out.board.plant.effects, error)) return false;
+    } else if (arg == "--truth") {
+      if (value.rfind("file:", 0) != 0 && value.rfind("tcp:", 0) != 0) {
+        *error = "--truth " + value + ": expected file:PATH or tcp:HOST:PORT";
+        return false;
+      }
+      out.truth = value;
+    } else if (arg == "--truth-every-ms") {
+      if (!Number(arg, value, 1, 10000, n, error)) return false;
+      out.truth_every_ms = static_cast<uint32_t>(n);
+    } else {
+      *error = "unknown option '" + arg + "'";
+      return false;
+    }
+  }
+  if (out.listen.empty()) {
+    *error = "--listen is required (tcp:127.0.0.1:PORT or pty:PATH)";
+    return false;
+  }
+  out.board.time_scale = out.speed;
+  return true;
+}
+
+}  // namespace palpa::sim

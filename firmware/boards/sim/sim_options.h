@@ -1,0 +1,25 @@
+// palpa-sim's command line.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "sim_board.h"
+
+namespace palpa::sim {
+
+struct SimCommandLine {
+  SimBoardOptions board;
+  std::string listen;
+  std::string truth;           ///< empty, file:PATH or tcp:HOST:PORT
+  uint32_t truth_every_ms = 10;
+  float speed = 1.0f;
+  bool help = false;
+};
+
+/// Parses argv; on a bad argument returns false with a message naming it and what was expected.
+bool ParseSimCommandLine(const std::vector<std::string>& args, SimCommandLine& out, std::string* error);
+
+extern const char* const kSimUsage;
+
+}  // namespace palpa::sim

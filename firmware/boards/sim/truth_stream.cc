@@ -1,0 +1,96 @@
+// Truth as JSON lines to a file or a TCP reader.
+#include "truth_stream.h"
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+namespace palpa::sim {
+
+TruthStream::~TruthStream() {
+  if (file_ != nullptr) fclose(file_);
+  if (client_fd_ >= 0) close(client_fd_);
+  if (listen_fd_ >= 0) close(listen_fd_);
+}
+
+bool TruthStream::Open(const std::string& spec, std::string* error) {
+  if (spec.rfind("file:", 0) == 0) {
+    file_ = fopen(spec.substr(5).c_str(), "w");
+    if (file_ == nullptr) {
+      *error = "--truth " + spec + ": " + std::strerror(errno);
+      return false;
+    }
+    address_ = spec;
+    return true;
+  }
+  const std::string rest = spec.substr(4);
+  const size_t colon = rest.rfind(':');
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  char* end = nullptr;
+  const long port = colon == std::string::npos ? -1 : std::strtol(rest.c_str() + colon + 1, &end, 10);
+  if (port < 0 || port > 65535 || *end != '\0' ||
+      inet_pton(AF_INET, rest.substr(0, colon).c_str(), &addr.sin_addr) != 1) {
+    *error = "--truth " + spec + ": expected tcp:IPV4:PORT";
+    return false;
+  }
+  addr.sin_port = htons(static_cast<uint16_t>(port));
+  listen_fd_ = socket(AF_INET, SOCK_STREAM, 0);
+  const int one = 1;
+  setsockopt(listen_fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof(one));
+  if (bind(listen_fd_, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)) != 0 || listen(listen_fd_, 1) != 0) {
+    *error = "--truth " + spec + ": " + std::strerror(errno);
+    return false;
+  }
+  socklen_t len = sizeof(addr);
+  getsockname(listen_fd_, reinterpret_cast<sockaddr*>(&addr), &len);
+  fcntl(listen_fd_, F_SETFL, fcntl(listen_fd_, F_GETFL) | O_NONBLOCK);
+  address_ = "tcp:" + rest.substr(0, colon) + ":" + std::to_string(ntohs(addr.sin_port));
+  return true;
+}
+
+void TruthStream::Pump() {
+  if (listen_fd_ < 0 || client_fd_ >= 0) return;
+  client_fd_ = accept(listen_fd_, nullptr, nullptr);
+}
+
+std::string TruthStream::Format(const PlantTruth& truth, uint64_t board_time_us) {
+  char buffer[160];
+  std::string line = "{\"board_time_us\":" + std::to_string(board_time_us) + ",\"lines\":[";
+  for (size_t i = 0; i < truth.lines.size(); ++i) {
+    const LineTruth& l = truth.lines[i];
+    std::snprintf(buffer, sizeof(buffer), "%s{\"command_pa\":%.1f,\"outlet_pa\":%.1f,\"chamber_pa\":%.1f}",
+                  i ? "," : "", l.command_pa, l.outlet_pa, l.chamber_pa);
+    line += buffer;
+  }
+  line += "],\"fingers\":[";
+  for (size_t i = 0; i < truth.fingers.size(); ++i) {
+    const FingerTruth& f = truth.fingers[i];
+    if (f.jamming) {
+      std::snprintf(buffer, sizeof(buffer), "%s{\"stiffness_n_per_mm\":%.5f}", i ? "," : "", f.stiffness_n_per_mm);
+    } else {
+      std::snprintf(buffer, sizeof(buffer), "%s{\"deformation_mm\":%.5f}", i ? "," : "", f.deformation_mm);
+    }
+    line += buffer;
+  }
+  return line + "]}";
+}
+
+void TruthStream::Write(const PlantTruth& truth, uint64_t board_time_us) {
+  const std::string line = Format(truth, board_time_us) + "\n";
+  if (file_ != nullptr) fputs(line.c_str(), file_);
+  if (client_fd_ >= 0) {
+    const ssize_t n = send(client_fd_, line.data(), line.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+    if (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK) {
+      close(client_fd_);
+      client_fd_ = -1;
+    }
+  }
+}
+
+}  // namespace palpa::sim

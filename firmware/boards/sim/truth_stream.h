@@ -1,0 +1,33 @@
+// The truth side channel: true pressures, deformations and stiffnesses as JSON lines, for tests,
+// benchmarks and the demo. Nothing in the protocol or the control path reads it.
+#pragma once
+
+#include <cstdint>
+#include <cstdio>
+#include <string>
+
+#include "palpa/hal/sim/plant.h"
+
+namespace palpa::sim {
+
+class TruthStream {
+ public:
+  ~TruthStream();
+  /// "file:PATH" or "tcp:HOST:PORT" (one reader at a time; nothing is kept while none is there).
+  bool Open(const std::string& spec, std::string* error);
+  const std::string& address() const { return address_; }
+  void Write(const PlantTruth& truth, uint64_t board_time_us);
+  /// Accepts a waiting reader (TCP). Never blocks.
+  void Pump();
+
+  /// One JSON line for a truth sample (no trailing newline).
+  static std::string Format(const PlantTruth& truth, uint64_t board_time_us);
+
+ private:
+  FILE* file_ = nullptr;
+  int listen_fd_ = -1;
+  int client_fd_ = -1;
+  std::string address_;
+};
+
+}  // namespace palpa::sim
