@@ -1,0 +1,108 @@
+// palpa-sim as a process, through TCP and a raw pty, driven by a minimal client on protocol/:
+// Hello, configuration, setpoints, telemetry, host silence → safe, garbage, clean exit.
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <string>
+
+#include "mini_client.h"
+#include "palpa/protocol/faults.h"
+
+#include "CppUTest/TestHarness.h"
+
+using palpa::testing::MiniClient;
+using palpa::testing::ReceivedFrame;
+using palpa::testing::SimProcess;
+namespace pp = palpa::protocol;
+
+namespace {
+
+bool Connect(MiniClient& client, const std::string& address) {
+  if (address.rfind("tcp:", 0) == 0) {
+    const size_t colon = address.rfind(':');
+    return client.ConnectTcp(address.substr(4, colon - 4), std::atoi(address.c_str() + colon + 1));
+  }
+  return client.OpenSerial(address.substr(7));
+}
+
+/// Streams heartbeats for `ms` and returns the last telemetry frame seen.
+pp::Telemetry Stream(MiniClient& client, int ms, uint32_t& generation) {
+  pp::Telemetry last{};
+  for (int t = 0; t < ms; t += 20) {
+    client.Send(pp::Heartbeat{++generation});
+    for (const ReceivedFrame& f : client.Read(20)) {
+      if (f.Is<pp::Telemetry>()) last = f.As<pp::Telemetry>();
+    }
+  }
+  return last;
+}
+
+void ExerciseBoard(const std::string& address) {
+  MiniClient client;
+  CHECK_TEXT(Connect(client, address), address.c_str());
+  // Garbage first: the board resynchronises on the next delimiter and keeps answering.
+  client.SendBytes({0x13, 0x37, 0x00, 0xFF, 0xFF, 0x42, 0x00, 0x00});
+  const auto hello = client.Hello(0xC0FFEE);
+  CHECK(hello.ok());
+  STRCMP_EQUAL("thesis-5finger", hello.value.config_name.data());
+  CHECK(hello.value.plant_simulated);
+  LONGS_EQUAL(pp::kCatalogHash, hello.value.catalog_hash);
+
+  pp::ConfigureBoard board{};
+  board.config_name = hello.value.config_name;
+  board.host_timeout_us = 200000;
+  board.telemetry_batch = 2;
+  LONGS_EQUAL((int)pp::Status::kOk, (int)client.Reliable(board));
+  LONGS_EQUAL((int)pp::Status::kOk, (int)client.Reliable(pp::SetFingerMode{0, pp::FingerMode::kRaw}));
+  pp::SetLineSetpoints sp{};
+  sp.generation = 1;
+  sp.entry_count = 1;
+  sp.entries[0] = {0, 30000};
+  client.Send(sp);
+  uint32_t generation = 0;
+  const pp::Telemetry t = Stream(client, 2500, generation);
+  LONGS_EQUAL(7, t.line_count);
+  LONGS_EQUAL(1, t.setpoint_generation);
+  LONGS_EQUAL(0, t.fault_bitmap);
+  DOUBLES_EQUAL(30000, t.samples[t.sample_count - 7].measured_pa, 1500);  // the plant follows
+
+  // The host goes quiet: the board must go safe on its own.
+  const auto frames = client.Read(600);
+  bool safe = false;
+  for (const ReceivedFrame& f : frames) {
+    if (!f.Is<pp::Telemetry>()) continue;
+    const auto s = f.As<pp::Telemetry>();
+    safe |= (s.fault_bitmap & pp::FaultBit(pp::Fault::kHostSilence)) != 0 &&
+            (s.samples[0].status & pp::line_status::kSafe) != 0;
+  }
+  CHECK(safe);
+}
+
+}  // namespace
+
+TEST_GROUP(PalpaSimProcess){};
+
+TEST(PalpaSimProcess, OverTcp) {
+  SimProcess sim;
+  CHECK(sim.Start({"--config", "thesis-5finger", "--listen", "tcp:127.0.0.1:0"}));
+  ExerciseBoard(sim.address());
+  LONGS_EQUAL(0, sim.Stop());
+}
+
+TEST(PalpaSimProcess, OverARawPty) {
+  const std::string path = "/tmp/palpa-sim-test-" + std::to_string(getpid());
+  SimProcess sim;
+  CHECK(sim.Start({"--config", "thesis-5finger", "--listen", "pty:" + path}));
+  STRCMP_EQUAL(("serial:" + path).c_str(), sim.address().c_str());
+  ExerciseBoard(sim.address());
+  LONGS_EQUAL(0, sim.Stop());
+  struct stat st;
+  CHECK(lstat(path.c_str(), &st) != 0);  // the symlink is removed on exit
+}
+
+TEST(PalpaSimProcess, BadArgumentsAreNamed) {
+  SimProcess sim;
+  CHECK_FALSE(sim.Start({"--config", "thesis-5finger", "--listen", "udp:1"}));
+  CHECK_FALSE(sim.Start({"--config", "thesis-5finger", "--listen", "tcp:127.0.0.1:0", "--plant", "7"}));
+}

@@ -1,0 +1,178 @@
+// Minimal protocol client and palpa-sim launcher for end-to-end tests.
+#include "mini_client.h"
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <termios.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstring>
+
+namespace palpa::testing {
+namespace {
+
+int64_t NowMs() {
+  return std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
+MiniClient::~MiniClient() { Close(); }
+
+void MiniClient::Close() {
+  if (fd_ >= 0) close(fd_);
+  fd_ = -1;
+}
+
+bool MiniClient::ConnectTcp(const std::string& host, int port) {
+  fd_ = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(static_cast<uint16_t>(port));
+  inet_pton(AF_INET, host.c_str(), &addr.sin_addr);
+  if (connect(fd_, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)) != 0) {
+    Close();
+    return false;
+  }
+  const int one = 1;
+  setsockopt(fd_, IPPROTO_TCP, TCP_NODELAY, &one, sizeof(one));
+  return true;
+}
+
+bool MiniClient::OpenSerial(const std::string& path) {
+  fd_ = open(path.c_str(), O_RDWR | O_NOCTTY);
+  if (fd_ < 0) return false;
+  termios raw{};
+  tcgetattr(fd_, &raw);
+  cfmakeraw(&raw);
+  tcsetattr(fd_, TCSANOW, &raw);
+  tcflush(fd_, TCIFLUSH);
+  return true;
+}
+
+void MiniClient::SendBytes(const std::vector<uint8_t>& bytes) {
+  size_t at = 0;
+  while (at < bytes.size()) {
+    const ssize_t n = write(fd_, bytes.data() + at, bytes.size() - at);
+    if (n <= 0) return;
+    at += static_cast<size_t>(n);
+  }
+}
+
+std::vector<ReceivedFrame> MiniClient::Read(int timeout_ms, bool (*until)(const ReceivedFrame&)) {
+  std::vector<ReceivedFrame> frames;
+  const int64_t deadline = NowMs() + timeout_ms;
+  for (;;) {
+    const int64_t left = deadline - NowMs();
+    if (left <= 0) break;
+    pollfd p{fd_, POLLIN, 0};
+    if (poll(&p, 1, static_cast<int>(left)) <= 0) break;
+    uint8_t buffer[4096];
+    const ssize_t n = read(fd_, buffer, sizeof(buffer));
+    if (n <= 0) break;
+    bool done = false;
+    for (ssize_t i = 0; i < n; ++i) {
+      if (decoder_.Process(buffer[i]) != pp::FrameDecoder::Event::kFrame) continue;
+      const pp::Frame& f = decoder_.frame();
+      frames.push_back(ReceivedFrame{f.header, std::vector<uint8_t>(f.body, f.body + f.body_size)});
+      done |= until != nullptr && until(frames.back());
+    }
+    if (done) break;
+  }
+  return frames;
+}
+
+pp::Result<pp::HelloReply> MiniClient::Hello(uint32_t nonce, int timeout_ms) {
+  Send(pp::Hello{nonce, next_seq_});
+  const int64_t deadline = NowMs() + timeout_ms;
+  while (NowMs() < deadline) {
+    for (const ReceivedFrame& f : Read(static_cast<int>(deadline - NowMs()), [](const ReceivedFrame& r) {
+           return r.Is<pp::HelloReply>();
+         })) {
+      if (f.Is<pp::HelloReply>() && f.As<pp::HelloReply>().host_nonce == nonce) return f.As<pp::HelloReply>();
+      backlog.push_back(f);
+    }
+  }
+  return pp::Status::kTimeout;
+}
+
+pp::Status MiniClient::WaitAnswer(uint8_t seq, uint8_t type, int timeout_ms) {
+  const int64_t deadline = NowMs() + timeout_ms;
+  while (NowMs() < deadline) {
+    for (const ReceivedFrame& f : Read(static_cast<int>(deadline - NowMs()), [](const ReceivedFrame& r) {
+           return (r.header.flags & pp::flags::kReliable) != 0;
+         })) {
+      backlog.push_back(f);
+      if ((f.header.flags & pp::flags::kReliable) == 0 || f.header.seq != seq) continue;
+      if (f.Is<pp::Ack>() && f.As<pp::Ack>().acked_type == type) return pp::Status::kOk;
+      if (f.Is<pp::Nack>()) return f.As<pp::Nack>().status;
+      return pp::Status::kOk;  // a report answers a query
+    }
+  }
+  return pp::Status::kTimeout;
+}
+
+bool SimProcess::Start(const std::vector<std::string>& args) {
+  int out[2];
+  if (pipe(out) != 0) return false;
+  pid_ = fork();
+  if (pid_ == 0) {
+    dup2(out[1], STDOUT_FILENO);
+    close(out[0]);
+    std::vector<char*> argv;
+    argv.push_back(const_cast<char*>(PALPA_SIM_PATH));
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(PALPA_SIM_PATH, argv.data());
+    _exit(127);
+  }
+  close(out[1]);
+  out_fd_ = out[0];
+  std::string text;
+  const int64_t deadline = NowMs() + 5000;
+  while (NowMs() < deadline) {
+    pollfd p{out_fd_, POLLIN, 0};
+    if (poll(&p, 1, 100) <= 0) continue;
+    char buffer[512];
+    const ssize_t n = read(out_fd_, buffer, sizeof(buffer));
+    if (n <= 0) return false;
+    text.append(buffer, static_cast<size_t>(n));
+    const size_t at = text.find("listening on ");
+    if (at != std::string::npos && text.find('\n', at) != std::string::npos) {
+      address_ = text.substr(at + 13, text.find('\n', at) - at - 13);
+      return true;
+    }
+  }
+  return false;
+}
+
+int SimProcess::Stop() {
+  if (pid_ <= 0) return -1;
+  kill(pid_, SIGTERM);
+  int status = 0;
+  for (int i = 0; i < 100; ++i) {
+    if (waitpid(pid_, &status, WNOHANG) == pid_) {
+      pid_ = -1;
+      return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    }
+    usleep(20000);
+  }
+  kill(pid_, SIGKILL);  // never leave a simulator behind
+  waitpid(pid_, &status, 0);
+  pid_ = -1;
+  return -1;
+}
+
+SimProcess::~SimProcess() {
+  Stop();
+  if (out_fd_ >= 0) close(out_fd_);
+}
+
+}  // namespace palpa::testing

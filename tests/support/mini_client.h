@@ -1,0 +1,82 @@
+// A minimal host built only on protocol/, for end-to-end tests against palpa-sim.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "palpa/protocol/codec.h"
+
+namespace palpa::testing {
+
+namespace pp = palpa::protocol;
+
+struct ReceivedFrame {
+  pp::Header header;
+  std::vector<uint8_t> body;
+  template <class M>
+  bool Is() const {
+    return header.type == static_cast<uint8_t>(M::kInfo.type);
+  }
+  template <class M>
+  M As() const {
+    M m{};
+    pp::DecodeBody(body.data(), body.size(), m);
+    return m;
+  }
+};
+
+class MiniClient {
+ public:
+  ~MiniClient();
+  bool ConnectTcp(const std::string& host, int port);
+  bool OpenSerial(const std::string& path);
+  void Close();
+
+  void SendBytes(const std::vector<uint8_t>& bytes);
+  template <class M>
+  void Send(const M& m, uint8_t seq = 0, uint8_t flags = 0) {
+    uint8_t frame[pp::kMaxFrameSize];
+    const auto n = pp::EncodeMessageFrame(m, seq, flags, frame, sizeof(frame));
+    SendBytes(std::vector<uint8_t>(frame, frame + n.value));
+  }
+  /// Frames received within timeout_ms (returns early once `until` says so).
+  std::vector<ReceivedFrame> Read(int timeout_ms, bool (*until)(const ReceivedFrame&) = nullptr);
+
+  /// Hello and its reply (status kTimeout in .status when none came).
+  pp::Result<pp::HelloReply> Hello(uint32_t nonce, int timeout_ms = 2000);
+  /// Sends a reliable command with the next seq and waits for its Ack or Nack.
+  template <class M>
+  pp::Status Reliable(const M& m, int timeout_ms = 2000) {
+    const uint8_t seq = next_seq_++;
+    Send(m, seq, pp::flags::kReliable);
+    return WaitAnswer(seq, static_cast<uint8_t>(M::kInfo.type), timeout_ms);
+  }
+  /// Everything received while waiting, telemetry included.
+  std::vector<ReceivedFrame> backlog;
+
+ private:
+  pp::Status WaitAnswer(uint8_t seq, uint8_t type, int timeout_ms);
+  int fd_ = -1;
+  uint8_t next_seq_ = 0;
+  pp::OwningFrameDecoder decoder_;
+};
+
+/// palpa-sim as a child process; stopped with SIGTERM when destroyed.
+class SimProcess {
+ public:
+  /// Starts PALPA_SIM_PATH with the arguments and waits for its "listening on" line.
+  bool Start(const std::vector<std::string>& args);
+  ~SimProcess();
+  /// Sends SIGTERM and returns the exit status (-1 if it had to be killed).
+  int Stop();
+  const std::string& address() const { return address_; }  ///< "tcp:127.0.0.1:PORT" or "serial:PATH"
+  int pid() const { return pid_; }
+
+ private:
+  int pid_ = -1;
+  int out_fd_ = -1;
+  std::string address_;
+};
+
+}  // namespace palpa::testing
