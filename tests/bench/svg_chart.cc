@@ -1,0 +1,110 @@
+// SVG rendering of line and scatter charts with axes, ticks and a legend.
+#include "svg_chart.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+
+namespace palpa::bench {
+namespace {
+
+const char* const kPalette[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#17becf", "#7f7f7f"};
+
+std::string Num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof(b), "%.1f", v);
+  return b;
+}
+
+std::string Label(double v) {
+  char b[32];
+  std::snprintf(b, sizeof(b), "%g", std::fabs(v) < 1e-12 ? 0.0 : v);
+  return b;
+}
+
+/// About `count` round tick values covering [lo, hi].
+std::vector<double> Ticks(double lo, double hi, int count) {
+  const double raw = (hi - lo) / count;
+  const double magnitude = std::pow(10.0, std::floor(std::log10(raw)));
+  double step = magnitude;
+  for (double m : {1.0, 2.0, 5.0, 10.0}) {
+    if (m * magnitude >= raw) {
+      step = m * magnitude;
+      break;
+    }
+  }
+  std::vector<double> ticks;
+  for (double t = std::ceil(lo / step) * step; t <= hi + 1e-9 * step; t += step) ticks.push_back(t);
+  return ticks;
+}
+
+}  // namespace
+
+std::string RenderSvg(const Chart& c) {
+  double x0 = std::numeric_limits<double>::max(), x1 = -x0, y0 = x0, y1 = -x0;
+  auto tx = [&](double x) { return c.log_x ? std::log10(x) : x; };
+  for (const Series& s : c.series) {
+    for (const auto& [x, y] : s.points) {
+      x0 = std::min(x0, tx(x));
+      x1 = std::max(x1, tx(x));
+      y0 = std::min(y0, y);
+      y1 = std::max(y1, y);
+    }
+  }
+  if (x1 <= x0) x1 = x0 + 1;
+  if (y1 <= y0) y1 = y0 + 1;
+  const double pad_y = 0.05 * (y1 - y0);
+  y0 -= pad_y;
+  y1 += pad_y;
+  const double left = 70, right = 230, top = 40, bottom = 50;
+  const double pw = c.width - left - right, ph = c.height - top - bottom;
+  auto px = [&](double x) { return left + (tx(x) - x0) / (x1 - x0) * pw; };
+  auto py = [&](double y) { return top + (1 - (y - y0) / (y1 - y0)) * ph; };
+  std::string svg = "<svg xmlns='http://www.w3.org/2000/svg' width='" + Num(c.width) + "' height='" + Num(c.height) +
+                    "' font-family='sans-serif' font-size='12'>\n<rect width='100%' height='100%' fill='white'/>\n";
+  svg += "<text x='" + Num(c.width / 2) + "' y='22' text-anchor='middle' font-size='14'>" + c.title + "</text>\n";
+  svg += "<rect x='" + Num(left) + "' y='" + Num(top) + "' width='" + Num(pw) + "' height='" + Num(ph) +
+         "' fill='none' stroke='#444'/>\n";
+  for (double t : Ticks(x0, x1, 8)) {
+    const double x = left + (t - x0) / (x1 - x0) * pw;
+    svg += "<line x1='" + Num(x) + "' y1='" + Num(top) + "' x2='" + Num(x) + "' y2='" + Num(top + ph) + "' stroke='#eee'/>";
+    svg += "<text x='" + Num(x) + "' y='" + Num(top + ph + 16) + "' text-anchor='middle'>" +
+           Label(c.log_x ? std::pow(10.0, t) : t) + "</text>\n";
+  }
+  for (double t : Ticks(y0, y1, 6)) {
+    const double y = py(t);
+    svg += "<line x1='" + Num(left) + "' y1='" + Num(y) + "' x2='" + Num(left + pw) + "' y2='" + Num(y) + "' stroke='#eee'/>";
+    svg += "<text x='" + Num(left - 6) + "' y='" + Num(y + 4) + "' text-anchor='end'>" + Label(t) + "</text>\n";
+  }
+  svg += "<text x='" + Num(left + pw / 2) + "' y='" + Num(c.height - 10) + "' text-anchor='middle'>" + c.x_label + "</text>\n";
+  svg += "<text transform='translate(16," + Num(top + ph / 2) + ") rotate(-90)' text-anchor='middle'>" + c.y_label + "</text>\n";
+  for (size_t i = 0; i < c.series.size(); ++i) {
+    const Series& s = c.series[i];
+    const std::string color = s.color.empty() ? kPalette[i % 8] : s.color;
+    if (s.markers) {
+      for (const auto& [x, y] : s.points) {
+        svg += "<circle cx='" + Num(px(x)) + "' cy='" + Num(py(y)) + "' r='4' fill='" + color + "'/>";
+      }
+    } else {
+      svg += "<polyline fill='none' stroke='" + color + "' stroke-width='1.6'" +
+             (s.dashed ? std::string(" stroke-dasharray='6,4'") : std::string()) + " points='";
+      for (const auto& [x, y] : s.points) svg += Num(px(x)) + "," + Num(py(y)) + " ";
+      svg += "'/>\n";
+    }
+    const double ly = top + 14 + 18 * static_cast<double>(i);
+    svg += "<line x1='" + Num(left + pw + 12) + "' y1='" + Num(ly - 4) + "' x2='" + Num(left + pw + 34) + "' y2='" +
+           Num(ly - 4) + "' stroke='" + color + "' stroke-width='3'/>";
+    svg += "<text x='" + Num(left + pw + 40) + "' y='" + Num(ly) + "'>" + s.name + "</text>\n";
+  }
+  return svg + "</svg>\n";
+}
+
+bool WriteFile(const std::string& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  return out.good();
+}
+
+}  // namespace palpa::bench

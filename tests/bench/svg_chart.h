@@ -1,0 +1,31 @@
+// A small SVG line-chart writer for the benchmark figures in docs/ (no plotting stack needed).
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace palpa::bench {
+
+struct Series {
+  std::string name;
+  std::vector<std::pair<double, double>> points;
+  std::string color;  ///< CSS colour; empty picks one
+  bool dashed = false;
+  bool markers = false;  ///< draw points only (scatter)
+};
+
+struct Chart {
+  std::string title, x_label, y_label;
+  std::vector<Series> series;
+  double width = 780, height = 420;
+  bool log_x = false;
+};
+
+/// Renders the chart as a standalone SVG document.
+std::string RenderSvg(const Chart& chart);
+
+/// Writes text to a file; false on failure.
+bool WriteFile(const std::string& path, const std::string& text);
+
+}  // namespace palpa::bench
