@@ -12,6 +12,7 @@
 #include <termios.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 
@@ -89,6 +90,14 @@ std::vector<ReceivedFrame> MiniClient::Read(int timeout_ms, bool (*until)(const 
   return frames;
 }
 
+std::string MiniClient::ReadText(int timeout_ms) {
+  pollfd p{fd_, POLLIN, 0};
+  if (poll(&p, 1, timeout_ms) <= 0) return {};
+  char buffer[4096];
+  const ssize_t n = read(fd_, buffer, sizeof(buffer));
+  return n > 0 ? std::string(buffer, static_cast<size_t>(n)) : std::string();
+}
+
 pp::Result<pp::HelloReply> MiniClient::Hello(uint32_t nonce, int timeout_ms) {
   Send(pp::Hello{nonce, next_seq_});
   const int64_t deadline = NowMs() + timeout_ms;
@@ -145,8 +154,12 @@ bool SimProcess::Start(const std::vector<std::string>& args) {
     if (n <= 0) return false;
     text.append(buffer, static_cast<size_t>(n));
     const size_t at = text.find("listening on ");
-    if (at != std::string::npos && text.find('\n', at) != std::string::npos) {
+    const bool want_truth = std::find(args.begin(), args.end(), "--truth") != args.end();
+    const size_t truth_at = text.find("truth on ");
+    if (at != std::string::npos && text.find('\n', at) != std::string::npos &&
+        (!want_truth || (truth_at != std::string::npos && text.find('\n', truth_at) != std::string::npos))) {
       address_ = text.substr(at + 13, text.find('\n', at) - at - 13);
+      if (want_truth) truth_address_ = text.substr(truth_at + 9, text.find('\n', truth_at) - truth_at - 9);
       return true;
     }
   }

@@ -43,6 +43,8 @@ class MiniClient {
   /// Frames received within timeout_ms (returns early once `until` says so).
   std::vector<ReceivedFrame> Read(int timeout_ms, bool (*until)(const ReceivedFrame&) = nullptr);
 
+  /// Raw text received within timeout_ms (for the truth side channel).
+  std::string ReadText(int timeout_ms);
   /// Hello and its reply (status kTimeout in .status when none came).
   pp::Result<pp::HelloReply> Hello(uint32_t nonce, int timeout_ms = 2000);
   /// Sends a reliable command with the next seq and waits for its Ack or Nack.
@@ -71,12 +73,14 @@ class SimProcess {
   /// Sends SIGTERM and returns the exit status (-1 if it had to be killed).
   int Stop();
   const std::string& address() const { return address_; }  ///< "tcp:127.0.0.1:PORT" or "serial:PATH"
+  const std::string& truth_address() const { return truth_address_; }  ///< when --truth was given
   int pid() const { return pid_; }
 
  private:
   int pid_ = -1;
   int out_fd_ = -1;
   std::string address_;
+  std::string truth_address_;
 };
 
 }  // namespace palpa::testing

@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <string>
 
@@ -105,4 +106,22 @@ TEST(PalpaSimProcess, BadArgumentsAreNamed) {
   SimProcess sim;
   CHECK_FALSE(sim.Start({"--config", "thesis-5finger", "--listen", "udp:1"}));
   CHECK_FALSE(sim.Start({"--config", "thesis-5finger", "--listen", "tcp:127.0.0.1:0", "--plant", "7"}));
+}
+
+TEST(PalpaSimProcess, TruthStreamsOverItsOwnTcpPort) {
+  SimProcess sim;
+  CHECK(sim.Start({"--config", "thesis-jamming-2", "--listen", "tcp:127.0.0.1:0", "--truth", "tcp:127.0.0.1:0",
+                   "--truth-every-ms", "5"}));
+  MiniClient truth;
+  const std::string& a = sim.truth_address();
+  const size_t colon = a.rfind(':');
+  CHECK_TEXT(truth.ConnectTcp(a.substr(4, colon - 4), std::atoi(a.c_str() + colon + 1)), a.c_str());
+  // The truth channel is JSON lines, not frames: read raw text.
+  std::string text;
+  for (int i = 0; i < 50 && std::count(text.begin(), text.end(), '\n') < 5; ++i) {
+    text += truth.ReadText(20);
+  }
+  CHECK(text.find("\"stiffness_n_per_mm\":0.7") != std::string::npos);
+  CHECK(text.find("\"chamber_pa\"") != std::string::npos);
+  LONGS_EQUAL(0, sim.Stop());
 }
