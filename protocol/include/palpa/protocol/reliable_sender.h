@@ -70,6 +70,29 @@ class ReliableSender {
     return slot.seq;
   }
 
+  /// As Submit, for a body already encoded (the host library encodes before it locks).
+  Result<uint8_t> SubmitEncoded(uint8_t type, const uint8_t* body, size_t body_size, uint32_t cookie) {
+    if (pending() >= config_.window) return Status::kWindowFull;
+    if (body_size > kMaxBodySize) return Status::kOverflow;
+    if (pending() > 0 && BytesInFlight() + FramedSize(kHeaderSize + body_size) > config_.max_bytes_in_flight) {
+      return Status::kWindowFull;
+    }
+    Pending& slot = slots_[next_seq_ % kMaxWindow];
+    WriteHeader(Header{kProtocolVersion, type, next_seq_, flags::kReliable}, slot.packet);
+    for (size_t i = 0; i < body_size; ++i) slot.packet[kHeaderSize + i] = body[i];
+    slot.packet_size = static_cast<uint16_t>(kHeaderSize + body_size);
+    slot.seq = next_seq_;
+    slot.type = type;
+    slot.cookie = cookie;
+    slot.sent_us = 0;
+    slot.transmissions = 0;
+    slot.consumed = slot.answered = slot.due = false;
+    slot.in_use = true;
+    ++next_seq_;
+    ++counters_.submitted;
+    return slot.seq;
+  }
+
   /// The board answered `seq` (Ack, Nack or a report). A Nack with kSeqGap means "everything
   /// before `detail` arrived; resend from there". Calls on_outcome(CommandOutcome) for every
   /// command whose answer is now known.

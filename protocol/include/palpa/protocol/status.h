@@ -66,7 +66,7 @@ struct Result {
   Status status = Status::kOk;
   T value{};
 
-  constexpr Result(T v) : value(v) {}  // NOLINT: implicit on purpose, like pw::Result
+  constexpr Result(T v) : value(static_cast<T&&>(v)) {}  // NOLINT: implicit, like pw::Result
   constexpr Result(Status s) : status(s) {}  // NOLINT
   constexpr bool ok() const { return status == Status::kOk; }
 };

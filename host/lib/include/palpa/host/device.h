@@ -1,0 +1,101 @@
+// The device API: one palpa board, its fingers in people's terms, telemetry and recording.
+// Errors are values (status + message); nothing throws across this API.
+#pragma once
+
+#include <cstdint>
+#include <fstream>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "palpa/host/link.h"
+#include "palpa/host/stiffness_map.h"
+
+namespace palpa::host {
+
+struct DeviceOptions {
+  LinkOptions link{};
+  LevelTables levels = LevelTables::Shipped();
+  RangePolicy range_policy = RangePolicy::kRefuse;
+};
+
+/// The outcome of an operation: a shared status code plus words for a person.
+struct Outcome {
+  Status status = Status::kOk;
+  std::string message;
+  std::vector<std::string> notes;  ///< e.g. "finger 2: nominal thesis curves (no calibration)"
+  bool ok() const { return status == Status::kOk; }
+};
+
+struct FingerRequest {
+  uint8_t finger = 0;  ///< 0-based, as on the wire
+  Request request;
+};
+
+class Device {
+ public:
+  /// Opens a device URI (see OpenTransport) and a session with it.
+  static Result<std::unique_ptr<Device>> Open(const std::string& uri, DeviceOptions options, std::string* error);
+  /// Opens a session over a transport the caller made (tests, fault injection).
+  static Result<std::unique_ptr<Device>> Attach(std::unique_ptr<Transport> transport, DeviceOptions options,
+                                                std::string* error);
+  ~Device();
+
+  pp::HelloReply info() const { return link_->board(); }
+  Link& link() { return *link_; }
+
+  /// Sets fingers; each request is mapped through the level tables and the finger's curves, the
+  /// finger is switched to target or raw mode as needed, and (wait=true) the call returns once
+  /// telemetry shows the board applied it or the board refused it.
+  Outcome Set(const std::vector<FingerRequest>& requests, bool wait = true);
+  /// Raw line setpoints in kPa; the lines' fingers go to raw mode.
+  Outcome SetLines(const std::vector<std::pair<uint8_t, double>>& kpa, bool wait = true);
+  Outcome EStop();
+  Outcome ClearFault(uint32_t mask = 0xFFFFFFFFu);
+
+  Outcome ConfigureLine(const pp::ConfigureLine& line);
+  /// Sent staged when it does not fit one packet (large compensators).
+  Outcome ConfigureFinger(const pp::ConfigureFinger& finger);
+  Outcome ConfigureBoard(const pp::ConfigureBoard& board);
+  Outcome SaveConfig();
+  Outcome FactoryReset();
+  Result<pp::ConfigureLine> ReadLine(uint8_t line, std::string* error = nullptr);
+  Result<pp::ConfigureFinger> ReadFinger(uint8_t finger, std::string* error = nullptr);
+  Result<pp::ConfigureBoard> ReadBoard(std::string* error = nullptr);
+  Result<pp::Diagnostics> Diagnostics(std::string* error = nullptr);
+  Result<pp::LoopStats> LoopStats(std::string* error = nullptr);
+
+  int Subscribe(std::function<void(const TelemetryFrame&)> callback) { return link_->Subscribe(std::move(callback)); }
+  void Unsubscribe(int id) { link_->Unsubscribe(id); }
+
+  /// Records telemetry to a CSV file whose first line is a JSON header (board, configuration,
+  /// units, clock mapping). Written to PATH.part and renamed on StopRecording, so a file at PATH
+  /// is always complete.
+  Outcome StartRecording(const std::string& path);
+  Outcome StopRecording();
+
+  /// The curves used for finger f (nominal until a calibration is attached).
+  FingerCurves& curves(uint8_t finger) { return curves_[finger]; }
+
+ private:
+  explicit Device(std::unique_ptr<Link> link, DeviceOptions options);
+  Outcome EnsureMode(uint8_t finger, pp::FingerMode mode);
+  template <class M>
+  Result<M> ReadSection(pp::ConfigSection section, uint8_t index, std::string* error);
+  Outcome Staged(const uint8_t* records, size_t size);
+  static Outcome FromCommand(const CommandResult& r, const char* what);
+
+  std::unique_ptr<Link> link_;
+  DeviceOptions options_;
+  std::vector<pp::FingerMode> modes_;
+  std::vector<FingerCurves> curves_;
+  // Recording.
+  std::mutex record_mutex_;
+  std::ofstream record_;
+  std::string record_path_;
+  int record_subscription_ = 0;
+};
+
+}  // namespace palpa::host

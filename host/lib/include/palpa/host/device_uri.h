@@ -1,0 +1,24 @@
+// Parsing of device URIs, with an error that says which part is wrong.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "palpa/protocol/status.h"
+
+namespace palpa::host {
+
+struct DeviceUri {
+  enum class Kind { kSim, kSerial, kTcp, kHid, kUsb } kind = Kind::kSim;
+  std::string config = "thesis-5finger";  ///< sim
+  std::string path;                       ///< serial
+  uint32_t baud = 1000000;                ///< serial
+  std::string host;                       ///< tcp
+  uint16_t port = 0;                      ///< tcp
+  uint16_t vendor = 0, product = 0;       ///< hid, usb
+  std::string serial_number;              ///< hid, usb (optional)
+};
+
+protocol::Status ParseDeviceUri(const std::string& uri, DeviceUri& out, std::string* error);
+
+}  // namespace palpa::host

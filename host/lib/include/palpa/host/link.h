@@ -1,0 +1,181 @@
+// The host side of the protocol: a reader thread that never waits on the application, sessions,
+// reliable commands, latest-wins streams resent until applied, heartbeats from their own thread,
+// EStop, telemetry to subscribers, and board time mapped to host time.
+#pragma once
+
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "palpa/host/transport.h"
+#include "palpa/protocol/codec.h"
+#include "palpa/protocol/reliable_sender.h"
+#include "palpa/protocol/session.h"
+
+namespace palpa::host {
+
+namespace pp = palpa::protocol;
+
+struct LinkOptions {
+  int hello_timeout_ms = 400;
+  int hello_attempts = 8;
+  int command_timeout_ms = 3000;
+  bool reconnect = true;              ///< open a new session after a board reset
+  size_t subscriber_queue = 8192;     ///< telemetry frames queued before the slowest drops some
+  int stream_resend_ms = 50;          ///< resend a stream value not yet shown applied
+};
+
+/// A telemetry frame as received, with the host time it maps to.
+struct TelemetryFrame {
+  pp::Telemetry telemetry;
+  double host_time_s = 0;  ///< host steady-clock time of the first sample
+};
+
+/// The answer to one reliable command.
+struct CommandResult {
+  Status status = Status::kOk;
+  uint32_t detail = 0;
+  uint8_t reply_type = 0;           ///< a report (ConfigReport, Diagnostics, ...) or 0 for Ack/Nack
+  std::vector<uint8_t> reply_body;  ///< the report's body
+  std::string message;              ///< extra text (versions on a catalog mismatch)
+  template <class M>
+  bool Reply(M& m) const {
+    return reply_type == static_cast<uint8_t>(M::kInfo.type) &&
+           pp::DecodeBody(reply_body.data(), reply_body.size(), m) == Status::kOk;
+  }
+};
+
+struct LinkCounters {
+  uint64_t frames = 0;
+  uint64_t telemetry_frames = 0;
+  uint64_t telemetry_lost = 0;        ///< frames missing in the sequence (link or board drops)
+  uint64_t subscriber_dropped = 0;    ///< frames a slow subscriber never saw
+  uint64_t framing_errors = 0;
+  uint64_t retransmissions = 0;
+  uint64_t board_resets = 0;
+  uint64_t outcome_unknown = 0;
+  uint64_t heartbeats = 0;
+};
+
+class Link {
+ public:
+  /// Opens a session over `transport` (Hello, with retries). A catalog mismatch still opens:
+  /// then only the bootstrap set works, and catalog_matches() is false.
+  static Result<std::unique_ptr<Link>> Open(std::unique_ptr<Transport> transport, LinkOptions options,
+                                            std::string* error);
+  ~Link();
+  Link(const Link&) = delete;
+  Link& operator=(const Link&) = delete;
+
+  pp::HelloReply board() const;
+  bool catalog_matches() const;
+  /// "host catalog 0x… (protocol 1) vs board catalog 0x… (firmware a.b.c, protocol 1)".
+  std::string Versions() const;
+  std::string Describe() const { return transport_->Describe(); }
+
+  /// Sends a reliable command and waits for its Ack, Nack or report.
+  template <class M>
+  CommandResult Command(const M& m) {
+    uint8_t packet[pp::kMaxPacketSize] = {};
+    pp::FieldError field;
+    const auto size = pp::EncodePacket(m, 0, 0, packet, sizeof(packet), &field);
+    if (!size.ok()) {
+      return CommandResult{size.status, 0, 0, {}, std::string("cannot encode ") + M::kInfo.name + ": field " +
+                                                      (field.field ? field.field : "?") + " is " + pp::StatusName(size.status)};
+    }
+    return CommandPacket(static_cast<uint8_t>(M::kInfo.type), packet + pp::kHeaderSize, size.value - pp::kHeaderSize);
+  }
+
+  /// Latest-wins streams: the link fills in the generation, sends at once and resends until
+  /// telemetry shows it applied. Returns the generation.
+  uint32_t StreamSetpoints(pp::SetLineSetpoints m);
+  uint32_t StreamTargets(pp::SetFingerTargets m);
+  /// Waits until telemetry shows the generation applied (kOk), it is Nacked (the status), or
+  /// the timeout passes (kTimeout).
+  Status WaitSetpointsApplied(uint32_t generation, int timeout_ms);
+  Status WaitTargetsApplied(uint32_t generation, int timeout_ms);
+
+  /// Sends EStop at once and repeats it until the board acknowledges (kOk) or gives up.
+  Status EStop();
+
+  /// Calls `callback` with every telemetry frame, on a thread of its own: a slow callback
+  /// delays only itself (frames beyond the queue are dropped and counted).
+  int Subscribe(std::function<void(const TelemetryFrame&)> callback);
+  void Unsubscribe(int id);
+
+  LinkCounters counters() const;
+  /// Host steady-clock seconds at which the board's clock read `board_us`.
+  double BoardToHostSeconds(uint64_t board_us) const;
+  /// Events worth telling a person (board reset, outcome unknown, reconnects), oldest first.
+  std::vector<std::string> TakeEvents();
+  bool session_open() const;
+
+ private:
+  explicit Link(std::unique_ptr<Transport> transport, LinkOptions options);
+  CommandResult CommandPacket(uint8_t type, const uint8_t* body, size_t size);
+  void ReaderLoop();
+  void HeartbeatLoop();
+  void DispatchLoop();
+  void OnFrame(const pp::Frame& frame, double now_s);
+  void OnTelemetry(const pp::Telemetry& t, double now_s);
+  void OnBoardReset(const std::string& why);
+  void SendHello();
+  void Service(double now_s);
+  void WriteFrame(const uint8_t* frame, size_t size);
+  template <class M>
+  void SendUnsequenced(const M& m);
+  Status WaitApplied(bool setpoints, uint32_t generation, int timeout_ms);
+
+  std::unique_ptr<Transport> transport_;
+  LinkOptions options_;
+  std::mutex write_mutex_;
+  mutable std::mutex mutex_;  ///< everything below
+  std::condition_variable changed_;
+  pp::HostSession session_;
+  pp::ReliableSender sender_;
+  uint32_t hello_nonce_ = 0;
+  double hello_sent_s_ = -1;
+  bool hello_wanted_ = true;
+  struct Pending {
+    bool done = false;
+    CommandResult result;
+  };
+  std::map<uint32_t, Pending> pending_;
+  uint32_t next_cookie_ = 1;
+  struct Stream {
+    bool active = false;
+    uint32_t generation = 0;
+    uint32_t applied = 0;
+    Status refused = Status::kOk;
+    uint32_t refused_generation = 0;
+    double sent_s = 0;
+    std::vector<uint8_t> frame;
+  };
+  Stream setpoints_, targets_;
+  uint32_t heartbeat_generation_ = 0;
+  bool estop_acked_ = false;
+  LinkCounters counters_;
+  std::vector<std::string> events_;
+  uint64_t expected_next_sample_us_ = 0;
+  double min_offset_s_ = 1e300;  ///< host time minus board time, lower envelope
+  double offset_window_start_s_ = 0;
+  double window_min_offset_s_ = 1e300;
+  // Subscribers and their queue.
+  std::map<int, std::function<void(const TelemetryFrame&)>> subscribers_;
+  int next_subscriber_ = 1;
+  std::deque<TelemetryFrame> queue_;
+  std::condition_variable queue_changed_;
+  bool stop_ = false;
+  std::thread reader_, heartbeat_, dispatcher_;
+};
+
+double SteadySeconds();
+
+}  // namespace palpa::host

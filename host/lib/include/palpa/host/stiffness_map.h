@@ -1,0 +1,64 @@
+// What a finger should do, in the terms a person uses — a level, 0..1, N/mm, mm, kPa — mapped to
+// what the board takes: a target in the finger's output unit, or raw line setpoints.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "palpa/protocol/messages_bootstrap.h"
+#include "palpa/protocol/status.h"
+
+namespace palpa::host {
+
+/// Level tables: per finger kind, the pressure (pneumatic) or vacuum (jamming) of each level.
+struct LevelTables {
+  std::vector<double> pneumatic_kpa = {0, 10, 30};
+  std::vector<double> jamming_kpa = {0, -10, -100};
+  double jamming_bias_kpa = 20;
+  double jamming_alternative_middle_kpa = -30;
+
+  /// The tables shipped with the library (host/lib/data/levels.json).
+  static LevelTables Shipped();
+  /// Reads a levels file; on a bad file returns false and names the field in *error.
+  static bool Load(const std::string& path, LevelTables& out, std::string* error);
+};
+
+/// How a finger's output unit relates to pressure: the nominal thesis curves until a
+/// calibration replaces them (the calibration work plugs in here).
+struct FingerCurves {
+  std::string source = "nominal thesis curves (no calibration)";
+  // Pneumatic: deformation (mm) = max(0, slope * kPa + intercept) — Table 5-4, all data.
+  double deformation_slope_mm_per_kpa = 0.0458;
+  double deformation_intercept_mm = -0.2098;
+  double max_deformation_mm = 4.370;
+  // Jamming at the bias: stiffness (N/mm) from 0 kPa to full vacuum — Fig 5-36(c), near linear.
+  double stiffness_at_0 = 0.7;
+  double stiffness_at_full_vacuum = 1.3;
+};
+
+enum class TargetKind { kLevel, kNormalized, kStiffnessNPerMm, kDeformationMm, kPressureKpa };
+
+struct Request {
+  TargetKind kind = TargetKind::kLevel;
+  double value = 0;
+};
+
+/// Beyond the calibrated range a request is refused, or clamped when the caller asks for it;
+/// it is never extrapolated silently.
+enum class RangePolicy { kRefuse, kClamp };
+
+struct Mapped {
+  protocol::Status status = protocol::Status::kOk;
+  std::string error;  ///< for people: what was wrong and what was expected
+  bool raw = false;   ///< raw mode: line setpoints; otherwise a target in the output unit
+  int32_t target = 0;               ///< µm (pneumatic) or mN/mm (jamming)
+  int32_t line_a_pa = 0, line_b_pa = 0;  ///< raw mode
+  std::string note;   ///< e.g. which curves were used, or that the value was clamped
+};
+
+/// Maps one request for one finger. `finger` comes from HelloReply.
+Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& levels, const FingerCurves& curves,
+                  Request request, RangePolicy policy = RangePolicy::kRefuse);
+
+}  // namespace palpa::host

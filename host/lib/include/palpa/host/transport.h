@@ -1,0 +1,41 @@
+// One interface for every way to reach a board: serial, TCP, USB HID, USB bulk, a simulator child.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "palpa/protocol/status.h"
+
+namespace palpa::host {
+
+using protocol::Result;
+using protocol::Status;
+
+class Transport {
+ public:
+  virtual ~Transport() = default;
+  /// Reads what has arrived, waiting at most timeout_ms for the first byte. Returns the count
+  /// (0 on timeout), or kDisconnected / kIoError.
+  virtual Result<size_t> Read(uint8_t* out, size_t capacity, int timeout_ms) = 0;
+  /// Writes every byte or fails (kDisconnected, kIoError, kTimeout).
+  virtual Status Write(const uint8_t* data, size_t size) = 0;
+  /// What this transport is connected to, for messages ("tcp:127.0.0.1:5555").
+  virtual std::string Describe() const = 0;
+};
+
+/// Opens a transport from a device URI:
+///   sim[:CONFIG]              starts palpa-sim (thesis-5finger by default) and connects
+///   serial:PATH[?baud=N]      termios raw mode: USB CDC-ACM, UART adapters, ptys
+///   tcp:HOST:PORT
+///   hid:VID:PID[:SERIAL]      hidapi, 64-byte reports (hex ids)
+///   usb:VID:PID[:SERIAL]      libusb vendor interface, one bulk IN and one bulk OUT endpoint
+/// On failure returns the status and sets *error to a message naming the part at fault.
+Result<std::unique_ptr<Transport>> OpenTransport(const std::string& uri, std::string* error);
+
+/// The pid.codes test id palpa uses until one is allocated.
+inline constexpr uint16_t kUsbVendorId = 0x1209;
+inline constexpr uint16_t kUsbProductId = 0x0001;
+
+}  // namespace palpa::host

@@ -1,0 +1,263 @@
+// Serial, TCP and simulator transports on POSIX file descriptors.
+#include "fd_transport.h"
+
+#include <fcntl.h>
+#include <netdb.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <termios.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <climits>
+#include <cstring>
+#include <vector>
+
+namespace palpa::host {
+
+FdTransport::~FdTransport() {
+  if (fd_ >= 0) close(fd_);
+}
+
+Result<size_t> FdTransport::Read(uint8_t* out, size_t capacity, int timeout_ms) {
+  pollfd p{fd_, POLLIN, 0};
+  const int ready = poll(&p, 1, timeout_ms);
+  if (ready < 0) return errno == EINTR ? Result<size_t>(size_t{0}) : Result<size_t>(Status::kIoError);
+  if (ready == 0) return size_t{0};
+  const ssize_t n = read(fd_, out, capacity);
+  if (n > 0) return static_cast<size_t>(n);
+  if (n == 0) return Status::kDisconnected;
+  if (errno == EAGAIN || errno == EINTR) return size_t{0};
+  return errno == EIO || errno == ECONNRESET ? Status::kDisconnected : Status::kIoError;
+}
+
+Status FdTransport::Write(const uint8_t* data, size_t size) {
+  size_t at = 0;
+  while (at < size) {
+    const ssize_t n = ::send(fd_, data + at, size - at, MSG_NOSIGNAL);
+    const ssize_t m = n >= 0 || errno != ENOTSOCK ? n : ::write(fd_, data + at, size - at);
+    if (m > 0) {
+      at += static_cast<size_t>(m);
+      continue;
+    }
+    if (m < 0 && (errno == EAGAIN || errno == EINTR)) {
+      pollfd p{fd_, POLLOUT, 0};
+      if (poll(&p, 1, 1000) == 0) return Status::kTimeout;
+      continue;
+    }
+    return errno == EPIPE || errno == ECONNRESET || errno == EIO ? Status::kDisconnected : Status::kIoError;
+  }
+  return Status::kOk;
+}
+
+namespace {
+
+speed_t BaudConstant(uint32_t baud) {
+  switch (baud) {
+    case 9600: return B9600;
+    case 19200: return B19200;
+    case 38400: return B38400;
+    case 57600: return B57600;
+    case 115200: return B115200;
+    case 230400: return B230400;
+    case 460800: return B460800;
+    case 921600: return B921600;
+    case 1000000: return B1000000;
+    case 2000000: return B2000000;
+    default: return 0;
+  }
+}
+
+}  // namespace
+
+Result<std::unique_ptr<Transport>> OpenSerial(const DeviceUri& uri, std::string* error) {
+  const speed_t speed = BaudConstant(uri.baud);
+  if (speed == 0) {
+    *error = "serial:" + uri.path + ": baud " + std::to_string(uri.baud) + " is not supported";
+    return Status::kInvalidArgument;
+  }
+  const int fd = open(uri.path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK);
+  if (fd < 0) {
+    *error = "serial:" + uri.path + ": " + std::strerror(errno);
+    return errno == ENOENT ? Status::kNotFound : Status::kIoError;
+  }
+  termios t{};
+  if (tcgetattr(fd, &t) != 0) {
+    *error = "serial:" + uri.path + ": not a terminal (" + std::strerror(errno) + ")";
+    close(fd);
+    return Status::kInvalidArgument;
+  }
+  cfmakeraw(&t);
+  cfsetispeed(&t, speed);
+  cfsetospeed(&t, speed);
+  t.c_cflag |= CLOCAL | CREAD;
+  tcsetattr(fd, TCSANOW, &t);
+  tcflush(fd, TCIOFLUSH);
+  return std::unique_ptr<Transport>(new FdTransport(fd, "serial:" + uri.path));
+}
+
+namespace {
+
+/// A connected TCP socket with Nagle off, or -1 with *error (and *status) set.
+int ConnectTcp(const DeviceUri& uri, std::string* error, Status* status) {
+  addrinfo hints{};
+  hints.ai_family = AF_UNSPEC;
+  hints.ai_socktype = SOCK_STREAM;
+  addrinfo* found = nullptr;
+  const std::string where = "tcp:" + uri.host + ":" + std::to_string(uri.port);
+  if (getaddrinfo(uri.host.c_str(), std::to_string(uri.port).c_str(), &hints, &found) != 0 || found == nullptr) {
+    *error = where + ": unknown host";
+    *status = Status::kNotFound;
+    return -1;
+  }
+  int fd = -1;
+  for (addrinfo* a = found; a != nullptr && fd < 0; a = a->ai_next) {
+    fd = socket(a->ai_family, a->ai_socktype, a->ai_protocol);
+    if (fd >= 0 && connect(fd, a->ai_addr, a->ai_addrlen) != 0) {
+      close(fd);
+      fd = -1;
+    }
+  }
+  const int saved = errno;
+  freeaddrinfo(found);
+  if (fd < 0) {
+    *error = where + ": " + std::strerror(saved);
+    *status = Status::kUnavailable;
+    return -1;
+  }
+  const int one = 1;
+  setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof(one));
+  return fd;
+}
+
+}  // namespace
+
+Result<std::unique_ptr<Transport>> OpenTcp(const DeviceUri& uri, std::string* error) {
+  Status status = Status::kOk;
+  const int fd = ConnectTcp(uri, error, &status);
+  if (fd < 0) return status;
+  return std::unique_ptr<Transport>(new FdTransport(fd, "tcp:" + uri.host + ":" + std::to_string(uri.port)));
+}
+
+SimTransport::~SimTransport() {
+  if (fd_ >= 0) close(fd_);
+  fd_ = -1;
+  if (child_ > 0) {
+    kill(child_, SIGTERM);
+    int status = 0;
+    for (int i = 0; i < 100 && waitpid(child_, &status, WNOHANG) == 0; ++i) usleep(10000);
+    if (waitpid(child_, &status, WNOHANG) == 0) {
+      kill(child_, SIGKILL);
+      waitpid(child_, &status, 0);
+    }
+  }
+}
+
+std::string FindPalpaSim() {
+  if (const char* env = getenv("PALPA_SIM"); env != nullptr && *env != '\0') return env;
+  char self[PATH_MAX];
+  const ssize_t n = readlink("/proc/self/exe", self, sizeof(self) - 1);
+  if (n > 0) {
+    self[n] = '\0';
+    std::string dir(self);
+    dir = dir.substr(0, dir.rfind('/'));
+    for (const std::string& candidate : {dir + "/palpa-sim", dir + "/../bin/palpa-sim"}) {
+      if (access(candidate.c_str(), X_OK) == 0) return candidate;
+    }
+  }
+#ifdef PALPA_SIM_BUILD_PATH
+  if (access(PALPA_SIM_BUILD_PATH, X_OK) == 0) return PALPA_SIM_BUILD_PATH;
+#endif
+  return "palpa-sim";
+}
+
+Result<std::unique_ptr<Transport>> OpenSim(const DeviceUri& uri, std::string* error) {
+  const std::string program = FindPalpaSim();
+  int out[2];
+  if (pipe(out) != 0) {
+    *error = std::string("sim: pipe: ") + std::strerror(errno);
+    return Status::kIoError;
+  }
+  const pid_t child = fork();
+  if (child == 0) {
+    dup2(out[1], STDOUT_FILENO);
+    close(out[0]);
+    std::string extra;
+    const char* args_env = getenv("PALPA_SIM_ARGS");  // e.g. "--plant 1 --speed 10"
+    std::vector<std::string> args = {program, "--config", uri.config, "--listen", "tcp:127.0.0.1:0"};
+    if (args_env != nullptr) {
+      std::string a(args_env);
+      size_t at = 0;
+      while (at < a.size()) {
+        const size_t sp = a.find(' ', at);
+        const std::string word = a.substr(at, sp == std::string::npos ? std::string::npos : sp - at);
+        if (!word.empty()) args.push_back(word);
+        if (sp == std::string::npos) break;
+        at = sp + 1;
+      }
+    }
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execvp(program.c_str(), argv.data());
+    _exit(127);
+  }
+  close(out[1]);
+  std::string text;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  std::string address;
+  while (std::chrono::steady_clock::now() < deadline) {
+    pollfd p{out[0], POLLIN, 0};
+    if (poll(&p, 1, 100) <= 0) continue;
+    char buffer[512];
+    const ssize_t n = read(out[0], buffer, sizeof(buffer));
+    if (n <= 0) break;
+    text.append(buffer, static_cast<size_t>(n));
+    const size_t at = text.find("listening on tcp:");
+    if (at != std::string::npos && text.find('\n', at) != std::string::npos) {
+      address = text.substr(at + 17, text.find('\n', at) - at - 17);
+      break;
+    }
+  }
+  close(out[0]);
+  if (address.empty()) {
+    kill(child, SIGKILL);
+    waitpid(child, nullptr, 0);
+    *error = "sim:" + uri.config + ": palpa-sim (" + program + ") did not start" +
+             (text.empty() ? std::string() : ": " + text);
+    return Status::kUnavailable;
+  }
+  DeviceUri tcp;
+  tcp.host = address.substr(0, address.rfind(':'));
+  tcp.port = static_cast<uint16_t>(std::stoi(address.substr(address.rfind(':') + 1)));
+  Status status = Status::kOk;
+  const int fd = ConnectTcp(tcp, error, &status);
+  if (fd < 0) {
+    kill(child, SIGKILL);
+    waitpid(child, nullptr, 0);
+    return status;
+  }
+  return std::unique_ptr<Transport>(new SimTransport(fd, child, "sim:" + uri.config + " (palpa-sim on tcp:" + address + ")"));
+}
+
+Result<std::unique_ptr<Transport>> OpenTransport(const std::string& uri, std::string* error) {
+  DeviceUri parsed;
+  const Status s = ParseDeviceUri(uri, parsed, error);
+  if (s != Status::kOk) return s;
+  switch (parsed.kind) {
+    case DeviceUri::Kind::kSim: return OpenSim(parsed, error);
+    case DeviceUri::Kind::kSerial: return OpenSerial(parsed, error);
+    case DeviceUri::Kind::kTcp: return OpenTcp(parsed, error);
+    case DeviceUri::Kind::kHid: return OpenHid(parsed, error);
+    case DeviceUri::Kind::kUsb: return OpenUsb(parsed, error);
+  }
+  return Status::kInvalidArgument;
+}
+
+}  // namespace palpa::host

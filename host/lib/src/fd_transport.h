@@ -1,0 +1,46 @@
+// Transports over a file descriptor: serial ports (termios raw), TCP sockets, and palpa-sim.
+#pragma once
+
+#include <sys/types.h>
+
+#include <string>
+
+#include "palpa/host/device_uri.h"
+#include "palpa/host/transport.h"
+
+namespace palpa::host {
+
+class FdTransport : public Transport {
+ public:
+  FdTransport(int fd, std::string description) : fd_(fd), description_(std::move(description)) {}
+  ~FdTransport() override;
+  Result<size_t> Read(uint8_t* out, size_t capacity, int timeout_ms) override;
+  Status Write(const uint8_t* data, size_t size) override;
+  std::string Describe() const override { return description_; }
+
+ protected:
+  int fd_;
+  std::string description_;
+};
+
+/// A palpa-sim child process and a TCP connection to it; the child is stopped on close.
+class SimTransport final : public FdTransport {
+ public:
+  SimTransport(int fd, pid_t child, std::string description)
+      : FdTransport(fd, std::move(description)), child_(child) {}
+  ~SimTransport() override;
+
+ private:
+  pid_t child_;
+};
+
+Result<std::unique_ptr<Transport>> OpenSerial(const DeviceUri& uri, std::string* error);
+Result<std::unique_ptr<Transport>> OpenTcp(const DeviceUri& uri, std::string* error);
+Result<std::unique_ptr<Transport>> OpenSim(const DeviceUri& uri, std::string* error);
+Result<std::unique_ptr<Transport>> OpenHid(const DeviceUri& uri, std::string* error);
+Result<std::unique_ptr<Transport>> OpenUsb(const DeviceUri& uri, std::string* error);
+
+/// Where palpa-sim is: $PALPA_SIM, next to the running executable, the build tree, or PATH.
+std::string FindPalpaSim();
+
+}  // namespace palpa::host

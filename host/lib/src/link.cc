@@ -1,0 +1,449 @@
+// The link: reader, heartbeat and dispatcher threads around protocol/'s state machines.
+#include "palpa/host/link.h"
+
+#include <chrono>
+#include <random>
+
+namespace palpa::host {
+
+double SteadySeconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+namespace {
+
+uint64_t Micros(double s) { return static_cast<uint64_t>(s * 1e6); }
+
+uint32_t RandomNonce() {
+  static std::mt19937 rng(std::random_device{}());
+  return static_cast<uint32_t>(rng()) | 1u;
+}
+
+}  // namespace
+
+Link::Link(std::unique_ptr<Transport> transport, LinkOptions options)
+    : transport_(std::move(transport)), options_(options) {}
+
+Result<std::unique_ptr<Link>> Link::Open(std::unique_ptr<Transport> transport, LinkOptions options,
+                                         std::string* error) {
+  std::unique_ptr<Link> link(new Link(std::move(transport), options));
+  link->reader_ = std::thread(&Link::ReaderLoop, link.get());
+  link->dispatcher_ = std::thread(&Link::DispatchLoop, link.get());
+  {
+    std::unique_lock<std::mutex> lock(link->mutex_);
+    const auto deadline = std::chrono::steady_clock::now() +
+                          std::chrono::milliseconds(options.hello_timeout_ms * options.hello_attempts);
+    link->changed_.wait_until(lock, deadline, [&] { return link->session_.open() || link->stop_; });
+    if (!link->session_.open()) {
+      if (error != nullptr) {
+        *error = link->transport_->Describe() + ": no answer to Hello (" +
+                 std::to_string(options.hello_attempts) + " tries); is it a palpa board, and is it powered?";
+      }
+      return Status::kTimeout;
+    }
+  }
+  link->heartbeat_ = std::thread(&Link::HeartbeatLoop, link.get());
+  return link;
+}
+
+Link::~Link() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  changed_.notify_all();
+  queue_changed_.notify_all();
+  if (reader_.joinable()) reader_.join();
+  if (heartbeat_.joinable()) heartbeat_.join();
+  if (dispatcher_.joinable()) dispatcher_.join();
+}
+
+pp::HelloReply Link::board() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return session_.board();
+}
+
+bool Link::catalog_matches() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return session_.catalog_matches();
+}
+
+bool Link::session_open() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return session_.open();
+}
+
+std::string Link::Versions() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  char text[200];
+  session_.DescribeVersions(text, sizeof(text));
+  return text;
+}
+
+void Link::WriteFrame(const uint8_t* frame, size_t size) {
+  std::lock_guard<std::mutex> lock(write_mutex_);
+  transport_->Write(frame, size);
+}
+
+template <class M>
+void Link::SendUnsequenced(const M& m) {
+  uint8_t frame[pp::kMaxFrameSize];
+  const auto n = pp::EncodeMessageFrame(m, 0, 0, frame, sizeof(frame));
+  if (n.ok()) WriteFrame(frame, n.value);
+}
+
+void Link::SendHello() {  // mutex_ held
+  if (!hello_wanted_) return;
+  const double now = SteadySeconds();
+  if (hello_sent_s_ >= 0 && now - hello_sent_s_ < options_.hello_timeout_ms / 1000.0) return;
+  if (hello_sent_s_ < 0 || hello_nonce_ == 0) {
+    hello_nonce_ = RandomNonce();
+    session_.BeginHello(hello_nonce_);
+  }
+  const uint8_t initial_seq = static_cast<uint8_t>(hello_nonce_ >> 8);
+  sender_.Reset(initial_seq);
+  hello_sent_s_ = now;
+  SendUnsequenced(pp::Hello{hello_nonce_, initial_seq});
+}
+
+CommandResult Link::CommandPacket(uint8_t type, const uint8_t* body, size_t size) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(options_.command_timeout_ms);
+  if (!changed_.wait_until(lock, deadline, [&] { return session_.open() || stop_; }) || stop_) {
+    return CommandResult{Status::kNoSession, 0, 0, {}, "no session with the board"};
+  }
+  const Status admitted = session_.Admit(type);
+  if (admitted != Status::kOk) {
+    char text[200];
+    session_.DescribeVersions(text, sizeof(text));
+    return CommandResult{admitted, 0, 0, {}, std::string("refused: ") + text};
+  }
+  const uint32_t cookie = next_cookie_++;
+  pending_[cookie] = Pending{};
+  for (;;) {
+    const auto seq = sender_.SubmitEncoded(type, body, size, cookie);
+    if (seq.ok()) break;
+    if (seq.status != Status::kWindowFull) {
+      pending_.erase(cookie);
+      return CommandResult{seq.status, 0, 0, {}, "cannot queue the command"};
+    }
+    if (!changed_.wait_until(lock, deadline, [&] { return sender_.pending() < pp::kMaxWindow || stop_; })) {
+      pending_.erase(cookie);
+      return CommandResult{Status::kWindowFull, 0, 0, {}, "the board does not take more commands"};
+    }
+  }
+  sender_.Transmit(Micros(SteadySeconds()), [this](const uint8_t* f, size_t n) { WriteFrame(f, n); });
+  changed_.wait_until(lock, deadline, [&] { return pending_[cookie].done || stop_; });
+  CommandResult result = pending_[cookie].done ? pending_[cookie].result
+                                                : CommandResult{Status::kTimeout, 0, 0, {}, "no answer from the board in time"};
+  pending_.erase(cookie);
+  return result;
+}
+
+void Link::ReaderLoop() {
+  pp::OwningFrameDecoder decoder;
+  uint8_t buffer[4096];
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    SendHello();
+  }
+  while (true) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (stop_) return;
+    }
+    const auto n = transport_->Read(buffer, sizeof(buffer), 5);
+    const double now = SteadySeconds();
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!n.ok()) {
+      if (n.status == Status::kDisconnected) {
+        events_.push_back("the link to " + transport_->Describe() + " closed");
+        OnBoardReset("link lost");
+        hello_wanted_ = false;
+        stop_ = true;
+        changed_.notify_all();
+        queue_changed_.notify_all();
+        return;
+      }
+      continue;
+    }
+    for (size_t i = 0; i < n.value; ++i) {
+      const auto event = decoder.Process(buffer[i]);
+      if (event == pp::FrameDecoder::Event::kFrame) OnFrame(decoder.frame(), now);
+      if (event == pp::FrameDecoder::Event::kError) ++counters_.framing_errors;
+    }
+    Service(now);
+  }
+}
+
+void Link::Service(double now) {  // mutex_ held
+  if (!session_.open()) {
+    SendHello();
+    return;
+  }
+  sender_.Transmit(Micros(now), [this](const uint8_t* f, size_t n) { WriteFrame(f, n); });
+  counters_.retransmissions = sender_.counters().retransmissions;
+  for (Stream* s : {&setpoints_, &targets_}) {
+    const bool applied = s->applied == s->generation || pp::GenerationNewer(s->applied, s->generation);
+    if (s->active && !applied && s->refused_generation != s->generation &&
+        now - s->sent_s >= options_.stream_resend_ms / 1000.0) {
+      WriteFrame(s->frame.data(), s->frame.size());
+      s->sent_s = now;
+    }
+  }
+}
+
+void Link::OnBoardReset(const std::string& why) {  // mutex_ held
+  size_t unknown = 0;
+  sender_.AbandonAll([&](const pp::CommandOutcome& o) {
+    auto it = pending_.find(o.cookie);
+    if (it != pending_.end()) {
+      it->second.done = true;
+      it->second.result = CommandResult{Status::kOutcomeUnknown, 0, 0, {}, "the board reset while this command was in flight"};
+    }
+    ++unknown;
+  });
+  counters_.outcome_unknown += unknown;
+  if (session_.open()) {
+    ++counters_.board_resets;
+    events_.push_back(why + ": " + std::to_string(unknown) + " command(s) in flight have an unknown outcome");
+  }
+  session_.Close();
+  // Streams are not replayed into a new session: the application decides what to actuate.
+  setpoints_.active = targets_.active = false;
+  hello_sent_s_ = -1;
+  hello_wanted_ = options_.reconnect;
+  changed_.notify_all();
+}
+
+void Link::OnFrame(const pp::Frame& frame, double now) {  // mutex_ held
+  ++counters_.frames;
+  if ((frame.header.flags & pp::flags::kFromBoard) == 0) return;  // an echo of our own frame
+  pp::DispatchFrame(frame, [&](const auto& m, const pp::Header& h) {
+    using M = std::decay_t<decltype(m)>;
+    if constexpr (std::is_same_v<M, pp::HelloReply>) {
+      if (session_.OnHelloReply(m) == Status::kStale) return;
+      hello_wanted_ = false;
+      sender_.Configure(pp::SenderConfig{pp::kMaxWindow, m.rx_buffer_bytes, 50000, 2000, 2000000});
+      if (!session_.catalog_matches()) {
+        char text[200];
+        session_.DescribeVersions(text, sizeof(text));
+        events_.push_back(std::string("catalog mismatch, only flashing is possible: ") + text);
+      }
+      changed_.notify_all();
+    } else if constexpr (requires { m.boot_nonce; }) {
+      if (!session_.open()) return;
+      if (session_.CheckBootNonce(m.boot_nonce) == pp::HostSession::BootCheck::kReset) {
+        OnBoardReset("the board restarted");
+        return;
+      }
+      if constexpr (std::is_same_v<M, pp::Telemetry>) {
+        OnTelemetry(m, now);
+        return;
+      }
+      if constexpr (std::is_same_v<M, pp::Ack>) {
+        if (m.acked_type == static_cast<uint8_t>(pp::MessageType::kEStop)) estop_acked_ = true;
+      }
+      if constexpr (std::is_same_v<M, pp::Nack>) {
+        if ((h.flags & pp::flags::kReliable) == 0) {  // a refused stream message
+          Stream* s = m.refused_type == static_cast<uint8_t>(pp::MessageType::kSetLineSetpoints) ? &setpoints_
+                      : m.refused_type == static_cast<uint8_t>(pp::MessageType::kSetFingerTargets) ? &targets_
+                                                                                                    : nullptr;
+          if (s != nullptr) {
+            s->refused = m.status;
+            s->refused_generation = s->generation;
+            changed_.notify_all();
+          }
+          return;
+        }
+      }
+      if ((h.flags & pp::flags::kReliable) == 0) return;
+      Status status = Status::kOk;
+      uint32_t detail = 0;
+      if constexpr (std::is_same_v<M, pp::Nack>) {
+        status = m.status;
+        detail = m.detail;
+      }
+      const bool report = !std::is_same_v<M, pp::Ack> && !std::is_same_v<M, pp::Nack>;
+      sender_.OnAnswer(h.seq, status, detail, Micros(now), [&](const pp::CommandOutcome& o) {
+        auto it = pending_.find(o.cookie);
+        if (it == pending_.end()) return;
+        it->second.done = true;
+        it->second.result = CommandResult{o.status, o.detail, 0, {}, {}};
+        if (report && o.seq == h.seq) {
+          it->second.result.reply_type = frame.header.type;
+          it->second.result.reply_body.assign(frame.body, frame.body + frame.body_size);
+        }
+      });
+      changed_.notify_all();
+    }
+  });
+}
+
+void Link::OnTelemetry(const pp::Telemetry& t, double now) {  // mutex_ held
+  ++counters_.telemetry_frames;
+  const uint64_t span = static_cast<uint64_t>(t.tick_count) * t.sample_interval_us;
+  if (expected_next_sample_us_ != 0 && t.first_sample_us > expected_next_sample_us_ && span > 0) {
+    counters_.telemetry_lost += (t.first_sample_us - expected_next_sample_us_ + span / 2) / span;
+  }
+  expected_next_sample_us_ = t.first_sample_us + span;
+  // Clock mapping: the smallest host-minus-board offset seen is the least delayed frame.
+  const double scale = session_.board().time_scale;
+  const double board_end_s = static_cast<double>(t.first_sample_us + (t.tick_count ? span - t.sample_interval_us : 0)) / 1e6 / scale;
+  const double offset = now - board_end_s;
+  if (offset < window_min_offset_s_) window_min_offset_s_ = offset;
+  if (now - offset_window_start_s_ > 10.0 || min_offset_s_ > 1e299) {  // follow slow drift
+    min_offset_s_ = window_min_offset_s_;
+    window_min_offset_s_ = 1e300;
+    offset_window_start_s_ = now;
+  }
+  if (offset < min_offset_s_) min_offset_s_ = offset;
+  setpoints_.applied = t.setpoint_generation;
+  targets_.applied = t.target_generation;
+  changed_.notify_all();
+  if (subscribers_.empty()) return;
+  if (queue_.size() >= options_.subscriber_queue) {
+    queue_.pop_front();
+    ++counters_.subscriber_dropped;
+  }
+  queue_.push_back(TelemetryFrame{t, min_offset_s_ + static_cast<double>(t.first_sample_us) / 1e6 / scale});
+  queue_changed_.notify_one();
+}
+
+void Link::DispatchLoop() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (true) {
+    queue_changed_.wait(lock, [&] { return stop_ || !queue_.empty(); });
+    if (stop_) return;
+    const TelemetryFrame frame = queue_.front();
+    queue_.pop_front();
+    auto subscribers = subscribers_;
+    lock.unlock();
+    for (auto& [id, callback] : subscribers) callback(frame);  // outside the lock: may take its time
+    lock.lock();
+  }
+}
+
+void Link::HeartbeatLoop() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (!stop_) {
+    const pp::HelloReply& b = session_.board();
+    const double scale = b.time_scale > 0 ? b.time_scale : 1.0;
+    // At most a quarter of the board's host-silence timeout, in host time.
+    const double period_s = std::max(0.001, static_cast<double>(b.host_timeout_us) / 4e6 / scale);
+    if (session_.open()) {
+      ++counters_.heartbeats;
+      const pp::Heartbeat hb{++heartbeat_generation_};
+      lock.unlock();
+      SendUnsequenced(hb);
+      lock.lock();
+    }
+    changed_.wait_for(lock, std::chrono::duration<double>(period_s), [&] { return stop_; });
+  }
+}
+
+uint32_t Link::StreamSetpoints(pp::SetLineSetpoints m) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  m.generation = ++setpoints_.generation;
+  uint8_t frame[pp::kMaxFrameSize];
+  const auto n = pp::EncodeMessageFrame(m, 0, 0, frame, sizeof(frame));
+  if (!n.ok()) {
+    setpoints_.refused = n.status;
+    setpoints_.refused_generation = m.generation;
+    return m.generation;
+  }
+  setpoints_.frame.assign(frame, frame + n.value);
+  setpoints_.active = true;
+  setpoints_.sent_s = SteadySeconds();
+  WriteFrame(frame, n.value);
+  return m.generation;
+}
+
+uint32_t Link::StreamTargets(pp::SetFingerTargets m) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  m.generation = ++targets_.generation;
+  uint8_t frame[pp::kMaxFrameSize];
+  const auto n = pp::EncodeMessageFrame(m, 0, 0, frame, sizeof(frame));
+  if (!n.ok()) {
+    targets_.refused = n.status;
+    targets_.refused_generation = m.generation;
+    return m.generation;
+  }
+  targets_.frame.assign(frame, frame + n.value);
+  targets_.active = true;
+  targets_.sent_s = SteadySeconds();
+  WriteFrame(frame, n.value);
+  return m.generation;
+}
+
+Status Link::WaitApplied(bool setpoints, uint32_t generation, int timeout_ms) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  Stream& s = setpoints ? setpoints_ : targets_;
+  Status result = Status::kTimeout;
+  changed_.wait_for(lock, std::chrono::milliseconds(timeout_ms), [&] {
+    if (s.refused_generation == generation) {
+      result = s.refused;
+      return true;
+    }
+    if (s.applied == generation || pp::GenerationNewer(s.applied, generation)) {
+      result = Status::kOk;
+      return true;
+    }
+    if (stop_ || !session_.open()) {
+      result = Status::kNoSession;
+      return true;
+    }
+    return false;
+  });
+  return result;
+}
+
+Status Link::WaitSetpointsApplied(uint32_t generation, int timeout_ms) { return WaitApplied(true, generation, timeout_ms); }
+Status Link::WaitTargetsApplied(uint32_t generation, int timeout_ms) { return WaitApplied(false, generation, timeout_ms); }
+
+Status Link::EStop() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    estop_acked_ = false;
+  }
+  for (int attempt = 0; attempt < 25; ++attempt) {
+    SendUnsequenced(pp::EStop{});
+    std::unique_lock<std::mutex> lock(mutex_);
+    if (changed_.wait_for(lock, std::chrono::milliseconds(20), [&] { return estop_acked_ || stop_; }) && estop_acked_) {
+      return Status::kOk;
+    }
+  }
+  return Status::kTimeout;
+}
+
+int Link::Subscribe(std::function<void(const TelemetryFrame&)> callback) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const int id = next_subscriber_++;
+  subscribers_[id] = std::move(callback);
+  return id;
+}
+
+void Link::Unsubscribe(int id) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  subscribers_.erase(id);
+}
+
+LinkCounters Link::counters() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return counters_;
+}
+
+double Link::BoardToHostSeconds(uint64_t board_us) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const double scale = session_.board().time_scale > 0 ? session_.board().time_scale : 1.0;
+  return min_offset_s_ + static_cast<double>(board_us) / 1e6 / scale;
+}
+
+std::vector<std::string> Link::TakeEvents() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<std::string> out;
+  out.swap(events_);
+  return out;
+}
+
+}  // namespace palpa::host

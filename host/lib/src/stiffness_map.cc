@@ -1,0 +1,179 @@
+// Mapping of levels, 0..1, N/mm, mm and kPa onto a finger's output unit or raw setpoints.
+#include "palpa/host/stiffness_map.h"
+
+#include <cmath>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+namespace palpa::host {
+namespace {
+
+using protocol::FingerKind;
+using protocol::Status;
+
+const char kShippedLevels[] =
+#include "levels_json.inc"
+    ;
+
+Mapped Refuse(const std::string& why, Status status = Status::kOutOfRange) {
+  Mapped m;
+  m.status = status;
+  m.error = why;
+  return m;
+}
+
+std::string Num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof(b), "%g", v);
+  return b;
+}
+
+/// Keeps v in [lo, hi] under the policy; false (with *error) when refused.
+bool InRange(double& v, double lo, double hi, RangePolicy policy, const std::string& what, std::string* note,
+             std::string* error) {
+  if (v >= lo && v <= hi) return true;
+  if (policy == RangePolicy::kRefuse) {
+    *error = what + " " + Num(v) + " is outside the calibrated range " + Num(lo) + " … " + Num(hi);
+    return false;
+  }
+  const double clamped = v < lo ? lo : hi;
+  *note += "clamped " + what + " " + Num(v) + " to " + Num(clamped) + "; ";
+  v = clamped;
+  return true;
+}
+
+double DeformationAt(const FingerCurves& c, double kpa) {
+  return std::max(0.0, c.deformation_slope_mm_per_kpa * kpa + c.deformation_intercept_mm);
+}
+
+double StiffnessAt(const FingerCurves& c, double vacuum_kpa) {
+  return c.stiffness_at_0 + (c.stiffness_at_full_vacuum - c.stiffness_at_0) * (-vacuum_kpa / 100.0);
+}
+
+bool ParseTables(const nlohmann::json& j, LevelTables& out, std::string* error) {
+  try {
+    LevelTables t;
+    t.pneumatic_kpa = j.at("pneumatic").at("levels_kpa").get<std::vector<double>>();
+    t.jamming_kpa = j.at("jamming").at("levels_kpa").get<std::vector<double>>();
+    t.jamming_bias_kpa = j.at("jamming").at("bias_kpa").get<double>();
+    t.jamming_alternative_middle_kpa = j.at("jamming").value("alternative_middle_kpa", -30.0);
+    for (double v : t.pneumatic_kpa) {
+      if (v < 0 || v > 100) throw std::runtime_error("pneumatic.levels_kpa: " + Num(v) + " is outside 0 … 100 kPa");
+    }
+    for (double v : t.jamming_kpa) {
+      if (v > 0 || v < -100) throw std::runtime_error("jamming.levels_kpa: " + Num(v) + " is outside -100 … 0 kPa");
+    }
+    if (t.pneumatic_kpa.empty() || t.jamming_kpa.empty()) throw std::runtime_error("a level table is empty");
+    out = t;
+    return true;
+  } catch (const std::exception& e) {
+    if (error != nullptr) *error = e.what();
+    return false;
+  }
+}
+
+}  // namespace
+
+LevelTables LevelTables::Shipped() {
+  LevelTables t;
+  ParseTables(nlohmann::json::parse(kShippedLevels), t, nullptr);
+  return t;
+}
+
+bool LevelTables::Load(const std::string& path, LevelTables& out, std::string* error) {
+  std::ifstream in(path);
+  if (!in) {
+    if (error != nullptr) *error = path + ": cannot open";
+    return false;
+  }
+  nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  if (j.is_discarded()) {
+    if (error != nullptr) *error = path + ": not valid JSON";
+    return false;
+  }
+  std::string why;
+  if (!ParseTables(j, out, &why)) {
+    if (error != nullptr) *error = path + ": " + why;
+    return false;
+  }
+  return true;
+}
+
+Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& levels, const FingerCurves& curves,
+                  Request request, RangePolicy policy) {
+  const bool jamming = finger.kind == FingerKind::kJamming;
+  Mapped m;
+  m.note = curves.source + "; ";
+  double kpa = 0;
+  bool from_pressure = false;
+  switch (request.kind) {
+    case TargetKind::kLevel: {
+      const auto& table = jamming ? levels.jamming_kpa : levels.pneumatic_kpa;
+      const double level = request.value;
+      if (level != std::floor(level) || level < 0 || level >= static_cast<double>(table.size())) {
+        return Refuse("level " + Num(level) + " does not exist: this finger has levels 0 … " + std::to_string(table.size() - 1));
+      }
+      kpa = table[static_cast<size_t>(level)];
+      from_pressure = true;
+      break;
+    }
+    case TargetKind::kPressureKpa: {
+      double v = request.value;
+      if (jamming) {
+        if (!InRange(v, -100, 0, policy, "vacuum (kPa)", &m.note, &m.error)) return Refuse(m.error);
+        m.line_a_pa = static_cast<int32_t>(levels.jamming_bias_kpa * 1000);
+        m.line_b_pa = static_cast<int32_t>(std::lround(v * 1000));
+      } else {
+        if (!InRange(v, 0, 100, policy, "pressure (kPa)", &m.note, &m.error)) return Refuse(m.error);
+        m.line_a_pa = static_cast<int32_t>(std::lround(v * 1000));
+      }
+      m.raw = true;
+      m.note = "raw setpoints, no compensation; ";
+      return m;
+    }
+    case TargetKind::kStiffnessNPerMm: {
+      if (!jamming) {
+        return Refuse("N/mm means nothing for a pneumatic finger: it renders deformation (use mm, a level or 0..1)",
+                      Status::kBadValue);
+      }
+      double v = request.value;
+      if (!InRange(v, curves.stiffness_at_0, curves.stiffness_at_full_vacuum, policy, "stiffness (N/mm)", &m.note, &m.error)) {
+        return Refuse(m.error);
+      }
+      m.target = static_cast<int32_t>(std::lround(v * 1000));
+      return m;
+    }
+    case TargetKind::kDeformationMm: {
+      if (jamming) {
+        return Refuse("mm means nothing for a jamming finger: it renders stiffness (use N/mm, a level or 0..1)",
+                      Status::kBadValue);
+      }
+      double v = request.value;
+      if (!InRange(v, 0, curves.max_deformation_mm, policy, "deformation (mm)", &m.note, &m.error)) return Refuse(m.error);
+      m.target = static_cast<int32_t>(std::lround(v * 1000));
+      return m;
+    }
+    case TargetKind::kNormalized: {
+      double v = request.value;
+      if (!InRange(v, 0, 1, policy, "normalised stiffness", &m.note, &m.error)) return Refuse(m.error);
+      m.target = jamming ? static_cast<int32_t>(std::lround(1000 * (curves.stiffness_at_0 +
+                                                                     v * (curves.stiffness_at_full_vacuum - curves.stiffness_at_0))))
+                         : static_cast<int32_t>(std::lround(1000 * v * curves.max_deformation_mm));
+      if (jamming && v == 0) m.target = 0;  // 0 is "off": released vacuum
+      return m;
+    }
+  }
+  if (from_pressure) {
+    // A level is a pressure or vacuum from the table, rendered through the finger's curve so the
+    // compensator (not the table) decides the setpoint.
+    if (jamming) {
+      m.target = kpa == 0 ? 0 : static_cast<int32_t>(std::lround(1000 * StiffnessAt(curves, kpa)));
+    } else {
+      m.target = kpa == 0 ? 0 : static_cast<int32_t>(std::lround(1000 * DeformationAt(curves, kpa)));
+    }
+  }
+  return m;
+}
+
+}  // namespace palpa::host
