@@ -29,6 +29,9 @@ Result<std::unique_ptr<Link>> Link::Open(std::unique_ptr<Transport> transport, L
   std::unique_ptr<Link> link(new Link(std::move(transport), options));
   link->reader_ = std::thread(&Link::ReaderLoop, link.get());
   link->dispatcher_ = std::thread(&Link::DispatchLoop, link.get());
+  // Heartbeats start with the first Hello: a board that opened the session must not see silence
+  // while its reply (the longest frame of the handshake) is being retried.
+  link->heartbeat_ = std::thread(&Link::HeartbeatLoop, link.get());
   {
     std::unique_lock<std::mutex> lock(link->mutex_);
     const auto deadline = std::chrono::steady_clock::now() +
@@ -42,7 +45,6 @@ Result<std::unique_ptr<Link>> Link::Open(std::unique_ptr<Transport> transport, L
       return Status::kTimeout;
     }
   }
-  link->heartbeat_ = std::thread(&Link::HeartbeatLoop, link.get());
   return link;
 }
 
@@ -329,9 +331,11 @@ void Link::HeartbeatLoop() {
   while (!stop_) {
     const pp::HelloReply& b = session_.board();
     const double scale = b.time_scale > 0 ? b.time_scale : 1.0;
-    // At most a quarter of the board's host-silence timeout, in host time.
-    const double period_s = std::max(0.001, static_cast<double>(b.host_timeout_us) / 4e6 / scale);
-    if (session_.open()) {
+    // At most a quarter of the board's host-silence timeout, in host time; before the first
+    // reply, a quarter of the default timeout (100 ms).
+    const double timeout_s = session_.open() ? static_cast<double>(b.host_timeout_us) / 1e6 / scale : 0.1;
+    const double period_s = std::max(0.001, timeout_s / 4);
+    if (session_.open() || hello_sent_s_ >= 0) {
       ++counters_.heartbeats;
       const pp::Heartbeat hb{++heartbeat_generation_};
       lock.unlock();

@@ -109,6 +109,7 @@ class ReliableSender {
         MarkConsumedBefore(seq);
         p.consumed = p.answered = true;
         if (p.transmissions == 1) SampleRoundTrip(now_us - p.sent_us);
+        rto_us_ = base_rto_us_;  // new data answered: drop the back-off (as TCP does on a new ACK)
         on_outcome(CommandOutcome{p.cookie, p.seq, p.type, status, detail});
         // Earlier commands were consumed but their answers lost: ask again, the board replays.
         for (uint8_t s = base_seq_; s != seq; ++s) {

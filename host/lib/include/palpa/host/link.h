@@ -24,8 +24,8 @@ namespace palpa::host {
 namespace pp = palpa::protocol;
 
 struct LinkOptions {
-  int hello_timeout_ms = 400;
-  int hello_attempts = 8;
+  int hello_timeout_ms = 50;    ///< Hello is resent this often until answered
+  int hello_attempts = 60;
   int command_timeout_ms = 3000;
   bool reconnect = true;              ///< open a new session after a board reset
   size_t subscriber_queue = 8192;     ///< telemetry frames queued before the slowest drops some

@@ -1,0 +1,39 @@
+// Link-time fakes of hidapi and libusb: scriptable devices for the HID and USB transports.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <vector>
+
+namespace palpa::testing {
+
+struct FakeHid {
+  bool present = true;
+  bool disconnected = false;      ///< hid_read/hid_write fail as after an unplug
+  int short_write_bytes = -1;     ///< >=0: hid_write reports that many bytes
+  std::vector<std::vector<uint8_t>> reports_in;  ///< what hid_read returns, one report per call
+  std::vector<std::vector<uint8_t>> reports_out;  ///< what hid_write got
+  int reads = 0, timeouts = 0;
+  bool closed = false;
+};
+
+struct FakeUsb {
+  bool present = true;
+  bool access_denied = false;
+  bool has_bulk_pair = true;
+  int claim_result = 0;
+  std::vector<std::vector<uint8_t>> bulk_in;  ///< chunks returned by IN transfers
+  std::vector<uint8_t> bulk_out;              ///< everything OUT transfers took
+  int stall_next_in = 0;                      ///< IN transfers to fail with PIPE
+  int stall_next_out = 0;
+  int out_chunk = 0;                          ///< >0: OUT transfers move at most this many bytes
+  bool no_device = false;
+  int clear_halts = 0;
+  bool released = false;
+};
+
+FakeHid& Hid();
+FakeUsb& Usb();
+void ResetFakes();
+
+}  // namespace palpa::testing

@@ -1,0 +1,171 @@
+// The link against a test board behind a fault-injecting transport, and against palpa-sim:
+// exactly-once commands under loss and corruption, board restarts, streams, slow subscribers,
+// catalog mismatch.
+#include <atomic>
+#include <chrono>
+#include <thread>
+
+#include "board_transport.h"
+#include "palpa/host/device.h"
+#include "palpa/host/fault_transport.h"
+
+#include "CppUTest/TestHarness.h"
+
+namespace ph = palpa::host;
+namespace pp = palpa::protocol;
+using palpa::testing::BoardTransport;
+using palpa::testing::TestBoard;
+
+namespace {
+
+std::unique_ptr<ph::Link> OpenLink(std::unique_ptr<ph::Transport> t) {
+  std::string error;
+  auto link = ph::Link::Open(std::move(t), ph::LinkOptions{}, &error);
+  CHECK_TEXT(link.ok(), error.c_str());
+  return std::move(link.value);
+}
+
+}  // namespace
+
+TEST_GROUP(LinkFaults){};
+
+TEST(LinkFaults, ThousandCommandsExactlyOnceInOrderAtOnePercentLossAndBitFlips) {
+  TestBoard board(pp::kCatalogHash, 1024, 11);
+  ph::FaultSpec faults;
+  faults.drop = 0.01;
+  faults.bit_flip = 0.001;
+  auto link = OpenLink(std::make_unique<ph::FaultTransport>(std::make_unique<BoardTransport>(board), faults, 5));
+  for (uint32_t id = 1; id <= 1000; ++id) {
+    const ph::CommandResult r = link->Command(pp::ClearFault{id});
+    LONGS_EQUAL_TEXT((int)pp::Status::kOk, (int)r.status, (std::to_string(id) + " " + r.message).c_str());
+  }
+  LONGS_EQUAL(1000, board.applied.size());
+  for (uint32_t i = 0; i < 1000; ++i) LONGS_EQUAL(i + 1, board.applied[i].command_id);
+  CHECK(link->counters().retransmissions > 0);
+  LONGS_EQUAL(1, board.sessions);
+}
+
+TEST(LinkFaults, BoardRestartReportsInFlightCommandsAsOutcomeUnknownAndReconnects) {
+  TestBoard board(pp::kCatalogHash, 1024, 12);
+  ph::FaultSpec slow;
+  slow.delay_ms = 30;  // commands stay in flight long enough to be caught by the reset
+  auto* transport = new BoardTransport(board);
+  auto link = OpenLink(std::make_unique<ph::FaultTransport>(std::unique_ptr<ph::Transport>(transport), slow, 6));
+  std::atomic<int> unknown{0}, ok{0};
+  std::thread sender([&] {
+    for (uint32_t id = 1; id <= 40; ++id) {
+      const ph::CommandResult r = link->Command(pp::ClearFault{id});
+      if (r.status == pp::Status::kOutcomeUnknown) ++unknown;
+      if (r.status == pp::Status::kOk) ++ok;
+    }
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  transport->Reboot();
+  sender.join();
+  CHECK(unknown.load() >= 1);
+  CHECK(ok.load() >= 1);
+  CHECK(link->counters().board_resets >= 1);
+  bool told = false;
+  for (const std::string& e : link->TakeEvents()) told |= e.find("unknown outcome") != std::string::npos;
+  CHECK(told);
+  LONGS_EQUAL((int)pp::Status::kOk, (int)link->Command(pp::ClearFault{999}).status);  // a new session works
+  CHECK(board.sessions >= 2);
+}
+
+TEST(LinkFaults, CatalogMismatchRefusesEverythingButTheBootstrapSet) {
+  TestBoard board(0x12345678, 1024, 13);
+  auto link = OpenLink(std::make_unique<BoardTransport>(board));
+  CHECK_FALSE(link->catalog_matches());
+  const ph::CommandResult refused = link->Command(pp::ClearFault{1});
+  LONGS_EQUAL((int)pp::Status::kCatalogMismatch, (int)refused.status);
+  CHECK(refused.message.find("0x12345678") != std::string::npos);
+  CHECK(refused.message.find("host catalog") != std::string::npos);
+  const ph::CommandResult update = link->Command(pp::UpdateQuery{1});
+  LONGS_EQUAL((int)pp::Status::kOk, (int)update.status);
+  pp::UpdateStatus st{};
+  CHECK(update.Reply(st));
+  LONGS_EQUAL(1234, st.written_bytes);
+  CHECK(board.applied.empty());
+}
+
+TEST_GROUP(LinkSim){};
+
+TEST(LinkSim, StreamsConvergeToTheLatestValueUnderFaults) {
+  std::string error;
+  auto sim = ph::OpenTransport("sim:thesis-5finger", &error);
+  CHECK_TEXT(sim.ok(), error.c_str());
+  ph::FaultSpec faults;
+  faults.drop = 0.01;
+  faults.bit_flip = 0.001;
+  auto device = ph::Device::Attach(std::make_unique<ph::FaultTransport>(std::move(sim.value), faults, 7), {}, &error);
+  CHECK_TEXT(device.ok(), error.c_str());
+  for (int i = 1; i <= 30; ++i) device.value->SetLines({{0, static_cast<double>(i)}}, false);
+  const ph::Outcome last = device.value->SetLines({{0, 42.0}}, true);
+  CHECK_TEXT(last.ok(), last.message.c_str());
+  std::atomic<int32_t> seen{0};
+  const int id = device.value->Subscribe([&](const ph::TelemetryFrame& f) { seen = f.telemetry.samples[0].setpoint_pa; });
+  for (int i = 0; i < 100 && seen.load() != 42000; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  device.value->Unsubscribe(id);
+  LONGS_EQUAL(42000, seen.load());
+}
+
+TEST(LinkSim, AStalledSubscriberStallsNeitherCommandsNorHeartbeats) {
+  std::string error;
+  auto device = ph::Device::Open("sim:thesis-5finger", {}, &error);
+  CHECK_TEXT(device.ok(), error.c_str());
+  std::atomic<bool> blocked{false}, release{false};
+  const int id = device.value->Subscribe([&](const ph::TelemetryFrame&) {
+    blocked = true;
+    while (!release) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  });
+  while (!blocked) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  for (int i = 0; i < 10; ++i) {  // while the callback is stuck
+    CHECK(device.value->LoopStats().ok());
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  CHECK(blocked.load());
+  const auto diagnostics = device.value->Diagnostics();
+  CHECK(diagnostics.ok());
+  LONGS_EQUAL(0, diagnostics.value.fault_bitmap);  // heartbeats kept the board from going safe
+  release = true;
+  device.value->Unsubscribe(id);
+}
+
+TEST(LinkSim, DeviceConfiguresReadsBackAndRecords) {
+  std::string error;
+  auto opened = ph::Device::Open("sim:thesis-jamming-2", {}, &error);
+  CHECK_TEXT(opened.ok(), error.c_str());
+  ph::Device& d = *opened.value;
+  auto board = d.ReadBoard();
+  CHECK(board.ok());
+  STRCMP_EQUAL("thesis-jamming-2", board.value.config_name.data());
+  board.value.host_timeout_us = 150000;
+  CHECK(d.ConfigureBoard(board.value).ok());
+  LONGS_EQUAL(150000, d.ReadBoard().value.host_timeout_us);
+  auto finger = d.ReadFinger(1);
+  CHECK(finger.ok());
+  LONGS_EQUAL(20000, finger.value.bias_pa);
+  const ph::Outcome pi = [&] {
+    pp::ConfigureFinger f = finger.value;
+    f.compensator = pp::CompensatorKind::kPrandtlIshlinskii;
+    f.param_count = 65;  // over one packet: goes staged, and this firmware refuses the kind
+    return d.ConfigureFinger(f);
+  }();
+  LONGS_EQUAL((int)pp::Status::kUnsupported, (int)pi.status);
+  CHECK(d.Set({{0, {ph::TargetKind::kStiffnessNPerMm, 1.1}}}).ok());
+  const std::string path = "/tmp/palpa-record-" + std::to_string(getpid()) + ".csv";
+  CHECK(d.StartRecording(path).ok());
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  CHECK(access(path.c_str(), F_OK) != 0);  // not there until complete
+  CHECK(d.StopRecording().ok());
+  FILE* f = fopen(path.c_str(), "r");
+  CHECK(f != nullptr);
+  char line[4096];
+  CHECK(fgets(line, sizeof(line), f) != nullptr);
+  CHECK(std::string(line).find("\"configuration\":\"thesis-jamming-2\"") != std::string::npos);
+  int rows = 0;
+  while (fgets(line, sizeof(line), f) != nullptr) ++rows;
+  fclose(f);
+  remove(path.c_str());
+  CHECK(rows > 4 * 100);
+}

@@ -1,0 +1,138 @@
+// HID and USB transports through link-time fakes of hidapi and libusb: reports and chunking,
+// short reads and writes, timeouts, stalls, disconnects and errors.
+#include <string>
+#include <vector>
+
+#include "fake_usb_libs.h"
+#include "palpa/host/transport.h"
+
+#include "CppUTest/TestHarness.h"
+
+namespace ph = palpa::host;
+namespace pp = palpa::protocol;
+using palpa::testing::Hid;
+using palpa::testing::Usb;
+
+TEST_GROUP(HidTransport) {
+  void setup() override { palpa::testing::ResetFakes(); }
+  void teardown() override { palpa::testing::ResetFakes(); }
+  std::unique_ptr<ph::Transport> Open(const char* uri = "hid:1209:0001") {
+    std::string error;
+    auto t = ph::OpenTransport(uri, &error);
+    CHECK_TEXT(t.ok(), error.c_str());
+    return std::move(t.value);
+  }
+};
+
+TEST(HidTransport, WritesReportsWithTheReportIdInFrontAndZeroPadding) {
+  auto t = Open();
+  std::vector<uint8_t> bytes(100);
+  for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<uint8_t>(i + 1);
+  LONGS_EQUAL((int)pp::Status::kOk, (int)t->Write(bytes.data(), bytes.size()));
+  LONGS_EQUAL(2, Hid().reports_out.size());
+  LONGS_EQUAL(65, Hid().reports_out[0].size());
+  LONGS_EQUAL(0, Hid().reports_out[0][0]);  // report id
+  LONGS_EQUAL(1, Hid().reports_out[0][1]);
+  LONGS_EQUAL(65, Hid().reports_out[1][1]);
+  LONGS_EQUAL(0, Hid().reports_out[1][64]);  // padding after the last byte
+}
+
+TEST(HidTransport, ReadsReportsShortReportsAndTimeouts) {
+  auto t = Open();
+  Hid().reports_in.push_back(std::vector<uint8_t>(64, 0x11));
+  Hid().reports_in.push_back({0x22, 0x00});  // a short report
+  uint8_t buffer[128];
+  auto n = t->Read(buffer, sizeof(buffer), 10);
+  LONGS_EQUAL(64, n.value);
+  n = t->Read(buffer, sizeof(buffer), 10);
+  LONGS_EQUAL(2, n.value);
+  n = t->Read(buffer, sizeof(buffer), 10);
+  CHECK(n.ok());
+  LONGS_EQUAL(0, n.value);  // timeout: nothing, not an error
+  LONGS_EQUAL(1, Hid().timeouts);
+}
+
+TEST(HidTransport, UnplugIsADisconnectAndShortWritesAreErrors) {
+  auto t = Open();
+  uint8_t b[4] = {1, 2, 3, 0};
+  Hid().short_write_bytes = 10;
+  LONGS_EQUAL((int)pp::Status::kIoError, (int)t->Write(b, sizeof(b)));
+  Hid().disconnected = true;
+  LONGS_EQUAL((int)pp::Status::kDisconnected, (int)t->Write(b, sizeof(b)));
+  uint8_t buffer[64];
+  LONGS_EQUAL((int)pp::Status::kDisconnected, (int)t->Read(buffer, sizeof(buffer), 10).status);
+  t.reset();
+  CHECK(Hid().closed);
+}
+
+TEST(HidTransport, MissingDeviceIsNamed) {
+  Hid().present = false;
+  std::string error;
+  auto t = ph::OpenTransport("hid:1209:0001:ABC", &error);
+  LONGS_EQUAL((int)pp::Status::kNotFound, (int)t.status);
+  CHECK(error.find("hid:1209:0001:ABC") != std::string::npos);
+  CHECK(error.find("udev") != std::string::npos);
+}
+
+TEST_GROUP(UsbTransport) {
+  void setup() override { palpa::testing::ResetFakes(); }
+  void teardown() override { palpa::testing::ResetFakes(); }
+};
+
+TEST(UsbTransport, BulkInAndOutWithShortTransfersAndStalls) {
+  std::string error;
+  auto t = ph::OpenTransport("usb:1209:0001:PALPA-0042", &error);
+  CHECK_TEXT(t.ok(), error.c_str());
+  Usb().out_chunk = 7;  // the device takes 7 bytes per transfer
+  Usb().stall_next_out = 1;
+  std::vector<uint8_t> bytes(30, 0xAB);
+  LONGS_EQUAL((int)pp::Status::kOk, (int)t.value->Write(bytes.data(), bytes.size()));
+  LONGS_EQUAL(30, Usb().bulk_out.size());
+  Usb().stall_next_in = 1;
+  Usb().bulk_in.push_back({1, 2, 3});
+  uint8_t buffer[64];
+  auto n = t.value->Read(buffer, sizeof(buffer), 10);
+  LONGS_EQUAL(3, n.value);
+  LONGS_EQUAL(2, Usb().clear_halts);
+  n = t.value->Read(buffer, sizeof(buffer), 10);  // timeout
+  CHECK(n.ok());
+  LONGS_EQUAL(0, n.value);
+  Usb().no_device = true;
+  LONGS_EQUAL((int)pp::Status::kDisconnected, (int)t.value->Read(buffer, sizeof(buffer), 10).status);
+  LONGS_EQUAL((int)pp::Status::kDisconnected, (int)t.value->Write(bytes.data(), 1));
+  t.value.reset();
+  CHECK(Usb().released);
+}
+
+TEST(UsbTransport, OpenFailuresSayWhy) {
+  std::string error;
+  CHECK(ph::OpenTransport("usb:1209:0001:OTHER-SERIAL", &error).status == pp::Status::kNotFound);
+  Usb().access_denied = true;
+  CHECK(ph::OpenTransport("usb:1209:0001", &error).status == pp::Status::kUnavailable);
+  CHECK(error.find("udev") != std::string::npos);
+  Usb().access_denied = false;
+  Usb().has_bulk_pair = false;
+  CHECK(ph::OpenTransport("usb:1209:0001", &error).status == pp::Status::kUnsupported);
+  Usb().has_bulk_pair = true;
+  Usb().claim_result = -6;  // LIBUSB_ERROR_BUSY
+  CHECK(ph::OpenTransport("usb:1209:0001", &error).status == pp::Status::kBusy);
+  Usb().present = false;
+  CHECK(ph::OpenTransport("usb:1209:0001", &error).status == pp::Status::kNotFound);
+}
+
+TEST_GROUP(DeviceUri){};
+
+TEST(DeviceUri, BadUrisNameTheirFault) {
+  std::string error;
+  CHECK(ph::OpenTransport("tcp:localhost", &error).status == pp::Status::kInvalidArgument);
+  CHECK(error.find("tcp:HOST:PORT") != std::string::npos);
+  CHECK(ph::OpenTransport("tcp:localhost:99999", &error).status == pp::Status::kInvalidArgument);
+  CHECK(ph::OpenTransport("hid:12G9:0001", &error).status == pp::Status::kInvalidArgument);
+  CHECK(error.find("vendor id") != std::string::npos);
+  CHECK(ph::OpenTransport("serial:/dev/null?speed=9", &error).status == pp::Status::kInvalidArgument);
+  CHECK(ph::OpenTransport("bluetooth:x", &error).status == pp::Status::kInvalidArgument);
+  CHECK(error.find("unknown scheme") != std::string::npos);
+  CHECK(ph::OpenTransport("serial:/nonexistent/tty", &error).status == pp::Status::kNotFound);
+  CHECK(ph::OpenTransport("serial:/dev/null", &error).status == pp::Status::kInvalidArgument);  // not a tty
+  CHECK(ph::OpenTransport("tcp:127.0.0.1:1", &error).status == pp::Status::kUnavailable);
+}
