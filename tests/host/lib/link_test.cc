@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "board_transport.h"
+#include "mini_client.h"
 #include "palpa/host/device.h"
 #include "palpa/host/fault_transport.h"
 
@@ -168,4 +169,20 @@ TEST(LinkSim, DeviceConfiguresReadsBackAndRecords) {
   fclose(f);
   remove(path.c_str());
   CHECK(rows > 4 * 100);
+}
+
+TEST(LinkSim, OverARealPtyWithSerialSettings) {
+  const std::string path = "/tmp/palpa-host-serial-" + std::to_string(getpid());
+  palpa::testing::SimProcess sim;
+  CHECK(sim.Start({"--config", "thesis-pneumatic-3", "--listen", "pty:" + path}));
+  std::string error;
+  auto device = ph::Device::Open("serial:" + path + "?baud=115200", {}, &error);
+  CHECK_TEXT(device.ok(), error.c_str());
+  STRCMP_EQUAL("thesis-pneumatic-3", device.value->info().config_name.data());
+  const ph::Outcome set = device.value->Set({{2, {ph::TargetKind::kLevel, 1}}});
+  CHECK_TEXT(set.ok(), set.message.c_str());
+  CHECK(set.notes[0].find("nominal thesis curves") != std::string::npos);
+  CHECK(device.value->EStop().ok());
+  device.value.reset();
+  LONGS_EQUAL(0, sim.Stop());
 }
