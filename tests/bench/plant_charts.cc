@@ -7,10 +7,10 @@
 
 #include "palpa/core/board_configs.h"
 #include "palpa/hal/sim/plant.h"
-#include "svg_chart.h"
+#include "palpa/host/svg_chart.h"
 
 namespace ps = palpa::sim;
-namespace pb = palpa::bench;
+namespace pb = palpa::host;
 
 namespace {
 

@@ -11,11 +11,11 @@
 #include "palpa/hal/fake/fakes.h"
 #include "palpa/protocol/codec.h"
 #include "sim_board.h"
-#include "svg_chart.h"
+#include "palpa/host/svg_chart.h"
 
 namespace ps = palpa::sim;
 namespace pp = palpa::protocol;
-namespace pb = palpa::bench;
+namespace pb = palpa::host;
 
 namespace {
 

@@ -5,13 +5,13 @@
 #include <string>
 #include <vector>
 
-#include "json_fields.h"
+#include "palpa/host/json_fields.h"
 #include "palpa/protocol/codec.h"
 
 #include "CppUTest/TestHarness.h"
 
 namespace pp = palpa::protocol;
-using palpa::testing::json;
+using palpa::host::json;
 
 namespace {
 
@@ -50,14 +50,14 @@ TEST_GROUP(GoldenFrames) {
 TEST(GoldenFrames, EncodingTheFieldsGivesTheRecordedBytes) {
   for (const json& g : golden) {
     const std::string name = g.at("name");
-    const bool known = palpa::testing::WithMessageNamed(g.at("type"), [&]<class M>() {
-      const M m = palpa::testing::MessageFromJson<M>(g.at("fields"));
+    const bool known = palpa::host::WithMessageNamed(g.at("type"), [&]<class M>() {
+      const M m = palpa::host::MessageFromJson<M>(g.at("fields"));
       uint8_t frame[pp::kMaxFrameSize];
       pp::FieldError e;
       const auto n = pp::EncodeMessageFrame(m, g.at("seq"), g.at("flags"), frame, sizeof(frame), &e);
       CHECK_TEXT(n.ok(), (name + ": " + pp::StatusName(n.status)).c_str());
       STRCMP_EQUAL_TEXT(g.at("hex").get<std::string>().c_str(),
-                        palpa::testing::ToHex(frame, n.value).c_str(), name.c_str());
+                        palpa::host::ToHex(frame, n.value).c_str(), name.c_str());
     });
     CHECK_TEXT(known, name.c_str());
   }
@@ -66,22 +66,22 @@ TEST(GoldenFrames, EncodingTheFieldsGivesTheRecordedBytes) {
 TEST(GoldenFrames, DecodingTheBytesGivesTheRecordedFields) {
   for (const json& g : golden) {
     const std::string name = g.at("name");
-    const Decoded d = DecodeWire(palpa::testing::FromHex(g.at("hex")));
+    const Decoded d = DecodeWire(palpa::host::FromHex(g.at("hex")));
     CHECK_TEXT(d.frame, name.c_str());
     LONGS_EQUAL_TEXT(g.at("seq").get<int>(), d.header.seq, name.c_str());
     LONGS_EQUAL_TEXT(g.at("flags").get<int>(), d.header.flags, name.c_str());
     const pp::MessageInfo* info = pp::FindMessageInfo(d.header.type);
     CHECK_TEXT(info != nullptr, name.c_str());
     STRCMP_EQUAL_TEXT(g.at("type").get<std::string>().c_str(), info->name, name.c_str());
-    palpa::testing::WithMessageNamed(info->name, [&]<class M>() {
+    palpa::host::WithMessageNamed(info->name, [&]<class M>() {
       M m{};
       pp::FieldError e;
       const auto status = pp::DecodeBody(d.body.data(), d.body.size(), m, &e);
       CHECK_TEXT(status == pp::Status::kOk, (name + ": " + (e.field ? e.field : "?")).c_str());
       // Compare through the codec's own view so float text formatting does not matter.
-      const json expected = palpa::testing::MessageToJson(
-          palpa::testing::MessageFromJson<M>(g.at("fields")));
-      STRCMP_EQUAL_TEXT(expected.dump().c_str(), palpa::testing::MessageToJson(m).dump().c_str(),
+      const json expected = palpa::host::MessageToJson(
+          palpa::host::MessageFromJson<M>(g.at("fields")));
+      STRCMP_EQUAL_TEXT(expected.dump().c_str(), palpa::host::MessageToJson(m).dump().c_str(),
                         name.c_str());
     });
   }
@@ -89,7 +89,7 @@ TEST(GoldenFrames, DecodingTheBytesGivesTheRecordedFields) {
 
 TEST(GoldenFrames, EverySingleBitFlipIsRejectedOrDecodesTheSameFrame) {
   for (const json& g : golden) {
-    const std::vector<uint8_t> wire = palpa::testing::FromHex(g.at("hex"));
+    const std::vector<uint8_t> wire = palpa::host::FromHex(g.at("hex"));
     const Decoded original = DecodeWire(wire);
     for (size_t byte = 0; byte < wire.size(); ++byte) {
       for (int bit = 0; bit < 8; ++bit) {
@@ -111,7 +111,7 @@ TEST(GoldenFrames, CoverEveryMessageTypeAndTheEdgeCases) {
   bool zero_body = false, ff_body = false;
   for (const json& g : golden) {
     types.insert(g.at("type").get<std::string>());
-    const Decoded d = DecodeWire(palpa::testing::FromHex(g.at("hex")));
+    const Decoded d = DecodeWire(palpa::host::FromHex(g.at("hex")));
     largest_packet = std::max(largest_packet, d.body.size() + pp::kHeaderSize);
     size_t zeros = 0, ffs = 0;
     for (uint8_t b : d.body) {

@@ -4,11 +4,11 @@
 #include <fstream>
 #include <iostream>
 
-#include "json_fields.h"
+#include "palpa/host/json_fields.h"
 #include "palpa/protocol/codec.h"
 
 namespace pp = palpa::protocol;
-using palpa::testing::json;
+using palpa::host::json;
 
 namespace {
 
@@ -28,8 +28,8 @@ void Add(const std::string& name, const M& m, uint8_t seq, uint8_t flags) {
                         {"type", M::kInfo.name},
                         {"seq", seq},
                         {"flags", flags},
-                        {"hex", palpa::testing::ToHex(frame, size.value)},
-                        {"fields", palpa::testing::MessageToJson(m)}});
+                        {"hex", palpa::host::ToHex(frame, size.value)},
+                        {"fields", palpa::host::MessageToJson(m)}});
 }
 
 template <size_t N>

@@ -39,7 +39,7 @@ Outcome Device::FromCommand(const CommandResult& r, const char* what) {
 }
 
 Outcome Device::EnsureMode(uint8_t finger, pp::FingerMode mode) {
-  if (finger >= modes_.size()) return Outcome{Status::kNotFound, "finger " + std::to_string(finger) + " does not exist", {}};
+  if (finger >= modes_.size()) return Outcome{Status::kNotFound, "finger " + std::to_string(finger + 1) + " does not exist", {}};
   if (modes_[finger] == mode) return {};
   const Outcome o = FromCommand(link_->Command(pp::SetFingerMode{finger, mode}), "set finger mode");
   if (o.ok()) modes_[finger] = mode;
@@ -51,14 +51,22 @@ Outcome Device::Set(const std::vector<FingerRequest>& requests, bool wait) {
   pp::SetFingerTargets targets{};
   pp::SetLineSetpoints lines{};
   Outcome out;
+  // Map everything first: a bad request anywhere means nothing at all is sent.
+  std::vector<Mapped> mapped;
   for (const FingerRequest& r : requests) {
     if (r.finger >= b.finger_count) {
-      return Outcome{Status::kNotFound, "finger " + std::to_string(r.finger) + " does not exist (this board has " +
+      return Outcome{Status::kNotFound, "finger " + std::to_string(r.finger + 1) + " does not exist (this board has " +
                                             std::to_string(b.finger_count) + ")", {}};
     }
-    const Mapped m = MapRequest(b.fingers[r.finger], options_.levels, curves_[r.finger], r.request, options_.range_policy);
-    if (m.status != Status::kOk) return Outcome{m.status, "finger " + std::to_string(r.finger) + ": " + m.error, {}};
-    out.notes.push_back("finger " + std::to_string(r.finger) + ": " + m.note);
+    mapped.push_back(MapRequest(b.fingers[r.finger], options_.levels, curves_[r.finger], r.request, options_.range_policy));
+    if (mapped.back().status != Status::kOk) {
+      return Outcome{mapped.back().status, "finger " + std::to_string(r.finger + 1) + ": " + mapped.back().error, {}};
+    }
+  }
+  for (size_t i = 0; i < requests.size(); ++i) {
+    const FingerRequest& r = requests[i];
+    const Mapped& m = mapped[i];
+    out.notes.push_back("finger " + std::to_string(r.finger + 1) + ": " + m.note);
     if (m.raw) {
       const Outcome mode = EnsureMode(r.finger, pp::FingerMode::kRaw);
       if (!mode.ok()) return mode;
@@ -94,14 +102,17 @@ Outcome Device::SetLines(const std::vector<std::pair<uint8_t, double>>& kpa, boo
   const pp::HelloReply b = link_->board();
   pp::SetLineSetpoints lines{};
   for (const auto& [line, value] : kpa) {
-    if (line >= b.line_count) return Outcome{Status::kNotFound, "line " + std::to_string(line) + " does not exist", {}};
+    if (line >= b.line_count) return Outcome{Status::kNotFound, "line " + std::to_string(line + 1) + " does not exist", {}};
     const double pa = value * 1000;
     if (pa < b.lines[line].limit_min_pa || pa > b.lines[line].limit_max_pa) {
       char text[160];
-      std::snprintf(text, sizeof(text), "line %u: %g kPa is outside its limits %g … %g kPa", line, value,
+      std::snprintf(text, sizeof(text), "line %u: %g kPa is outside its limits %g … %g kPa", line + 1u, value,
                     b.lines[line].limit_min_pa / 1000.0, b.lines[line].limit_max_pa / 1000.0);
       return Outcome{Status::kOutOfRange, text, {}};
     }
+  }
+  for (const auto& [line, value] : kpa) {  // all valid: only now does anything go out
+    const double pa = value * 1000;
     for (uint8_t f = 0; f < b.finger_count; ++f) {
       if (b.fingers[f].line_a == line || b.fingers[f].line_b == line) {
         const Outcome mode = EnsureMode(f, pp::FingerMode::kRaw);

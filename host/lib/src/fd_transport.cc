@@ -178,6 +178,25 @@ std::string FindPalpaSim() {
 }
 
 Result<std::unique_ptr<Transport>> OpenSim(const DeviceUri& uri, std::string* error) {
+  std::vector<std::string> options;
+  if (const char* args_env = getenv("PALPA_SIM_ARGS"); args_env != nullptr) {  // e.g. "--plant 1 --speed 10"
+    const std::string a(args_env);
+    size_t at = 0;
+    while (at < a.size()) {
+      const size_t sp = a.find(' ', at);
+      const std::string word = a.substr(at, sp == std::string::npos ? std::string::npos : sp - at);
+      if (!word.empty()) options.push_back(word);
+      if (sp == std::string::npos) break;
+      at = sp + 1;
+    }
+  }
+  return LaunchSim(uri.config, options, nullptr, error);
+}
+
+Result<std::unique_ptr<Transport>> LaunchSim(const std::string& config, const std::vector<std::string>& options,
+                                             std::string* truth_address, std::string* error) {
+  DeviceUri uri;
+  uri.config = config;
   const std::string program = FindPalpaSim();
   int out[2];
   if (pipe(out) != 0) {
@@ -188,19 +207,11 @@ Result<std::unique_ptr<Transport>> OpenSim(const DeviceUri& uri, std::string* er
   if (child == 0) {
     dup2(out[1], STDOUT_FILENO);
     close(out[0]);
-    std::string extra;
-    const char* args_env = getenv("PALPA_SIM_ARGS");  // e.g. "--plant 1 --speed 10"
     std::vector<std::string> args = {program, "--config", uri.config, "--listen", "tcp:127.0.0.1:0"};
-    if (args_env != nullptr) {
-      std::string a(args_env);
-      size_t at = 0;
-      while (at < a.size()) {
-        const size_t sp = a.find(' ', at);
-        const std::string word = a.substr(at, sp == std::string::npos ? std::string::npos : sp - at);
-        if (!word.empty()) args.push_back(word);
-        if (sp == std::string::npos) break;
-        at = sp + 1;
-      }
+    args.insert(args.end(), options.begin(), options.end());
+    if (truth_address != nullptr) {
+      args.push_back("--truth");
+      args.push_back("tcp:127.0.0.1:0");
     }
     std::vector<char*> argv;
     for (std::string& a : args) argv.push_back(a.data());
@@ -220,8 +231,12 @@ Result<std::unique_ptr<Transport>> OpenSim(const DeviceUri& uri, std::string* er
     if (n <= 0) break;
     text.append(buffer, static_cast<size_t>(n));
     const size_t at = text.find("listening on tcp:");
-    if (at != std::string::npos && text.find('\n', at) != std::string::npos) {
+    const size_t truth_at = text.find("truth on ");
+    const bool truth_ready = truth_address == nullptr ||
+                             (truth_at != std::string::npos && text.find('\n', truth_at) != std::string::npos);
+    if (at != std::string::npos && text.find('\n', at) != std::string::npos && truth_ready) {
       address = text.substr(at + 17, text.find('\n', at) - at - 17);
+      if (truth_address != nullptr) *truth_address = text.substr(truth_at + 9, text.find('\n', truth_at) - truth_at - 9);
       break;
     }
   }

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "palpa/protocol/status.h"
 
@@ -33,6 +34,12 @@ class Transport {
 ///   usb:VID:PID[:SERIAL]      libusb vendor interface, one bulk IN and one bulk OUT endpoint
 /// On failure returns the status and sets *error to a message naming the part at fault.
 Result<std::unique_ptr<Transport>> OpenTransport(const std::string& uri, std::string* error);
+
+/// Starts palpa-sim with CONFIG and extra options (e.g. {"--plant", "3", "--speed", "4"}) and
+/// connects to it. With `truth_address` non-null the simulator also streams its truth side channel
+/// (for demos and benchmarks) and *truth_address receives where ("tcp:127.0.0.1:PORT").
+Result<std::unique_ptr<Transport>> LaunchSim(const std::string& config, const std::vector<std::string>& options,
+                                             std::string* truth_address, std::string* error);
 
 /// The pid.codes test id palpa uses until one is allocated.
 inline constexpr uint16_t kUsbVendorId = 0x1209;

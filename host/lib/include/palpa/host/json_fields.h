@@ -1,4 +1,4 @@
-// JSON views of protocol messages for golden files and tests, driven by each message's Fields().
+// JSON views of protocol messages (golden files, configuration files, the CLI), driven by each message's Fields().
 #pragma once
 
 #include <array>
@@ -12,7 +12,7 @@
 
 #include "palpa/protocol/catalog.h"
 
-namespace palpa::testing {
+namespace palpa::host {
 
 using nlohmann::json;
 namespace pp = palpa::protocol;
@@ -212,4 +212,4 @@ bool WithMessageNamed(const std::string& name, F&& f) {
   return found;
 }
 
-}  // namespace palpa::testing
+}  // namespace palpa::host

@@ -1,7 +1,7 @@
 // Hex helpers for the JSON views of messages.
-#include "json_fields.h"
+#include "palpa/host/json_fields.h"
 
-namespace palpa::testing {
+namespace palpa::host {
 
 std::string ToHex(const uint8_t* data, size_t size) {
   static constexpr char kDigits[] = "0123456789abcdef";
@@ -29,4 +29,4 @@ std::vector<uint8_t> FromHex(const std::string& hex) {
   return bytes;
 }
 
-}  // namespace palpa::testing
+}  // namespace palpa::host

@@ -1,5 +1,5 @@
 // SVG rendering of line and scatter charts with axes, ticks and a legend.
-#include "svg_chart.h"
+#include "palpa/host/svg_chart.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <fstream>
 #include <limits>
 
-namespace palpa::bench {
+namespace palpa::host {
 namespace {
 
 const char* const kPalette[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#17becf", "#7f7f7f"};
@@ -107,4 +107,4 @@ bool WriteFile(const std::string& path, const std::string& text) {
   return out.good();
 }
 
-}  // namespace palpa::bench
+}  // namespace palpa::host

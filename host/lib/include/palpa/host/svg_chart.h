@@ -1,11 +1,11 @@
-// A small SVG line-chart writer for the benchmark figures in docs/ (no plotting stack needed).
+// A small SVG line-chart writer for figures and reports (no plotting stack needed).
 #pragma once
 
 #include <string>
 #include <utility>
 #include <vector>
 
-namespace palpa::bench {
+namespace palpa::host {
 
 struct Series {
   std::string name;
@@ -28,4 +28,4 @@ std::string RenderSvg(const Chart& chart);
 /// Writes text to a file; false on failure.
 bool WriteFile(const std::string& path, const std::string& text);
 
-}  // namespace palpa::bench
+}  // namespace palpa::host

@@ -1,0 +1,225 @@
+// palpa config show|set|load|save|factory-reset: read, change and persist the configuration.
+// Changes are checked locally with the firmware's own validation, then sent staged (atomic).
+#include <cstdio>
+#include <fstream>
+
+#include "cli.h"
+#include "palpa/core/board_config.h"
+#include "palpa/host/json_fields.h"
+#include "palpa/protocol/crc32.h"
+
+namespace palpa::cli {
+namespace {
+
+namespace pp = palpa::protocol;
+using nlohmann::json;
+
+/// The board's whole live configuration, read section by section.
+bool ReadAll(host::Device& d, core::BoardConfig& config, std::string* error) {
+  const pp::HelloReply b = d.info();
+  auto board = d.ReadBoard(error);
+  if (!board.ok()) return false;
+  config.board = board.value;
+  config.line_count = b.line_count;
+  for (uint8_t i = 0; i < b.line_count; ++i) {
+    auto line = d.ReadLine(i, error);
+    if (!line.ok()) return false;
+    config.lines[i] = line.value;
+  }
+  config.finger_count = b.finger_count;
+  for (uint8_t f = 0; f < b.finger_count; ++f) {
+    auto finger = d.ReadFinger(f, error);
+    if (!finger.ok()) return false;
+    config.fingers[f] = finger.value;
+  }
+  return true;
+}
+
+json ToJson(const core::BoardConfig& c) {
+  json j;
+  j["board"] = host::MessageToJson(c.board);
+  j["lines"] = json::array();
+  for (uint8_t i = 0; i < c.line_count; ++i) j["lines"].push_back(host::MessageToJson(c.lines[i]));
+  j["fingers"] = json::array();
+  for (uint8_t f = 0; f < c.finger_count; ++f) j["fingers"].push_back(host::MessageToJson(c.fingers[f]));
+  return j;
+}
+
+/// Applies a (partial) JSON configuration onto `config`. Throws with the field's path.
+void ApplyJson(const json& j, core::BoardConfig& config) {
+  if (!j.is_object()) throw std::runtime_error("expected an object with board, lines, fingers");
+  for (const auto& [key, value] : j.items()) {
+    if (key != "board" && key != "lines" && key != "fingers") throw std::runtime_error("unknown section '" + key + "'");
+  }
+  auto merge = [](json base, const json& patch, const std::string& where) {
+    if (!patch.is_object()) throw std::runtime_error(where + ": expected an object");
+    for (const auto& [k, v] : patch.items()) {
+      if (!base.contains(k)) throw std::runtime_error(where + ": unknown field '" + k + "'");
+      base[k] = v;
+    }
+    return base;
+  };
+  if (j.contains("board")) {
+    try {
+      config.board = host::MessageFromJson<pp::ConfigureBoard>(merge(host::MessageToJson(config.board), j["board"], "board"));
+    } catch (const std::exception& e) {
+      throw std::runtime_error(std::string("board: ") + e.what());
+    }
+  }
+  for (const char* section : {"lines", "fingers"}) {
+    if (!j.contains(section)) continue;
+    if (!j[section].is_array()) throw std::runtime_error(std::string(section) + ": expected an array");
+    for (size_t n = 0; n < j[section].size(); ++n) {
+      const json& entry = j[section][n];
+      const std::string where = std::string(section) + "[" + std::to_string(n) + "]";
+      const char* index_key = section[0] == 'l' ? "line" : "finger";
+      if (!entry.is_object() || !entry.contains(index_key) || !entry[index_key].is_number_unsigned()) {
+        throw std::runtime_error(where + ": needs \"" + index_key + "\" (0-based, as on the wire)");
+      }
+      const size_t index = entry[index_key].get<size_t>();
+      try {
+        if (section[0] == 'l') {
+          if (index > config.line_count || index >= pp::kMaxLines) throw std::runtime_error("line " + std::to_string(index) + " does not exist");
+          config.lines[index] = host::MessageFromJson<pp::ConfigureLine>(merge(host::MessageToJson(config.lines[index]), entry, where));
+          if (index == config.line_count) ++config.line_count;
+        } else {
+          if (index > config.finger_count || index >= pp::kMaxFingers) throw std::runtime_error("finger " + std::to_string(index) + " does not exist");
+          config.fingers[index] = host::MessageFromJson<pp::ConfigureFinger>(merge(host::MessageToJson(config.fingers[index]), entry, where));
+          if (index == config.finger_count) ++config.finger_count;
+        }
+      } catch (const std::exception& e) {
+        throw std::runtime_error(where + ": " + e.what());
+      }
+    }
+  }
+}
+
+/// Validates like the board would, then sends everything staged so it applies at once.
+int Upload(Context& c, host::Device& d, const core::BoardConfig& config) {
+  core::ConfigError error;
+  if (core::ValidateConfig(config, &error) != pp::Status::kOk) {
+    std::fprintf(stderr, "palpa config: the configuration is not valid: %s %u: %s (nothing was sent)\n",
+                 pp::kConfigSectionNames[static_cast<int>(error.section)], error.index + 1u, error.reason);
+    return kExitUsage;
+  }
+  std::vector<uint8_t> blob(core::kMaxConfigBlob);
+  const auto size = core::EncodeConfigBlob(config, blob.data(), blob.size());
+  if (!size.ok() || size.value > pp::kMaxStagedBytes) {
+    std::fprintf(stderr, "palpa config: the configuration is too large for one staged upload (%zu bytes)\n", size.value);
+    return kExitUsage;
+  }
+  auto& link = d.link();
+  auto step = [&](host::CommandResult r, const char* what) {
+    if (r.status == pp::Status::kOk) return true;
+    std::fprintf(stderr, "palpa config: %s: %s %s (detail %u)\n", what, pp::StatusName(r.status), r.message.c_str(), r.detail);
+    return false;
+  };
+  if (!step(link.Command(pp::StagedBegin{static_cast<uint16_t>(size.value)}), "staged begin")) return kExitFailed;
+  for (size_t at = 0; at < size.value; at += pp::kMaxStagedChunk) {
+    pp::StagedPart part{};
+    part.offset = static_cast<uint16_t>(at);
+    part.data_size = static_cast<uint8_t>(std::min<size_t>(pp::kMaxStagedChunk, size.value - at));
+    std::copy(blob.begin() + static_cast<long>(at), blob.begin() + static_cast<long>(at + part.data_size), part.data.begin());
+    if (!step(link.Command(part), "staged part")) return kExitFailed;
+  }
+  if (!step(link.Command(pp::StagedCommit{static_cast<uint16_t>(size.value), pp::Crc32(blob.data(), size.value)}), "apply")) {
+    return kExitFailed;
+  }
+  if (!c.json) std::printf("applied (not yet saved: 'palpa config save' keeps it across resets)\n");
+  return kExitOk;
+}
+
+/// "board.FIELD=V", "lineN.FIELD=V", "fingerN.FIELD=V" (N from 1) as a JSON patch.
+bool PatchFromArgument(const std::string& arg, const core::BoardConfig& config, json& patch, std::string* error) {
+  const size_t eq = arg.find('='), dot = arg.find('.');
+  if (eq == std::string::npos || dot == std::string::npos || dot > eq) {
+    *error = "'" + arg + "': expected SECTION.FIELD=VALUE, e.g. board.host_timeout_us=200000 or line2.slew_pa_per_s=100000";
+    return false;
+  }
+  const std::string section = arg.substr(0, dot), field = arg.substr(dot + 1, eq - dot - 1), text = arg.substr(eq + 1);
+  json value;
+  double number = 0;
+  if (ParseNumber(text, number)) {
+    value = number == static_cast<double>(static_cast<int64_t>(number)) ? json(static_cast<int64_t>(number)) : json(number);
+  } else if (text == "true" || text == "false") {
+    value = text == "true";
+  } else {
+    value = text;
+  }
+  auto index_of = [&](const std::string& prefix, uint8_t count, size_t& index) {
+    double n = 0;
+    if (!ParseNumber(section.substr(prefix.size()), n) || n < 1 || n > count || n != static_cast<int>(n)) {
+      *error = "'" + arg + "': " + prefix + " must be numbered 1 to " + std::to_string(count);
+      return false;
+    }
+    index = static_cast<size_t>(n - 1);
+    return true;
+  };
+  size_t index = 0;
+  if (section == "board") {
+    patch["board"][field] = value;
+  } else if (section.rfind("line", 0) == 0) {
+    if (!index_of("line", config.line_count, index)) return false;
+    patch["lines"].push_back({{"line", index}, {field, value}});
+  } else if (section.rfind("finger", 0) == 0) {
+    if (!index_of("finger", config.finger_count, index)) return false;
+    patch["fingers"].push_back({{"finger", index}, {field, value}});
+  } else {
+    *error = "'" + arg + "': the section must be board, lineN or fingerN";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+int CmdConfig(Context& c, const std::vector<std::string>& args) {
+  if (args.empty()) return Usage("config", "expected show, set, load, save or factory-reset");
+  const std::string& what = args[0];
+  const std::vector<std::string> rest(args.begin() + 1, args.end());
+  json file;
+  if (what == "load") {  // the file is read and parsed before anything is sent
+    if (rest.size() != 1) return Usage("config", "load takes one FILE");
+    std::ifstream in(rest[0]);
+    if (!in) return Usage("config", rest[0] + ": cannot open");
+    try {
+      file = json::parse(in);
+    } catch (const json::parse_error& e) {
+      return Usage("config", rest[0] + ": not valid JSON (" + std::string(e.what()) + ")");
+    }
+  } else if (what == "set") {
+    if (rest.empty()) return Usage("config", "set takes SECTION.FIELD=VALUE ...");
+  } else if (what == "show" || what == "save" || what == "factory-reset") {
+    if (!rest.empty()) return Usage("config", what + " takes no arguments");
+  } else {
+    return Usage("config", "unknown subcommand '" + what + "' (expected show, set, load, save, factory-reset)");
+  }
+  host::Device* d = c.Device();
+  if (d == nullptr) return kExitConnect;
+  if (what == "save") return Report(c, d->SaveConfig(), "config save");
+  if (what == "factory-reset") return Report(c, d->FactoryReset(), "config factory-reset");
+  core::BoardConfig config{};
+  std::string error;
+  if (!ReadAll(*d, config, &error)) {
+    std::fprintf(stderr, "palpa config: %s\n", error.c_str());
+    return kExitFailed;
+  }
+  if (what == "show") {
+    std::printf("%s\n", ToJson(config).dump(c.json ? -1 : 2).c_str());
+    return kExitOk;
+  }
+  if (what == "set") {
+    file = json::object();
+    for (const std::string& a : rest) {
+      if (!PatchFromArgument(a, config, file, &error)) return Usage("config", error);
+    }
+  }
+  try {
+    ApplyJson(file, config);
+  } catch (const std::exception& e) {
+    return Usage("config", std::string(what == "load" ? rest[0] + ": " : "") + e.what() + " (nothing was sent)");
+  }
+  return Upload(c, *d, config);
+}
+
+}  // namespace palpa::cli

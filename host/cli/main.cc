@@ -1,0 +1,144 @@
+// palpa: the command line for palpa actuator boards.
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "cli.h"
+
+namespace palpa::cli {
+namespace {
+
+struct Command {
+  int (*run)(Context&, const std::vector<std::string>&);
+  const char* synopsis;
+  const char* help;
+};
+
+const std::map<std::string, Command>& Commands() {
+  static const std::map<std::string, Command> commands = {
+      {"list", {CmdList, "list", "Serial ports, and HID and USB devices with palpa's USB id (1209:0001)."}},
+      {"info", {CmdInfo, "info", "The board: kind, id, firmware, catalog, configuration, lines and fingers."}},
+      {"diag", {CmdDiag, "diag", "Reset cause, latched and active faults, fault history, loop statistics."}},
+      {"config", {CmdConfig, "config show|set KEY=VALUE...|load FILE|save|factory-reset",
+                  "show: the live configuration (JSON with --json).\n"
+                  "set: change fields, e.g. board.host_timeout_us=200000 line2.slew_pa_per_s=100000\n"
+                  "     finger4.bias_pa=15000 (lines and fingers numbered from 1); checked locally first.\n"
+                  "load FILE: a JSON file {\"board\":{...},\"lines\":[...],\"fingers\":[...]} (partial allowed),\n"
+                  "     validated as a whole and applied atomically.\n"
+                  "save: persist the live configuration. factory-reset: back to the compiled-in one."}},
+      {"set", {CmdSet, "set F=VALUE ... [--hold S]",
+               "Fingers (numbered from 1): L2 (level), 0.5 (0..1), 1.2mm (pneumatic), 0.9N/mm (jamming),\n"
+               "-10kPa (raw pressure or vacuum). Units are checked per finger kind. Example on\n"
+               "thesis-5finger: palpa set 1=L2 2=0.5 3=1.2mm 4=0.9N/mm 5=-10kPa"}},
+      {"line", {CmdLine, "line L=VALUE ... [--hold S]", "Raw setpoints in kPa for lines (numbered from 1): palpa line 1=30 6=-40"}},
+      {"monitor", {CmdMonitor, "monitor [--rate HZ] [--duration S]",
+                   "A live table of every line (one JSON object per sample with --json); Ctrl-C ends it."}},
+      {"record", {CmdRecord, "record FILE.csv --duration S",
+                  "Telemetry to CSV; the first line is a JSON header (board, configuration, units, clock)."}},
+      {"estop", {CmdEStop, "estop", "Every line to its safe value now, latched until cleared."}},
+      {"clear", {CmdClear, "clear", "Clear latched faults whose cause is gone; outputs stay safe until new setpoints."}},
+      {"demo", {CmdDemo, "demo [--out FILE.svg] [--speed X]",
+                "Starts a simulated thesis-5finger board and plays the thesis's discrimination stimuli:\n"
+                "18 three-finger pneumatic combinations and 9 two-finger jamming ones; prints target\n"
+                "against achieved, settling and latency, and plots the traces."}},
+  };
+  return commands;
+}
+
+void PrintUsage(FILE* out) {
+  std::fprintf(out,
+               "usage: palpa [--device URI] [--json] COMMAND [ARGS]\n\n"
+               "  --device URI   sim[:CONFIG], serial:PATH[?baud=N], tcp:HOST:PORT, hid:VID:PID[:SERIAL],\n"
+               "                 usb:VID:PID[:SERIAL] (default: $PALPA_DEVICE, else sim:thesis-5finger)\n"
+               "  --json         machine-readable output\n\ncommands:\n");
+  for (const auto& [name, c] : Commands()) std::fprintf(out, "  %s\n", c.synopsis);
+  std::fprintf(out, "\npalpa COMMAND --help explains a command. Exit codes: 0 ok, 1 refused or failed,\n"
+                    "2 bad command line (nothing sent), 3 cannot open the device.\n");
+}
+
+}  // namespace
+
+host::Device* Context::Device() {
+  if (device) return device.get();
+  std::string error;
+  auto opened = host::Device::Open(device_uri, host::DeviceOptions{}, &error);
+  if (!opened.ok()) {
+    std::fprintf(stderr, "palpa: cannot open %s: %s\n", device_uri.c_str(), error.c_str());
+    return nullptr;
+  }
+  device = std::move(opened.value);
+  if (!device->link().catalog_matches()) {
+    std::fprintf(stderr, "palpa: %s runs other firmware: %s. Only flashing is possible.\n", device_uri.c_str(),
+                 device->link().Versions().c_str());
+  }
+  return device.get();
+}
+
+int Usage(const std::string& command, const std::string& message) {
+  std::fprintf(stderr, "palpa %s: %s\n(see palpa %s --help)\n", command.c_str(), message.c_str(), command.c_str());
+  return kExitUsage;
+}
+
+int Report(const Context& context, const host::Outcome& outcome, const std::string& what) {
+  if (!outcome.ok()) {
+    std::fprintf(stderr, "palpa %s: %s\n", what.c_str(), outcome.message.c_str());
+    return kExitFailed;
+  }
+  if (!context.json) {
+    for (const std::string& note : outcome.notes) std::printf("  %s\n", note.c_str());
+  }
+  return kExitOk;
+}
+
+}  // namespace palpa::cli
+
+int main(int argc, char** argv) {
+  using namespace palpa::cli;
+  Context context;
+  const char* env = std::getenv("PALPA_DEVICE");
+  context.device_uri = env != nullptr && *env != '\0' ? env : "sim:thesis-5finger";
+  int i = 1;
+  for (; i < argc && argv[i][0] == '-'; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h") {
+      PrintUsage(stdout);
+      return kExitOk;
+    }
+    if (arg == "--json") {
+      context.json = true;
+    } else if (arg == "--device") {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "palpa: --device needs a URI, e.g. --device tcp:127.0.0.1:5555\n");
+        return kExitUsage;
+      }
+      context.device_uri = argv[++i];
+    } else {
+      std::fprintf(stderr, "palpa: unknown option '%s'\n", arg.c_str());
+      PrintUsage(stderr);
+      return kExitUsage;
+    }
+  }
+  if (i >= argc) {
+    PrintUsage(stderr);
+    return kExitUsage;
+  }
+  const std::string name = argv[i];
+  const auto& commands = Commands();
+  const auto it = commands.find(name);
+  if (it == commands.end()) {
+    std::fprintf(stderr, "palpa: unknown command '%s'\n", name.c_str());
+    PrintUsage(stderr);
+    return kExitUsage;
+  }
+  std::vector<std::string> args(argv + i + 1, argv + argc);
+  for (const std::string& a : args) {
+    if (a == "--help" || a == "-h") {
+      std::printf("usage: palpa [--device URI] [--json] %s\n\n%s\n", it->second.synopsis, it->second.help);
+      return kExitOk;
+    }
+  }
+  return it->second.run(context, args);
+}
