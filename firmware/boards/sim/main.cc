@@ -1,6 +1,7 @@
 // palpa-sim: the firmware core on the plant model, on a pty or TCP port, in (scaled) real time.
 #include <poll.h>
 #include <signal.h>
+#include <time.h>
 
 #include <chrono>
 #include <cstdio>
@@ -53,6 +54,21 @@ int main(int argc, char** argv) {
   sigaction(SIGTERM, &action, nullptr);
   signal(SIGPIPE, SIG_IGN);
 
+  FILE* stamps = nullptr;
+  if (!cmd.stamp_file.empty()) {
+    stamps = std::fopen(cmd.stamp_file.c_str(), "w");
+    if (stamps == nullptr) {
+      std::fprintf(stderr, "palpa-sim: --stamp %s: cannot write\n", cmd.stamp_file.c_str());
+      return 1;
+    }
+    // One monotonic clock for host and simulator: CLOCK_MONOTONIC nanoseconds.
+    sim->OnSetpointGeneration([stamps](uint32_t generation, bool dac) {
+      timespec now;
+      clock_gettime(CLOCK_MONOTONIC, &now);
+      std::fprintf(stamps, "%u %s %lld\n", generation, dac ? "dac" : "applied",
+                   static_cast<long long>(now.tv_sec) * 1000000000LL + now.tv_nsec);
+    });
+  }
   std::printf("palpa-sim: %s, plant level %d, unit %u, seed %u, speed %gx\n", cmd.board.config.c_str(),
               cmd.board.plant.level, cmd.board.plant.unit, cmd.board.plant.seed, static_cast<double>(cmd.speed));
   std::printf("palpa-sim: listening on %s\n", link.address().c_str());
@@ -69,7 +85,9 @@ int main(int argc, char** argv) {
     sim->AdvanceTo(static_cast<uint64_t>(wall_us * cmd.speed));
     link.Pump();
     if (!cmd.truth.empty() && sim->now_us() >= next_truth_us) {
-      truth.Write(sim->plant().Truth(), sim->now_us());
+      const palpa::core::Board& b = sim->board();
+      truth.Write(sim->plant().Truth(), sim->now_us(),
+                  palpa::sim::TruthStream::BoardFacts{b.safe(), b.latched_faults(), b.last_host_frame_us()});
       next_truth_us = sim->now_us() - sim->now_us() % truth_every_us + truth_every_us;
     }
     // Sleep until the next 1 ms step is due, or until the host sends something.
@@ -80,6 +98,7 @@ int main(int argc, char** argv) {
     const timespec timeout{0, wait_us > 0 ? static_cast<long>(wait_us * 1000) : 0};
     ppoll(fds.data(), fds.size(), &timeout, nullptr);
   }
+  if (stamps != nullptr) std::fclose(stamps);
   std::printf("palpa-sim: stopped\n");
   return 0;
 }

@@ -45,12 +45,29 @@ void SimBoard::AdvanceTo(uint64_t us) {
     // Critical for safety, modelled: without both valves held the chambers vent.
     plant_->SetVented(!valves_held());
     plant_->Step();
-    board_->Step();
+    StepBoard();
   }
   if (us > now_us_) {  // between steps: serve the link without a tick
     now_us_ = us;
     clock_.now_us = now_us_;
-    board_->Step();
+    StepBoard();
+  }
+}
+
+void SimBoard::StepBoard() {
+  const bool ticked = board_->Step();
+  if (!stamp_) return;
+  // A tick writes the DAC before the link is served: a generation applied by this pass's
+  // dispatch reaches the DAC on the next tick.
+  if (ticked && dac_pending_) {
+    dac_pending_ = false;
+    stamp_(stamped_generation_, true);
+  }
+  const uint32_t applied = board_->applied_setpoint_generation();
+  if (applied != stamped_generation_) {
+    stamped_generation_ = applied;
+    dac_pending_ = true;
+    stamp_(applied, false);
   }
 }
 

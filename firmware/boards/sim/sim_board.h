@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -55,6 +56,11 @@ class SimBoard {
   uint64_t now_us() const { return now_us_; }
 
   core::Board& board() { return *board_; }
+  const core::Board& board() const { return *board_; }
+
+  /// Called when a new setpoint generation is applied (dac=false, at the dispatch) and when the
+  /// DAC is first written with it (dac=true, at the next tick): the latency benchmark's stamps.
+  void OnSetpointGeneration(std::function<void(uint32_t generation, bool dac)> callback) { stamp_ = std::move(callback); }
   Plant& plant() { return *plant_; }
   bool pump_on() const { return pump_.level; }
   bool valves_held() const { return supply_.held(now_us_) && dump_.held(now_us_); }
@@ -86,6 +92,10 @@ class SimBoard {
   PulsedValve supply_, dump_;
   Pin pump_;
   std::unique_ptr<core::Board> board_;
+  std::function<void(uint32_t, bool)> stamp_;
+  uint32_t stamped_generation_ = 0;
+  bool dac_pending_ = false;
+  void StepBoard();
 };
 
 }  // namespace palpa::sim

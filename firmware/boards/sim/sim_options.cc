@@ -23,6 +23,8 @@ const char* const kSimUsage =
     "  --truth SPEC         stream true pressures, deformations and stiffnesses as JSON lines to\n"
     "                       file:PATH or tcp:127.0.0.1:PORT (a side channel: not in the protocol)\n"
     "  --truth-every-ms N   truth sample period in virtual ms (default 10)\n"
+    "  --stamp file:PATH    write CLOCK_MONOTONIC stamps when a setpoint generation is applied and\n"
+    "                       when it first reaches the DAC (latency benchmark)\n"
     "  --help               this text\n";
 
 namespace {
@@ -113,6 +115,12 @@ bool ParseSimCommandLine(const std::vector<std::string>& args, SimCommandLine& o
         return false;
       }
       out.truth = value;
+    } else if (arg == "--stamp") {
+      if (value.rfind("file:", 0) != 0 || value.size() == 5) {
+        *error = "--stamp " + value + ": expected file:PATH";
+        return false;
+      }
+      out.stamp_file = value.substr(5);
     } else if (arg == "--truth-every-ms") {
       if (!Number(arg, value, 1, 10000, n, error)) return false;
       out.truth_every_ms = static_cast<uint32_t>(n);

@@ -14,6 +14,7 @@ struct SimCommandLine {
   std::string truth;           ///< empty, file:PATH or tcp:HOST:PORT
   uint32_t truth_every_ms = 10;
   float speed = 1.0f;
+  std::string stamp_file;      ///< latency stamps: "GENERATION applied|dac MONOTONIC_NS" lines
   bool help = false;
 };
 

@@ -59,9 +59,11 @@ void TruthStream::Pump() {
   client_fd_ = accept(listen_fd_, nullptr, nullptr);
 }
 
-std::string TruthStream::Format(const PlantTruth& truth, uint64_t board_time_us) {
+std::string TruthStream::Format(const PlantTruth& truth, uint64_t board_time_us, const BoardFacts& board) {
   char buffer[160];
-  std::string line = "{\"board_time_us\":" + std::to_string(board_time_us) + ",\"lines\":[";
+  std::string line = "{\"board_time_us\":" + std::to_string(board_time_us) + ",\"board\":{\"safe\":" +
+                     (board.safe ? "true" : "false") + ",\"faults\":" + std::to_string(board.faults) +
+                     ",\"last_host_frame_us\":" + std::to_string(board.last_host_frame_us) + "},\"lines\":[";
   for (size_t i = 0; i < truth.lines.size(); ++i) {
     const LineTruth& l = truth.lines[i];
     std::snprintf(buffer, sizeof(buffer), "%s{\"command_pa\":%.1f,\"outlet_pa\":%.1f,\"chamber_pa\":%.1f}",
@@ -81,8 +83,8 @@ std::string TruthStream::Format(const PlantTruth& truth, uint64_t board_time_us)
   return line + "]}";
 }
 
-void TruthStream::Write(const PlantTruth& truth, uint64_t board_time_us) {
-  const std::string line = Format(truth, board_time_us) + "\n";
+void TruthStream::Write(const PlantTruth& truth, uint64_t board_time_us, const BoardFacts& board) {
+  const std::string line = Format(truth, board_time_us, board) + "\n";
   if (file_ != nullptr) fputs(line.c_str(), file_);
   if (client_fd_ >= 0) {
     const ssize_t n = send(client_fd_, line.data(), line.size(), MSG_NOSIGNAL | MSG_DONTWAIT);

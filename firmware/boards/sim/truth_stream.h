@@ -16,12 +16,18 @@ class TruthStream {
   /// "file:PATH" or "tcp:HOST:PORT" (one reader at a time; nothing is kept while none is there).
   bool Open(const std::string& spec, std::string* error);
   const std::string& address() const { return address_; }
-  void Write(const PlantTruth& truth, uint64_t board_time_us);
+  /// Board-side facts for tests that judge the safe state from outside.
+  struct BoardFacts {
+    bool safe = false;
+    uint32_t faults = 0;
+    uint64_t last_host_frame_us = 0;
+  };
+  void Write(const PlantTruth& truth, uint64_t board_time_us, const BoardFacts& board);
   /// Accepts a waiting reader (TCP). Never blocks.
   void Pump();
 
   /// One JSON line for a truth sample (no trailing newline).
-  static std::string Format(const PlantTruth& truth, uint64_t board_time_us);
+  static std::string Format(const PlantTruth& truth, uint64_t board_time_us, const BoardFacts& board);
 
  private:
   FILE* file_ = nullptr;

@@ -74,6 +74,8 @@ class Board {
   const protocol::FramingCounters& rx_counters() const { return decoder_.counters(); }
   const TxQueue& tx() const { return tx_; }
   bool config_is_default() const { return config_is_default_; }
+  uint64_t last_host_frame_us() const { return last_host_frame_us_; }
+  uint32_t applied_setpoint_generation() const { return session_.setpoints().applied(); }
   /// The live configuration's memory, for tests that corrupt it on purpose.
   BoardConfig& live_config_for_test() { return live_; }
 

@@ -1,0 +1,97 @@
+// Command → output latency on one monotonic clock: the host stamps the API call, palpa-sim
+// (--speed 1) stamps the dispatch and the DAC write of the same setpoint generation.
+//   palpa_latency_bench tcp|pty [COMMANDS]
+#include <time.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <random>
+#include <thread>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "mini_client.h"
+#include "palpa/host/device.h"
+
+namespace pp = palpa::protocol;
+
+namespace {
+
+int64_t MonotonicNs() {
+  timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return static_cast<int64_t>(t.tv_sec) * 1000000000LL + t.tv_nsec;
+}
+
+void Print(const char* what, std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const auto at = [&](double p) { return v[static_cast<size_t>(p * static_cast<double>(v.size() - 1))]; };
+  std::printf("  %-34s p50 %6.3f ms  p99 %6.3f ms  max %6.3f ms\n", what, at(0.5), at(0.99), v.back());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string transport = argc > 1 ? argv[1] : "tcp";
+  const int commands = argc > 2 ? std::atoi(argv[2]) : 10000;
+  const std::string stamps = "/tmp/palpa-latency-" + std::to_string(getpid()) + ".txt";
+  const std::string pty = "/tmp/palpa-latency-pty-" + std::to_string(getpid());
+  palpa::testing::SimProcess sim;
+  if (!sim.Start({"--config", "thesis-pneumatic-3", "--speed", "1", "--listen",
+                  transport == "pty" ? "pty:" + pty : "tcp:127.0.0.1:0", "--stamp", "file:" + stamps})) {
+    std::fprintf(stderr, "palpa-sim did not start\n");
+    return 1;
+  }
+  std::string error;
+  auto device = palpa::host::Device::Open(sim.address(), {}, &error);
+  if (!device.ok()) {
+    std::fprintf(stderr, "%s\n", error.c_str());
+    return 1;
+  }
+  palpa::host::Device& d = *device.value;
+  d.SetLines({{0, 5.0}});  // raw mode for line 1
+  std::map<uint32_t, int64_t> called;
+  std::mt19937 rng(1);
+  for (int i = 0; i < commands; ++i) {
+    // A random phase against the board's tick, as an application's commands would have.
+    std::this_thread::sleep_for(std::chrono::microseconds(rng() % 2000));
+    pp::SetLineSetpoints m{};
+    m.entry_count = 1;
+    m.entries[0] = {0, i % 2 ? 10000 : 20000};
+    const int64_t t = MonotonicNs();
+    const uint32_t generation = d.link().StreamSetpoints(m);
+    called[generation] = t;
+    d.link().WaitSetpointsApplied(generation, 200);
+  }
+  device.value.reset();
+  sim.Stop();
+  std::ifstream in(stamps);
+  std::map<uint32_t, int64_t> applied, dac;
+  uint32_t generation;
+  std::string kind;
+  long long ns;
+  while (in >> generation >> kind >> ns) (kind == "dac" ? dac : applied)[generation] = ns;
+  std::remove(stamps.c_str());
+  std::vector<double> total, link, tick;
+  for (const auto& [g, t] : called) {
+    if (!applied.count(g) || !dac.count(g)) continue;
+    total.push_back((dac[g] - t) / 1e6);
+    link.push_back((applied[g] - t) / 1e6);
+    tick.push_back((dac[g] - applied[g]) / 1e6);
+  }
+  if (total.empty()) {
+    std::fprintf(stderr, "no stamps matched\n");
+    return 1;
+  }
+  std::printf("== command -> output latency over %s, palpa-sim --speed 1 (%zu of %d commands stamped) ==\n",
+              transport == "pty" ? "a raw pty" : "TCP (loopback)", total.size(), commands);
+  Print("API call -> DAC write", total);
+  Print("  of which link (call -> dispatch)", link);
+  Print("  of which tick quantisation", tick);
+  return 0;
+}

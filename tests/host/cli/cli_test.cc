@@ -1,0 +1,157 @@
+// The palpa command line as a person uses it: exit codes, named errors, nothing sent on a bad
+// command line, and the commands against palpa-sim.
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "mini_client.h"
+
+#include "CppUTest/TestHarness.h"
+
+namespace {
+
+struct Run {
+  int code;
+  std::string output;  ///< stdout and stderr
+};
+
+Run Palpa(const std::string& args) {
+  const std::string command = std::string(PALPA_CLI_PATH) + " " + args + " 2>&1";
+  FILE* p = popen(command.c_str(), "r");
+  std::string out;
+  char buffer[4096];
+  size_t n;
+  while ((n = fread(buffer, 1, sizeof(buffer), p)) > 0) out.append(buffer, n);
+  const int status = pclose(p);
+  return Run{WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+bool Has(const Run& r, const std::string& text) { return r.output.find(text) != std::string::npos; }
+
+}  // namespace
+
+TEST_GROUP(CliUsage){};
+
+TEST(CliUsage, HelpForEveryCommand) {
+  for (const char* command : {"list", "info", "diag", "config", "set", "line", "monitor", "record", "estop", "clear", "demo"}) {
+    const Run r = Palpa(std::string(command) + " --help");
+    LONGS_EQUAL_TEXT(0, r.code, command);
+    CHECK_TEXT(Has(r, "usage: palpa"), command);
+  }
+  CHECK(Has(Palpa("--help"), "Exit codes"));
+}
+
+TEST(CliUsage, MalformedCommandLinesNameTheArgumentAndSendNothing) {
+  // The device does not exist: a usage error must come before any attempt to open it.
+  const std::string nowhere = "--device tcp:127.0.0.1:1 ";
+  Run r = Palpa(nowhere + "set 1=L2x");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "'1=L2x'"));
+  r = Palpa(nowhere + "set 9=L1");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "finger must be a number from 1 to 8"));
+  r = Palpa(nowhere + "set 2=1.7");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "normalised stiffness from 0 to 1"));
+  r = Palpa(nowhere + "set 4=0.9N/m");
+  LONGS_EQUAL(2, r.code);
+  r = Palpa(nowhere + "line 1=abc");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "'1=abc'"));
+  r = Palpa(nowhere + "monitor --rate fast");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "--rate"));
+  r = Palpa(nowhere + "record out.csv");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "--duration"));
+  r = Palpa(nowhere + "frobnicate");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "unknown command 'frobnicate'"));
+  r = Palpa("--device");
+  LONGS_EQUAL(2, r.code);
+  std::ofstream("/tmp/palpa-cli-bad.json") << "{\"board\": {\"host_timeout_us\": 1e3.5}";
+  r = Palpa(nowhere + "config load /tmp/palpa-cli-bad.json");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "not valid JSON"));
+}
+
+TEST(CliUsage, UnreachableDeviceIsExitCodeThree) {
+  const Run r = Palpa("--device tcp:127.0.0.1:1 info");
+  LONGS_EQUAL(3, r.code);
+  CHECK(Has(r, "tcp:127.0.0.1:1"));
+}
+
+TEST_GROUP(CliBoard) {
+  palpa::testing::SimProcess sim;
+  std::string device;
+  void setup() override {
+    CHECK(sim.Start({"--config", "thesis-5finger", "--listen", "tcp:127.0.0.1:0"}));
+    device = "--device " + sim.address() + " ";
+  }
+  void teardown() override { sim.Stop(); }
+};
+
+TEST(CliBoard, InfoAndDiag) {
+  Run r = Palpa(device + "--json info");
+  LONGS_EQUAL(0, r.code);
+  const auto j = nlohmann::json::parse(r.output);
+  LONGS_EQUAL(5, j["fingers"].size());
+  STRCMP_EQUAL("jamming", j["fingers"][3]["kind"].get<std::string>().c_str());
+  r = Palpa(device + "info");
+  CHECK(Has(r, "finger 4      jamming"));
+  r = Palpa(device + "--json diag");
+  LONGS_EQUAL(0, r.code);
+  CHECK(nlohmann::json::parse(r.output).contains("loop"));
+}
+
+TEST(CliBoard, SetChecksUnitsPerFingerKind) {
+  Run r = Palpa(device + "set 1=L2 2=0.5 3=1.2mm 4=0.9N/mm 5=-10kPa");
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  CHECK(Has(r, "nominal thesis curves"));
+  r = Palpa(device + "set 1=0.9N/mm");
+  LONGS_EQUAL(1, r.code);
+  CHECK(Has(r, "N/mm means nothing for a pneumatic finger"));
+  r = Palpa(device + "set 4=2.0N/mm");
+  LONGS_EQUAL(1, r.code);
+  CHECK(Has(r, "outside the calibrated range"));
+  r = Palpa(device + "line 4=30");  // a bias line: 20 kPa at most
+  LONGS_EQUAL(1, r.code);
+  CHECK(Has(r, "outside its limits"));
+}
+
+TEST(CliBoard, ConfigSetIsValidatedThenAppliedAndShown) {
+  Run r = Palpa(device + "config set board.host_timeout_us=250000 line2.slew_pa_per_s=150000");
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  r = Palpa(device + "--json config show");
+  const auto j = nlohmann::json::parse(r.output);
+  LONGS_EQUAL(250000, j["board"]["host_timeout_us"].get<int>());
+  LONGS_EQUAL(150000, j["lines"][1]["slew_pa_per_s"].get<int>());
+  r = Palpa(device + "config set line4.limit_max_pa=30000");  // beyond the bias ceiling
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "line 4"));
+  CHECK(Has(r, "nothing was sent"));
+  r = Palpa(device + "config set line2.no_such_field=1");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "no_such_field"));
+}
+
+TEST(CliBoard, MonitorRecordEstopClear) {
+  Run r = Palpa(device + "--json monitor --rate 50 --duration 0.5");
+  LONGS_EQUAL(0, r.code);
+  const std::string first = r.output.substr(0, r.output.find('\n'));
+  CHECK(nlohmann::json::parse(first)["lines"].size() == 7);
+  r = Palpa(device + "record /tmp/palpa-cli-record.csv --duration 0.5");
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  std::ifstream csv("/tmp/palpa-cli-record.csv");
+  std::string header;
+  std::getline(csv, header);
+  CHECK(header.rfind("# {", 0) == 0);
+  LONGS_EQUAL(0, Palpa(device + "estop").code);
+  r = Palpa(device + "--json diag");
+  CHECK(nlohmann::json::parse(r.output)["faults_latched"].get<int>() != 0);
+  LONGS_EQUAL(0, Palpa(device + "clear").code);
+}

@@ -1,0 +1,16 @@
+// Killing the host mid-stream leaves the board safe: 100 randomised trials against palpa-sim.
+#include <string>
+
+#include "host_loss.h"
+
+#include "CppUTest/TestHarness.h"
+
+TEST_GROUP(HostLoss){};
+
+TEST(HostLoss, KilledHostLeavesTheBoardSafeInHundredRandomTrials) {
+  const palpa::testing::HostLossResult r = palpa::testing::RunHostLossTrials(100, 2026, 4.0);
+  CHECK_TEXT(r.error.empty(), r.error.c_str());
+  LONGS_EQUAL(100, r.trials);
+  LONGS_EQUAL(100, r.safe_in_time);
+  LONGS_EQUAL(100, r.vented_in_time);
+}
