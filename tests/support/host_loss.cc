@@ -119,7 +119,7 @@ HostLossResult RunHostLossTrials(int trials, uint32_t seed, double speed) {
     kill(child, SIGKILL);
     waitpid(child, nullptr, 0);
     double last_frame = 0, safe_at = -1, vented_at = -1;
-    const int observe_ms = static_cast<int>((kTimeoutUs + 2 * kSettlingUs) / 1000 / speed) + 100;
+    const int observe_ms = 3000;  // returns as soon as both moments are seen
     ReadTruth(truth, pending, observe_ms, [&](const TruthLine& l) {
       last_frame = std::max(last_frame, l.last_frame_us);
       if (l.t_us <= last_frame) return true;
@@ -128,6 +128,8 @@ HostLossResult RunHostLossTrials(int trials, uint32_t seed, double speed) {
       return vented_at < 0 || safe_at < 0;
     });
     ++result.trials;
+    if (!pressurised) ++result.not_pressurised;
+    if (pressurised && (safe_at < 0 || vented_at < 0)) ++result.not_observed;
     if (!pressurised || safe_at < 0 || vented_at < 0) continue;
     result.safe_after_ms.push_back((safe_at - last_frame) / 1000);
     result.vented_after_ms.push_back((vented_at - last_frame) / 1000);

@@ -75,21 +75,24 @@ int main(int argc, char** argv) {
   if (!cmd.truth.empty()) std::printf("palpa-sim: truth on %s\n", truth.address().c_str());
   std::fflush(stdout);
 
-  const auto start = std::chrono::steady_clock::now();
   const uint64_t truth_every_us = static_cast<uint64_t>(cmd.truth_every_ms) * 1000;
-  uint64_t next_truth_us = 0;
+  if (!cmd.truth.empty()) {
+    // Sampled on the virtual clock at every step, so a late process still writes every sample.
+    sim->OnStep([&](uint64_t now_us) {
+      if (now_us % truth_every_us != 0) return;
+      const palpa::core::Board& b = sim->board();
+      truth.Write(sim->plant().Truth(), now_us,
+                  palpa::sim::TruthStream::BoardFacts{b.safe(), b.latched_faults(), b.last_host_frame_us()});
+    });
+  }
+  const auto start = std::chrono::steady_clock::now();
   while (!g_stop) {
     const double wall_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
     link.Pump();
     truth.Pump();
     sim->AdvanceTo(static_cast<uint64_t>(wall_us * cmd.speed));
     link.Pump();
-    if (!cmd.truth.empty() && sim->now_us() >= next_truth_us) {
-      const palpa::core::Board& b = sim->board();
-      truth.Write(sim->plant().Truth(), sim->now_us(),
-                  palpa::sim::TruthStream::BoardFacts{b.safe(), b.latched_faults(), b.last_host_frame_us()});
-      next_truth_us = sim->now_us() - sim->now_us() % truth_every_us + truth_every_us;
-    }
+
     // Sleep until the next 1 ms step is due, or until the host sends something.
     const double next_step_wall_us = static_cast<double>((sim->now_us() / 1000 + 1) * 1000) / cmd.speed;
     const double wait_us = next_step_wall_us - wall_us;

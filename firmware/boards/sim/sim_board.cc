@@ -46,6 +46,7 @@ void SimBoard::AdvanceTo(uint64_t us) {
     plant_->SetVented(!valves_held());
     plant_->Step();
     StepBoard();
+    if (on_step_) on_step_(now_us_);
   }
   if (us > now_us_) {  // between steps: serve the link without a tick
     now_us_ = us;

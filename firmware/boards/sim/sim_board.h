@@ -60,6 +60,10 @@ class SimBoard {
 
   /// Called when a new setpoint generation is applied (dac=false, at the dispatch) and when the
   /// DAC is first written with it (dac=true, at the next tick): the latency benchmark's stamps.
+  /// Called after every 1 ms step (plant and board), with the virtual time: side channels sample
+  /// here so that a stalled host process does not thin out their samples.
+  void OnStep(std::function<void(uint64_t now_us)> callback) { on_step_ = std::move(callback); }
+
   void OnSetpointGeneration(std::function<void(uint32_t generation, bool dac)> callback) { stamp_ = std::move(callback); }
   Plant& plant() { return *plant_; }
   bool pump_on() const { return pump_.level; }
@@ -93,6 +97,7 @@ class SimBoard {
   Pin pump_;
   std::unique_ptr<core::Board> board_;
   std::function<void(uint32_t, bool)> stamp_;
+  std::function<void(uint64_t)> on_step_;
   uint32_t stamped_generation_ = 0;
   bool dac_pending_ = false;
   void StepBoard();

@@ -137,7 +137,7 @@ CommandResult Link::CommandPacket(uint8_t type, const uint8_t* body, size_t size
   sender_.Transmit(Micros(SteadySeconds()), [this](const uint8_t* f, size_t n) { WriteFrame(f, n); });
   changed_.wait_until(lock, deadline, [&] { return pending_[cookie].done || stop_; });
   CommandResult result = pending_[cookie].done ? pending_[cookie].result
-                                                : CommandResult{Status::kTimeout, 0, 0, {}, "no answer from the board in time"};
+                                                : CommandResult{Status::kTimeout, 0, 0, {}, "no answer from the board in time (the command may still be applied)"};
   pending_.erase(cookie);
   return result;
 }
@@ -226,7 +226,9 @@ void Link::OnFrame(const pp::Frame& frame, double now) {  // mutex_ held
     if constexpr (std::is_same_v<M, pp::HelloReply>) {
       if (session_.OnHelloReply(m) == Status::kStale) return;
       hello_wanted_ = false;
-      sender_.Configure(pp::SenderConfig{pp::kMaxWindow, m.rx_buffer_bytes, 50000, 2000, 2000000});
+      // The board answers within a few ticks: cap the back-off at 0.5 s so a command that lost
+      // several retransmissions in a row still completes well inside the command timeout.
+      sender_.Configure(pp::SenderConfig{pp::kMaxWindow, m.rx_buffer_bytes, 50000, 2000, 500000});
       if (!session_.catalog_matches()) {
         char text[200];
         session_.DescribeVersions(text, sizeof(text));
