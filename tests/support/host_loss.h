@@ -14,7 +14,7 @@ struct HostLossResult {
   int vented_in_time = 0;  ///< every chamber below 5 % F.S. within timeout + settling (300 ms)
   std::vector<double> safe_after_ms;    ///< from the last host frame to the safe command, board time
   std::vector<double> vented_after_ms;  ///< from the last host frame to < 5 % F.S.
-  int not_pressurised = 0; ///< trials whose chambers never filled before the kill (not judged)
+  int not_pressurised = 0; ///< attempts whose chambers never filled before the kill (run again)
   int not_observed = 0;    ///< trials where the safe state or the venting was never seen
   std::string error;       ///< set when the run itself failed
 };

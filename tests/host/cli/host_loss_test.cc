@@ -8,7 +8,7 @@
 TEST_GROUP(HostLoss){};
 
 TEST(HostLoss, KilledHostLeavesTheBoardSafeInHundredRandomTrials) {
-  const palpa::testing::HostLossResult r = palpa::testing::RunHostLossTrials(100, 2026, 4.0);
+  const palpa::testing::HostLossResult r = palpa::testing::RunHostLossTrials(100, 2026, 2.0);
   CHECK_TEXT(r.error.empty(), r.error.c_str());
   LONGS_EQUAL(100, r.trials);
   LONGS_EQUAL(100, r.safe_in_time);

@@ -1,0 +1,159 @@
+// The MPS2 AN386 board shell: the firmware core on the CMSDK UART, SysTick and watchdog, with the
+// level-1 plant behind the analogue interfaces. Variants (compile definitions):
+//   PALPA_SELFTEST       boot, run 2 s of ticks, report identity over semihosting and exit
+//   PALPA_HANG_AFTER_MS  hang inside a tick after that long (the watchdog test); with SELFTEST, a
+//                        boot after a watchdog reset reports the cause and exits
+#include <cstdio>
+#include <new>
+
+#include "board_shell.h"
+#include "palpa/core/board.h"
+#include "palpa/core/board_configs.h"
+#include "palpa/hal/mps2/drivers.h"
+#include "palpa/hal/mps2/registers.h"
+#include "plant_io.h"
+#include "semihosting.h"
+
+#ifndef PALPA_BOARD_CONFIG
+#define PALPA_BOARD_CONFIG "thesis-5finger"
+#endif
+
+extern palpa::boards::mps2::ResetRecord g_reset_record;
+extern "C" uint32_t _stack_guard;  // linker script: the lowest 32 bytes of the stack
+
+namespace palpa::boards::mps2 {
+namespace {
+
+namespace hal_mps2 = palpa::hal::mps2;
+
+class NullPin final : public hal::DigitalOutput {
+  void DoSet(bool) override {}
+};
+
+// Valve drivers on the MPS2 are modelled: the plant vents unless both enables keep toggling.
+class PulsePin final : public hal::DigitalOutput {
+ public:
+  bool toggled = false;
+
+ private:
+  void DoSet(bool level) override {
+    toggled |= level != level_;
+    level_ = level;
+  }
+  bool level_ = false;
+};
+
+#ifdef PALPA_NO_PLANT
+// The control image alone, for the flash and RAM budget: analogue I/O that goes nowhere.
+class NullIo final : public hal::AnalogOutput, public hal::AnalogInput {
+ public:
+  void Init(const core::BoardConfig&) {}
+  void Step(bool) {}
+
+ private:
+  protocol::Status DoWrite(uint8_t, uint32_t) override { return protocol::Status::kOk; }
+  hal::AnalogOutputSpec DoSpec(uint8_t) const override { return {}; }
+  protocol::Result<uint32_t> DoRead(uint8_t) override { return 8192u; }
+  uint8_t DoBits() const override { return 14; }
+};
+using Io = NullIo;
+#else
+using Io = PlantIo;
+#endif
+
+hal_mps2::Uart g_uart;
+hal_mps2::SysTickClock g_clock;
+hal_mps2::CmsdkWatchdogDriver g_watchdog;
+Io g_plant;
+PulsePin g_supply, g_dump;
+NullPin g_pump;
+alignas(core::Board) unsigned char g_board_storage[sizeof(core::Board)];
+core::Board* g_board = nullptr;
+
+void StackGuard() {
+  // MPU region 0: the 32 bytes below the stack, no access (AP=0), enabled; background map for
+  // privileged code (PRIVDEFENA). A stack overflow becomes a MemManage fault.
+  *hal_mps2::kMpuRbar = (reinterpret_cast<uint32_t>(&_stack_guard) & ~31u) | (1u << 4) | 0u;
+  *hal_mps2::kMpuRasr = (1u << 28) | (4u << 1) | 1u;  // XN, size 2^(4+1) = 32 bytes, enable
+  *hal_mps2::kMpuCtrl = (1u << 2) | 1u;
+  *hal_mps2::kScbShcsr |= 1u << 16;  // MemManage fault enabled
+  asm volatile("dsb\n isb");
+}
+
+[[maybe_unused]] void Print(const char* text) {
+#ifdef PALPA_SELFTEST
+  SemihostPrint(text);
+#else
+  (void)text;
+#endif
+}
+
+}  // namespace
+
+void WriteSafeCodes() {
+  // The plant stands in for a DAC: every command to 0 Pa (every compiled-in safe value).
+  for (uint8_t i = 0; i < protocol::kMaxLines; ++i) static_cast<hal::AnalogOutput&>(g_plant).Write(i, 0);
+}
+
+void OnSysTick() { g_clock.OnTick(); }
+void OnUartRx() { g_uart.OnRxInterrupt(); }
+
+}  // namespace palpa::boards::mps2
+
+int main() {
+  using namespace palpa::boards::mps2;
+  const palpa::protocol::ResetCause cause = g_reset_record.Take();
+  const palpa::core::BoardConfig* config = palpa::core::FindBoardConfig(PALPA_BOARD_CONFIG);
+  g_plant.Init(*config);
+  StackGuard();
+  g_uart.Init();
+  g_clock.Init();
+  palpa::core::BoardIdentity id;
+  id.kind = palpa::protocol::BoardKind::kMps2An386;
+  id.board_id = 386;
+  id.plant_simulated = true;
+  id.reset_cause = cause;
+  id.boot_count = g_reset_record.boot_count;
+  id.boot_nonce = 0x4D505332u ^ (g_reset_record.boot_count * 2654435761u);
+  id.rx_buffer_bytes = palpa::hal::mps2::Uart::kRxSize;
+  g_board = new (g_board_storage) palpa::core::Board(
+      *config, palpa::core::BoardIo{g_clock, g_plant, &g_plant, g_supply, g_dump, g_pump, nullptr, g_uart, nullptr, 0}, id);
+  g_board->Start();
+#ifdef PALPA_SELFTEST
+  if (cause == palpa::protocol::ResetCause::kWatchdog) {
+    Print("palpa mps2-an386: booted after a watchdog reset; outputs safe, fault latched\n");
+    SemihostExit(g_board->safe() && (g_board->latched_faults() & 0x10u) ? 42 : 1);
+  }
+#endif
+  g_watchdog.Start(30);
+  uint64_t plant_ms = 0;
+  for (;;) {
+    const uint64_t now = g_clock.NowMicros();
+    if (g_board->Step()) {
+      g_watchdog.Kick();  // only after a tick wrote its outputs
+#ifdef PALPA_HANG_AFTER_MS
+      if (now > PALPA_HANG_AFTER_MS * 1000ull) {
+        for (;;) {  // a hung tick: the watchdog must take over
+        }
+      }
+#endif
+    }
+    while (plant_ms * 1000 < now) {  // the plant follows the board's clock, 1 ms steps
+      const bool held = g_supply.toggled && g_dump.toggled;
+      g_plant.Step(!held || g_board->safe());
+      ++plant_ms;
+    }
+    g_uart.PumpTx();
+#ifdef PALPA_SELFTEST
+    if (now > 2000000) {
+      char text[160];
+      std::snprintf(text, sizeof(text), "palpa mps2-an386 firmware 0.1.0, catalog 0x%08lx, %s, %lu ticks, %lu overruns, safe=%d\n",
+                    static_cast<unsigned long>(palpa::protocol::kCatalogHash), PALPA_BOARD_CONFIG,
+                    static_cast<unsigned long>(g_board->tick_stats().ticks), static_cast<unsigned long>(g_board->tick_stats().overruns),
+                    g_board->safe() ? 1 : 0);
+      Print(text);
+      SemihostExit(g_board->tick_stats().ticks >= 1900 && g_board->safe() ? 0 : 1);
+    }
+#endif
+  }
+}

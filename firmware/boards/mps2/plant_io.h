@@ -1,0 +1,67 @@
+// The MPS2 board has no DAC or sensors: the image links the level-1 plant (regulators and
+// chambers, freestanding) behind the analogue interfaces, and Hello says the plant is simulated.
+#pragma once
+
+#include <cstdint>
+
+#include "palpa/core/board_config.h"
+#include "palpa/hal/analog_input.h"
+#include "palpa/hal/analog_output.h"
+#include "palpa/hal/sim/plant_params.h"
+#include "palpa/hal/sim/regulator_line.h"
+
+namespace palpa::boards::mps2 {
+
+namespace params = palpa::sim::params;
+
+class PlantIo final : public hal::AnalogOutput, public hal::AnalogInput {
+ public:
+  /// Regulators wired as the configuration says (no static errors: an ideal unit).
+  void Init(const core::BoardConfig& config) {
+    count_ = config.line_count;
+    for (uint8_t i = 0; i < count_; ++i) {
+      config_[i] = config.lines[i];
+      sim::RegulatorSetup s;
+      s.sign = config.lines[i].kind == protocol::LineKind::kVacuum ? -1.0f : 1.0f;
+      s.full_scale_pa = params::kRegulatorFullScalePa;
+      s.min_set_pa = params::kRegulatorMinSetPa;
+      s.lag_tau_s = params::kRegulatorLagTauS;
+      s.dead_time_s = params::kRegulatorDeadTimeS;
+      s.chamber_tau_s = config.lines[i].kind == protocol::LineKind::kVacuum ? params::kChamberVacuumTauS
+                                                                          : params::kChamberPneumaticTauS;
+      lines_[i] = sim::RegulatorLine(s, 0.001f);
+      command_[i] = 0;
+    }
+  }
+  /// One millisecond of plant time; `vented` while the board holds no valves.
+  void Step(bool vented) {
+    for (uint8_t i = 0; i < count_; ++i) lines_[i].Step(command_[i], vented);
+  }
+  float chamber_pa(uint8_t line) const { return lines_[line].chamber_pa(); }
+
+ private:
+  protocol::Status DoWrite(uint8_t channel, uint32_t counts) override {
+    if (channel >= count_) return protocol::Status::kNotFound;
+    const protocol::ConfigureLine& c = config_[channel];
+    const float fraction = static_cast<float>(counts) / static_cast<float>((1u << c.dac_bits) - 1u);
+    command_[channel] = (c.kind == protocol::LineKind::kVacuum ? -1.0f : 1.0f) * fraction * params::kRegulatorFullScalePa;
+    return protocol::Status::kOk;
+  }
+  hal::AnalogOutputSpec DoSpec(uint8_t) const override { return {}; }
+  protocol::Result<uint32_t> DoRead(uint8_t channel) override {
+    if (channel >= count_) return protocol::Status::kNotFound;
+    const protocol::ConfigureLine& c = config_[channel];
+    const float pa = lines_[channel].outlet_pa();
+    const float fraction = (pa - static_cast<float>(c.sensor_min_pa)) / static_cast<float>(c.sensor_max_pa - c.sensor_min_pa);
+    const float counts = static_cast<float>(c.sensor_counts_min) + fraction * static_cast<float>(c.sensor_counts_max - c.sensor_counts_min);
+    return static_cast<uint32_t>(counts < 0 ? 0.0f : counts + 0.5f);
+  }
+  uint8_t DoBits() const override { return 14; }
+
+  uint8_t count_ = 0;
+  protocol::ConfigureLine config_[protocol::kMaxLines] = {};
+  sim::RegulatorLine lines_[protocol::kMaxLines];
+  float command_[protocol::kMaxLines] = {};
+};
+
+}  // namespace palpa::boards::mps2

@@ -1,0 +1,159 @@
+// One behaviour, two targets: the Cortex-M image under QEMU (real time, UART over TCP) and
+// palpa-sim are held to the same checks through the host library — Hello with a matching catalog,
+// configuration, setpoints with the plant following in telemetry, and every line safe once the
+// host goes quiet.
+#include <netinet/in.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdlib>
+#include <thread>
+
+#include "mini_client.h"
+#include "palpa/protocol/faults.h"
+#include "palpa/host/device.h"
+
+#include "CppUTest/TestHarness.h"
+
+namespace ph = palpa::host;
+namespace pp = palpa::protocol;
+
+namespace {
+
+int FreePort() {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof(a));
+  socklen_t len = sizeof(a);
+  getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len);
+  close(fd);
+  return ntohs(a.sin_port);
+}
+
+/// QEMU running the application image; always killed.
+class Qemu {
+ public:
+  bool Start() {
+    if (access(PALPA_MPS2_IMAGE, R_OK) != 0) return false;
+    port_ = FreePort();
+    pid_ = fork();
+    if (pid_ == 0) {
+      const std::string serial = "tcp:127.0.0.1:" + std::to_string(port_) + ",server=on,wait=on";
+      execl(PALPA_QEMU, PALPA_QEMU, "-M", "mps2-an386", "-nographic", "-monitor", "none", "-semihosting-config",
+            "enable=on,target=native", "-serial", serial.c_str(), "-kernel", PALPA_MPS2_IMAGE, static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    for (int i = 0; i < 100; ++i) {  // until QEMU listens; the first connection starts the CPU
+      const int fd = socket(AF_INET, SOCK_STREAM, 0);
+      sockaddr_in a{};
+      a.sin_family = AF_INET;
+      a.sin_port = htons(static_cast<uint16_t>(port_));
+      a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+      const bool up = connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof(a)) == 0;
+      close(fd);  // QEMU listens again for the next client (the host under test)
+      if (up) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    return false;
+  }
+  ~Qemu() {
+    if (pid_ > 0) {
+      kill(pid_, SIGKILL);
+      waitpid(pid_, nullptr, 0);
+    }
+  }
+  std::string address() const { return "tcp:127.0.0.1:" + std::to_string(port_); }
+
+ private:
+  int port_ = 0;
+  pid_t pid_ = -1;
+};
+
+void CheckBoardBehaviour(const std::string& address, pp::BoardKind kind) {
+  std::string error;
+  auto opened = ph::Device::Open(address, {}, &error);
+  CHECK_TEXT(opened.ok(), error.c_str());
+  ph::Device& d = *opened.value;
+  const pp::HelloReply hello = d.info();
+  CHECK(hello.board_kind == kind);
+  CHECK(d.link().catalog_matches());
+  CHECK(hello.plant_simulated);
+  STRCMP_EQUAL("thesis-5finger", hello.config_name.data());
+
+  auto board = d.ReadBoard(&error);
+  CHECK_TEXT(board.ok(), error.c_str());
+  board.value.host_timeout_us = 150000;
+  CHECK(d.ConfigureBoard(board.value).ok());
+
+  const ph::Outcome set = d.SetLines({{0, 40.0}});
+  CHECK_TEXT(set.ok(), set.message.c_str());
+  std::atomic<int32_t> measured{0};
+  std::atomic<uint32_t> faults{0};
+  std::atomic<uint8_t> status{0};
+  const int id = d.Subscribe([&](const ph::TelemetryFrame& f) {
+    const auto& t = f.telemetry;
+    measured = t.samples[(t.tick_count - 1) * t.line_count].measured_pa;
+    status = t.samples[(t.tick_count - 1) * t.line_count].status;
+    faults = t.fault_bitmap;
+  });
+  for (int i = 0; i < 150 && measured.load() < 39000; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  CHECK_TEXT(measured.load() > 39000 && measured.load() < 41000, std::to_string(measured.load()).c_str());  // the plant follows
+
+  d.Unsubscribe(id);
+  opened.value.reset();
+
+  // Host silence, watched from outside with a bare protocol client: a session with one setpoint,
+  // heartbeats for a while, then nothing — every line must go safe with the fault latched.
+  palpa::testing::MiniClient client;
+  const size_t colon = address.rfind(':');
+  CHECK(client.ConnectTcp(address.substr(4, colon - 4), std::atoi(address.c_str() + colon + 1)));
+  CHECK(client.Hello(77).ok());
+  LONGS_EQUAL((int)pp::Status::kOk, (int)client.Reliable(pp::ClearFault{}));
+  LONGS_EQUAL((int)pp::Status::kOk, (int)client.Reliable(pp::SetFingerMode{0, pp::FingerMode::kRaw}));
+  pp::SetLineSetpoints sp{};
+  sp.generation = 1;
+  sp.entry_count = 1;
+  sp.entries[0] = {0, 30000};
+  client.Send(sp);
+  bool live = false;
+  for (uint32_t g = 1; g <= 15; ++g) {
+    client.Send(pp::Heartbeat{g});
+    for (const auto& f : client.Read(20)) {
+      if (f.Is<pp::Telemetry>()) live |= (f.As<pp::Telemetry>().samples[0].status & pp::line_status::kSafe) == 0;
+    }
+  }
+  CHECK(live);
+  bool safe = false;
+  for (const auto& f : client.Read(600)) {
+    if (!f.Is<pp::Telemetry>()) continue;
+    const auto t = f.As<pp::Telemetry>();
+    bool all = (t.fault_bitmap & pp::FaultBit(pp::Fault::kHostSilence)) != 0;
+    for (uint8_t i = 0; i < t.line_count; ++i) all &= (t.samples[i].status & pp::line_status::kSafe) != 0;
+    safe |= all;
+  }
+  CHECK(safe);
+}
+
+}  // namespace
+
+TEST_GROUP(QemuBoard){};
+
+TEST(QemuBoard, BehavesAsTheProtocolSays) {
+  Qemu qemu;
+  CHECK_TEXT(qemu.Start(), "QEMU or the mps2 image is missing (build the mps2 preset)");
+  CheckBoardBehaviour(qemu.address(), pp::BoardKind::kMps2An386);
+}
+
+TEST_GROUP(SimBoardProcess){};
+
+TEST(SimBoardProcess, BehavesAsTheProtocolSays) {
+  palpa::testing::SimProcess sim;
+  CHECK(sim.Start({"--config", "thesis-5finger", "--listen", "tcp:127.0.0.1:0"}));
+  CheckBoardBehaviour(sim.address(), pp::BoardKind::kSim);
+}
