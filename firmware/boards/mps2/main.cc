@@ -3,6 +3,8 @@
 //   PALPA_SELFTEST       boot, run 2 s of ticks, report identity over semihosting and exit
 //   PALPA_HANG_AFTER_MS  hang inside a tick after that long (the watchdog test); with SELFTEST, a
 //                        boot after a watchdog reset reports the cause and exits
+//   PALPA_BENCH          an in-image host: a session, every finger following a target, heartbeats;
+//                        runs 3 s of ticks and exits (instruction counting under QEMU)
 #include <cstdio>
 #include <new>
 
@@ -11,6 +13,7 @@
 #include "palpa/core/board_configs.h"
 #include "palpa/hal/mps2/drivers.h"
 #include "palpa/hal/mps2/registers.h"
+#include "palpa/protocol/codec.h"
 #include "plant_io.h"
 #include "semihosting.h"
 
@@ -61,7 +64,10 @@ using Io = NullIo;
 using Io = PlantIo;
 #endif
 
-hal_mps2::Uart g_uart;
+// Built at startup in zeroed RAM: a static Uart (it has a vtable) would land in .data and copy
+// its 3 KB of rings from flash.
+alignas(hal_mps2::Uart) uint8_t g_uart_storage[sizeof(hal_mps2::Uart)];
+hal_mps2::Uart& g_uart = *new (g_uart_storage) hal_mps2::Uart;
 hal_mps2::SysTickClock g_clock;
 hal_mps2::CmsdkWatchdogDriver g_watchdog;
 Io g_plant;
@@ -127,8 +133,34 @@ int main() {
 #endif
   g_watchdog.Start(30);
   uint64_t plant_ms = 0;
+#ifdef PALPA_BENCH
+  auto inject = [](const auto& message) {
+    uint8_t frame[palpa::protocol::kMaxFrameSize];
+    const auto n = palpa::protocol::EncodeMessageFrame(message, 0, 0, frame, sizeof(frame));
+    g_uart.Inject(frame, n.value);
+  };
+  inject(palpa::protocol::Hello{1, 0});
+  palpa::protocol::SetFingerTargets targets{};
+  targets.generation = 1;
+  for (uint8_t f = 0; f < config->finger_count; ++f) {
+    const bool jamming = config->fingers[f].kind == palpa::protocol::FingerKind::kJamming;
+    targets.entries[targets.entry_count++] = {f, jamming ? palpa::protocol::OutputUnit::kStiffnessMilliNewtonPerMm
+                                                         : palpa::protocol::OutputUnit::kDeformationMicrometre,
+                                              jamming ? 1000 : 1500};
+  }
+  inject(targets);
+  uint32_t heartbeat = 0;
+  uint64_t next_heartbeat_us = 20000;
+#endif
   for (;;) {
     const uint64_t now = g_clock.NowMicros();
+#ifdef PALPA_BENCH
+    if (now >= next_heartbeat_us) {
+      inject(palpa::protocol::Heartbeat{++heartbeat});
+      next_heartbeat_us += 20000;
+    }
+    if (now > 3000000) SemihostExit(g_board->safe() ? 1 : 0);
+#endif
     if (g_board->Step()) {
       g_watchdog.Kick();  // only after a tick wrote its outputs
 #ifdef PALPA_HANG_AFTER_MS

@@ -83,13 +83,14 @@ class Board {
   friend class BoardDispatch;
   friend class BoardReports;
 
-  void Tick(uint64_t now_us);
+  // Out of line so instruction counts can bracket a tick (tests/bench/qemu_insn_count.c).
+  [[gnu::noinline]] void Tick(uint64_t now_us);
   void ReadInputs(uint64_t now_us, SupervisorInput& in);
   void ComputeSetpoints(uint64_t now_us, float* setpoints);
   void WriteOutputs();
   void CheckConfigIntegrity(uint64_t now_us);
-  void SampleTelemetry(uint64_t now_us, bool fault_report);
-  void Poll(uint64_t now_us);
+  [[gnu::noinline]] void SampleTelemetry(uint64_t now_us, bool fault_report);
+  [[gnu::noinline]] void Poll(uint64_t now_us);
   void ApplyLive(uint64_t now_us);
   void Hold();  ///< outputs safe until new setpoints arrive; compensators re-home
 

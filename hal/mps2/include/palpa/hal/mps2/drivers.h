@@ -21,6 +21,15 @@ class Uart final : public ByteLink {
   /// Moves queued bytes into the transmitter while it has room; call from the main loop.
   void PumpTx();
   uint32_t rx_overruns() const { return rx_overruns_; }
+  /// Puts bytes into the receive ring as if they had arrived (the benchmark image's host).
+  void Inject(const uint8_t* data, size_t size) {
+    for (size_t i = 0; i < size; ++i) {
+      const uint32_t next = (rx_head_ + 1) % kRxSize;
+      if (next == rx_tail_) return;
+      rx_[rx_head_] = data[i];
+      rx_head_ = next;
+    }
+  }
 
  private:
   size_t DoRead(uint8_t* out, size_t capacity) override;

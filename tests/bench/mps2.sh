@@ -1,0 +1,50 @@
+#!/bin/sh
+# Control tick on the Cortex-M4F image under QEMU: exact instructions per tick (worst and mean),
+# split by stage, counted by the qemu_insn_count TCG plugin. Prints figures; asserts nothing.
+# Usage: tests/bench/mps2.sh [IMAGE...]   (default: the two benchmark images of the mps2 preset)
+set -eu
+for image in "$@"; do  # images named relative to the caller
+  case "$image" in /*) ;; *) image="$PWD/$image" ;; esac
+  set -- "$@" "$image"; shift
+done
+cd "$(dirname "$0")/../.."
+PLUGIN=${PALPA_INSN_PLUGIN:-build/default/tests/bench/libpalpa_qemu_insn_count.so}
+IMAGES=${PALPA_MPS2_IMAGES:-build/mps2/firmware/boards/mps2}
+QEMU=${QEMU:-qemu-system-arm}
+[ -f "$PLUGIN" ] || { echo "mps2.sh: $PLUGIN is missing (build the default preset)" >&2; exit 1; }
+[ $# -gt 0 ] || set -- "$IMAGES/palpa-mps2-bench-5finger.elf" "$IMAGES/palpa-mps2-bench-full8.elf"
+
+# span NAME FUNCTION ELF -> "span=NAME:ENTRY:RET..." (return sites: the instruction after each call)
+span() {
+  entry=$(arm-none-eabi-nm -C "$3" | awk -v f="$2(" 'index($0, f) && $2 ~ /^[Tt]$/ { print $1; exit }')
+  [ -n "$entry" ] || { echo "mps2.sh: $2 not found in $3" >&2; exit 1; }
+  target=$(echo "$entry" | sed 's/^0*//')
+  returns=$(arm-none-eabi-objdump -d "$3" | awk -v call="\tbl\t$target <" '
+    taken { split($1, a, ":"); printf ":%s", a[1]; taken = 0 }
+    index($0, call) { taken = 1 }')
+  [ -n "$returns" ] || { echo "mps2.sh: no call to $2 in $3" >&2; exit 1; }
+  printf 'span=%s:%s%s' "$1" "$entry" "$returns"
+}
+
+echo "== firmware on Cortex-M4F (QEMU mps2-an386, -Os, exact instruction counts; 1 ms tick) =="
+log=$(mktemp)
+trap 'rm -f "$log" "$log.err"' EXIT
+for image in "$@"; do
+  args="$(span tick palpa::core::Board::Tick "$image")"
+  args="$args,$(span sensors palpa::core::Board::ReadInputs "$image")"
+  args="$args,$(span config_check palpa::core::Board::CheckConfigIntegrity "$image")"
+  args="$args,$(span supervisor palpa::core::Supervise "$image")"
+  args="$args,$(span fingers palpa::core::Board::ComputeSetpoints "$image")"
+  args="$args,$(span lines palpa::core::StepLine "$image")"
+  args="$args,$(span outputs palpa::core::Board::WriteOutputs "$image")"
+  args="$args,$(span telemetry palpa::core::Board::SampleTelemetry "$image")"
+  args="$args,$(span link_poll palpa::core::Board::Poll "$image")"
+  rc=0
+  "$QEMU" -M mps2-an386 -nographic -monitor none -serial null -semihosting-config enable=on,target=native \
+    -icount shift=3,sleep=off -plugin "$PLUGIN,$args" -d plugin -D "$log" -kernel "$image" 2>"$log.err" || rc=$?
+  [ "$rc" -eq 0 ] || { cat "$log.err" >&2; echo "mps2.sh: $image exited $rc (0 = ran 3 s with the session live)" >&2; exit 1; }
+  echo "  $(basename "$image" .elf):"
+  awk '/^insn-count: executed/ { printf "    %s ticks, %s instructions in all\n", $5, $3 }
+       /^insn-count: span link_poll/ { printf "    %-13s worst/call %7s  mean/call %9s  (calls %s: the main loop polls between ticks)\n", $3, $9, $7, $5; next }
+       /^insn-count: span/ { printf "    %-13s worst/tick %7s  mean/tick %9s  (calls %s, worst/call %s)\n", $3, $13, $11, $5, $9 }' "$log"
+done
