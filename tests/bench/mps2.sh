@@ -38,6 +38,7 @@ for image in "$@"; do
   args="$args,$(span lines palpa::core::StepLine "$image")"
   args="$args,$(span outputs palpa::core::Board::WriteOutputs "$image")"
   args="$args,$(span telemetry palpa::core::Board::SampleTelemetry "$image")"
+  args="$args,$(span framing palpa::protocol::EncodeFrameInPlace "$image")"
   args="$args,$(span link_poll palpa::core::Board::Poll "$image")"
   rc=0
   "$QEMU" -M mps2-an386 -nographic -monitor none -serial null -semihosting-config enable=on,target=native \

@@ -37,7 +37,7 @@ void qemu_plugin_register_atexit_cb(qemu_plugin_id_t id, void (*cb)(qemu_plugin_
                                     void* userdata);
 void qemu_plugin_outs(const char* string);
 
-enum { kMaxSpans = 16, kMaxReturns = 8 };
+enum { kMaxSpans = 16, kMaxReturns = 32 };
 
 typedef struct {
   char name[40];
@@ -151,7 +151,7 @@ PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_t* in
   (void)info;
   for (int i = 0; i < argc; ++i) {
     if (ParseSpan(argv[i]) != 0) {
-      fprintf(stderr, "qemu_insn_count: bad argument '%s' (want span=NAME:ENTRY:RET[:RET...], hex)\n", argv[i]);
+      fprintf(stderr, "qemu_insn_count: bad argument '%s' (want span=NAME:ENTRY:RET[:RET...], hex, at most 16 spans of 32 return sites)\n", argv[i]);
       return -1;
     }
   }

@@ -16,5 +16,5 @@ echo "$first" | awk '
     if (tick < 1000) { print "tick count implausibly small: " tick; exit 1 }
     n = 0
     for (s in stage) { n++; if (stage[s] + 0 <= 0 || stage[s] + 0 > tick + 0) { print s " out of range: " stage[s]; exit 1 } }
-    if (n != 7) { print "expected 7 stages inside the tick, got " n; exit 1 }
+    if (n != 8) { print "expected 8 stages inside the tick, got " n; exit 1 }
   }'
