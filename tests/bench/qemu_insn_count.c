@@ -28,8 +28,8 @@ void qemu_plugin_register_vcpu_tb_trans_cb(qemu_plugin_id_t id,
 size_t qemu_plugin_tb_n_insns(const struct qemu_plugin_tb* tb);
 struct qemu_plugin_insn* qemu_plugin_tb_get_insn(const struct qemu_plugin_tb* tb, size_t idx);
 uint64_t qemu_plugin_insn_vaddr(const struct qemu_plugin_insn* insn);
-void qemu_plugin_register_vcpu_insn_exec_inline(struct qemu_plugin_insn* insn, enum qemu_plugin_op op,
-                                                void* ptr, uint64_t imm);
+void qemu_plugin_register_vcpu_insn_exec_inline(struct qemu_plugin_insn* insn,
+                                                enum qemu_plugin_op op, void* ptr, uint64_t imm);
 void qemu_plugin_register_vcpu_insn_exec_cb(struct qemu_plugin_insn* insn,
                                             void (*cb)(unsigned int vcpu_index, void* userdata),
                                             enum qemu_plugin_cb_flags flags, void* userdata);
@@ -44,8 +44,8 @@ typedef struct {
   uint64_t entry;
   uint64_t returns[kMaxReturns];
   int return_count;
-  int depth;           // > 0 while inside the span (nested calls count once)
-  uint64_t start;      // instruction count at entry
+  int depth;       // > 0 while inside the span (nested calls count once)
+  uint64_t start;  // instruction count at entry
   uint64_t calls;
   uint64_t total;
   uint64_t max_call;
@@ -99,7 +99,8 @@ static void OnTranslate(qemu_plugin_id_t id, struct qemu_plugin_tb* tb) {
           qemu_plugin_register_vcpu_insn_exec_cb(insn, OnReturn, QEMU_PLUGIN_CB_NO_REGS, &spans[s]);
         }
       }
-      if (spans[s].entry == pc) qemu_plugin_register_vcpu_insn_exec_cb(insn, OnEntry, QEMU_PLUGIN_CB_NO_REGS, &spans[s]);
+      if (spans[s].entry == pc)
+        qemu_plugin_register_vcpu_insn_exec_cb(insn, OnEntry, QEMU_PLUGIN_CB_NO_REGS, &spans[s]);
     }
     qemu_plugin_register_vcpu_insn_exec_inline(insn, QEMU_PLUGIN_INLINE_ADD_U64, &executed, 1);
   }
@@ -109,7 +110,8 @@ static void OnExit(qemu_plugin_id_t id, void* userdata) {
   (void)id;
   (void)userdata;
   char line[512];
-  snprintf(line, sizeof(line), "insn-count: executed %" PRIu64 " ticks %" PRIu64 "\n", executed, ticks);
+  snprintf(line, sizeof(line), "insn-count: executed %" PRIu64 " ticks %" PRIu64 "\n", executed,
+           ticks);
   qemu_plugin_outs(line);
   for (int i = 0; i < span_count; ++i) {
     const Span* s = &spans[i];
@@ -118,7 +120,8 @@ static void OnExit(qemu_plugin_id_t id, void* userdata) {
     snprintf(line, sizeof(line),
              "insn-count: span %.39s calls %" PRIu64 " mean_call %.1f max_call %" PRIu64
              " mean_tick %.1f max_tick %" PRIu64 "\n",
-             s->name, s->calls, mean_call, s->max_call, mean_tick, s == tick_span ? s->max_call : s->max_tick);
+             s->name, s->calls, mean_call, s->max_call, mean_tick,
+             s == tick_span ? s->max_call : s->max_tick);
     qemu_plugin_outs(line);
   }
 }
@@ -147,11 +150,15 @@ static int ParseSpan(const char* arg) {
   return 0;
 }
 
-PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_t* info, int argc, char** argv) {
+PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_t* info, int argc,
+                                      char** argv) {
   (void)info;
   for (int i = 0; i < argc; ++i) {
     if (ParseSpan(argv[i]) != 0) {
-      fprintf(stderr, "qemu_insn_count: bad argument '%s' (want span=NAME:ENTRY:RET[:RET...], hex, at most 16 spans of 32 return sites)\n", argv[i]);
+      fprintf(stderr,
+              "qemu_insn_count: bad argument '%s' (want span=NAME:ENTRY:RET[:RET...], hex, at most "
+              "16 spans of 32 return sites)\n",
+              argv[i]);
       return -1;
     }
   }

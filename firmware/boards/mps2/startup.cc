@@ -2,24 +2,9 @@
 // and the fault and watchdog handlers that write safe codes before anything else and reset.
 #include <cstdint>
 
+#include "../common/cortex_m_runtime.h"
 #include "board_shell.h"
 #include "palpa/hal/mps2/registers.h"
-
-extern "C" {
-extern uint32_t _sidata, _sdata, _edata, _sbss, _ebss, _estack;
-extern void (*__init_array_start[])();
-extern void (*__init_array_end[])();
-int main();
-void Reset_Handler();
-void NMI_Handler();
-void HardFault_Handler();
-void MemManage_Handler();
-void BusFault_Handler();
-void UsageFault_Handler();
-void SysTick_Handler();
-void Uart0Rx_Handler();
-void Default_Handler();
-}
 
 namespace mps2 = palpa::hal::mps2;
 using palpa::boards::mps2::ResetRecord;
@@ -42,15 +27,7 @@ extern "C" {
 void Reset_Handler() {
   // A real board clears its DAC here, through the DAC's CLR pin, before anything else. On the
   // MPS2 the "DAC" is the plant model in RAM, which starts at 0 Pa with the zeroed .bss below.
-  *mps2::kScbCpacr |= 0xFu << 20;  // CP10 and CP11: the FPU, before any float instruction
-  asm volatile("dsb\n isb");
-  uint32_t* src = &_sidata;
-  for (uint32_t* dst = &_sdata; dst < &_edata;) *dst++ = *src++;
-  for (uint32_t* dst = &_sbss; dst < &_ebss;) *dst++ = 0;
-  for (auto* init = __init_array_start; init < __init_array_end; ++init) (*init)();
-  main();
-  for (;;) {
-  }
+  palpa::boards::StartRuntimeAndMain();
 }
 
 // The watchdog's first expiry: the loop stopped kicking it (a tick hung). Safe first, then reset.
