@@ -3,6 +3,7 @@
 // catalog mismatch.
 #include <atomic>
 #include <chrono>
+#include <cstdio>
 #include <thread>
 
 #include "board_transport.h"
@@ -100,6 +101,13 @@ TEST(LinkSim, StreamsConvergeToTheLatestValueUnderFaults) {
   faults.bit_flip = 0.001;
   auto device = ph::Device::Attach(std::make_unique<ph::FaultTransport>(std::move(sim.value), faults, 7), {}, &error);
   CHECK_TEXT(device.ok(), error.c_str());
+  // A 1 % byte loss drops about one heartbeat in seven; four in a row would trip the default
+  // 100 ms host-silence timeout now and then. This test is about the stream, so give it 1 s.
+  pp::ConfigureBoard board{};
+  std::snprintf(board.config_name.data(), board.config_name.size(), "thesis-5finger");
+  board.host_timeout_us = 1000000;
+  const ph::Outcome configured = device.value->ConfigureBoard(board);
+  CHECK_TEXT(configured.ok(), configured.message.c_str());
   for (int i = 1; i <= 30; ++i) device.value->SetLines({{0, static_cast<double>(i)}}, false);
   const ph::Outcome last = device.value->SetLines({{0, 42.0}}, true);
   CHECK_TEXT(last.ok(), last.message.c_str());
