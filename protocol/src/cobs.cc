@@ -12,24 +12,22 @@ size_t CobsEncodeUnchecked(const uint8_t* in, size_t size, uint8_t* out) {
   const uint8_t* const end = in + size;
   uint8_t* code_at = out;
   uint8_t* dst = out + 1;
-  uint8_t code = 1;
+  // The block length is dst - code_at: no separate counter to keep in a byte-sized register.
   while (in != end) {
     const uint8_t byte = *in++;
     if (byte == 0) {
-      *code_at = code;
+      *code_at = static_cast<uint8_t>(dst - code_at);
       code_at = dst++;
-      code = 1;
       continue;
     }
     *dst++ = byte;
-    if (++code == 0xFF) {
-      *code_at = code;
-      code = 1;
+    if (dst - code_at == 0xFF) {  // a full block: 254 data bytes
+      *code_at = 0xFF;
       if (in == end) return static_cast<size_t>(dst - out);  // a full block ends the input
       code_at = dst++;
     }
   }
-  *code_at = code;
+  *code_at = static_cast<uint8_t>(dst - code_at);
   return static_cast<size_t>(dst - out);
 }
 
