@@ -34,6 +34,10 @@ void Board::Start() {
   const uint64_t now = io_.clock.NowMicros();
   std::memset(&live_, 0, sizeof(live_));  // padding too: the integrity CRC covers raw memory
   config_is_default_ = store_.Load(factory_, live_) == ConfigStore::Source::kFactory;
+  if (!config_is_default_ && !DacMatches(live_, nullptr)) {  // saved for other hardware
+    std::memcpy(&live_, &factory_, sizeof(live_));
+    config_is_default_ = true;
+  }
   ApplyLive(now);
   WriteOutputs();
   switch (identity_.reset_cause) {
@@ -46,6 +50,17 @@ void Board::Start() {
       break;
   }
   pacer_.Start(now);
+}
+
+bool Board::DacMatches(const BoardConfig& config, ConfigError* error) const {
+  for (uint8_t i = 0; i < config.line_count; ++i) {
+    const hal::AnalogOutputSpec spec = io_.dac.spec(i);
+    if (config.lines[i].dac_bits != spec.bits || config.lines[i].dac_signal != spec.range) {
+      if (error != nullptr) *error = {protocol::ConfigSection::kLine, i, "DAC resolution or signal range differs from the board's DAC"};
+      return false;
+    }
+  }
+  return true;
 }
 
 bool Board::Step() {

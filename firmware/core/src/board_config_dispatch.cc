@@ -11,6 +11,7 @@ Outcome BoardDispatch::Commit() {
   ConfigError error;
   const Status status = ValidateConfig(b_.candidate_, &error);
   if (status != Status::kOk) return {status, error.detail()};
+  if (!b_.DacMatches(b_.candidate_, &error)) return {Status::kBadValue, error.detail()};
   // Between two ticks (dispatch never runs inside one): the whole configuration changes at once.
   std::memcpy(&b_.live_, &b_.candidate_, sizeof(b_.live_));
   b_.config_is_default_ = false;

@@ -215,6 +215,25 @@ TEST(BoardBoot, SavedConfigurationSurvivesARebootAndFactoryResetForgetsIt) {
   CHECK(h.Connect().config_is_default);
 }
 
+TEST(BoardBoot, ASavedConfigurationForAnotherDacFallsBackToTheFactoryOne) {
+  palpa::hal::fake::SimulatedNorFlash flash{64 * 1024, 8 * 1024};
+  {
+    BoardHarness h("thesis-5finger", pp::ResetCause::kPowerOn, &flash);
+    h.Connect();
+    h.dac.specs[0] = {16, pp::SignalRange::kVolt0To10};  // this board's line 1 has a 16-bit DAC
+    pp::ConfigureLine line = h.board->config().lines[0];
+    line.dac_bits = 16;
+    h.Send(line);
+    h.Send(pp::SaveConfig{});
+    const auto frames = h.Drain();
+    LONGS_EQUAL((int)pp::Status::kOk, (int)BoardHarness::AnswerFor(frames, pp::MessageType::kConfigureLine));
+    LONGS_EQUAL((int)pp::Status::kOk, (int)BoardHarness::AnswerFor(frames, pp::MessageType::kSaveConfig));
+  }
+  BoardHarness h("thesis-5finger", pp::ResetCause::kPowerOn, &flash);  // the usual 12-bit DAC
+  CHECK(h.Connect().config_is_default);
+  LONGS_EQUAL(12, h.board->config().lines[0].dac_bits);
+}
+
 TEST_GROUP(BoardConfiguration) {
   BoardHarness h;
   void setup() override {
@@ -230,6 +249,22 @@ TEST(BoardConfiguration, ConfigurationBeyondTheHardCeilingIsNacked) {
   const auto frames = h.Drain();
   LONGS_EQUAL((int)pp::Status::kOutOfRange, (int)BoardHarness::AnswerFor(frames, pp::MessageType::kConfigureLine));
   LONGS_EQUAL(20000, h.board->config().lines[3].limit_max_pa);
+}
+
+TEST(BoardConfiguration, ALineMustMatchItsDac) {
+  pp::ConfigureLine line = h.board->config().lines[2];
+  line.dac_bits = 16;  // the DAC has 12: every command would land 16 times too low
+  h.Send(line);
+  LONGS_EQUAL((int)pp::Status::kBadValue, (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kConfigureLine));
+  line = h.board->config().lines[2];
+  line.dac_signal = pp::SignalRange::kMilliamp4To20;  // the output is 0-10 V
+  h.Send(line);
+  LONGS_EQUAL((int)pp::Status::kBadValue, (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kConfigureLine));
+  LONGS_EQUAL(12, h.board->config().lines[2].dac_bits);
+  CHECK(h.board->config().lines[2].dac_signal == pp::SignalRange::kVolt0To10);
+  h.dac.specs[2] = {12, pp::SignalRange::kMilliamp4To20};  // a board whose output 3 is a current loop
+  h.Send(line);
+  LONGS_EQUAL((int)pp::Status::kOk, (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kConfigureLine));
 }
 
 TEST(BoardConfiguration, StagedConfigurationAppliesAllOrNothing) {

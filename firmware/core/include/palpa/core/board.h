@@ -93,6 +93,9 @@ class Board {
   [[gnu::noinline]] void Poll(uint64_t now_us);
   void ApplyLive(uint64_t now_us);
   void Hold();  ///< outputs safe until new setpoints arrive; compensators re-home
+  /// Every line's DAC resolution and signal range are what the board's DAC reports: a 16-bit
+  /// line on a 12-bit DAC, or 4–20 mA on a 0–10 V output, would command the wrong pressure.
+  bool DacMatches(const BoardConfig& config, ConfigError* error) const;
 
   BoardConfig factory_;
   BoardIo io_;
