@@ -6,25 +6,11 @@
 #include <vector>
 
 #include "palpa/protocol/codec.h"
+#include "received_frame.h"
 
 namespace palpa::testing {
 
 namespace pp = palpa::protocol;
-
-struct ReceivedFrame {
-  pp::Header header;
-  std::vector<uint8_t> body;
-  template <class M>
-  bool Is() const {
-    return header.type == static_cast<uint8_t>(M::kInfo.type);
-  }
-  template <class M>
-  M As() const {
-    M m{};
-    pp::DecodeBody(body.data(), body.size(), m);
-    return m;
-  }
-};
 
 class MiniClient {
  public:

@@ -1,7 +1,6 @@
 // TCP and pty transports for palpa-sim.
 #include "fd_link.h"
 
-#include <arpa/inet.h>
 #include <fcntl.h>
 #include <netinet/in.h>
 #include <netinet/tcp.h>
@@ -12,6 +11,8 @@
 
 #include <cerrno>
 #include <cstring>
+
+#include "tcp_listener.h"
 
 namespace palpa::sim {
 namespace {
@@ -29,38 +30,8 @@ FdLink::~FdLink() {
 
 bool FdLink::Open(const std::string& spec, std::string* error) {
   if (spec.rfind("tcp:", 0) == 0) {
-    const std::string rest = spec.substr(4);
-    const size_t colon = rest.rfind(':');
-    if (colon == std::string::npos) {
-      *error = "--listen " + spec + ": expected tcp:HOST:PORT";
-      return false;
-    }
-    const std::string host = rest.substr(0, colon);
-    char* end = nullptr;
-    const long port = std::strtol(rest.c_str() + colon + 1, &end, 10);
-    if (*end != '\0' || port < 0 || port > 65535 || colon + 1 == rest.size()) {
-      *error = "--listen " + spec + ": the port must be a number from 0 to 65535";
-      return false;
-    }
-    sockaddr_in addr{};
-    addr.sin_family = AF_INET;
-    addr.sin_port = htons(static_cast<uint16_t>(port));
-    if (inet_pton(AF_INET, host.c_str(), &addr.sin_addr) != 1) {
-      *error = "--listen " + spec + ": '" + host + "' is not an IPv4 address";
-      return false;
-    }
-    listen_fd_ = socket(AF_INET, SOCK_STREAM, 0);
-    const int one = 1;
-    setsockopt(listen_fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof(one));
-    if (bind(listen_fd_, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)) != 0 || listen(listen_fd_, 1) != 0) {
-      *error = "--listen " + spec + ": " + std::strerror(errno);
-      return false;
-    }
-    socklen_t len = sizeof(addr);
-    getsockname(listen_fd_, reinterpret_cast<sockaddr*>(&addr), &len);
-    NonBlocking(listen_fd_);
-    address_ = "tcp:" + host + ":" + std::to_string(ntohs(addr.sin_port));
-    return true;
+    listen_fd_ = ListenTcp(spec, "--listen", &address_, error);
+    return listen_fd_ >= 0;
   }
   if (spec.rfind("pty:", 0) == 0) {
     symlink_ = spec.substr(4);

@@ -1,14 +1,13 @@
 // Truth as JSON lines to a file or a TCP reader.
 #include "truth_stream.h"
 
-#include <arpa/inet.h>
-#include <fcntl.h>
-#include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
+
+#include "tcp_listener.h"
 
 namespace palpa::sim {
 
@@ -28,30 +27,8 @@ bool TruthStream::Open(const std::string& spec, std::string* error) {
     address_ = spec;
     return true;
   }
-  const std::string rest = spec.substr(4);
-  const size_t colon = rest.rfind(':');
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  char* end = nullptr;
-  const long port = colon == std::string::npos ? -1 : std::strtol(rest.c_str() + colon + 1, &end, 10);
-  if (port < 0 || port > 65535 || *end != '\0' ||
-      inet_pton(AF_INET, rest.substr(0, colon).c_str(), &addr.sin_addr) != 1) {
-    *error = "--truth " + spec + ": expected tcp:IPV4:PORT";
-    return false;
-  }
-  addr.sin_port = htons(static_cast<uint16_t>(port));
-  listen_fd_ = socket(AF_INET, SOCK_STREAM, 0);
-  const int one = 1;
-  setsockopt(listen_fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof(one));
-  if (bind(listen_fd_, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)) != 0 || listen(listen_fd_, 1) != 0) {
-    *error = "--truth " + spec + ": " + std::strerror(errno);
-    return false;
-  }
-  socklen_t len = sizeof(addr);
-  getsockname(listen_fd_, reinterpret_cast<sockaddr*>(&addr), &len);
-  fcntl(listen_fd_, F_SETFL, fcntl(listen_fd_, F_GETFL) | O_NONBLOCK);
-  address_ = "tcp:" + rest.substr(0, colon) + ":" + std::to_string(ntohs(addr.sin_port));
-  return true;
+  listen_fd_ = ListenTcp(spec, "--truth", &address_, error);
+  return listen_fd_ >= 0;
 }
 
 void TruthStream::Pump() {

@@ -11,6 +11,7 @@
 #include "palpa/hal/fake/fakes.h"
 #include "palpa/hal/fake/simulated_nor_flash.h"
 #include "palpa/protocol/codec.h"
+#include "received_frame.h"
 
 namespace palpa::testing {
 
@@ -18,21 +19,7 @@ namespace pp = palpa::protocol;
 namespace pc = palpa::core;
 namespace fake = palpa::hal::fake;
 
-/// One decoded frame from the board.
-struct BoardFrame {
-  pp::Header header;
-  std::vector<uint8_t> body;
-  template <class M>
-  bool Is() const {
-    return header.type == static_cast<uint8_t>(M::kInfo.type);
-  }
-  template <class M>
-  M As() const {
-    M m{};
-    pp::DecodeBody(body.data(), body.size(), m);
-    return m;
-  }
-};
+using BoardFrame = ReceivedFrame;
 
 struct BoardHarness {
   explicit BoardHarness(const char* config_name = "thesis-5finger",

@@ -3,40 +3,10 @@
 #include "palpa/core/board.h"
 #include "palpa/core/board_configs.h"
 
+#include "bare_runtime.h"
+
 namespace pc = palpa::core;
 namespace hal = palpa::hal;
-
-extern "C" {
-void* memcpy(void* dst, const void* src, __SIZE_TYPE__ n) {
-  auto* d = static_cast<unsigned char*>(dst);
-  const auto* s = static_cast<const unsigned char*>(src);
-  while (n--) *d++ = *s++;
-  return dst;
-}
-void* memmove(void* dst, const void* src, __SIZE_TYPE__ n) {
-  auto* d = static_cast<unsigned char*>(dst);
-  const auto* s = static_cast<const unsigned char*>(src);
-  if (d < s) {
-    while (n--) *d++ = *s++;
-  } else {
-    while (n--) d[n] = s[n];
-  }
-  return dst;
-}
-void* memset(void* dst, int value, __SIZE_TYPE__ n) {
-  auto* d = static_cast<unsigned char*>(dst);
-  while (n--) *d++ = static_cast<unsigned char>(value);
-  return dst;
-}
-int memcmp(const void* a, const void* b, __SIZE_TYPE__ n) {
-  const auto* x = static_cast<const unsigned char*>(a);
-  const auto* y = static_cast<const unsigned char*>(b);
-  for (; n; --n, ++x, ++y) {
-    if (*x != *y) return *x - *y;
-  }
-  return 0;
-}
-}
 
 namespace {
 
