@@ -4,12 +4,15 @@
 
 #include "board_shell.h"
 #include "palpa/core/board.h"
-#include "palpa/core/board_configs.h"
+#include "palpa/core/compiled_configs.h"
 #include "palpa/hal/stm32f4/drivers.h"
 #include "palpa/hal/stm32f4/registers.h"
 
 #ifndef PALPA_BOARD_CONFIG
 #define PALPA_BOARD_CONFIG "thesis-5finger"
+#endif
+#ifndef PALPA_BOARD_CONFIG_OBJECT
+#define PALPA_BOARD_CONFIG_OBJECT k_thesis_5finger  // named, so only this one is linked
 #endif
 
 extern palpa::boards::ResetRecord g_reset_record;
@@ -92,7 +95,7 @@ int main() {
   g_adc.Init();
   g_uart.Init();
 
-  const palpa::core::BoardConfig* config = palpa::core::FindBoardConfig(PALPA_BOARD_CONFIG);
+  const palpa::core::BoardConfig* config = &palpa::core::PALPA_BOARD_CONFIG_OBJECT;
   palpa::core::BoardIdentity id;
   id.kind = palpa::protocol::BoardKind::kStm32f4;
   id.board_id = UniqueId();

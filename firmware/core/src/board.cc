@@ -85,7 +85,11 @@ void Board::ApplyLive(uint64_t now_us) {
     }
   }
   for (uint8_t f = 0; f < live_.finger_count; ++f) {
-    finger_params_[f] = MakeFingerParams(live_.fingers[f]);
+    const protocol::ConfigureFinger& finger = live_.fingers[f];
+    const bool jamming = finger.kind == protocol::FingerKind::kJamming;
+    const protocol::ConfigureLine& driven = live_.lines[jamming ? finger.line_b : finger.line_a];
+    const float drive_limit = static_cast<float>(jamming ? -driven.limit_min_pa : driven.limit_max_pa);
+    finger_params_[f] = MakeFingerParams(finger, drive_limit);
     finger_state_[f].target = 0;
   }
   config_memory_crc_ = MemoryCrc(live_);
@@ -126,6 +130,7 @@ void Board::Tick(uint64_t now_us) {
       line_out_[i].status |= protocol::line_status::kRaw;
     }
     if (line_params_[i].has_sensor && !measured_valid_[i]) line_out_[i].status |= protocol::line_status::kSensorFault;
+    if (compensator_saturated_[i]) line_out_[i].status |= protocol::line_status::kSaturated;
   }
   WriteOutputs();
   SampleTelemetry(now_us, newly != 0);
@@ -173,7 +178,10 @@ void Board::ReadInputs(uint64_t now_us, SupervisorInput& in) {
 }
 
 void Board::ComputeSetpoints(uint64_t now_us, float* setpoints) {
-  for (uint8_t i = 0; i < live_.line_count; ++i) setpoints[i] = raw_setpoint_pa_[i];
+  for (uint8_t i = 0; i < live_.line_count; ++i) {
+    setpoints[i] = raw_setpoint_pa_[i];
+    compensator_saturated_[i] = false;
+  }
   if (safe_) return;
   const uint32_t dwell_us = static_cast<uint32_t>(live_.board.home_dwell_ms) * 1000;
   for (uint8_t f = 0; f < live_.finger_count; ++f) {
@@ -185,6 +193,7 @@ void Board::ComputeSetpoints(uint64_t now_us, float* setpoints) {
     const FingerOutput out = StepFinger(p, s, now_us, dwell_us, applied);
     setpoints[p.line_a] = out.setpoint_a;
     if (p.line_b != kNoLine) setpoints[p.line_b] = out.setpoint_b;
+    compensator_saturated_[driven] = out.saturated;
   }
 }
 

@@ -2,13 +2,13 @@
 #include "palpa/core/board_config.h"
 
 #include "palpa/core/ceilings.h"
+#include "palpa/core/compensator.h"
 #include "palpa/core/curve.h"
 #include "palpa/protocol/messages_report.h"
 
 namespace palpa::core {
 namespace {
 
-using protocol::CompensatorKind;
 using protocol::ConfigSection;
 using protocol::FingerKind;
 using protocol::LineKind;
@@ -121,11 +121,7 @@ Status ValidateFinger(const protocol::ConfigureFinger& finger, const BoardConfig
   }
   if (Direction(output, n, true) != 1) return Fail(error, s, f, "inverse outputs not strictly increasing", Status::kBadValue);
   if (Direction(setpoint, n, false) == 2) return Fail(error, s, f, "inverse setpoints not monotone", Status::kBadValue);
-  if (finger.compensator == CompensatorKind::kNone) {
-    if (finger.param_count != 0) return Fail(error, s, f, "the none compensator takes no parameters", Status::kBadValue);
-  } else {
-    return Fail(error, s, f, "compensator not available in this firmware", Status::kUnsupported);
-  }
+  if (const char* why = CompensatorParamsError(finger)) return Fail(error, s, f, why, Status::kBadValue);
   return Status::kOk;
 }
 

@@ -119,8 +119,8 @@ TEST(ConfigValidation, FingersNeedTheRightLines) {
   c.fingers[3].bias_pa = 30000;
   CHECK(Validate(c) == pp::Status::kOutOfRange);
   c = Thesis5();
-  c.fingers[0].compensator = pp::CompensatorKind::kPrandtlIshlinskii;
-  CHECK(Validate(c) == pp::Status::kUnsupported);
+  c.fingers[0].compensator = pp::CompensatorKind::kPrandtlIshlinskii;  // with no parameters
+  CHECK(Validate(c) == pp::Status::kBadValue);
 }
 
 TEST(ConfigValidation, TelemetryBatchMustFitAFrame) {

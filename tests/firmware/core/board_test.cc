@@ -185,3 +185,42 @@ TEST(BoardTargets, ValvesArePulsedOnlyWhileNotSafe) {
   CHECK_FALSE(h.supply.level);
   CHECK_FALSE(h.pump.level);
 }
+
+TEST(BoardTargets, PiCompensatorDrivesTheLineAndSaysWhenItSaturates) {
+  // y = 0.03 µm/Pa·u + 0.01·play(u, 20 kPa): a loop the static inverse knows nothing of.
+  pp::ConfigureFinger f = h.board->config().fingers[0];
+  f.compensator = pp::CompensatorKind::kPrandtlIshlinskii;
+  f.param_count = 4;
+  f.params[0] = 0;
+  f.params[1] = 0.03f;
+  f.params[2] = 20000;
+  f.params[3] = 0.01f;
+  h.Send(f);
+  LONGS_EQUAL((int)pp::Status::kOk, (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kConfigureFinger));
+  auto run = [this](int ms) {
+    for (int i = 0; i < ms; ++i) {
+      h.Run(1, true);
+      h.FollowModel();  // the sensor reads what the regulator model predicts
+    }
+  };
+  h.Send(Targets(1, {{0, kUm, 1000}}));
+  run(1500);
+  // Rising from vented: the operator stays on its upper clamp until 40 kPa, so 0.03·u + 200 = 1000.
+  DOUBLES_EQUAL(26667, h.board->line_state(0).slewed_pa, 2);
+  CHECK_FALSE(h.board->line_output(0).status & pp::line_status::kSaturated);
+  h.Send(Targets(2, {{0, kUm, 4300}}));  // within the static inverse; the model reaches 3 800
+  run(1500);
+  CHECK(h.board->line_output(0).status & pp::line_status::kSaturated);
+  CHECK(h.board->line_state(0).slewed_pa <= h.board->config().lines[0].limit_max_pa);
+}
+
+TEST(BoardTargets, CompensatorParametersThatCannotBeInvertedAreNackedAndNothingChanges) {
+  pp::ConfigureFinger f = h.board->config().fingers[0];
+  f.compensator = pp::CompensatorKind::kPrandtlIshlinskii;
+  f.param_count = 6;
+  const float params[] = {0, 0.04f, 0, 20000, 0.01f, -0.06f};  // cumulative weight < 0
+  for (int i = 0; i < 6; ++i) f.params[i] = params[i];
+  h.Send(f);
+  LONGS_EQUAL((int)pp::Status::kBadValue, (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kConfigureFinger));
+  CHECK(h.board->config().fingers[0].compensator == pp::CompensatorKind::kNone);
+}

@@ -9,8 +9,8 @@ namespace pp = palpa::protocol;
 
 TEST_GROUP(Finger) {
   const pc::BoardConfig& config = *pc::FindBoardConfig("thesis-5finger");
-  pc::FingerParams pneumatic = pc::MakeFingerParams(config.fingers[0]);
-  pc::FingerParams jamming = pc::MakeFingerParams(config.fingers[3]);
+  pc::FingerParams pneumatic = pc::MakeFingerParams(config.fingers[0], 100000);
+  pc::FingerParams jamming = pc::MakeFingerParams(config.fingers[3], 100000);
 };
 
 TEST(Finger, StaticInverseFollowsTheThesisFitAndMapsZeroToZero) {

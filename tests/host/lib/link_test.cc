@@ -154,13 +154,20 @@ TEST(LinkSim, DeviceConfiguresReadsBackAndRecords) {
   auto finger = d.ReadFinger(1);
   CHECK(finger.ok());
   LONGS_EQUAL(20000, finger.value.bias_pa);
-  const ph::Outcome pi = [&] {
-    pp::ConfigureFinger f = finger.value;
-    f.compensator = pp::CompensatorKind::kPrandtlIshlinskii;
-    f.param_count = 65;  // over one packet: goes staged, and this firmware refuses the kind
-    return d.ConfigureFinger(f);
-  }();
-  LONGS_EQUAL((int)pp::Status::kUnsupported, (int)pi.status);
+  // PI(32) is over one packet: it goes staged. An odd count is refused, a whole set applied.
+  pp::ConfigureFinger pi = finger.value;
+  pi.compensator = pp::CompensatorKind::kPrandtlIshlinskii;
+  pi.param_count = 65;
+  LONGS_EQUAL((int)pp::Status::kBadValue, (int)d.ConfigureFinger(pi).status);
+  pi.param_count = 66;
+  pi.params[0] = 700;     // mN/mm with the vacuum released
+  pi.params[1] = 0.006f;  // mN/mm per Pa
+  for (int i = 0; i < 32; ++i) {
+    pi.params[2 + i] = 1500.0f * static_cast<float>(i);
+    pi.params[34 + i] = 0.0001f;
+  }
+  CHECK(d.ConfigureFinger(pi).ok());
+  LONGS_EQUAL(66, d.ReadFinger(1).value.param_count);
   CHECK(d.Set({{0, {ph::TargetKind::kStiffnessNPerMm, 1.1}}}).ok());
   const std::string path = "/tmp/palpa-record-" + std::to_string(getpid()) + ".csv";
   CHECK(d.StartRecording(path).ok());

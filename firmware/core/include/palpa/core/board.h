@@ -126,6 +126,7 @@ class Board {
   std::array<uint32_t, protocol::kMaxLines> raw_counts_{};
   std::array<FingerParams, protocol::kMaxFingers> finger_params_{};
   std::array<FingerState, protocol::kMaxFingers> finger_state_{};
+  std::array<bool, protocol::kMaxLines> compensator_saturated_{};  ///< this tick, per driven line
   std::array<uint8_t, protocol::kMaxLines> line_owner_{};
 
   hal::PulsingEnable supply_pulse_;

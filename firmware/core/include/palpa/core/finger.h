@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdint>
 
+#include "palpa/core/compensator.h"
 #include "palpa/protocol/enums.h"
 #include "palpa/protocol/messages_config.h"
 
@@ -20,9 +21,11 @@ struct FingerParams {
   std::array<float, protocol::kMaxInversePoints> inverse_output{};
   std::array<float, protocol::kMaxInversePoints> inverse_setpoint{};
   int32_t max_target = 0;  ///< largest output the inverse covers; beyond it targets are refused
+  Compensator compensation;  ///< tables of branch / pi / api (unused for none)
 };
 
-FingerParams MakeFingerParams(const protocol::ConfigureFinger& finger);
+/// `drive_limit_pa`: the magnitude the driven line's limits allow (pressure, or vacuum).
+FingerParams MakeFingerParams(const protocol::ConfigureFinger& finger, float drive_limit_pa);
 
 protocol::OutputUnit UnitOf(protocol::FingerKind kind);
 
@@ -33,12 +36,14 @@ struct FingerState {
   float target = 0;  ///< in the finger's output unit
   HomePhase phase = HomePhase::kNeedsHoming;
   uint64_t homed_at_us = 0;  ///< when the homing dwell ends
+  CompensatorState memory;
 };
 
 struct FingerOutput {
   float setpoint_a = 0;  ///< pressure (pneumatic) or bias (jamming) line
   float setpoint_b = 0;  ///< vacuum line (jamming)
   bool homing = false;
+  bool saturated = false;  ///< the compensator's drive was clamped to the line's range
 };
 
 /// The finger must re-home before following targets again (leaving the safe state, switching
@@ -46,8 +51,8 @@ struct FingerOutput {
 inline void RequireHoming(FingerState& s) { s.phase = HomePhase::kNeedsHoming; }
 
 /// One tick in target mode. `applied_pa` is the pressure actually applied on the driven line
-/// (measured, or the regulator model where there is no sensor): compensators with memory update
-/// from it, not from what they asked for.
+/// (measured, or the regulator model where there is no sensor; negative on a vacuum line):
+/// compensators with memory update from it, not from what they asked for.
 FingerOutput StepFinger(const FingerParams& p, FingerState& s, uint64_t now_us,
                         uint32_t home_dwell_us, float applied_pa);
 

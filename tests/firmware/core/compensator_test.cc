@@ -1,0 +1,193 @@
+// Compensators: the analytic PI inverse against its own forward model, memory from the applied
+// drive, homing, the branch reversal rule, saturation, and every way parameters are refused.
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "palpa/core/compensator.h"
+
+#include "CppUTest/TestHarness.h"
+
+namespace pc = palpa::core;
+namespace pp = palpa::protocol;
+
+namespace {
+
+pp::ConfigureFinger With(pp::CompensatorKind kind, const std::vector<float>& params) {
+  pp::ConfigureFinger f{};
+  f.compensator = kind;
+  f.param_count = static_cast<uint8_t>(params.size());
+  for (size_t i = 0; i < params.size(); ++i) f.params[i] = params[i];
+  return f;
+}
+
+/// pi parameters with n operators over 0..50 kPa; some weights negative, all cumulative > 0.
+std::vector<float> PiParams(int n, std::mt19937& rng, float offset = 0) {
+  std::uniform_real_distribution<float> weight(-0.002f, 0.01f);
+  std::vector<float> p{offset, 0.01f};
+  for (int i = 0; i < n; ++i) p.push_back(50000.0f * static_cast<float>(i) / static_cast<float>(n));
+  for (int i = 0; i < n; ++i) p.push_back(weight(rng));
+  return p;
+}
+
+float Play(float z, float u, float r) { return std::max(u - r, std::min(u + r, z)); }
+
+}  // namespace
+
+TEST_GROUP(Compensator) { std::mt19937 rng{7}; };
+
+TEST(Compensator, PiInverseReachesTheTargetOfItsForwardModelFromAnyMemory) {
+  for (int n : {1, 4, 16, 32}) {
+    const auto f = With(pp::CompensatorKind::kPrandtlIshlinskii, PiParams(n, rng, 5));
+    CHECK(pc::CompensatorParamsError(f) == nullptr);
+    const pc::Compensator c = pc::MakeCompensator(f, 100000);
+    pc::CompensatorState s;
+    pc::HomeCompensator(c, s);
+    std::uniform_real_distribution<float> target(10, 900);
+    float applied = 0;
+    for (int k = 0; k < 2000; ++k) {
+      const float y = target(rng);
+      const pc::CompensatorOutput out = pc::StepCompensator(c, s, y, applied);
+      if (out.saturated) continue;
+      // From the memory the step left, the forward model at the drive gives the target back.
+      DOUBLES_EQUAL(y, pc::PlayForward(c, s, out.drive), 1e-3 * y);
+      applied = out.drive;
+    }
+  }
+}
+
+TEST(Compensator, AsymmetricPiInvertsThroughItsDeadZones) {
+  std::vector<float> p{8, 0};
+  const auto pi = PiParams(8, rng, 3);
+  p.insert(p.end(), pi.begin() + 1, pi.end());  // w0, r, w (offset set above)
+  p[1] = 3;
+  for (float v : {100.0f, 300.0f, 600.0f}) p.push_back(v);  // dead-zone thresholds
+  for (float g : {0.5f, -0.8f, 1.0f}) p.push_back(g);       // slopes 1.5, 0.7, 1.7
+  const auto f = With(pp::CompensatorKind::kAsymmetricPi, p);
+  CHECK(pc::CompensatorParamsError(f) == nullptr);
+  const pc::Compensator c = pc::MakeCompensator(f, 100000);
+  pc::CompensatorState s;
+  pc::HomeCompensator(c, s);
+  float applied = 0;
+  std::uniform_real_distribution<float> target(5, 1200);
+  for (int k = 0; k < 2000; ++k) {
+    const float y = target(rng);
+    const auto out = pc::StepCompensator(c, s, y, applied);
+    if (out.saturated) continue;
+    DOUBLES_EQUAL(y, pc::PlayForward(c, s, out.drive), 1e-3 * y);
+    applied = out.drive;
+  }
+}
+
+TEST(Compensator, MemoryFollowsTheAppliedDriveNotTheCommand) {
+  const auto params = PiParams(8, rng);
+  const pc::Compensator c =
+      pc::MakeCompensator(With(pp::CompensatorKind::kPrandtlIshlinskii, params), 100000);
+  pc::CompensatorState s;
+  pc::HomeCompensator(c, s);
+  std::vector<float> z(8);
+  for (int i = 0; i < 8; ++i) z[i] = params[2 + i];  // homed: each operator on its upper clamp
+  float applied = 0;
+  for (int k = 0; k < 3000; ++k) {
+    const auto out = pc::StepCompensator(c, s, 400, applied);
+    // A lagging chamber: the applied drive trails the command.
+    applied += 0.01f * (out.drive - applied);
+    for (int i = 0; i < 8; ++i) z[i] = Play(z[i], applied, params[2 + i]);
+  }
+  pc::StepCompensator(c, s, 400, applied);
+  for (int i = 0; i < 8; ++i) DOUBLES_EQUAL(z[i], s.z[i], 1e-2);
+}
+
+TEST(Compensator, HomingPutsEveryOperatorWhereAVentedChamberLeavesIt) {
+  const auto params = PiParams(4, rng);
+  const pc::Compensator c =
+      pc::MakeCompensator(With(pp::CompensatorKind::kPrandtlIshlinskii, params), 100000);
+  pc::CompensatorState s;
+  pc::StepCompensator(c, s, 300, 80000);
+  pc::HomeCompensator(c, s);
+  pc::CompensatorState vented;
+  pc::HomeCompensator(c, vented);
+  for (int k = 0; k < 10; ++k) pc::StepCompensator(c, vented, 300, 0);  // venting changes nothing
+  for (int i = 0; i < 4; ++i) {
+    DOUBLES_EQUAL(params[2 + i], s.z[i], 0);
+    DOUBLES_EQUAL(params[2 + i], vented.z[i], 0);
+  }
+}
+
+TEST(Compensator, DrivesBeyondTheLineAreClampedAndSaid) {
+  const pc::Compensator c = pc::MakeCompensator(
+      With(pp::CompensatorKind::kPrandtlIshlinskii, {0, 0.01f, 0, 0.001f}), 60000);
+  pc::CompensatorState s;
+  pc::HomeCompensator(c, s);
+  auto out = pc::StepCompensator(c, s, 5000, 0);  // needs ≈ 455 kPa
+  CHECK(out.saturated);
+  DOUBLES_EQUAL(60000, out.drive, 0);
+  out = pc::StepCompensator(c, s, 100, 0);
+  CHECK_FALSE(out.saturated);
+  const pc::Compensator offset = pc::MakeCompensator(
+      With(pp::CompensatorKind::kPrandtlIshlinskii, {700, 0.01f, 0, 0.001f}), 60000);
+  out = pc::StepCompensator(offset, s, 300, 0);  // below what the actuator gives at 0 Pa
+  CHECK(out.saturated);
+  DOUBLES_EQUAL(0, out.drive, 0);
+}
+
+TEST(Compensator, BranchFollowsEachCurveAndBlendsAfterAReversal) {
+  // y = 0..1000; rising needs more drive than falling (the falling branch sits higher).
+  const auto f = With(pp::CompensatorKind::kBranch,
+                      {100, 500, 0, 500, 1000, 0, 50000, 100000, 0, 40000, 100000});
+  CHECK(pc::CompensatorParamsError(f) == nullptr);
+  const pc::Compensator c = pc::MakeCompensator(f, 100000);
+  pc::CompensatorState s;
+  pc::HomeCompensator(c, s);
+  auto out = pc::StepCompensator(c, s, 500, 0);
+  DOUBLES_EQUAL(50000, out.drive, 1);
+  out = pc::StepCompensator(c, s, 800, 50000);
+  DOUBLES_EQUAL(80000, out.drive, 1);
+  // Applied reaches 80 kPa, then the target comes down: still on the rising curve until the
+  // applied drive has fallen by the dead band.
+  out = pc::StepCompensator(c, s, 750, 80000);
+  DOUBLES_EQUAL(75000, out.drive, 1);
+  out = pc::StepCompensator(c, s, 750, 79000);
+  CHECK_FALSE(s.rising);
+  DOUBLES_EQUAL(800, s.reversal_output, 1);
+  // 50 of the 100-unit band travelled: half way between the branches (75 and 70 kPa).
+  DOUBLES_EQUAL(72500, out.drive, 1);
+  out = pc::StepCompensator(c, s, 600, 72500);
+  DOUBLES_EQUAL(52000, out.drive, 1);  // the falling curve alone
+}
+
+TEST(Compensator, ParametersThatCannotBeInvertedAreRefusedWithAReason) {
+  using K = pp::CompensatorKind;
+  struct Case {
+    K kind;
+    std::vector<float> params;
+  };
+  const float nan = std::nanf("");
+  const std::vector<Case> bad = {
+      {K::kNone, {1}},
+      {K::kPrandtlIshlinskii, {0, 0.01f, 0}},                       // odd count
+      {K::kPrandtlIshlinskii, {0, 0, 0, 0.01f}},                    // w0 = 0
+      {K::kPrandtlIshlinskii, {0, 0.01f, 0, 100, 0.01f, -0.03f}},   // cumulative < 0
+      {K::kPrandtlIshlinskii, {0, 0.01f, 100, 100, 0.01f, 0.01f}},  // thresholds repeat
+      {K::kPrandtlIshlinskii, {0, 0.01f, -5, 0.01f}},               // negative threshold
+      {K::kPrandtlIshlinskii, {nan, 0.01f, 0, 0.01f}},
+      {K::kPrandtlIshlinskii, {0, INFINITY, 0, 0.01f}},
+      {K::kAsymmetricPi, {2.5f, 0, 0.01f, 0, 100, 0.01f, 0.01f, 10, 1}},  // n not an integer
+      {K::kAsymmetricPi, {1, 0, 0.01f, 0, 0.01f}},                        // no dead zone
+      {K::kAsymmetricPi, {1, 0, 0.01f, 0, 0.01f, 10, -1}},                // slope 0
+      {K::kAsymmetricPi, {1, 0, 0.01f, 0, 0.01f, 10, 5, 1, 1}},           // d not increasing
+      {K::kBranch, {100, 500, 0, 1000, 0, 100000, 0, 100000, 5}},         // count
+      {K::kBranch, {0, 500, 0, 1000, 0, 100000, 0, 100000}},              // band 0
+      {K::kBranch, {100, 500, 1000, 0, 0, 100000, 0, 100000}},            // outputs fall
+      {K::kBranch, {100, 500, 0, 1000, 100000, 0, 0, 100000}},            // rising not monotone
+      {K::kBranch, {100, 500, 0, 1000, 0, 200000, 0, 100000}},            // beyond 100 kPa
+  };
+  for (const Case& c : bad) {
+    const char* why = pc::CompensatorParamsError(With(c.kind, c.params));
+    CHECK(why != nullptr);
+    CHECK(std::string(why).size() > 10);
+  }
+  CHECK(pc::CompensatorParamsError(
+            With(K::kPrandtlIshlinskii, {0, 0.01f, 0, 100, 0.01f, -0.005f})) == nullptr);
+}
