@@ -1,0 +1,51 @@
+// Identification of hysteresis compensators from a quasi-static sweep: constrained least squares
+// (non-negative operator weights, monotone branches), residuals reported, parameters in the
+// layout ConfigureFinger accepts. Shared by the hysteresis benchmarks and calibration procedures.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "palpa/calibration/play_operators.h"
+#include "palpa/protocol/enums.h"
+#include "palpa/protocol/messages_config.h"
+
+namespace palpa::calibration {
+
+/// One settled point of a sweep: the drive the line's sensor measured (Pa ≥ 0: pressure, or
+/// vacuum magnitude) and the actuator's output as the rig measured it (finger's output unit).
+struct SweepSample {
+  double drive_pa = 0;
+  double output = 0;
+};
+
+struct HysteresisFit {
+  protocol::CompensatorKind kind = protocol::CompensatorKind::kNone;
+  std::vector<float> params;  ///< ConfigureFinger.params layout (docs/hysteresis.md)
+  double residual_rms = 0;    ///< output units; for branch, the drive residual in Pa
+  double residual_max = 0;
+  std::string error;  ///< non-empty: no usable fit, and why
+  bool ok() const { return error.empty(); }
+};
+
+/// Checks a sweep before fitting: enough points, finite, drive within 0..drive_max.
+std::string SweepError(const std::vector<SweepSample>& sweep, size_t min_points, double drive_max);
+
+HysteresisFit FitPi(const std::vector<SweepSample>& sweep, int operators, double drive_max);
+HysteresisFit FitApi(const std::vector<SweepSample>& sweep, int operators, int dead_zones,
+                     double drive_max);
+/// Rising and falling curves at `points` output levels; the reversal band chosen on the sweep.
+HysteresisFit FitBranch(const std::vector<SweepSample>& sweep, int points);
+
+/// The static inverse (none): the mid-line of the rising and falling curves at `points` outputs.
+/// `vacuum` makes setpoints negative (jamming fingers). Empty on a bad sweep (*error set).
+std::vector<protocol::InversePoint> FitStaticInverse(const std::vector<SweepSample>& sweep,
+                                                     int points, bool vacuum, std::string* error);
+
+/// The PlayModel a pi/api parameter set stands for (for residuals and charts).
+PlayModel ModelOf(protocol::CompensatorKind kind, const std::vector<float>& params);
+
+/// Writes kind and params into a finger's configuration; false (and *error) when they do not fit.
+bool ApplyFit(const HysteresisFit& fit, protocol::ConfigureFinger& finger, std::string* error);
+
+}  // namespace palpa::calibration
