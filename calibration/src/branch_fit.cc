@@ -120,7 +120,9 @@ Branches ReadBranches(const std::vector<SweepSample>& sweep, int points) {
   for (int k = 0; k < points; ++k) {
     const double level = lo + (hi - lo) * k / (points - 1);
     b.levels.push_back(level);
-    double r = DriveFor(rise, level), f = DriveFor(fall, level);
+    // Measured drives carry sensor noise: a reading just below 0 Pa is 0 Pa.
+    double r = std::clamp(DriveFor(rise, level), 0.0, 100000.0);
+    double f = std::clamp(DriveFor(fall, level), 0.0, 100000.0);
     if (k > 0) {  // strictly increasing, as the firmware requires
       r = std::max(r, b.rising.back() + 1.0);
       f = std::max(f, b.falling.back() + 1.0);

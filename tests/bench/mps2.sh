@@ -12,19 +12,10 @@ PLUGIN=${PALPA_INSN_PLUGIN:-build/default/tests/bench/libpalpa_qemu_insn_count.s
 IMAGES=${PALPA_MPS2_IMAGES:-build/mps2/firmware/boards/mps2}
 QEMU=${QEMU:-qemu-system-arm}
 [ -f "$PLUGIN" ] || { echo "mps2.sh: $PLUGIN is missing (build the default preset)" >&2; exit 1; }
-[ $# -gt 0 ] || set -- "$IMAGES/palpa-mps2-bench-5finger.elf" "$IMAGES/palpa-mps2-bench-full8.elf"
+[ $# -gt 0 ] || set -- "$IMAGES/palpa-mps2-bench-5finger.elf" "$IMAGES/palpa-mps2-bench-full8.elf" \
+  "$IMAGES/palpa-mps2-bench-5finger-pi16.elf"
 
-# span NAME FUNCTION ELF -> "span=NAME:ENTRY:RET..." (return sites: the instruction after each call)
-span() {
-  entry=$(arm-none-eabi-nm -C "$3" | awk -v f="$2(" 'index($0, f) && $2 ~ /^[Tt]$/ { print $1; exit }')
-  [ -n "$entry" ] || { echo "mps2.sh: $2 not found in $3" >&2; exit 1; }
-  target=$(echo "$entry" | sed 's/^0*//')
-  returns=$(arm-none-eabi-objdump -d "$3" | awk -v call="\tbl\t$target <" '
-    taken { split($1, a, ":"); printf ":%s", a[1]; taken = 0 }
-    index($0, call) { taken = 1 }')
-  [ -n "$returns" ] || { echo "mps2.sh: no call to $2 in $3" >&2; exit 1; }
-  printf 'span=%s:%s%s' "$1" "$entry" "$returns"
-}
+. tests/bench/qemu_spans.inc
 
 echo "== firmware on Cortex-M4F (QEMU mps2-an386, -Os, exact instruction counts; 1 ms tick) =="
 log=$(mktemp)
@@ -35,6 +26,9 @@ for image in "$@"; do
   args="$args,$(span config_check palpa::core::Board::CheckConfigIntegrity "$image")"
   args="$args,$(span supervisor palpa::core::Supervise "$image")"
   args="$args,$(span fingers palpa::core::Board::ComputeSetpoints "$image")"
+  if arm-none-eabi-nm -C "$image" | grep -q "palpa::core::StepCompensator("; then
+    args="$args,$(span compensators palpa::core::StepCompensator "$image")"
+  fi
   args="$args,$(span lines palpa::core::StepLine "$image")"
   args="$args,$(span outputs palpa::core::Board::WriteOutputs "$image")"
   args="$args,$(span telemetry palpa::core::Board::SampleTelemetry "$image")"

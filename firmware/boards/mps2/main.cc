@@ -109,10 +109,38 @@ void OnUartRx() { g_uart.OnRxInterrupt(); }
 
 }  // namespace palpa::boards::mps2
 
+#ifdef PALPA_BENCH_PI16
+namespace {
+palpa::core::BoardConfig g_pi16_config;
+
+/// The compiled-in configuration with a PI(16) compensator on every finger (thresholds over half
+/// the drive range, positive weights): what the whole-tick goal is measured with.
+const palpa::core::BoardConfig* WithPi16OnEveryFinger(const palpa::core::BoardConfig& base) {
+  g_pi16_config = base;
+  for (uint8_t f = 0; f < g_pi16_config.finger_count; ++f) {
+    palpa::protocol::ConfigureFinger& finger = g_pi16_config.fingers[f];
+    const bool jamming = finger.kind == palpa::protocol::FingerKind::kJamming;
+    finger.compensator = palpa::protocol::CompensatorKind::kPrandtlIshlinskii;
+    finger.param_count = 34;
+    finger.params[0] = jamming ? 700.0f : -200.0f;  // output at 0 Pa (mN/mm, or um)
+    finger.params[1] = jamming ? 0.004f : 0.03f;
+    for (int i = 0; i < 16; ++i) {
+      finger.params[2 + i] = 50000.0f * static_cast<float>(i) / 16.0f;
+      finger.params[18 + i] = jamming ? 0.0002f : 0.001f;
+    }
+  }
+  return &g_pi16_config;
+}
+}  // namespace
+#endif
+
 int main() {
   using namespace palpa::boards::mps2;
   const palpa::protocol::ResetCause cause = g_reset_record.Take();
   const palpa::core::BoardConfig* config = &palpa::core::PALPA_BOARD_CONFIG_OBJECT;
+#ifdef PALPA_BENCH_PI16
+  config = WithPi16OnEveryFinger(*config);
+#endif
   g_plant.Init(*config);
   StackGuard();
   g_uart.Init();

@@ -17,23 +17,30 @@ float OutputMapInverse(const PlayTable& t, float s) {
   return t.knot_in[k] + (s - t.knot_out[k]) * t.inverse_slope[k];
 }
 
+/// ½(|d + r| − |d − r|) = clamp(d, −r, r) for r ≥ 0: two absolute values instead of two
+/// compare-and-select pairs, because the Cortex-M4's FPU has no min or max.
+inline float HalfBand(float d, float r) { return __builtin_fabsf(d + r) - __builtin_fabsf(d - r); }
+
 /// Analytic PI inverse evaluated from the forward memory. One backward pass does both jobs:
 /// each play operator first follows the applied drive, then its inverse-domain state
 /// z'_i = W_i z_i + Σ_{j>i} w_j z_j follows the target — so no inverse memory is kept that
-/// could drift away from what the chamber actually saw.
+/// could drift away from what the chamber actually saw. Clamped states are written as centre +
+/// half band, so the centres' share of the sum is the precomputed inverse_gain · v.
 float PlayStep(const PlayTable& t, float* z, float v, float applied) {
-  float later = 0;  // Σ_{j>i} w_j z_j
+  float later = -v;  // Σ_{j>i} w_j z_j − v: the inverse state's offset from the target
   float drive = 0;
-  for (int i = t.operators - 1; i >= 0; --i) {
-    const PlayOperator& op = t.op[i];
-    const float zi = Clamp(z[i], applied - op.threshold, applied + op.threshold);
-    z[i] = zi;
-    const float inverse_state =
-        Clamp(op.cumulative * zi + later, v - op.inverse_threshold, v + op.inverse_threshold);
-    later += op.weight * zi;
-    drive += op.inverse_weight * inverse_state;
+  const PlayOperator* op = t.op + t.operators;
+  float* zi = z + t.operators;
+  while (op != t.op) {
+    --op;
+    --zi;
+    const float state = applied + 0.5f * HalfBand(*zi - applied, op->threshold);
+    *zi = state;
+    const float inverse_offset = op->cumulative * state + later;
+    later += op->weight * state;
+    drive += op->half_inverse_weight * HalfBand(inverse_offset, op->inverse_threshold);
   }
-  return drive + t.w0_inverse * v;
+  return drive + t.inverse_gain * v;
 }
 
 /// Which curve is active follows the applied drive: a move of more than the dead band against

@@ -111,6 +111,7 @@ Compensator MakePlay(const protocol::ConfigureFinger& f, Compensator c) {
   t.dead_zones = l.m;
   t.offset = p[0];
   t.w0_inverse = 1.0f / p[1];
+  t.inverse_gain = t.w0_inverse;
   float before = p[1];  // W_{i-1}
   float weighted_thresholds = 0;
   for (uint8_t i = 0; i < l.n; ++i) {
@@ -120,7 +121,9 @@ Compensator MakePlay(const protocol::ConfigureFinger& f, Compensator c) {
     op.cumulative = before + w[i];
     weighted_thresholds += w[i] * r[i];
     op.inverse_threshold = op.cumulative * r[i] - weighted_thresholds;
-    op.inverse_weight = -w[i] / (op.cumulative * before);
+    const float inverse_weight = -w[i] / (op.cumulative * before);
+    op.half_inverse_weight = 0.5f * inverse_weight;
+    t.inverse_gain += inverse_weight;
     before = op.cumulative;
   }
   // S(v) = v + Σ g_k max(v − d_k, 0): knots at d_k; S⁻¹ slope above knot k is 1 / (1 + Σ_{j≤k}

@@ -23,7 +23,7 @@ struct PlayOperator {
   float weight = 0;             ///< w_i
   float cumulative = 0;         ///< W_i = w0 + Σ_{j≤i} w_j: maps forward state to inverse state
   float inverse_threshold = 0;  ///< r'_i = W_i r_i − Σ_{j≤i} w_j r_j
-  float inverse_weight = 0;     ///< w'_i = −w_i / (W_i W_{i−1})
+  float half_inverse_weight = 0;  ///< w'_i / 2, w'_i = −w_i / (W_i W_{i−1})
 };
 
 /// `pi` and `api`: y = offset + S(w0·u + Σ w_i·play_i(u)), S the identity for `pi` and a
@@ -33,6 +33,7 @@ struct PlayTable {
   uint8_t dead_zones = 0;
   float offset = 0;
   float w0_inverse = 0;
+  float inverse_gain = 0;  ///< 1/w0 + Σ w'_i: what the inverse states contribute at their centre
   PlayOperator op[kMaxPlayOperators]{};
   // S⁻¹ as a piecewise-linear map: above knot_out[k], v = knot_in[k] + (s − knot_out[k]) ·
   // slope[k].
