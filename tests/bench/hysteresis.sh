@@ -1,7 +1,8 @@
 #!/bin/sh
 # Hysteresis compensation: Cortex-M4F instructions per step for every method and size (QEMU,
 # exact counts), then the accuracy benchmark on the simulated rig with those costs on its chart.
-# Writes docs/hysteresis.svg and the table block of docs/hysteresis.md.
+# Then the pressure loop's robustness map. Writes docs/hysteresis.svg and the two table blocks of
+# docs/hysteresis.md.
 set -eu
 cd "$(dirname "$0")/../.."
 PLUGIN=${PALPA_INSN_PLUGIN:-build/default/tests/bench/libpalpa_qemu_insn_count.so}
@@ -23,4 +24,6 @@ costs=$(awk '/^insn-count: span/ { name = tolower($3); sub(/^branch12$/, "branch
   if (name ~ /^(pi|api)[0-9]+$/) { match(name, /[0-9]+/); name = substr(name, 1, RSTART - 1) "(" substr(name, RSTART) ")" }
   printf " --cost %s=%s", name, $9 }' "$log")
 # shellcheck disable=SC2086
-[ -n "${PALPA_COSTS_ONLY:-}" ] || build/default/tests/bench/palpa_hysteresis_bench $costs docs
+[ -n "${PALPA_COSTS_ONLY:-}" ] && exit 0
+build/default/tests/bench/palpa_hysteresis_bench $costs docs
+build/default/tests/bench/palpa_loop_bench docs

@@ -26,7 +26,7 @@ for image in "$@"; do
   args="$args,$(span config_check palpa::core::Board::CheckConfigIntegrity "$image")"
   args="$args,$(span supervisor palpa::core::Supervise "$image")"
   args="$args,$(span fingers palpa::core::Board::ComputeSetpoints "$image")"
-  if arm-none-eabi-nm -C "$image" | grep -q "palpa::core::StepCompensator("; then
+  if [ "${image%-pi16.elf}" != "$image" ]; then  # the image with a PI(16) compensator on every finger
     args="$args,$(span compensators palpa::core::StepCompensator "$image")"
   fi
   args="$args,$(span lines palpa::core::StepLine "$image")"

@@ -113,7 +113,6 @@ const char* InputSetName(InputSet s) {
     case InputSet::kDemoStimuli: return "demo stimuli";
     case InputSet::kBandLimitedRandom: return "band-limited random";
     case InputSet::kFastRamps: return "fast ramps";
-    case InputSet::kBeyondRange: return "beyond the range";
   }
   return "?";
 }
@@ -175,16 +174,6 @@ TrackingResult Track(FingerRig& rig, const std::vector<pp::InversePoint>& invers
         const double phase = std::fmod(k * 0.02, 2.0);
         const double target = lo + (hi - lo) * (phase < 1 ? phase : 2 - phase);
         rig.Follow(target, 20, score(target));
-      }
-      break;
-    }
-    case InputSet::kBeyondRange: {
-      // Targets past the top of the identified range: held at the line's limit, and said so.
-      const double top = inverse.back().output;
-      for (int k = 0; k < seconds; ++k) {
-        const double target = top * (k % 2 == 0 ? 1.0 : 0.6);
-        settle = 1000;
-        rig.Follow(target, 1000, score(target));
       }
       break;
     }

@@ -49,7 +49,7 @@ struct TrackingResult {
   bool finite = true;
 };
 
-enum class InputSet { kDemoStimuli, kBandLimitedRandom, kFastRamps, kBeyondRange };
+enum class InputSet { kDemoStimuli, kBandLimitedRandom, kFastRamps };
 const char* InputSetName(InputSet s);
 
 /// Plays a held-out input set in target mode; `seconds` of it.

@@ -90,18 +90,21 @@ CompensatorOutput StepCompensator(const Compensator& c, CompensatorState& s, flo
                                   float applied_drive) {
   const float applied = applied_drive > 0 ? applied_drive : 0.0f;
   float drive = 0;
+  bool outside = false;  // beyond what the model was identified over
   if (c.kind == CompensatorKind::kBranch) {
     FollowBranch(c.branch, s, applied);
     drive = BranchDrive(c.branch, s, target);
+    outside = target > c.branch.output[c.branch.points - 1] || target < c.branch.output[0];  // its curves' ends
   } else {
     const float v = OutputMapInverse(c.play, target - c.play.offset);
     drive = PlayStep(c.play, s.z, v, applied);
   }
   CompensatorOutput out;
+  out.saturated = outside;
   // A model asked for what the line cannot give (or for less than nothing): held at the limit,
   // and said so. NaN cannot pass configuration, but the guard costs one compare.
   if (!(drive >= 0)) {
-    out.saturated = drive < -1.0f || drive != drive;
+    out.saturated = out.saturated || drive < -1.0f || drive != drive;
     drive = 0;
   } else if (drive > c.drive_limit) {
     out.saturated = true;

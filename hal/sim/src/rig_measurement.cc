@@ -13,7 +13,6 @@ RigMeasurement::RigMeasurement(uint32_t seed, bool ideal) : force_(ideal, seed),
 
 float RigMeasurement::SurfaceHeight(float true_height_mm) {
   if (ideal_) return true_height_mm;
-  LinearStage stage;
   constexpr float kDt = 0.001f;
   constexpr float kStartAboveMm = 0.05f;
   // Start just above the surface (a coarse move got here) and creep down at the set speed.
