@@ -1,8 +1,12 @@
 // Device: fingers in people's terms on top of the link.
 #include "palpa/host/device.h"
 
+#include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <type_traits>
 
+#include "palpa/host/calibration_file.h"
 #include "palpa/protocol/crc32.h"
 
 namespace palpa::host {
@@ -11,6 +15,95 @@ Device::Device(std::unique_ptr<Link> link, DeviceOptions options) : link_(std::m
   const pp::HelloReply b = link_->board();
   for (uint8_t f = 0; f < b.finger_count; ++f) modes_.push_back(b.fingers[f].mode);
   curves_.resize(b.finger_count);
+  calibration_notes_.resize(b.finger_count);
+  AttachCalibrations();
+}
+
+void Device::AttachCalibrations() {
+  const std::string dir = options_.calibration_dir.empty() ? DefaultCalibrationDir() : options_.calibration_dir;
+  for (uint8_t f = 0; f < curves_.size(); ++f) {
+    std::string& note = calibration_notes_[f];
+    note = "finger " + std::to_string(f + 1) + ": ";
+    if (!options_.use_calibrations) {
+      note += "nominal curves (calibrations not used)";
+      continue;
+    }
+    std::string error;
+    const auto finger = ReadFinger(f, &error);
+    if (!finger.ok()) {
+      note += "nominal curves (configuration not readable: " + error + ")";
+      continue;
+    }
+    const std::string serial(finger.value.actuator_serial.data(),
+                             strnlen(finger.value.actuator_serial.data(), finger.value.actuator_serial.size()));
+    const auto c = FindCalibration(dir, serial, &error);
+    if (!c) {
+      note += "nominal curves (" + error + ")";
+      continue;
+    }
+    if (c->kind != finger.value.kind) {
+      note += "nominal curves (the calibration of " + serial + " is for another finger kind)";
+      continue;
+    }
+    curves_[f] = CurvesFromCalibration(*c);
+    note += curves_[f].source;
+  }
+}
+
+Outcome Device::ApplyCalibration(uint8_t finger, const CalibrationFile& c) {
+  std::string error;
+  const auto current = ReadFinger(finger, &error);
+  if (!current.ok()) return Outcome{current.status, "apply calibration: " + error, {}};
+  pp::ConfigureFinger f = current.value;
+  const std::string serial(f.actuator_serial.data(), strnlen(f.actuator_serial.data(), f.actuator_serial.size()));
+  if (serial != c.actuator_serial) {
+    return Outcome{Status::kBadValue, "apply calibration: finger " + std::to_string(finger + 1) + " is actuator '" + serial +
+                                          "', the calibration is for '" + c.actuator_serial + "'", {}};
+  }
+  if (f.kind != c.kind) return Outcome{Status::kBadValue, "apply calibration: the finger's kind differs from the calibration's", {}};
+  f.inverse_count = static_cast<uint8_t>(c.static_inverse.size());
+  std::copy(c.static_inverse.begin(), c.static_inverse.end(), f.inverse.begin());
+  f.compensator = c.compensator;
+  f.param_count = static_cast<uint8_t>(c.compensator_params.size());
+  std::copy(c.compensator_params.begin(), c.compensator_params.end(), f.params.begin());
+  if (c.recommended_bias_kpa && f.kind == pp::FingerKind::kJamming) {
+    f.bias_pa = static_cast<int32_t>(std::lround(*c.recommended_bias_kpa * 1000));
+  }
+  // One staged blob: the board validates every record and applies all of them or none.
+  std::vector<uint8_t> records;
+  auto append = [&records](const auto& message) {
+    uint8_t body[512];
+    const auto size = pp::EncodeBody(message, body, sizeof(body));
+    if (!size.ok()) return false;
+    records.push_back(static_cast<uint8_t>(size.value));
+    records.push_back(static_cast<uint8_t>(size.value >> 8));
+    records.push_back(static_cast<uint8_t>(std::decay_t<decltype(message)>::kInfo.type));
+    records.insert(records.end(), body, body + size.value);
+    return true;
+  };
+  if (!append(f)) return Outcome{Status::kBadValue, "apply calibration: the finger record cannot be encoded", {}};
+  if (c.regulator_correction) {
+    const uint8_t driven = f.kind == pp::FingerKind::kJamming ? f.line_b : f.line_a;
+    if (c.regulator_correction->line != driven) {
+      return Outcome{Status::kBadValue, "apply calibration: the regulator correction is for line " +
+                                            std::to_string(c.regulator_correction->line) + ", the finger drives line " +
+                                            std::to_string(driven), {}};
+    }
+    const auto line = ReadLine(driven, &error);
+    if (!line.ok()) return Outcome{line.status, "apply calibration: " + error, {}};
+    pp::ConfigureLine l = line.value;
+    l.correction_count = static_cast<uint8_t>(c.regulator_correction->points.size());
+    std::copy(c.regulator_correction->points.begin(), c.regulator_correction->points.end(), l.correction.begin());
+    if (!append(l)) return Outcome{Status::kBadValue, "apply calibration: the line record cannot be encoded", {}};
+  }
+  Outcome o = Staged(records.data(), records.size());
+  if (!o.ok()) {
+    o.message = "apply calibration: " + o.message;
+    return o;
+  }
+  curves_[finger] = CurvesFromCalibration(c);
+  calibration_notes_[finger] = "finger " + std::to_string(finger + 1) + ": " + curves_[finger].source;
+  return o;
 }
 
 Device::~Device() { StopRecording(); }

@@ -1,6 +1,7 @@
 // Mapping of levels, 0..1, N/mm, mm and kPa onto a finger's output unit or raw setpoints.
 #include "palpa/host/stiffness_map.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 
@@ -43,11 +44,28 @@ bool InRange(double& v, double lo, double hi, RangePolicy policy, const std::str
   return true;
 }
 
+/// The calibrated curve at kpa (inside its range: callers check first).
+double CalibratedAt(const FingerCurves& c, double kpa) {
+  const auto& t = c.calibrated;
+  const bool rising = t.back().first > t.front().first;
+  for (size_t i = 1; i < t.size(); ++i) {
+    const bool within = rising ? kpa <= t[i].first : kpa >= t[i].first;
+    if (within || i + 1 == t.size()) {
+      const double span = t[i].first - t[i - 1].first;
+      const double f = span != 0 ? (kpa - t[i - 1].first) / span : 0;
+      return t[i - 1].second + std::clamp(f, 0.0, 1.0) * (t[i].second - t[i - 1].second);
+    }
+  }
+  return t.front().second;
+}
+
 double DeformationAt(const FingerCurves& c, double kpa) {
+  if (!c.calibrated.empty()) return CalibratedAt(c, kpa);
   return std::max(0.0, c.deformation_slope_mm_per_kpa * kpa + c.deformation_intercept_mm);
 }
 
 double StiffnessAt(const FingerCurves& c, double vacuum_kpa) {
+  if (!c.calibrated.empty()) return CalibratedAt(c, vacuum_kpa);
   return c.stiffness_at_0 + (c.stiffness_at_full_vacuum - c.stiffness_at_0) * (-vacuum_kpa / 100.0);
 }
 
@@ -162,6 +180,13 @@ Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& leve
                          : static_cast<int32_t>(std::lround(1000 * v * curves.max_deformation_mm));
       if (jamming && v == 0) m.target = 0;  // 0 is "off": released vacuum
       return m;
+    }
+  }
+  if (from_pressure && !curves.calibrated.empty()) {
+    // A calibrated curve covers what was measured, no more.
+    const double a = curves.calibrated.front().first, b = curves.calibrated.back().first;
+    if (kpa != 0 && !InRange(kpa, std::min(a, b), std::max(a, b), policy, "level pressure (kPa)", &m.note, &m.error)) {
+      return Refuse(m.error);
     }
   }
   if (from_pressure) {

@@ -19,6 +19,10 @@ struct DeviceOptions {
   LinkOptions link{};
   LevelTables levels = LevelTables::Shipped();
   RangePolicy range_policy = RangePolicy::kRefuse;
+  /// Where calibration files are looked up by each finger's actuator serial when the device
+  /// opens; empty: DefaultCalibrationDir(). Set use_calibrations = false for nominal curves.
+  std::string calibration_dir;
+  bool use_calibrations = true;
 };
 
 /// The outcome of an operation: a shared status code plus words for a person.
@@ -78,6 +82,14 @@ class Device {
 
   /// The curves used for finger f (nominal until a calibration is attached).
   FingerCurves& curves(uint8_t finger) { return curves_[finger]; }
+  /// What opening found for each finger: which calibration it uses, or why it uses none.
+  const std::vector<std::string>& calibration_notes() const { return calibration_notes_; }
+
+  /// Uploads a calibration to finger f in one staged, all-or-nothing change: static inverse,
+  /// compensator and its parameters, the recommended bias (jamming), the regulator correction of
+  /// the driven line. Refused when the finger's kind or actuator serial differ from the file's.
+  /// The finger's curves follow the calibration afterwards.
+  Outcome ApplyCalibration(uint8_t finger, const struct CalibrationFile& calibration);
 
  private:
   explicit Device(std::unique_ptr<Link> link, DeviceOptions options);
@@ -91,6 +103,8 @@ class Device {
   DeviceOptions options_;
   std::vector<pp::FingerMode> modes_;
   std::vector<FingerCurves> curves_;
+  std::vector<std::string> calibration_notes_;
+  void AttachCalibrations();
   // Recording.
   std::mutex record_mutex_;
   std::ofstream record_;

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "palpa/protocol/messages_bootstrap.h"
@@ -25,9 +26,12 @@ struct LevelTables {
 };
 
 /// How a finger's output unit relates to pressure: the nominal thesis curves until a
-/// calibration replaces them (the calibration work plugs in here).
+/// calibration replaces them (CurvesFromCalibration in calibration_file.h).
 struct FingerCurves {
   std::string source = "nominal thesis curves (no calibration)";
+  /// A calibration's curve, (kPa, output in mm or N/mm), monotone: when present it replaces the
+  /// nominal lines below, read by linear interpolation and never extrapolated.
+  std::vector<std::pair<double, double>> calibrated;
   // Pneumatic: deformation (mm) = max(0, slope * kPa + intercept) — Table 5-4, all data.
   double deformation_slope_mm_per_kpa = 0.0458;
   double deformation_intercept_mm = -0.2098;

@@ -1,0 +1,438 @@
+// Calibration files: JSON schema, validation with the failing field named, atomic save.
+#include "palpa/host/calibration_file.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "palpa/core/compensator.h"
+#include "palpa/protocol/messages_stream.h"
+
+namespace palpa::host {
+namespace {
+
+using nlohmann::json;
+namespace pp = protocol;
+
+/// A validation failure at a JSON path.
+struct Invalid : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+std::string Num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof(b), "%g", v);
+  return b;
+}
+
+/// Walks an object, checking that every key it has is one the schema knows.
+class Obj {
+ public:
+  Obj(const json& j, std::string path, std::set<std::string> known)
+      : j_(j), path_(std::move(path)) {
+    if (!j.is_object()) throw Invalid(Where() + "must be an object");
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      if (!known.count(it.key())) throw Invalid(Join(it.key()) + ": unknown field");
+    }
+  }
+  bool Has(const char* key) const { return j_.contains(key) && !j_.at(key).is_null(); }
+  const json& At(const char* key) const {
+    if (!Has(key)) throw Invalid(Join(key) + ": missing");
+    return j_.at(key);
+  }
+  double Number(const char* key, double lo, double hi) const {
+    const json& v = At(key);
+    if (!v.is_number()) throw Invalid(Join(key) + ": must be a number");
+    const double d = v.get<double>();
+    if (!std::isfinite(d) || d < lo || d > hi) {
+      throw Invalid(Join(key) + ": " + Num(d) + " is outside " + Num(lo) + " … " + Num(hi));
+    }
+    return d;
+  }
+  long Integer(const char* key, long lo, long hi) const {
+    const json& v = At(key);
+    if (!v.is_number_integer()) throw Invalid(Join(key) + ": must be an integer");
+    const long n = v.get<long>();
+    if (n < lo || n > hi)
+      throw Invalid(Join(key) + ": " + std::to_string(n) + " is outside " + std::to_string(lo) +
+                    " … " + std::to_string(hi));
+    return n;
+  }
+  std::string Text(const char* key) const {
+    const json& v = At(key);
+    if (!v.is_string() || v.get<std::string>().empty())
+      throw Invalid(Join(key) + ": must be a non-empty string");
+    return v.get<std::string>();
+  }
+  const json& List(const char* key, size_t lo, size_t hi) const {
+    const json& v = At(key);
+    if (!v.is_array()) throw Invalid(Join(key) + ": must be an array");
+    if (v.size() < lo || v.size() > hi) {
+      throw Invalid(Join(key) + ": has " + std::to_string(v.size()) + " entries, needs " +
+                    std::to_string(lo) + " … " + std::to_string(hi));
+    }
+    return v;
+  }
+  std::string Join(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  std::string Item(const char* key, size_t i) const {
+    return Join(key) + "[" + std::to_string(i) + "]";
+  }
+
+ private:
+  std::string Where() const { return path_.empty() ? "" : path_ + ": "; }
+  const json& j_;
+  std::string path_;
+};
+
+void CheckMonotone(const std::vector<double>& v, const std::string& path, int direction) {
+  for (size_t i = 1; i < v.size(); ++i) {
+    if (direction > 0 ? !(v[i] > v[i - 1]) : !(v[i] < v[i - 1])) {
+      throw Invalid(path + "[" + std::to_string(i) + "]: not strictly " +
+                    (direction > 0 ? "increasing" : "decreasing"));
+    }
+  }
+}
+
+LineFit ReadFit(const json& j, const std::string& path) {
+  Obj o(j, path, {"slope", "intercept", "r2"});
+  return LineFit{o.Number("slope", -1e6, 1e6), o.Number("intercept", -1e6, 1e6),
+                 o.Number("r2", 0, 1)};
+}
+
+CalibrationFile Read(const json& root) {
+  Obj o(root, "",
+        {"schema", "schema_version", "actuator_serial", "kind", "board_id", "finger", "date", "rig",
+         "conditions", "raw_data", "curve", "fits", "grid", "static_inverse",
+         "regulator_correction", "compensator", "recommended_bias_kpa", "quality"});
+  CalibrationFile c;
+  if (o.Text("schema") != "palpa-calibration")
+    throw Invalid("schema: must be \"palpa-calibration\"");
+  c.schema_version = static_cast<int>(o.Integer("schema_version", 1, 1000));
+  if (c.schema_version != kCalibrationSchemaVersion) {
+    throw Invalid("schema_version: " + std::to_string(c.schema_version) +
+                  " is not the version this library reads (" +
+                  std::to_string(kCalibrationSchemaVersion) + ")");
+  }
+  c.actuator_serial = o.Text("actuator_serial");
+  if (!ValidSerial(c.actuator_serial))
+    throw Invalid("actuator_serial: 1-11 characters of A-Z a-z 0-9 _ -");
+  const std::string kind = o.Text("kind");
+  if (kind != "pneumatic" && kind != "jamming")
+    throw Invalid("kind: must be \"pneumatic\" or \"jamming\"");
+  c.kind = kind == "jamming" ? pp::FingerKind::kJamming : pp::FingerKind::kPneumatic;
+  const bool jamming = c.kind == pp::FingerKind::kJamming;
+  c.board_id = static_cast<uint32_t>(o.Integer("board_id", 0, 0xFFFFFFFFL));
+  c.finger = static_cast<uint8_t>(o.Integer("finger", 0, pp::kMaxFingers - 1));
+  c.date = o.Text("date");
+  if (!std::regex_match(c.date, std::regex(R"(\d{4}-\d{2}-\d{2}T\d{2}:\d{2}:\d{2}Z)"))) {
+    throw Invalid("date: must be UTC ISO 8601, e.g. 2026-11-22T12:00:00Z");
+  }
+  c.rig = o.Text("rig");
+  {
+    Obj k(o.At("conditions"), "conditions", {"speed_mm_s", "depth_mm", "repeats", "bias_kpa"});
+    c.speed_mm_s = k.Number("speed_mm_s", 1e-4, 10);
+    c.depth_mm = k.Number("depth_mm", 0, 20);
+    c.repeats = static_cast<int>(k.Integer("repeats", 0, 10000));
+    if (k.Has("bias_kpa")) c.bias_kpa = k.Number("bias_kpa", 0, 20);
+    if (jamming && !c.bias_kpa)
+      throw Invalid("conditions.bias_kpa: missing (a jamming curve depends on the bias)");
+  }
+  c.raw_data = o.Text("raw_data");
+  if (c.raw_data.find("..") != std::string::npos || c.raw_data.front() == '/') {
+    throw Invalid("raw_data: must name a file beside the calibration (no '..', not absolute)");
+  }
+  {
+    const json& list = o.List("curve", 2, 256);
+    std::vector<double> kpa, out;
+    for (size_t i = 0; i < list.size(); ++i) {
+      Obj p(list[i], o.Item("curve", i), {"kpa", "output"});
+      kpa.push_back(p.Number("kpa", jamming ? -100 : 0, jamming ? 0 : 100));
+      out.push_back(p.Number("output", 0, 1000));
+      c.curve.push_back({kpa.back(), out.back()});
+    }
+    CheckMonotone(kpa, "curve.kpa", jamming ? -1 : 1);
+    CheckMonotone(out, "curve.output", 1);
+  }
+  if (o.Has("fits")) {
+    Obj f(o.At("fits"), "fits", {"rising", "falling"});
+    if (f.Has("rising")) c.rising_fit = ReadFit(f.At("rising"), "fits.rising");
+    if (f.Has("falling")) c.falling_fit = ReadFit(f.At("falling"), "fits.falling");
+  }
+  if (o.Has("grid")) {
+    const json& list = o.List("grid", 0, 1024);
+    for (size_t i = 0; i < list.size(); ++i) {
+      Obj g(list[i], o.Item("grid", i),
+            {"bias_kpa", "vacuum_kpa", "cycles", "stiffness_mean", "stiffness_spread",
+             "loop_area_mean", "r2_min"});
+      c.grid.push_back(GridPoint{g.Number("bias_kpa", 0, 20), g.Number("vacuum_kpa", -100, 0),
+                                 static_cast<int>(g.Integer("cycles", 1, 10000)),
+                                 g.Number("stiffness_mean", 0, 1000),
+                                 g.Number("stiffness_spread", 0, 1000),
+                                 g.Number("loop_area_mean", 0, 1e6), g.Number("r2_min", 0, 1)});
+    }
+  }
+  {
+    const json& list = o.List("static_inverse", 2, pp::kMaxInversePoints);
+    std::vector<double> outputs, setpoints;
+    for (size_t i = 0; i < list.size(); ++i) {
+      Obj p(list[i], o.Item("static_inverse", i), {"output", "setpoint_pa"});
+      pp::InversePoint q;
+      q.output = static_cast<int32_t>(p.Integer("output", 0, pp::kMaxFingerTarget));
+      q.setpoint_pa = static_cast<int32_t>(p.Integer(
+          "setpoint_pa", jamming ? pp::kMinPressurePa : 0, jamming ? 0 : pp::kMaxPressurePa));
+      outputs.push_back(q.output);
+      setpoints.push_back(q.setpoint_pa);
+      c.static_inverse.push_back(q);
+    }
+    CheckMonotone(outputs, "static_inverse.output", 1);
+    CheckMonotone(setpoints, "static_inverse.setpoint_pa", jamming ? -1 : 1);
+  }
+  if (o.Has("regulator_correction")) {
+    Obj r(o.At("regulator_correction"), "regulator_correction", {"line", "points"});
+    RegulatorCorrection rc;
+    rc.line = static_cast<uint8_t>(r.Integer("line", 0, pp::kMaxLines - 1));
+    const json& list = r.List("points", 2, pp::kMaxCorrectionPoints);
+    std::vector<double> command, rising, falling;
+    for (size_t i = 0; i < list.size(); ++i) {
+      Obj p(list[i], r.Item("points", i), {"command_pa", "rising_pa", "falling_pa"});
+      pp::CorrectionPoint q;
+      q.command_pa =
+          static_cast<int32_t>(p.Integer("command_pa", pp::kMinPressurePa, pp::kMaxPressurePa));
+      q.rising_pa =
+          static_cast<int32_t>(p.Integer("rising_pa", pp::kMinPressurePa, pp::kMaxPressurePa));
+      q.falling_pa =
+          static_cast<int32_t>(p.Integer("falling_pa", pp::kMinPressurePa, pp::kMaxPressurePa));
+      command.push_back(q.command_pa);
+      rising.push_back(q.rising_pa);
+      falling.push_back(q.falling_pa);
+      rc.points.push_back(q);
+    }
+    const int direction = command.back() > command.front() ? 1 : -1;
+    CheckMonotone(command, "regulator_correction.points.command_pa", direction);
+    CheckMonotone(rising, "regulator_correction.points.rising_pa", direction);
+    CheckMonotone(falling, "regulator_correction.points.falling_pa", direction);
+    c.regulator_correction = rc;
+  }
+  {
+    Obj k(o.At("compensator"), "compensator", {"kind", "params"});
+    const std::string name = k.Text("kind");
+    const auto names = pp::EnumNames(pp::CompensatorKind{});
+    size_t index = 0;
+    const size_t count = static_cast<size_t>(pp::CompensatorKind::kCount);
+    while (index < count && name != names[index]) ++index;
+    if (index >= static_cast<size_t>(pp::CompensatorKind::kCount))
+      throw Invalid("compensator.kind: unknown \"" + name + "\"");
+    c.compensator = static_cast<pp::CompensatorKind>(index);
+    const json& list = k.List("params", 0, pp::kMaxCompensatorParams);
+    for (size_t i = 0; i < list.size(); ++i) {
+      if (!list[i].is_number() || !std::isfinite(list[i].get<double>())) {
+        throw Invalid(k.Item("params", i) + ": must be a finite number");
+      }
+      c.compensator_params.push_back(list[i].get<float>());
+    }
+    pp::ConfigureFinger f{};
+    f.compensator = c.compensator;
+    f.param_count = static_cast<uint8_t>(c.compensator_params.size());
+    std::copy(c.compensator_params.begin(), c.compensator_params.end(), f.params.begin());
+    if (const char* why = core::CompensatorParamsError(f))
+      throw Invalid(std::string("compensator.params: ") + why);
+  }
+  if (o.Has("recommended_bias_kpa"))
+    c.recommended_bias_kpa = o.Number("recommended_bias_kpa", 0, 20);
+  {
+    Obj q(o.At("quality"), "quality", {"residual_rms", "residual_max", "points", "flags"});
+    c.quality.residual_rms = q.Number("residual_rms", 0, 1e6);
+    c.quality.residual_max = q.Number("residual_max", 0, 1e6);
+    c.quality.points = static_cast<int>(q.Integer("points", 0, 10000000));
+    const json& flags = q.List("flags", 0, 64);
+    for (size_t i = 0; i < flags.size(); ++i) {
+      if (!flags[i].is_string()) throw Invalid(q.Item("flags", i) + ": must be a string");
+      c.quality.flags.push_back(flags[i].get<std::string>());
+    }
+  }
+  return c;
+}
+
+json FitJson(const LineFit& f) {
+  return {{"slope", f.slope}, {"intercept", f.intercept}, {"r2", f.r2}};
+}
+
+json Write(const CalibrationFile& c) {
+  const bool jamming = c.kind == pp::FingerKind::kJamming;
+  json j;
+  j["schema"] = "palpa-calibration";
+  j["schema_version"] = c.schema_version;
+  j["actuator_serial"] = c.actuator_serial;
+  j["kind"] = jamming ? "jamming" : "pneumatic";
+  j["board_id"] = c.board_id;
+  j["finger"] = c.finger;
+  j["date"] = c.date;
+  j["rig"] = c.rig;
+  j["conditions"] = {
+      {"speed_mm_s", c.speed_mm_s}, {"depth_mm", c.depth_mm}, {"repeats", c.repeats}};
+  if (c.bias_kpa) j["conditions"]["bias_kpa"] = *c.bias_kpa;
+  j["raw_data"] = c.raw_data;
+  j["curve"] = json::array();
+  for (const CurvePoint& p : c.curve) j["curve"].push_back({{"kpa", p.kpa}, {"output", p.output}});
+  if (c.rising_fit || c.falling_fit) {
+    j["fits"] = json::object();
+    if (c.rising_fit) j["fits"]["rising"] = FitJson(*c.rising_fit);
+    if (c.falling_fit) j["fits"]["falling"] = FitJson(*c.falling_fit);
+  }
+  if (!c.grid.empty()) {
+    j["grid"] = json::array();
+    for (const GridPoint& g : c.grid) {
+      j["grid"].push_back({{"bias_kpa", g.bias_kpa},
+                           {"vacuum_kpa", g.vacuum_kpa},
+                           {"cycles", g.cycles},
+                           {"stiffness_mean", g.stiffness_mean},
+                           {"stiffness_spread", g.stiffness_spread},
+                           {"loop_area_mean", g.loop_area_mean},
+                           {"r2_min", g.r2_min}});
+    }
+  }
+  j["static_inverse"] = json::array();
+  for (const pp::InversePoint& p : c.static_inverse)
+    j["static_inverse"].push_back({{"output", p.output}, {"setpoint_pa", p.setpoint_pa}});
+  if (c.regulator_correction) {
+    json points = json::array();
+    for (const pp::CorrectionPoint& p : c.regulator_correction->points) {
+      points.push_back(
+          {{"command_pa", p.command_pa}, {"rising_pa", p.rising_pa}, {"falling_pa", p.falling_pa}});
+    }
+    j["regulator_correction"] = {{"line", c.regulator_correction->line}, {"points", points}};
+  }
+  j["compensator"] = {
+      {"kind", pp::EnumNames(pp::CompensatorKind{})[static_cast<size_t>(c.compensator)]},
+      {"params", c.compensator_params}};
+  if (c.recommended_bias_kpa) j["recommended_bias_kpa"] = *c.recommended_bias_kpa;
+  j["quality"] = {{"residual_rms", c.quality.residual_rms},
+                  {"residual_max", c.quality.residual_max},
+                  {"points", c.quality.points},
+                  {"flags", c.quality.flags}};
+  return j;
+}
+
+}  // namespace
+
+bool ValidSerial(const std::string& serial) {
+  if (serial.empty() || serial.size() > 11) return false;
+  for (char ch : serial) {
+    if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '_' && ch != '-') return false;
+  }
+  return true;
+}
+
+std::optional<CalibrationFile> ParseCalibration(const std::string& text, std::string* error) {
+  try {
+    return Read(json::parse(text));
+  } catch (const json::parse_error& e) {
+    if (error != nullptr) *error = std::string("not JSON: ") + e.what();
+  } catch (const Invalid& e) {
+    if (error != nullptr) *error = e.what();
+  } catch (const json::exception& e) {
+    if (error != nullptr) *error = e.what();
+  }
+  return std::nullopt;
+}
+
+std::optional<CalibrationFile> LoadCalibration(const std::string& path, std::string* error) {
+  std::ifstream in(path);
+  if (!in) {
+    if (error != nullptr) *error = path + ": cannot be read";
+    return std::nullopt;
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string why;
+  auto c = ParseCalibration(text.str(), &why);
+  if (!c && error != nullptr) *error = path + ": " + why;
+  return c;
+}
+
+std::optional<std::string> SerializeCalibration(const CalibrationFile& c, std::string* error) {
+  const std::string text = Write(c).dump(2) + "\n";
+  // What is written must read back: the same validation guards both directions.
+  if (!ParseCalibration(text, error)) return std::nullopt;
+  return text;
+}
+
+bool SaveCalibration(const CalibrationFile& c, const std::string& path, std::string* error) {
+  const auto text = SerializeCalibration(c, error);
+  if (!text) return false;
+  const std::string temporary = path + ".tmp" + std::to_string(getpid());
+  const int fd = open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd < 0) {
+    if (error != nullptr) *error = temporary + ": cannot be created";
+    return false;
+  }
+  bool ok = write(fd, text->data(), text->size()) == static_cast<ssize_t>(text->size());
+  ok = fsync(fd) == 0 && ok;
+  ok = close(fd) == 0 && ok;
+  if (!ok || rename(temporary.c_str(), path.c_str()) != 0) {
+    unlink(temporary.c_str());
+    if (error != nullptr) *error = path + ": write failed";
+    return false;
+  }
+  return true;
+}
+
+std::string DefaultCalibrationDir() {
+  if (const char* dir = std::getenv("PALPA_CALIBRATION_DIR"); dir != nullptr && *dir != '\0')
+    return dir;
+  if (const char* data = std::getenv("XDG_DATA_HOME"); data != nullptr && *data != '\0') {
+    return std::string(data) + "/palpa/calibrations";
+  }
+  const char* home = std::getenv("HOME");
+  return std::string(home != nullptr ? home : ".") + "/.local/share/palpa/calibrations";
+}
+
+FingerCurves CurvesFromCalibration(const CalibrationFile& c) {
+  FingerCurves curves;
+  curves.source = "calibration of " + c.actuator_serial + " (" + c.date + ", " + c.rig + ")";
+  for (const CurvePoint& p : c.curve) curves.calibrated.push_back({p.kpa, p.output});
+  if (c.kind == pp::FingerKind::kJamming) {
+    curves.stiffness_at_0 = c.curve.front().output;
+    curves.stiffness_at_full_vacuum = c.curve.back().output;
+  } else {
+    curves.max_deformation_mm = c.curve.back().output;
+  }
+  return curves;
+}
+
+std::string CalibrationPath(const std::string& dir, const std::string& serial) {
+  return dir + "/" + serial + ".json";
+}
+
+std::optional<CalibrationFile> FindCalibration(const std::string& dir, const std::string& serial,
+                                               std::string* error) {
+  if (!ValidSerial(serial)) {
+    if (error != nullptr)
+      *error = "actuator serial '" + serial + "' cannot name a calibration file";
+    return std::nullopt;
+  }
+  const std::string path = CalibrationPath(dir, serial);
+  if (access(path.c_str(), F_OK) != 0) {
+    if (error != nullptr) *error = "no calibration for " + serial + " in " + dir;
+    return std::nullopt;
+  }
+  auto c = LoadCalibration(path, error);
+  if (c && c->actuator_serial != serial) {
+    if (error != nullptr)
+      *error = path + ": actuator_serial is " + c->actuator_serial + ", not " + serial;
+    return std::nullopt;
+  }
+  return c;
+}
+
+}  // namespace palpa::host

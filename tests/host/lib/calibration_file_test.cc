@@ -1,0 +1,195 @@
+// Calibration files: a round trip, every kind of bad field named by its path, atomic writes,
+// lookup by serial, the stiffness map on calibrated curves, and upload to a simulated board.
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "palpa/host/calibration_file.h"
+#include "palpa/host/device.h"
+
+#include "CppUTest/TestHarness.h"
+
+namespace ph = palpa::host;
+namespace pp = palpa::protocol;
+using nlohmann::json;
+
+namespace {
+
+ph::CalibrationFile Example() {
+  ph::CalibrationFile c;
+  c.actuator_serial = "PN-1";
+  c.kind = pp::FingerKind::kPneumatic;
+  c.board_id = 1;
+  c.finger = 0;
+  c.date = "2026-11-22T12:00:00Z";
+  c.rig = "sim";
+  c.repeats = 1;
+  c.raw_data = "PN-1.csv";
+  c.curve = {{0, 0}, {10, 0.3}, {30, 1.2}, {60, 2.6}, {100, 4.2}};
+  c.rising_fit = ph::LineFit{0.0428, -0.25, 0.97};
+  c.falling_fit = ph::LineFit{0.0475, -0.05, 0.98};
+  c.static_inverse = {{0, 0}, {300, 10000}, {1200, 30000}, {2600, 60000}, {4200, 100000}};
+  c.regulator_correction =
+      ph::RegulatorCorrection{0, {{0, 0, 0}, {50000, 50600, 49500}, {90000, 90800, 89700}}};
+  c.compensator = pp::CompensatorKind::kPrandtlIshlinskii;
+  c.compensator_params = {-200, 0.03f, 0, 25000, 0.01f, 0.005f};
+  c.quality.residual_rms = 12;
+  c.quality.residual_max = 40;
+  c.quality.points = 120;
+  return c;
+}
+
+std::string TempDir() {
+  char pattern[] = "/tmp/palpa-cal-XXXXXX";
+  return mkdtemp(pattern);
+}
+
+std::string ErrorAfter(const std::function<void(json&)>& edit) {
+  std::string error;
+  json j = json::parse(*ph::SerializeCalibration(Example(), &error));
+  edit(j);
+  CHECK_FALSE(ph::ParseCalibration(j.dump(), &error).has_value());
+  return error;
+}
+
+}  // namespace
+
+TEST_GROUP(CalibrationFile){};
+
+TEST(CalibrationFile, SavesAtomicallyAndReadsBackEveryField) {
+  const std::string dir = TempDir();
+  std::string error;
+  CHECK_TEXT(ph::SaveCalibration(Example(), ph::CalibrationPath(dir, "PN-1"), &error),
+             error.c_str());
+  const auto back = ph::FindCalibration(dir, "PN-1", &error);
+  CHECK_TEXT(back.has_value(), error.c_str());
+  STRCMP_EQUAL("PN-1", back->actuator_serial.c_str());
+  LONGS_EQUAL(5, back->curve.size());
+  DOUBLES_EQUAL(1.2, back->curve[2].output, 1e-12);
+  LONGS_EQUAL(30000, back->static_inverse[2].setpoint_pa);
+  LONGS_EQUAL(49500, back->regulator_correction->points[1].falling_pa);
+  CHECK(back->compensator == pp::CompensatorKind::kPrandtlIshlinskii);
+  LONGS_EQUAL(6, back->compensator_params.size());
+  DOUBLES_EQUAL(0.98, back->falling_fit->r2, 1e-12);
+  // Only the file itself is in the directory: the temporary was renamed over it.
+  LONGS_EQUAL(0,
+              access((ph::CalibrationPath(dir, "PN-1") + ".tmp" + std::to_string(getpid())).c_str(),
+                     F_OK) == 0);
+  // An invalid calibration writes nothing, and the good file stays as it was.
+  ph::CalibrationFile bad = Example();
+  bad.static_inverse[1].setpoint_pa = 50000;  // no longer increasing
+  CHECK_FALSE(ph::SaveCalibration(bad, ph::CalibrationPath(dir, "PN-1"), &error));
+  CHECK(error.find("static_inverse.setpoint_pa[2]") != std::string::npos);
+  CHECK(ph::FindCalibration(dir, "PN-1", &error).has_value());
+  CHECK_FALSE(ph::FindCalibration(dir, "PN-2", &error).has_value());
+  CHECK(error.find("no calibration for PN-2") != std::string::npos);
+  CHECK_FALSE(ph::FindCalibration(dir, "../etc", &error).has_value());
+  CHECK(error.find("cannot name") != std::string::npos);
+}
+
+TEST(CalibrationFile, EveryBadFieldIsNamedByItsPath) {
+  struct Case {
+    std::function<void(json&)> edit;
+    const char* names;
+  };
+  const Case cases[] = {
+      {[](json& j) { j.erase("date"); }, "date: missing"},
+      {[](json& j) { j["date"] = "yesterday"; }, "date: must be UTC"},
+      {[](json& j) { j["colour"] = "red"; }, "colour: unknown field"},
+      {[](json& j) { j["schema_version"] = 2; }, "schema_version: 2 is not"},
+      {[](json& j) { j["actuator_serial"] = "a/b"; }, "actuator_serial"},
+      {[](json& j) { j["kind"] = "hydraulic"; }, "kind: must be"},
+      {[](json& j) { j["finger"] = 9; }, "finger: 9 is outside 0"},
+      {[](json& j) { j["conditions"]["speed_mm_s"] = 0; }, "conditions.speed_mm_s"},
+      {[](json& j) { j["raw_data"] = "../../x.csv"; }, "raw_data"},
+      {[](json& j) { j["curve"][2]["output"] = 0.1; }, "curve.output[2]: not strictly increasing"},
+      {[](json& j) { j["curve"][1]["kpa"] = "ten"; }, "curve[1].kpa: must be a number"},
+      {[](json& j) { j["static_inverse"][3]["setpoint_pa"] = -120000; },
+       "static_inverse[3].setpoint_pa: -120000 is outside"},
+      {[](json& j) {
+         j["static_inverse"] = json::array({{{"output", 0}, {"setpoint_pa", 0}}});
+       },
+       "static_inverse: has 1 entries"},
+      {[](json& j) { j["regulator_correction"]["line"] = 8; }, "regulator_correction.line"},
+      {[](json& j) { j["regulator_correction"]["points"][1]["rising_pa"] = 0; },
+       "regulator_correction.points.rising_pa[1]"},
+      {[](json& j) { j["compensator"]["kind"] = "magic"; }, "compensator.kind: unknown"},
+      {[](json& j) { j["compensator"]["params"][5] = -0.1; },
+       "compensator.params: cumulative weight"},
+      {[](json& j) { j["compensator"]["params"][1] = "x"; },
+       "compensator.params[1]: must be a finite number"},
+      {[](json& j) { j["fits"]["rising"]["r2"] = 1.5; }, "fits.rising.r2"},
+      {[](json& j) { j["quality"]["flags"] = json::array({1}); }, "quality.flags[0]"},
+      {[](json& j) { j["kind"] = "jamming"; }, "conditions.bias_kpa: missing"},
+  };
+  for (const Case& c : cases) {
+    const std::string error = ErrorAfter(c.edit);
+    CHECK_TEXT(error.find(c.names) != std::string::npos,
+               (std::string("expected '") + c.names + "' in '" + error + "'").c_str());
+  }
+  std::string error;
+  CHECK_FALSE(ph::ParseCalibration("{not json", &error).has_value());
+  CHECK(error.find("not JSON") != std::string::npos);
+}
+
+TEST(CalibrationFile, TheStiffnessMapReadsTheCalibratedCurveAndNeverExtrapolates) {
+  const ph::FingerCurves curves = ph::CurvesFromCalibration(Example());
+  pp::FingerSummary finger{};
+  ph::LevelTables levels;
+  levels.pneumatic_kpa = {0, 10, 30};
+  ph::Mapped m = ph::MapRequest(finger, levels, curves, {ph::TargetKind::kLevel, 2});
+  LONGS_EQUAL((int)pp::Status::kOk, (int)m.status);
+  LONGS_EQUAL(1200, m.target);  // 30 kPa on the calibrated curve, not the nominal line (1164)
+  CHECK(m.note.find("calibration of PN-1") != std::string::npos);
+  m = ph::MapRequest(finger, levels, curves, {ph::TargetKind::kDeformationMm, 4.5});
+  LONGS_EQUAL((int)pp::Status::kOutOfRange, (int)m.status);
+  m = ph::MapRequest(finger, levels, curves, {ph::TargetKind::kDeformationMm, 4.5},
+                     ph::RangePolicy::kClamp);
+  LONGS_EQUAL(4200, m.target);
+  CHECK(m.note.find("clamped") != std::string::npos);
+  ph::FingerCurves narrow = curves;
+  narrow.calibrated.resize(3);  // calibrated up to 30 kPa only
+  levels.pneumatic_kpa = {0, 10, 50};
+  m = ph::MapRequest(finger, levels, narrow, {ph::TargetKind::kLevel, 2});
+  LONGS_EQUAL((int)pp::Status::kOutOfRange, (int)m.status);
+  CHECK(m.error.find("level pressure") != std::string::npos);
+}
+
+TEST(CalibrationFile, DeviceFindsCalibrationsByActuatorSerialAndUploadsThemAtomically) {
+  const std::string dir = TempDir();
+  std::string error;
+  CHECK(ph::SaveCalibration(Example(), ph::CalibrationPath(dir, "PN-1"), &error));
+  ph::DeviceOptions options;
+  options.calibration_dir = dir;
+  auto opened = ph::Device::Open("sim:thesis-5finger", options, &error);
+  CHECK_TEXT(opened.ok(), error.c_str());
+  ph::Device& d = *opened.value;
+  CHECK(d.calibration_notes()[0].find("calibration of PN-1") != std::string::npos);
+  CHECK(d.calibration_notes()[1].find("no calibration for PN-2") != std::string::npos);
+  const ph::Outcome o = d.ApplyCalibration(0, Example());
+  CHECK_TEXT(o.ok(), o.message.c_str());
+  const auto finger = d.ReadFinger(0);
+  CHECK(finger.value.compensator == pp::CompensatorKind::kPrandtlIshlinskii);
+  LONGS_EQUAL(5, finger.value.inverse_count);
+  LONGS_EQUAL(3, d.ReadLine(0).value.correction_count);
+  // The wrong actuator, and a set the board would refuse: nothing of either is applied.
+  ph::Outcome wrong = d.ApplyCalibration(1, Example());
+  LONGS_EQUAL((int)pp::Status::kBadValue, (int)wrong.status);
+  CHECK(wrong.message.find("actuator 'PN-2'") != std::string::npos);
+  // A staged change whose line record the board refuses (a correction that is not monotone)
+  // applies nothing, not even its valid finger record.
+  ph::CalibrationFile half = Example();
+  half.compensator_params = {0, 0.02f, 0, 0.001f};
+  half.regulator_correction->points[1] = {90000, 95500, 93000};
+  const ph::Outcome refused = d.ApplyCalibration(0, half);
+  LONGS_EQUAL((int)pp::Status::kBadValue, (int)refused.status);
+  LONGS_EQUAL(6, d.ReadFinger(0).value.param_count);  // the earlier calibration is untouched
+  LONGS_EQUAL(50000, d.ReadLine(0).value.correction[1].command_pa);
+}
