@@ -7,19 +7,18 @@
 #include <string>
 #include <vector>
 
+#include "in_process_board.h"
 #include "palpa/calibration/hysteresis_fit.h"
 #include "palpa/calibration/sweep.h"
-#include "palpa/hal/fake/fakes.h"
 #include "palpa/hal/sim/rig_measurement.h"
-#include "sim_board.h"
 
 namespace palpa::testing {
 
 struct FingerRigOptions {
-  uint8_t finger = 0;        ///< thesis-5finger: 0-2 pneumatic, 3-4 jamming
-  uint32_t unit = 1;         ///< actuator unit (0 nominal; others drawn with the thesis's spread)
-  uint32_t seed = 1;         ///< regulators, sensors, rig noise
-  sim::Effects effects{};    ///< creep, rate, jamming history size
+  uint8_t finger = 0;      ///< thesis-5finger: 0-2 pneumatic, 3-4 jamming
+  uint32_t unit = 1;       ///< actuator unit (0 nominal; others drawn with the thesis's spread)
+  uint32_t seed = 1;       ///< regulators, sensors, rig noise
+  sim::Effects effects{};  ///< creep, rate, jamming history size
 };
 
 class FingerRig {
@@ -35,8 +34,9 @@ class FingerRig {
   std::vector<calibration::SweepSample> Sweep(const std::vector<double>& drives, int dwell_ms);
 
   /// Sends the finger's configuration with a static inverse and compensator; the board's answer.
-  protocol::Status Configure(const std::vector<protocol::InversePoint>& inverse, protocol::CompensatorKind kind,
-                             const std::vector<float>& params, std::string* reason = nullptr);
+  protocol::Status Configure(const std::vector<protocol::InversePoint>& inverse,
+                             protocol::CompensatorKind kind, const std::vector<float>& params,
+                             std::string* reason = nullptr);
 
   /// Target mode: sets the target (finger unit) and runs `ms`, calling `each_ms` after every step.
   void Follow(double target, int ms, const std::function<void(double truth)>& each_ms = nullptr);
@@ -44,24 +44,18 @@ class FingerRig {
   double TruthOutput() const;
   /// Whether the driven line reported the compensator (or pipeline) saturated on the last tick.
   bool Saturated() const;
-  sim::SimBoard& sim() { return *sim_; }
+  sim::SimBoard& sim() { return board_.sim(); }
 
  private:
-  template <class M>
-  void Send(const M& m, bool reliable);
-  void Run(int ms);
   double MeasuredDrive() const;
   double RigOutput();
 
   FingerRigOptions options_;
-  hal::fake::FakeByteLink link_;
-  std::unique_ptr<sim::SimBoard> sim_;
+  InProcessBoard board_;
   sim::RigMeasurement rig_;
   bool jamming_ = false;
   uint8_t driven_line_ = 0;
   double drive_max_ = 100000;
-  uint8_t seq_ = 0;
-  uint32_t generation_ = 0;
   bool target_mode_ = false;
 };
 

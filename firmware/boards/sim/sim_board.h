@@ -66,6 +66,7 @@ class SimBoard {
 
   void OnSetpointGeneration(std::function<void(uint32_t generation, bool dac)> callback) { stamp_ = std::move(callback); }
   Plant& plant() { return *plant_; }
+  const Plant& plant() const { return *plant_; }
   bool pump_on() const { return pump_.level; }
   bool valves_held() const { return supply_.held(now_us_) && dump_.held(now_us_); }
 

@@ -1,0 +1,63 @@
+// Calibration procedures on a Rig: contact detection and zeroing, regulator static correction,
+// deformation sweeps (pneumatic), presses and indentation grids (jamming). Every motion is
+// guarded: a force above the limit, a position beyond the stage's limits, a board fault or a lost
+// device stops the stage, retracts, vents the board and returns the reason.
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include "palpa/calibration/hysteresis_fit.h"
+#include "palpa/calibration/rig.h"
+#include "palpa/protocol/messages_config.h"
+
+namespace palpa::calibration {
+
+struct ContactOptions {
+  double speed_mm_s = 0.1;    ///< the thesis's indentation speed
+  double threshold_n = 0.01;  ///< contact: the force crosses this
+  double approach_mm = 0.3;   ///< a fast move stops this far above the expected surface
+  double fast_mm_s = 2.0;
+};
+
+/// Moves to `mm` at `speed` and waits until the stage stops, polling force and position every
+/// `poll_s`; any limit aborts (stop, retract, vent).
+RigStatus GuardedMove(Rig& rig, double mm, double speed_mm_s, double poll_s = 0.01);
+
+/// Stops the stage, retracts to the safe height and vents the board: the one way out of a run.
+RigStatus AbortSafe(Rig& rig, const std::string& why);
+
+/// Approaches from `expected_mm` + approach and creeps down until contact; returns the encoder
+/// position at contact (the surface height), then lifts clear by the approach distance.
+RigStatus FindSurface(Rig& rig, double expected_mm, const ContactOptions& o, double* surface_mm);
+
+/// Tares the force sensor clear of the finger, vents it and finds the vented surface (the zero).
+RigStatus ZeroOnVentedSurface(Rig& rig, uint8_t finger, const ContactOptions& o, double* zero_mm);
+
+/// Regulator static correction of the finger's driven line: trim off, commands up and down in
+/// `points` steps over the line's range, the settled sensor reading at each. Trim back on after.
+RigStatus RegulatorCorrection(Rig& rig, uint8_t finger, int points, double dwell_s,
+                              std::vector<protocol::CorrectionPoint>* out);
+
+/// Pneumatic: each drive (kPa) held for dwell_s, the surface found by contact detection; samples
+/// of (measured drive in Pa, deformation in µm above `zero_mm`).
+RigStatus DeformationSweep(Rig& rig, uint8_t finger, const std::vector<double>& kpa, double dwell_s,
+                           double zero_mm, const ContactOptions& o, std::vector<SweepSample>* out);
+
+/// One press of a jamming finger: down to `depth_mm` below the surface and back at `speed`.
+struct PressCycle {
+  double stiffness_n_per_mm = 0;  ///< Hooke's-law slope at contact (F = k·d + q·d² on loading)
+  double r2 = 0;                  ///< of that fit
+  double loop_area_mj = 0;        ///< between loading and unloading (N·mm = mJ)
+  double peak_force_n = 0;
+  std::vector<std::pair<double, double>> loading, unloading;  ///< (depth mm, force N)
+};
+RigStatus Press(Rig& rig, double surface_mm, double depth_mm, double speed_mm_s, PressCycle* out);
+
+/// Least-squares line y = a + b·x with R².
+struct Line {
+  double slope = 0, intercept = 0, r2 = 0;
+};
+Line FitLine(const std::vector<std::pair<double, double>>& xy);
+
+}  // namespace palpa::calibration

@@ -1,0 +1,77 @@
+// A calibration rig: a linear stage, a force sensor and the board, each behind a small interface
+// so procedures run the same on lab hardware (Modbus, Net F/T, the host library) and on the
+// simulated rig in one process on virtual time.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace palpa::calibration {
+
+/// Every rig operation says whether it worked and, if not, why (device lost, limit hit...).
+struct RigStatus {
+  bool ok = true;
+  std::string error;
+  static RigStatus Fail(std::string why) { return {false, std::move(why)}; }
+};
+
+/// Time as the rig lives it: real on hardware, virtual in-process (waiting advances the plant).
+class RigTime {
+ public:
+  virtual ~RigTime() = default;
+  virtual double Now() = 0;
+  /// Lets `seconds` pass (the board keeps its heartbeat; the stage keeps moving).
+  virtual void Wait(double seconds) = 0;
+};
+
+class Stage {
+ public:
+  virtual ~Stage() = default;
+  /// Starts a move of the indenter tip to `mm` (height above the rig's zero) at `speed_mm_s`.
+  virtual RigStatus MoveTo(double mm, double speed_mm_s) = 0;
+  virtual RigStatus Position(double* mm) = 0;
+  virtual RigStatus Moving(bool* moving) = 0;
+  virtual RigStatus Stop() = 0;
+};
+
+class ForceSensor {
+ public:
+  virtual ~ForceSensor() = default;
+  virtual RigStatus Read(double* newtons) = 0;  ///< compressive positive, after the tare
+  virtual RigStatus Tare() = 0;
+};
+
+/// What procedures need of the board: raw drives on a finger's lines, the line's measured
+/// pressure, the trim on or off, faults, and venting everything.
+class BoardPort {
+ public:
+  virtual ~BoardPort() = default;
+  virtual bool jamming(uint8_t finger) = 0;
+  virtual uint8_t driven_line(uint8_t finger) = 0;
+  /// Raw mode: `kpa_a` on line_a (pressure or bias), `kpa_b` on line_b (vacuum, ≤ 0).
+  virtual RigStatus SetDrive(uint8_t finger, double kpa_a, double kpa_b) = 0;
+  virtual RigStatus MeasuredKpa(uint8_t line, double* kpa) = 0;
+  /// Turns the line's PI trim off (feed-forward only) or back to its configured gains.
+  virtual RigStatus SetTrim(uint8_t line, bool on) = 0;
+  virtual RigStatus Faults(uint32_t* bitmap) = 0;
+  virtual RigStatus VentAll() = 0;
+};
+
+/// Limits a run must keep; crossing one aborts it and leaves everything safe.
+struct SafetyLimits {
+  double max_force_n = 6.0;     ///< stop and retract above this
+  double min_position_mm = -4;  ///< deepest the tip may go (depth limit)
+  double max_position_mm = 30;  ///< stage soft limit
+  double retract_mm = 5;        ///< where a retract goes
+};
+
+struct Rig {
+  Stage& stage;
+  ForceSensor& force;
+  BoardPort& board;
+  RigTime& time;
+  SafetyLimits limits{};
+  std::string name = "sim";
+};
+
+}  // namespace palpa::calibration

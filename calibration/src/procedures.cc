@@ -1,0 +1,263 @@
+// Guarded motion, contact detection, regulator correction, deformation sweeps and presses.
+#include "palpa/calibration/procedures.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace palpa::calibration {
+namespace {
+
+std::string Num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof(b), "%.3g", v);
+  return b;
+}
+
+/// One look at the rig while something moves: force, position, board faults.
+RigStatus Watch(Rig& rig, double* force, double* position) {
+  RigStatus s = rig.force.Read(force);
+  if (!s.ok) return RigStatus::Fail("force sensor lost: " + s.error);
+  s = rig.stage.Position(position);
+  if (!s.ok) return RigStatus::Fail("stage lost: " + s.error);
+  if (*force > rig.limits.max_force_n) {
+    return RigStatus::Fail("force " + Num(*force) + " N above the limit of " +
+                           Num(rig.limits.max_force_n) + " N");
+  }
+  if (*position < rig.limits.min_position_mm - 0.01 ||
+      *position > rig.limits.max_position_mm + 0.01) {
+    return RigStatus::Fail("stage at " + Num(*position) + " mm, outside its limits");
+  }
+  uint32_t faults = 0;
+  s = rig.board.Faults(&faults);
+  if (!s.ok) return RigStatus::Fail("board lost: " + s.error);
+  if (faults != 0) return RigStatus::Fail("board fault 0x" + Num(faults));
+  return {};
+}
+
+}  // namespace
+
+RigStatus AbortSafe(Rig& rig, const std::string& why) {
+  rig.stage.Stop();
+  rig.stage.MoveTo(rig.limits.retract_mm, 2.0);  // away from the finger before anything else
+  rig.board.VentAll();
+  for (int i = 0; i < 2000; ++i) {  // wait for the retract, boundedly
+    bool moving = false;
+    if (!rig.stage.Moving(&moving).ok || !moving) break;
+    rig.time.Wait(0.01);
+  }
+  return RigStatus::Fail(why);
+}
+
+RigStatus GuardedMove(Rig& rig, double mm, double speed_mm_s, double poll_s) {
+  if (mm < rig.limits.min_position_mm || mm > rig.limits.max_position_mm) {
+    return AbortSafe(rig, "move to " + Num(mm) + " mm refused: outside the stage's limits");
+  }
+  RigStatus s = rig.stage.MoveTo(mm, speed_mm_s);
+  if (!s.ok) return AbortSafe(rig, "stage: " + s.error);
+  for (;;) {
+    double force = 0, position = 0;
+    s = Watch(rig, &force, &position);
+    if (!s.ok) return AbortSafe(rig, s.error);
+    bool moving = false;
+    s = rig.stage.Moving(&moving);
+    if (!s.ok) return AbortSafe(rig, "stage lost: " + s.error);
+    if (!moving) return {};
+    rig.time.Wait(poll_s);
+  }
+}
+
+RigStatus FindSurface(Rig& rig, double expected_mm, const ContactOptions& o, double* surface_mm) {
+  RigStatus s = GuardedMove(rig, expected_mm + o.approach_mm, o.fast_mm_s);
+  if (!s.ok) return s;
+  // Already touching (the surface rose): back off until clear, then creep down onto it.
+  double start = expected_mm + o.approach_mm;
+  for (double force = 1e9; force >= o.threshold_n;) {
+    s = rig.force.Read(&force);
+    if (!s.ok) return AbortSafe(rig, "force sensor lost: " + s.error);
+    if (force < o.threshold_n) break;
+    start += 0.5;
+    if (start > rig.limits.max_position_mm)
+      return AbortSafe(rig, "still in contact at the stage's upper limit");
+    s = GuardedMove(rig, start, o.fast_mm_s);
+    if (!s.ok) return s;
+  }
+  expected_mm = start - o.approach_mm;
+  const double floor = std::max(rig.limits.min_position_mm, expected_mm - 2.0);
+  s = rig.stage.MoveTo(floor, o.speed_mm_s);
+  if (!s.ok) return AbortSafe(rig, "stage: " + s.error);
+  const double poll = 0.001;  // one force reading per millisecond: 0.1 µm of travel at 0.1 mm/s
+  for (;;) {
+    double force = 0, position = 0;
+    s = Watch(rig, &force, &position);
+    if (!s.ok) return AbortSafe(rig, s.error);
+    if (force >= o.threshold_n) {
+      rig.stage.Stop();
+      *surface_mm = position;
+      return GuardedMove(rig, position + o.approach_mm, o.fast_mm_s);
+    }
+    bool moving = false;
+    rig.stage.Moving(&moving);
+    if (!moving) return AbortSafe(rig, "no contact down to " + Num(floor) + " mm");
+    rig.time.Wait(poll);
+  }
+}
+
+RigStatus ZeroOnVentedSurface(Rig& rig, uint8_t finger, const ContactOptions& o, double* zero_mm) {
+  RigStatus s = rig.board.SetDrive(finger, 0, 0);
+  if (!s.ok) return AbortSafe(rig, "board: " + s.error);
+  s = GuardedMove(rig, rig.limits.retract_mm, o.fast_mm_s);
+  if (!s.ok) return s;
+  rig.time.Wait(2.0);  // vented and settled, indenter clear: the force sensor's zero
+  s = rig.force.Tare();
+  if (!s.ok) return AbortSafe(rig, "force sensor: " + s.error);
+  return FindSurface(rig, 0, o, zero_mm);
+}
+
+RigStatus RegulatorCorrection(Rig& rig, uint8_t finger, int points, double dwell_s,
+                              std::vector<protocol::CorrectionPoint>* out) {
+  const bool jamming = rig.board.jamming(finger);
+  const uint8_t line = rig.board.driven_line(finger);
+  RigStatus s = rig.board.SetTrim(line, false);
+  if (!s.ok) return AbortSafe(rig, "board: " + s.error);
+  std::vector<double> commands, rising(points), falling(points);
+  // From 10 % (above the regulator's minimum set pressure) to 90 % of the range.
+  for (int i = 0; i < points; ++i) commands.push_back(10.0 + 80.0 * i / (points - 1));
+  auto settle = [&](double kpa, double* measured) {
+    RigStatus r =
+        jamming ? rig.board.SetDrive(finger, 20, -kpa) : rig.board.SetDrive(finger, kpa, 0);
+    if (!r.ok) return r;
+    rig.time.Wait(dwell_s);
+    uint32_t faults = 0;
+    r = rig.board.Faults(&faults);
+    if (!r.ok || faults != 0)
+      return RigStatus::Fail(r.ok ? "board fault during the correction" : r.error);
+    return rig.board.MeasuredKpa(line, measured);
+  };
+  for (int i = 0; i < points && s.ok; ++i) s = settle(commands[i], &rising[i]);
+  for (int i = points - 1; i >= 0 && s.ok; --i) s = settle(commands[i], &falling[i]);
+  rig.board.SetTrim(line, true);
+  if (!s.ok) return AbortSafe(rig, "regulator correction: " + s.error);
+  out->clear();
+  const double sign = jamming ? -1 : 1;
+  for (int i = 0; i < points; ++i) {
+    protocol::CorrectionPoint p;
+    p.command_pa = static_cast<int32_t>(std::lround(sign * commands[i] * 1000));
+    p.rising_pa = static_cast<int32_t>(std::lround(rising[i] * 1000));
+    p.falling_pa = static_cast<int32_t>(std::lround(falling[i] * 1000));
+    out->push_back(p);
+  }
+  // The board takes strictly monotone curves: a reading that did not move is nudged by 1 Pa.
+  for (size_t i = 1; i < out->size(); ++i) {
+    auto& a = (*out)[i - 1];
+    auto& b = (*out)[i];
+    if (sign * (b.rising_pa - a.rising_pa) <= 0)
+      b.rising_pa = a.rising_pa + static_cast<int32_t>(sign);
+    if (sign * (b.falling_pa - a.falling_pa) <= 0)
+      b.falling_pa = a.falling_pa + static_cast<int32_t>(sign);
+  }
+  return rig.board.SetDrive(finger, 0, 0);
+}
+
+RigStatus DeformationSweep(Rig& rig, uint8_t finger, const std::vector<double>& kpa, double dwell_s,
+                           double zero_mm, const ContactOptions& o, std::vector<SweepSample>* out) {
+  const uint8_t line = rig.board.driven_line(finger);
+  double expected = zero_mm;
+  for (double drive : kpa) {
+    RigStatus s = rig.board.SetDrive(finger, drive, 0);
+    if (!s.ok) return AbortSafe(rig, "board: " + s.error);
+    rig.time.Wait(dwell_s);
+    double surface = 0, measured = 0;
+    s = FindSurface(rig, expected, o, &surface);
+    if (!s.ok) return s;
+    s = rig.board.MeasuredKpa(line, &measured);
+    if (!s.ok) return AbortSafe(rig, "board: " + s.error);
+    out->push_back({measured * 1000, (surface - zero_mm) * 1000});
+    expected = surface;
+  }
+  return rig.board.SetDrive(finger, 0, 0);
+}
+
+RigStatus Press(Rig& rig, double surface_mm, double depth_mm, double speed_mm_s, PressCycle* out) {
+  *out = PressCycle{};
+  if (surface_mm - depth_mm < rig.limits.min_position_mm) {
+    return AbortSafe(
+        rig, "press to " + Num(surface_mm - depth_mm) + " mm refused: outside the stage's limits");
+  }
+  RigStatus s = GuardedMove(rig, surface_mm + 0.2, 2.0);
+  if (!s.ok) return s;
+  auto sweep = [&](double to, std::vector<std::pair<double, double>>* samples) {
+    RigStatus r = rig.stage.MoveTo(to, speed_mm_s);
+    if (!r.ok) return AbortSafe(rig, "stage: " + r.error);
+    const double step_s = 0.01 / speed_mm_s;  // a reading per 10 µm of travel
+    for (;;) {
+      double force = 0, position = 0;
+      r = Watch(rig, &force, &position);
+      if (!r.ok) return AbortSafe(rig, r.error);
+      const double depth = surface_mm - position;
+      if (depth >= 0) samples->push_back({depth, force});
+      out->peak_force_n = std::max(out->peak_force_n, force);
+      bool moving = false;
+      rig.stage.Moving(&moving);
+      if (!moving) return RigStatus{};
+      rig.time.Wait(step_s);
+    }
+  };
+  s = sweep(surface_mm - depth_mm, &out->loading);
+  if (s.ok) s = sweep(surface_mm + 0.2, &out->unloading);
+  if (!s.ok) return s;
+  // Stiffness: the Hooke's-law slope at contact, from F = k·d + q·d² over the loading branch
+  // (the jammed material stiffens slightly with depth; a straight line would fold that in).
+  double s11 = 0, s12 = 0, s22 = 0, b1 = 0, b2 = 0, sy = 0, syy = 0;
+  for (const auto& [d, f] : out->loading) {
+    s11 += d * d;
+    s12 += d * d * d;
+    s22 += d * d * d * d;
+    b1 += d * f;
+    b2 += d * d * f;
+    sy += f;
+    syy += f * f;
+  }
+  const double det = s11 * s22 - s12 * s12;
+  if (out->loading.size() < 3 || det <= 0) return AbortSafe(rig, "press: too few readings to fit");
+  const double k = (b1 * s22 - b2 * s12) / det, q = (s11 * b2 - s12 * b1) / det;
+  double residual = 0;
+  for (const auto& [d, f] : out->loading)
+    residual += (f - k * d - q * d * d) * (f - k * d - q * d * d);
+  const double n = static_cast<double>(out->loading.size());
+  const double spread = syy - sy * sy / n;
+  out->stiffness_n_per_mm = k;
+  out->r2 = spread > 0 ? 1 - residual / spread : 1;
+  // Loop area: ∫F dd loading minus unloading (trapezoids, N·mm = mJ).
+  auto work = [](std::vector<std::pair<double, double>> v) {
+    std::sort(v.begin(), v.end());
+    double w = 0;
+    for (size_t i = 1; i < v.size(); ++i)
+      w += 0.5 * (v[i].second + v[i - 1].second) * (v[i].first - v[i - 1].first);
+    return w;
+  };
+  out->loop_area_mj = std::max(0.0, work(out->loading) - work(out->unloading));
+  return {};
+}
+
+Line FitLine(const std::vector<std::pair<double, double>>& xy) {
+  Line l;
+  const double n = static_cast<double>(xy.size());
+  if (xy.size() < 2) return l;
+  double sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;
+  for (const auto& [x, y] : xy) {
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    sxy += x * y;
+    syy += y * y;
+  }
+  const double vx = sxx - sx * sx / n, vy = syy - sy * sy / n, cxy = sxy - sx * sy / n;
+  if (vx <= 0) return l;
+  l.slope = cxy / vx;
+  l.intercept = (sy - l.slope * sx) / n;
+  l.r2 = vy > 0 ? cxy * cxy / (vx * vy) : 1;
+  return l;
+}
+
+}  // namespace palpa::calibration

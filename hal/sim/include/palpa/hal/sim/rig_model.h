@@ -1,0 +1,40 @@
+// The calibration rig around one finger of the simulated plant: a linear stage carrying an 8 mm
+// hemispherical indenter above the fingertip, and a Nano17-class force sensor under it. Stepped
+// with the plant (1 ms), so the rig and the board share one clock. Host only.
+#pragma once
+
+#include <cstdint>
+
+#include "palpa/hal/sim/plant.h"
+#include "palpa/hal/sim/sensors.h"
+
+namespace palpa::sim {
+
+class RigModel {
+ public:
+  /// `finger` of `plant`; the indenter starts `start_mm` above the vented surface.
+  RigModel(Plant& plant, uint8_t finger, uint32_t seed, float start_mm = 5.0f);
+
+  /// Advances the stage and the contact by dt.
+  void Step(float dt_s);
+
+  LinearStage& stage() { return stage_; }
+  /// Indenter tip height above the vented surface (mm): the stage's encoder reading.
+  float PositionMm() const { return stage_.encoder_mm(); }
+  /// What the force sensor reads now (N, compressive positive, after its tare).
+  float ReadForceN() { return force_.Read(true_force_n_); }
+  void Tare() { force_.Tare(true_force_n_); }
+  /// The true contact force (N), for scoring and the rig's own safety model only.
+  float true_force_n() const { return true_force_n_; }
+
+ private:
+  Plant& plant_;
+  uint8_t finger_;
+  LinearStage stage_;
+  ForceSensor force_;
+  float true_force_n_ = 0;
+  float press_max_depth_mm_ = 0;  ///< deepest point of the current press (jamming)
+  float last_depth_mm_ = 0;
+};
+
+}  // namespace palpa::sim

@@ -1,0 +1,37 @@
+// Contact between the rig's indenter and a simulated fingertip.
+#include "palpa/hal/sim/rig_model.h"
+
+#include <algorithm>
+
+#include "palpa/hal/sim/plant_params.h"
+
+namespace palpa::sim {
+namespace p = params;
+
+RigModel::RigModel(Plant& plant, uint8_t finger, uint32_t seed, float start_mm)
+    : plant_(plant), finger_(finger), force_(plant.options().level < 3, seed) {
+  stage_.MoveTo(start_mm, 1000.0f);
+  stage_.Step(1.0f);
+}
+
+void RigModel::Step(float dt_s) {
+  stage_.Step(dt_s);
+  const float tip = stage_.position_mm();
+  if (JammingActuator* jamming = plant_.jamming(finger_)) {
+    // The granular surface stays at 0; a press loads on the way down and unloads on the way up
+    // along the material's loop (DESIGN §5 (a)).
+    const float depth = std::max(0.0f, -tip);
+    if (depth <= 0) press_max_depth_mm_ = 0;
+    press_max_depth_mm_ = std::max(press_max_depth_mm_, depth);
+    const bool loading = depth >= last_depth_mm_ && depth >= press_max_depth_mm_;
+    true_force_n_ = depth > 0 ? jamming->PressForce(depth, press_max_depth_mm_, loading) : 0.0f;
+    true_force_n_ = std::max(0.0f, true_force_n_);
+    last_depth_mm_ = depth;
+  } else {
+    // The film's bump rises to the deformation; the soft contact pushes back linearly.
+    const float surface = plant_.Truth().fingers[finger_].deformation_mm;
+    true_force_n_ = p::kRigContactStiffnessNPerMm * std::max(0.0f, surface - tip);
+  }
+}
+
+}  // namespace palpa::sim

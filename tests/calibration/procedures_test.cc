@@ -1,0 +1,138 @@
+// Calibration procedures on the in-process simulated rig (virtual time): contact detection and
+// zeroing, the regulator's static correction, a deformation sweep against Table 5-4, a press
+// against the truth, and every safety stop leaving the rig retracted and the board vented.
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <string>
+
+#include "palpa/calibration/procedures.h"
+#include "sim_rig.h"
+
+#include "CppUTest/TestHarness.h"
+
+namespace cal = palpa::calibration;
+namespace pt = palpa::testing;
+namespace pp = palpa::protocol;
+
+TEST_GROUP(Procedures){};
+
+TEST(Procedures, ZeroAndSurfaceHeightsFollowTheFilm) {
+  pt::SimRig sim({"thesis-5finger", 0, 1, 3});
+  cal::Rig rig = sim.rig();
+  cal::ContactOptions o;
+  double zero = 0;
+  const cal::RigStatus s = cal::ZeroOnVentedSurface(rig, 0, o, &zero);
+  CHECK_TEXT(s.ok, s.error.c_str());
+  DOUBLES_EQUAL(0, zero, 0.06);  // the detection lag: threshold / contact stiffness
+  CHECK(sim.SetDrive(0, 40, 0).ok);
+  sim.Wait(3);
+  double surface = 0;
+  CHECK(cal::FindSurface(rig, zero, o, &surface).ok);
+  const double truth = sim.board().sim().plant().Truth().fingers[0].deformation_mm;
+  DOUBLES_EQUAL(truth, surface - zero, 0.01);
+  CHECK(truth > 1.0);
+}
+
+TEST(Procedures, RegulatorCorrectionShowsTheStaticErrorAndTheBoardTakesIt) {
+  pt::SimRig sim({"thesis-5finger", 0, 1, 4});
+  cal::Rig rig = sim.rig();
+  std::vector<pp::CorrectionPoint> points;
+  const cal::RigStatus s = cal::RegulatorCorrection(rig, 0, 6, 1.5, &points);
+  CHECK_TEXT(s.ok, s.error.c_str());
+  LONGS_EQUAL(6, points.size());
+  double largest = 0;
+  for (const auto& p : points) {
+    CHECK(std::abs(p.rising_pa - p.command_pa) < 3000);  // within the regulator's class
+    largest = std::max<double>(largest, std::abs(p.rising_pa - p.command_pa));
+  }
+  CHECK(largest > 100);  // feed-forward alone shows the regulator's own error
+  pp::ConfigureLine line = sim.board().config().lines[0];
+  line.correction_count = static_cast<uint8_t>(points.size());
+  std::copy(points.begin(), points.end(), line.correction.begin());
+  CHECK(palpa::core::ValidateLine(line, nullptr) == pp::Status::kOk);
+  DOUBLES_EQUAL(0.1, sim.board().config().lines[0].trim_kp, 1e-6);  // the trim is back
+}
+
+TEST(Procedures, DeformationSweepMatchesTable54) {
+  pt::SimRig sim({"thesis-5finger", 0, 0, 5});
+  cal::Rig rig = sim.rig();
+  cal::ContactOptions o;
+  o.speed_mm_s = 0.2;
+  double zero = 0;
+  CHECK(cal::ZeroOnVentedSurface(rig, 0, o, &zero).ok);
+  std::vector<double> up, down;
+  for (int k = 10; k <= 90; k += 20) up.push_back(k);
+  for (int k = 90; k >= 10; k -= 20) down.push_back(k);
+  std::vector<cal::SweepSample> rising, falling;
+  CHECK(cal::DeformationSweep(rig, 0, up, 2, zero, o, &rising).ok);
+  CHECK(sim.SetDrive(0, 100, 0).ok);  // the top of the major loop
+  sim.Wait(2);
+  CHECK(cal::DeformationSweep(rig, 0, down, 2, zero, o, &falling).ok);
+  auto fit = [](const std::vector<cal::SweepSample>& s) {
+    std::vector<std::pair<double, double>> xy;
+    for (const auto& p : s) xy.push_back({p.drive_pa / 1000, p.output / 1000});
+    return cal::FitLine(xy);
+  };
+  const cal::Line r = fit(rising), f = fit(falling);
+  DOUBLES_EQUAL(0.0428, r.slope, 0.1 * 0.0428);  // Table 5-4's inflation fit, mm/kPa
+  DOUBLES_EQUAL(0.0475, f.slope, 0.1 * 0.0475);  // and deflation
+  CHECK(r.r2 > 0.95 && f.r2 > 0.95);
+  CHECK(falling[2].output > rising[2].output + 200);  // at 50 kPa the branches are ≈ 0.4 mm apart
+}
+
+TEST(Procedures, APressGivesTheStiffnessAndALoopSmallerThanItsWork) {
+  pt::SimRig sim({"thesis-5finger", 3, 0, 6});
+  cal::Rig rig = sim.rig();
+  cal::ContactOptions o;
+  double zero = 0;
+  CHECK(cal::ZeroOnVentedSurface(rig, 3, o, &zero).ok);
+  CHECK(sim.SetDrive(3, 20, -60).ok);
+  sim.Wait(4);
+  cal::PressCycle cycle;
+  const cal::RigStatus s = cal::Press(rig, zero, 3.0, 0.5, &cycle);
+  CHECK_TEXT(s.ok, s.error.c_str());
+  const double truth = sim.board().sim().plant().Truth().fingers[3].stiffness_n_per_mm;
+  DOUBLES_EQUAL(truth, cycle.stiffness_n_per_mm, 0.05 * truth);
+  CHECK(cycle.r2 > 0.99);
+  CHECK(cycle.loop_area_mj > 0);
+  CHECK(cycle.loop_area_mj < 0.5 * cycle.peak_force_n * 3.0);  // below the press's loading work
+}
+
+TEST(Procedures, EverySafetyStopRetractsAndVents) {
+  struct Case {
+    const char* name;
+    std::function<void(pt::SimRig&, cal::Rig&)> arm;
+    const char* reason;
+  };
+  const Case cases[] = {
+      {"force limit", [](pt::SimRig&, cal::Rig& rig) { rig.limits.max_force_n = 0.5; },
+       "above the limit"},
+      {"depth limit", [](pt::SimRig&, cal::Rig& rig) { rig.limits.min_position_mm = -1.0; },
+       "outside the stage's limits"},
+      {"force sensor lost", [](pt::SimRig& sim, cal::Rig&) { sim.force_lost = true; },
+       "force sensor lost"},
+      {"board fault", [](pt::SimRig& sim, cal::Rig&) { sim.board().Send(pp::EStop{}); },
+       "board fault"},
+  };
+  for (const Case& c : cases) {
+    pt::SimRig sim({"thesis-5finger", 3, 0, 7});
+    cal::Rig rig = sim.rig();
+    double zero = 0;
+    CHECK(cal::ZeroOnVentedSurface(rig, 3, cal::ContactOptions{}, &zero).ok);
+    CHECK(sim.SetDrive(3, 20, -80).ok);
+    sim.Wait(3);
+    c.arm(sim, rig);
+    cal::PressCycle cycle;
+    const cal::RigStatus s = cal::Press(rig, zero, 3.0, 0.5, &cycle);
+    CHECK_FALSE_TEXT(s.ok, c.name);
+    CHECK_TEXT(s.error.find(c.reason) != std::string::npos,
+               (std::string(c.name) + ": " + s.error).c_str());
+    sim.force_lost = false;
+    sim.Wait(3);
+    DOUBLES_EQUAL_TEXT(rig.limits.retract_mm, sim.model().PositionMm(), 0.01, c.name);  // retracted
+    const double vacuum = sim.board().sim().plant().Truth().lines[5].chamber_pa;
+    CHECK_TEXT(vacuum > -5000, c.name);  // vented (or safe): the vacuum released
+    CHECK_TEXT(sim.model().true_force_n() == 0, c.name);
+  }
+}

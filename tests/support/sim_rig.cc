@@ -1,0 +1,120 @@
+// The in-process calibration rig.
+#include "sim_rig.h"
+
+#include <cmath>
+
+namespace palpa::testing {
+namespace pp = protocol;
+using calibration::RigStatus;
+
+namespace {
+sim::SimBoardOptions BoardOptions(const SimRigOptions& o) {
+  sim::SimBoardOptions b;
+  b.config = o.config;
+  b.plant.level = 3;
+  b.plant.unit = o.unit;
+  b.plant.seed = o.seed;
+  b.plant.effects = o.effects;
+  return b;
+}
+}  // namespace
+
+SimRig::SimRig(const SimRigOptions& options) : board_(BoardOptions(options)) {
+  model_ = std::make_unique<sim::RigModel>(board_.sim().plant(), options.finger,
+                                           options.seed * 17u + 5u);
+  board_.sim().OnStep([this](uint64_t) { model_->Step(0.001f); });
+  configured_ = board_.config().lines;
+  for (uint8_t f = 0; f < board_.config().finger_count; ++f)
+    board_.Send(pp::SetFingerMode{f, pp::FingerMode::kRaw});
+  board_.Run(5);
+}
+
+void SimRig::Wait(double seconds) {
+  board_.Run(std::max(1, static_cast<int>(std::lround(seconds * 1000))));
+}
+
+RigStatus SimRig::MoveTo(double mm, double speed_mm_s) {
+  if (stage_lost) return RigStatus::Fail("no answer from the stage");
+  model_->stage().MoveTo(static_cast<float>(mm), static_cast<float>(speed_mm_s));
+  return {};
+}
+
+RigStatus SimRig::Position(double* mm) {
+  if (stage_lost) return RigStatus::Fail("no answer from the stage");
+  *mm = model_->PositionMm();
+  return {};
+}
+
+RigStatus SimRig::Moving(bool* moving) {
+  if (stage_lost) return RigStatus::Fail("no answer from the stage");
+  *moving = model_->stage().moving();
+  return {};
+}
+
+RigStatus SimRig::Stop() {
+  model_->stage().MoveTo(model_->stage().position_mm(), 1.0f);
+  return {};
+}
+
+RigStatus SimRig::Read(double* newtons) {
+  if (force_lost) return RigStatus::Fail("no data from the force sensor");
+  *newtons = model_->ReadForceN();
+  return {};
+}
+
+RigStatus SimRig::Tare() {
+  if (force_lost) return RigStatus::Fail("no data from the force sensor");
+  model_->Tare();
+  return {};
+}
+
+bool SimRig::jamming(uint8_t finger) {
+  return board_.config().fingers[finger].kind == pp::FingerKind::kJamming;
+}
+
+uint8_t SimRig::driven_line(uint8_t finger) {
+  const pp::ConfigureFinger& f = board_.config().fingers[finger];
+  return f.kind == pp::FingerKind::kJamming ? f.line_b : f.line_a;
+}
+
+RigStatus SimRig::SetDrive(uint8_t finger, double kpa_a, double kpa_b) {
+  const pp::ConfigureFinger& f = board_.config().fingers[finger];
+  pp::SetLineSetpoints sp{};
+  sp.generation = board_.next_generation();
+  sp.entries[sp.entry_count++] = {f.line_a, static_cast<int32_t>(std::lround(kpa_a * 1000))};
+  if (f.line_b != pp::kNoLine)
+    sp.entries[sp.entry_count++] = {f.line_b, static_cast<int32_t>(std::lround(kpa_b * 1000))};
+  board_.Send(sp);
+  return {};
+}
+
+RigStatus SimRig::MeasuredKpa(uint8_t line, double* kpa) {
+  *kpa = board_.SensorPa(line) / 1000.0;
+  return {};
+}
+
+RigStatus SimRig::SetTrim(uint8_t line, bool on) {
+  pp::ConfigureLine c = board_.config().lines[line];
+  c.trim_kp = on ? configured_[line].trim_kp : 0.0f;
+  c.trim_ki_per_s = on ? configured_[line].trim_ki_per_s : 0.0f;
+  board_.SendConfig(c);
+  board_.Run(2);
+  return board_.config().lines[line].trim_kp == c.trim_kp
+             ? RigStatus{}
+             : RigStatus::Fail("the board refused the trim change");
+}
+
+RigStatus SimRig::Faults(uint32_t* bitmap) {
+  *bitmap = board_.sim().board().latched_faults();
+  return {};
+}
+
+RigStatus SimRig::VentAll() {
+  pp::SetLineSetpoints sp{};
+  sp.generation = board_.next_generation();
+  for (uint8_t i = 0; i < board_.config().line_count; ++i) sp.entries[sp.entry_count++] = {i, 0};
+  board_.Send(sp);
+  return {};
+}
+
+}  // namespace palpa::testing

@@ -1,0 +1,63 @@
+// The calibration rig in one process on free-running virtual time: a simulated board driven
+// through the protocol, and the rig model (stage, indenter, force sensor) of hal/sim stepped with
+// the same plant and clock. Faults can be injected: a lost force sensor or stage, an E-stop.
+#pragma once
+
+#include <memory>
+
+#include "in_process_board.h"
+#include "palpa/calibration/rig.h"
+#include "palpa/hal/sim/rig_model.h"
+
+namespace palpa::testing {
+
+struct SimRigOptions {
+  std::string config = "thesis-5finger";
+  uint8_t finger = 0;  ///< the finger under the indenter
+  uint32_t unit = 1;
+  uint32_t seed = 1;
+  sim::Effects effects{};
+};
+
+class SimRig final : public calibration::RigTime,
+                     public calibration::Stage,
+                     public calibration::ForceSensor,
+                     public calibration::BoardPort {
+ public:
+  explicit SimRig(const SimRigOptions& options);
+
+  calibration::Rig rig() { return calibration::Rig{*this, *this, *this, *this}; }
+  InProcessBoard& board() { return board_; }
+  sim::RigModel& model() { return *model_; }
+
+  // Fault injection.
+  bool force_lost = false;
+  bool stage_lost = false;
+
+  // RigTime
+  double Now() override { return static_cast<double>(board_.sim().now_us()) * 1e-6; }
+  void Wait(double seconds) override;
+  // Stage
+  calibration::RigStatus MoveTo(double mm, double speed_mm_s) override;
+  calibration::RigStatus Position(double* mm) override;
+  calibration::RigStatus Moving(bool* moving) override;
+  calibration::RigStatus Stop() override;
+  // ForceSensor
+  calibration::RigStatus Read(double* newtons) override;
+  calibration::RigStatus Tare() override;
+  // BoardPort
+  bool jamming(uint8_t finger) override;
+  uint8_t driven_line(uint8_t finger) override;
+  calibration::RigStatus SetDrive(uint8_t finger, double kpa_a, double kpa_b) override;
+  calibration::RigStatus MeasuredKpa(uint8_t line, double* kpa) override;
+  calibration::RigStatus SetTrim(uint8_t line, bool on) override;
+  calibration::RigStatus Faults(uint32_t* bitmap) override;
+  calibration::RigStatus VentAll() override;
+
+ private:
+  InProcessBoard board_;
+  std::unique_ptr<sim::RigModel> model_;
+  std::array<protocol::ConfigureLine, protocol::kMaxLines> configured_{};  ///< trims to restore
+};
+
+}  // namespace palpa::testing
