@@ -153,13 +153,18 @@ bool SimProcess::Start(const std::vector<std::string>& args) {
     const ssize_t n = read(out_fd_, buffer, sizeof(buffer));
     if (n <= 0) return false;
     text.append(buffer, static_cast<size_t>(n));
-    const size_t at = text.find("listening on ");
-    const bool want_truth = std::find(args.begin(), args.end(), "--truth") != args.end();
-    const size_t truth_at = text.find("truth on ");
-    if (at != std::string::npos && text.find('\n', at) != std::string::npos &&
-        (!want_truth || (truth_at != std::string::npos && text.find('\n', truth_at) != std::string::npos))) {
-      address_ = text.substr(at + 13, text.find('\n', at) - at - 13);
-      if (want_truth) truth_address_ = text.substr(truth_at + 9, text.find('\n', truth_at) - truth_at - 9);
+    // Each announced address is a whole line: "PREFIX ADDRESS\n".
+    auto line_after = [&text](const char* prefix, std::string* found) {
+      const size_t at = text.find(prefix);
+      if (at == std::string::npos) return false;
+      const size_t start = at + std::strlen(prefix), end = text.find('\n', start);
+      if (end == std::string::npos) return false;
+      *found = text.substr(start, end - start);
+      return true;
+    };
+    auto wants = [&args](const char* option) { return std::find(args.begin(), args.end(), option) != args.end(); };
+    if (line_after("listening on ", &address_) && (!wants("--truth") || line_after("truth on ", &truth_address_)) &&
+        (!wants("--rig-modbus") || line_after("by Modbus on ", &rig_address_))) {
       return true;
     }
   }

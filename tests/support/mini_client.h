@@ -60,6 +60,7 @@ class SimProcess {
   int Stop();
   const std::string& address() const { return address_; }  ///< "tcp:127.0.0.1:PORT" or "serial:PATH"
   const std::string& truth_address() const { return truth_address_; }  ///< when --truth was given
+  const std::string& rig_address() const { return rig_address_; }  ///< when --rig-modbus was given
   int pid() const { return pid_; }
 
  private:
@@ -67,6 +68,7 @@ class SimProcess {
   int out_fd_ = -1;
   std::string address_;
   std::string truth_address_;
+  std::string rig_address_;
 };
 
 }  // namespace palpa::testing

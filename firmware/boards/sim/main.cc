@@ -11,6 +11,7 @@
 #include "fd_link.h"
 #include "sim_board.h"
 #include "sim_options.h"
+#include "rig_modbus_server.h"
 #include "truth_stream.h"
 
 namespace {
@@ -69,17 +70,34 @@ int main(int argc, char** argv) {
                    static_cast<long long>(now.tv_sec) * 1000000000LL + now.tv_nsec);
     });
   }
+  std::unique_ptr<palpa::sim::RigModel> rig;
+  palpa::sim::RigModbusServer rig_server;
+  if (!cmd.rig_modbus.empty()) {
+    if (cmd.rig_finger >= sim->board().config().finger_count) {
+      std::fprintf(stderr, "palpa-sim: --rig-finger %u: %s has %u fingers\n", cmd.rig_finger, cmd.board.config.c_str(),
+                   sim->board().config().finger_count);
+      return 2;
+    }
+    rig = std::make_unique<palpa::sim::RigModel>(sim->plant(), cmd.rig_finger, cmd.board.plant.seed * 17u + 5u);
+    if (!rig_server.Open(cmd.rig_modbus, *rig, &error)) {
+      std::fprintf(stderr, "palpa-sim: %s\n", error.c_str());
+      return 1;
+    }
+  }
   std::printf("palpa-sim: %s, plant level %d, unit %u, seed %u, speed %gx\n", cmd.board.config.c_str(),
               cmd.board.plant.level, cmd.board.plant.unit, cmd.board.plant.seed, static_cast<double>(cmd.speed));
   std::printf("palpa-sim: listening on %s\n", link.address().c_str());
   if (!cmd.truth.empty()) std::printf("palpa-sim: truth on %s\n", truth.address().c_str());
+  if (rig) std::printf("palpa-sim: rig (finger %u) by Modbus on %s\n", cmd.rig_finger, rig_server.address().c_str());
   std::fflush(stdout);
 
   const uint64_t truth_every_us = static_cast<uint64_t>(cmd.truth_every_ms) * 1000;
-  if (!cmd.truth.empty()) {
-    // Sampled on the virtual clock at every step, so a late process still writes every sample.
+  if (!cmd.truth.empty() || rig) {
+    // Sampled on the virtual clock at every step, so a late process still writes every sample;
+    // the rig moves on the same clock.
     sim->OnStep([&](uint64_t now_us) {
-      if (now_us % truth_every_us != 0) return;
+      if (rig) rig->Step(0.001f);
+      if (cmd.truth.empty() || now_us % truth_every_us != 0) return;
       const palpa::core::Board& b = sim->board();
       truth.Write(sim->plant().Truth(), now_us,
                   palpa::sim::TruthStream::BoardFacts{b.safe(), b.latched_faults(), b.last_host_frame_us()});
@@ -90,6 +108,7 @@ int main(int argc, char** argv) {
     const double wall_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
     link.Pump();
     truth.Pump();
+    rig_server.Pump();
     sim->AdvanceTo(static_cast<uint64_t>(wall_us * cmd.speed));
     link.Pump();
 
@@ -98,6 +117,7 @@ int main(int argc, char** argv) {
     const double wait_us = next_step_wall_us - wall_us;
     std::vector<pollfd> fds;
     for (int fd : link.PollFds()) fds.push_back(pollfd{fd, POLLIN, 0});
+    for (int fd : rig_server.PollFds()) fds.push_back(pollfd{fd, POLLIN, 0});
     const timespec timeout{0, wait_us > 0 ? static_cast<long>(wait_us * 1000) : 0};
     ppoll(fds.data(), fds.size(), &timeout, nullptr);
   }

@@ -25,6 +25,10 @@ const char* const kSimUsage =
     "  --truth-every-ms N   truth sample period in virtual ms (default 10)\n"
     "  --stamp file:PATH    write CLOCK_MONOTONIC stamps when a setpoint generation is applied and\n"
     "                       when it first reaches the DAC (latency benchmark)\n"
+    "  --rig-modbus SPEC    serve the calibration rig (linear stage and force sensor over the same\n"
+    "                       plant and clock) by Modbus on tcp:127.0.0.1:PORT (0 = any free port)\n"
+    "                       or rtu:PATH (115200 8N1; e.g. one end of a socat pty pair)\n"
+    "  --rig-finger N       the finger under the rig's indenter (default 0)\n"
     "  --help               this text\n";
 
 namespace {
@@ -121,6 +125,18 @@ bool ParseSimCommandLine(const std::vector<std::string>& args, SimCommandLine& o
         return false;
       }
       out.stamp_file = value.substr(5);
+    } else if (arg == "--rig-modbus") {
+      if (value.rfind("tcp:", 0) != 0 && value.rfind("rtu:", 0) != 0) {
+        *error = "--rig-modbus " + value + ": expected tcp:HOST:PORT or rtu:PATH";
+        return false;
+      }
+      out.rig_modbus = value;
+    } else if (arg == "--rig-finger") {
+      if (!Number(arg, value, 0, 7, n, error) || n != static_cast<int>(n)) {
+        *error = "--rig-finger " + value + ": expected a finger 0 to 7";
+        return false;
+      }
+      out.rig_finger = static_cast<uint8_t>(n);
     } else if (arg == "--truth-every-ms") {
       if (!Number(arg, value, 1, 10000, n, error)) return false;
       out.truth_every_ms = static_cast<uint32_t>(n);

@@ -15,6 +15,8 @@ struct SimCommandLine {
   uint32_t truth_every_ms = 10;
   float speed = 1.0f;
   std::string stamp_file;      ///< latency stamps: "GENERATION applied|dac MONOTONIC_NS" lines
+  std::string rig_modbus;      ///< empty, tcp:HOST:PORT or rtu:PATH: the rig's stage and force sensor
+  uint8_t rig_finger = 0;      ///< the finger under the rig's indenter
   bool help = false;
 };
 

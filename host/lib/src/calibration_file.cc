@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "palpa/core/compensator.h"
+#include "palpa/host/json_check.h"
 #include "palpa/protocol/messages_stream.h"
 
 namespace palpa::host {
@@ -24,75 +25,8 @@ namespace {
 using nlohmann::json;
 namespace pp = protocol;
 
-/// A validation failure at a JSON path.
-struct Invalid : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-std::string Num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof(b), "%g", v);
-  return b;
-}
-
-/// Walks an object, checking that every key it has is one the schema knows.
-class Obj {
- public:
-  Obj(const json& j, std::string path, std::set<std::string> known)
-      : j_(j), path_(std::move(path)) {
-    if (!j.is_object()) throw Invalid(Where() + "must be an object");
-    for (auto it = j.begin(); it != j.end(); ++it) {
-      if (!known.count(it.key())) throw Invalid(Join(it.key()) + ": unknown field");
-    }
-  }
-  bool Has(const char* key) const { return j_.contains(key) && !j_.at(key).is_null(); }
-  const json& At(const char* key) const {
-    if (!Has(key)) throw Invalid(Join(key) + ": missing");
-    return j_.at(key);
-  }
-  double Number(const char* key, double lo, double hi) const {
-    const json& v = At(key);
-    if (!v.is_number()) throw Invalid(Join(key) + ": must be a number");
-    const double d = v.get<double>();
-    if (!std::isfinite(d) || d < lo || d > hi) {
-      throw Invalid(Join(key) + ": " + Num(d) + " is outside " + Num(lo) + " … " + Num(hi));
-    }
-    return d;
-  }
-  long Integer(const char* key, long lo, long hi) const {
-    const json& v = At(key);
-    if (!v.is_number_integer()) throw Invalid(Join(key) + ": must be an integer");
-    const long n = v.get<long>();
-    if (n < lo || n > hi)
-      throw Invalid(Join(key) + ": " + std::to_string(n) + " is outside " + std::to_string(lo) +
-                    " … " + std::to_string(hi));
-    return n;
-  }
-  std::string Text(const char* key) const {
-    const json& v = At(key);
-    if (!v.is_string() || v.get<std::string>().empty())
-      throw Invalid(Join(key) + ": must be a non-empty string");
-    return v.get<std::string>();
-  }
-  const json& List(const char* key, size_t lo, size_t hi) const {
-    const json& v = At(key);
-    if (!v.is_array()) throw Invalid(Join(key) + ": must be an array");
-    if (v.size() < lo || v.size() > hi) {
-      throw Invalid(Join(key) + ": has " + std::to_string(v.size()) + " entries, needs " +
-                    std::to_string(lo) + " … " + std::to_string(hi));
-    }
-    return v;
-  }
-  std::string Join(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
-  std::string Item(const char* key, size_t i) const {
-    return Join(key) + "[" + std::to_string(i) + "]";
-  }
-
- private:
-  std::string Where() const { return path_.empty() ? "" : path_ + ": "; }
-  const json& j_;
-  std::string path_;
-};
+using Invalid = JsonInvalid;
+using Obj = JsonObject;
 
 void CheckMonotone(const std::vector<double>& v, const std::string& path, int direction) {
   for (size_t i = 1; i < v.size(); ++i) {

@@ -1,0 +1,32 @@
+// A rig described by a JSON file: its stage and force sensor (driver, address, register map)
+// and its safety limits. Parsing names the field that is wrong; opening connects the devices.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "palpa/calibration/register_map.h"
+#include "palpa/calibration/rig.h"
+
+namespace palpa::calibration {
+
+struct RigDescription {
+  std::string name;
+  RegisterMap stage;
+  RegisterMap force;
+  SafetyLimits limits;
+};
+
+std::optional<RigDescription> ParseRigDescription(const std::string& text, std::string* error);
+std::optional<RigDescription> LoadRigDescription(const std::string& path, std::string* error);
+
+struct RigDevices {
+  std::unique_ptr<Stage> stage;
+  std::unique_ptr<ForceSensor> force;
+};
+
+/// Connects both devices; on failure nothing is left open and *error says which device and why.
+std::optional<RigDevices> OpenRigDevices(const RigDescription& rig, std::string* error);
+
+}  // namespace palpa::calibration

@@ -1,0 +1,96 @@
+// Rig description files and opening their devices.
+#include "palpa/calibration/rig_file.h"
+
+#include <fstream>
+#include <sstream>
+
+#include "palpa/calibration/modbus_devices.h"
+#include "palpa/host/json_check.h"
+
+namespace palpa::calibration {
+namespace {
+
+using host::JsonInvalid;
+using host::JsonObject;
+using nlohmann::json;
+
+RegisterMap Device(const JsonObject& o, const char* key, const std::vector<std::string>& required) {
+  json device = o.At(key);
+  if (!device.is_object()) throw JsonInvalid(o.Join(key) + ": must be an object");
+  const std::string driver = device.value("driver", "");
+  if (driver != "modbus") {
+    throw JsonInvalid(o.Join(key) + ".driver: \"" + driver +
+                      "\" is not a driver this build has (modbus)");
+  }
+  device.erase("driver");
+  std::string error;
+  const auto map = ParseRegisterMap(device, o.Join(key), required, &error);
+  if (!map) throw JsonInvalid(error);
+  return *map;
+}
+
+}  // namespace
+
+std::optional<RigDescription> ParseRigDescription(const std::string& text, std::string* error) {
+  try {
+    const json j = json::parse(text);
+    JsonObject o(j, "", {"name", "comment", "stage", "force_sensor", "limits"});
+    RigDescription rig;
+    rig.name = o.Text("name");
+    rig.stage = Device(o, "stage", kStageRegisters);
+    rig.force = Device(o, "force_sensor", kForceRegisters);
+    if (o.Has("limits")) {
+      JsonObject l(o.At("limits"), "limits",
+                   {"max_force_n", "min_position_mm", "max_position_mm", "retract_mm"});
+      if (l.Has("max_force_n")) rig.limits.max_force_n = l.Number("max_force_n", 0.01, 50);
+      if (l.Has("min_position_mm"))
+        rig.limits.min_position_mm = l.Number("min_position_mm", -100, 100);
+      if (l.Has("max_position_mm"))
+        rig.limits.max_position_mm = l.Number("max_position_mm", -100, 500);
+      if (l.Has("retract_mm")) rig.limits.retract_mm = l.Number("retract_mm", -100, 500);
+      if (rig.limits.min_position_mm >= rig.limits.max_position_mm) {
+        throw JsonInvalid("limits.min_position_mm: must be below max_position_mm");
+      }
+    }
+    return rig;
+  } catch (const json::parse_error& e) {
+    if (error != nullptr) *error = std::string("not JSON: ") + e.what();
+  } catch (const JsonInvalid& e) {
+    if (error != nullptr) *error = e.what();
+  }
+  return std::nullopt;
+}
+
+std::optional<RigDescription> LoadRigDescription(const std::string& path, std::string* error) {
+  std::ifstream in(path);
+  if (!in) {
+    if (error != nullptr) *error = path + ": cannot be read";
+    return std::nullopt;
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string why;
+  auto rig = ParseRigDescription(text.str(), &why);
+  if (!rig && error != nullptr) *error = path + ": " + why;
+  return rig;
+}
+
+std::optional<RigDevices> OpenRigDevices(const RigDescription& rig, std::string* error) {
+  std::string why;
+  auto stage = ModbusDevice::Open(rig.stage, &why);
+  if (!stage) {
+    if (error != nullptr) *error = "stage: " + why;
+    return std::nullopt;
+  }
+  auto force = ModbusDevice::Open(rig.force, &why);
+  if (!force) {
+    if (error != nullptr) *error = "force sensor: " + why;
+    return std::nullopt;
+  }
+  RigDevices d;
+  d.stage = std::make_unique<ModbusStage>(std::move(stage));
+  d.force = std::make_unique<ModbusForceSensor>(std::move(force));
+  return d;
+}
+
+}  // namespace palpa::calibration
