@@ -1,0 +1,71 @@
+// The thesis's calibration, automated end to end for one finger: zero, the regulator's static
+// correction, then (pneumatic) a deformation sweep with nested reversals or (jamming) the
+// indentation grid over bias × vacuum with repeats, the recommended bias, and a stiffness sweep
+// at it; fits, static inverse, compensator, quality figures — a calibration file and its raw data.
+// Each finished step is kept in a journal, so an interrupted run resumes where it stopped.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "palpa/calibration/procedures.h"
+#include "palpa/calibration/sweep.h"
+#include "palpa/host/calibration_file.h"
+
+namespace palpa::calibration {
+
+struct ProtocolOptions {
+  double dwell_s = 3;  ///< settling at each drive before reading
+  ContactOptions contact{};
+  double press_depth_mm = 3;      ///< thesis: 3 mm
+  double press_speed_mm_s = 0.1;  ///< thesis: 0.1 mm/s
+  int repeats = 8;                ///< thesis: 8 per condition
+  std::vector<double> biases_kpa = {0, 10, 20};
+  std::vector<double> vacuums_kpa = {0, -50, -100};
+  SweepPlan pneumatic_sweep{100000, 5000, 4};
+  SweepPlan jamming_sweep{100000, 10000, 2};
+  int correction_points = 8;
+  int compensator_operators = 16;
+};
+
+/// What a run records as it goes; saved by the caller after every step (resume reads it back).
+struct Journal {
+  nlohmann::json state = nlohmann::json::object();
+  std::function<void(const Journal&)> save;  ///< called after every finished step
+};
+
+struct Progress {
+  int done = 0, total = 0;
+  std::string step;
+};
+
+struct RunInfo {
+  std::string actuator_serial;
+  uint32_t board_id = 0;
+  std::string date;  ///< UTC ISO 8601
+  std::string rig;
+  std::string raw_data;  ///< CSV file name beside the calibration
+};
+
+struct CalibrationRun {
+  host::CalibrationFile file;
+  std::vector<std::string> csv;     ///< raw readings, first line the header
+  std::vector<PressCycle> presses;  ///< jamming: every press of the grid, for the report
+  std::vector<SweepSample> sweep;
+};
+
+/// Runs (or resumes) the protocol; on a safety stop returns its reason with everything safe,
+/// and the journal keeps what was finished.
+RigStatus RunThesisProtocol(Rig& rig, uint8_t finger, const ProtocolOptions& options,
+                            const RunInfo& info, Journal& journal,
+                            const std::function<void(const Progress&)>& progress,
+                            CalibrationRun* out);
+
+/// The bias with the least mean press loop area among those that keep at least 80 % of the
+/// widest stiffness range (DESIGN §5: bias shrinks the loop; the range must stay).
+double RecommendBias(const std::vector<host::GridPoint>& grid);
+
+}  // namespace palpa::calibration

@@ -1,0 +1,130 @@
+// The thesis protocol end to end on the in-process simulated rig (virtual time, short settings):
+// a pneumatic and a jamming finger each produce a calibration file the library and the board
+// accept; an interrupted run resumes from its journal without redoing what was finished.
+#include <cmath>
+#include <string>
+
+#include "palpa/calibration/thesis_protocol.h"
+#include "palpa/core/board_config.h"
+#include "sim_rig.h"
+
+#include "CppUTest/TestHarness.h"
+
+namespace cal = palpa::calibration;
+namespace pt = palpa::testing;
+namespace pp = palpa::protocol;
+namespace ph = palpa::host;
+
+namespace {
+
+cal::ProtocolOptions Short() {
+  cal::ProtocolOptions o;
+  o.dwell_s = 1;
+  o.contact.speed_mm_s = 0.5;
+  o.press_depth_mm = 2;
+  o.press_speed_mm_s = 2;
+  o.repeats = 2;
+  o.biases_kpa = {0, 20};
+  o.vacuums_kpa = {0, -100};
+  o.pneumatic_sweep = cal::SweepPlan{100000, 10000, 2};
+  o.jamming_sweep = cal::SweepPlan{100000, 20000, 1};
+  o.correction_points = 4;
+  o.compensator_operators = 8;
+  return o;
+}
+
+cal::RunInfo Info(const char* serial) {
+  return cal::RunInfo{serial, 1, "2026-11-22T12:00:00Z", "sim", std::string(serial) + ".csv"};
+}
+
+/// The board would accept the calibration as the finger's configuration.
+void CheckBoardAccepts(pt::SimRig& sim, uint8_t finger, const ph::CalibrationFile& f) {
+  pp::ConfigureFinger c = sim.board().config().fingers[finger];
+  c.inverse_count = static_cast<uint8_t>(f.static_inverse.size());
+  std::copy(f.static_inverse.begin(), f.static_inverse.end(), c.inverse.begin());
+  c.compensator = f.compensator;
+  c.param_count = static_cast<uint8_t>(f.compensator_params.size());
+  std::copy(f.compensator_params.begin(), f.compensator_params.end(), c.params.begin());
+  palpa::core::ConfigError e;
+  LONGS_EQUAL_TEXT((int)pp::Status::kOk,
+                   (int)palpa::core::ValidateFinger(c, sim.board().config(), &e), e.reason);
+}
+
+}  // namespace
+
+TEST_GROUP(ThesisProtocol){};
+
+TEST(ThesisProtocol, PneumaticFingerGivesAValidCalibrationCloseToTable54) {
+  pt::SimRig sim({"thesis-5finger", 0, 0, 21});
+  cal::Rig rig = sim.rig();
+  cal::Journal journal;
+  cal::CalibrationRun run;
+  int reports = 0;
+  const cal::RigStatus s = cal::RunThesisProtocol(
+      rig, 0, Short(), Info("PN-1"), journal, [&](const cal::Progress&) { ++reports; }, &run);
+  CHECK_TEXT(s.ok, s.error.c_str());
+  CHECK(reports > 10);
+  std::string error;
+  CHECK_TEXT(ph::SerializeCalibration(run.file, &error).has_value(), error.c_str());
+  DOUBLES_EQUAL(0.0428, run.file.rising_fit->slope, 0.1 * 0.0428);
+  DOUBLES_EQUAL(0.0475, run.file.falling_fit->slope, 0.1 * 0.0475);
+  CHECK(run.file.compensator == pp::CompensatorKind::kPrandtlIshlinskii);
+  CHECK(run.csv.size() > run.sweep.size());
+  CheckBoardAccepts(sim, 0, run.file);
+}
+
+TEST(ThesisProtocol, JammingFingerRecommendsTheBiasWithTheSmallerLoop) {
+  pt::SimRig sim({"thesis-5finger", 3, 0, 22});
+  cal::Rig rig = sim.rig();
+  cal::Journal journal;
+  cal::CalibrationRun run;
+  const cal::RigStatus s =
+      cal::RunThesisProtocol(rig, 3, Short(), Info("JAM-1"), journal, nullptr, &run);
+  CHECK_TEXT(s.ok, s.error.c_str());
+  LONGS_EQUAL(4, run.file.grid.size());
+  LONGS_EQUAL(8, run.presses.size());
+  DOUBLES_EQUAL(20, *run.file.recommended_bias_kpa, 0);  // bias shrinks the press loop (Fig 5-36)
+  // Stiffness rises with vacuum at the bias: ≈ 0.7 → 1.3 N/mm.
+  DOUBLES_EQUAL(0.7, run.file.grid[2].stiffness_mean, 0.1);
+  DOUBLES_EQUAL(1.3, run.file.grid[3].stiffness_mean, 0.15);
+  std::string error;
+  CHECK_TEXT(ph::SerializeCalibration(run.file, &error).has_value(), error.c_str());
+  CheckBoardAccepts(sim, 3, run.file);
+}
+
+TEST(ThesisProtocol, AnInterruptedRunResumesFromItsJournal) {
+  cal::Journal journal;
+  int saves = 0;
+  journal.save = [&](const cal::Journal&) { ++saves; };
+  {
+    pt::SimRig sim({"thesis-5finger", 0, 0, 23});
+    cal::Rig rig = sim.rig();
+    cal::CalibrationRun run;
+    // The force sensor drops out part-way through the sweep.
+    const cal::RigStatus s = cal::RunThesisProtocol(
+        rig, 0, Short(), Info("PN-1"), journal,
+        [&](const cal::Progress& p) {
+          if (p.done == 8) sim.force_lost = true;
+        },
+        &run);
+    CHECK_FALSE(s.ok);
+    CHECK(s.error.find("force sensor lost") != std::string::npos);
+    DOUBLES_EQUAL(sim.rig().limits.retract_mm, sim.model().PositionMm(), 0.01);
+  }
+  const size_t kept = journal.state["sweep"].size();
+  CHECK(kept >= 4);
+  CHECK(journal.state.contains("correction"));
+  pt::SimRig sim({"thesis-5finger", 0, 0, 24});
+  cal::Rig rig = sim.rig();
+  cal::CalibrationRun run;
+  int first_done = -1;
+  const cal::RigStatus s = cal::RunThesisProtocol(
+      rig, 0, Short(), Info("PN-1"), journal,
+      [&](const cal::Progress& p) {
+        if (first_done < 0 && p.step.find("sweep") != std::string::npos) first_done = p.done;
+      },
+      &run);
+  CHECK_TEXT(s.ok, s.error.c_str());
+  CHECK(first_done >= static_cast<int>(kept) + 2);  // the sweep resumed after the points it had
+  CHECK(saves > 0);
+}
