@@ -215,7 +215,8 @@ std::vector<protocol::InversePoint> FitStaticInverse(const std::vector<SweepSamp
   }
   for (int k = 0; k < points; ++k) {
     protocol::InversePoint p;
-    p.output = static_cast<int32_t>(std::lround(b.levels[static_cast<size_t>(k)]));
+    // Outputs are never negative (a reading just below 0 is the rig's noise at rest).
+    p.output = static_cast<int32_t>(std::max(0L, std::lround(b.levels[static_cast<size_t>(k)])));
     const double drive =
         0.5 * (b.rising[static_cast<size_t>(k)] + b.falling[static_cast<size_t>(k)]);
     p.setpoint_pa = static_cast<int32_t>(std::lround(vacuum ? -drive : drive));

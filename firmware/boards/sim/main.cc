@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "fd_link.h"
+#include "rig_modbus_server.h"
 #include "sim_board.h"
 #include "sim_options.h"
-#include "rig_modbus_server.h"
 #include "truth_stream.h"
 
 namespace {
@@ -26,7 +26,8 @@ int main(int argc, char** argv) {
   using palpa::sim::SimCommandLine;
   SimCommandLine cmd;
   std::string error;
-  if (!palpa::sim::ParseSimCommandLine(std::vector<std::string>(argv + 1, argv + argc), cmd, &error)) {
+  if (!palpa::sim::ParseSimCommandLine(std::vector<std::string>(argv + 1, argv + argc), cmd,
+                                       &error)) {
     std::fprintf(stderr, "palpa-sim: %s\n(see palpa-sim --help)\n", error.c_str());
     return 2;
   }
@@ -74,21 +75,25 @@ int main(int argc, char** argv) {
   palpa::sim::RigModbusServer rig_server;
   if (!cmd.rig_modbus.empty()) {
     if (cmd.rig_finger >= sim->board().config().finger_count) {
-      std::fprintf(stderr, "palpa-sim: --rig-finger %u: %s has %u fingers\n", cmd.rig_finger, cmd.board.config.c_str(),
-                   sim->board().config().finger_count);
+      std::fprintf(stderr, "palpa-sim: --rig-finger %u: %s has %u fingers\n", cmd.rig_finger,
+                   cmd.board.config.c_str(), sim->board().config().finger_count);
       return 2;
     }
-    rig = std::make_unique<palpa::sim::RigModel>(sim->plant(), cmd.rig_finger, cmd.board.plant.seed * 17u + 5u);
+    rig = std::make_unique<palpa::sim::RigModel>(sim->plant(), cmd.rig_finger,
+                                                 cmd.board.plant.seed * 17u + 5u);
     if (!rig_server.Open(cmd.rig_modbus, *rig, &error)) {
       std::fprintf(stderr, "palpa-sim: %s\n", error.c_str());
       return 1;
     }
   }
-  std::printf("palpa-sim: %s, plant level %d, unit %u, seed %u, speed %gx\n", cmd.board.config.c_str(),
-              cmd.board.plant.level, cmd.board.plant.unit, cmd.board.plant.seed, static_cast<double>(cmd.speed));
+  std::printf("palpa-sim: %s, plant level %d, unit %u, seed %u, speed %gx\n",
+              cmd.board.config.c_str(), cmd.board.plant.level, cmd.board.plant.unit,
+              cmd.board.plant.seed, static_cast<double>(cmd.speed));
   std::printf("palpa-sim: listening on %s\n", link.address().c_str());
   if (!cmd.truth.empty()) std::printf("palpa-sim: truth on %s\n", truth.address().c_str());
-  if (rig) std::printf("palpa-sim: rig (finger %u) by Modbus on %s\n", cmd.rig_finger, rig_server.address().c_str());
+  if (rig)
+    std::printf("palpa-sim: rig (finger %u) by Modbus on %s\n", cmd.rig_finger,
+                rig_server.address().c_str());
   std::fflush(stdout);
 
   const uint64_t truth_every_us = static_cast<uint64_t>(cmd.truth_every_ms) * 1000;
@@ -100,20 +105,38 @@ int main(int argc, char** argv) {
       if (cmd.truth.empty() || now_us % truth_every_us != 0) return;
       const palpa::core::Board& b = sim->board();
       truth.Write(sim->plant().Truth(), now_us,
-                  palpa::sim::TruthStream::BoardFacts{b.safe(), b.latched_faults(), b.last_host_frame_us()});
+                  palpa::sim::TruthStream::BoardFacts{b.safe(), b.latched_faults(),
+                                                      b.last_host_frame_us()});
     });
   }
   const auto start = std::chrono::steady_clock::now();
+  constexpr uint64_t kMaxLagUs = 20000;  // virtual time the loop may fall behind before it slips
+  double slipped_us = 0;                 // real time given up to slips
   while (!g_stop) {
-    const double wall_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+    const double wall_us =
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
     link.Pump();
     truth.Pump();
     rig_server.Pump();
-    sim->AdvanceTo(static_cast<uint64_t>(wall_us * cmd.speed));
+    // When the process fell behind (a busy machine, a fast --speed), virtual time slips instead of
+    // racing to catch up: racing would squeeze the host's real-time heartbeats out of the board's
+    // timeout window. Then one millisecond at a time, serving the host and the rig in between.
+    uint64_t target_us = static_cast<uint64_t>((wall_us - slipped_us) * cmd.speed);
+    if (target_us > sim->now_us() + kMaxLagUs) {
+      slipped_us += static_cast<double>(target_us - sim->now_us() - 1000) / cmd.speed;
+      target_us = sim->now_us() + 1000;
+    }
+    while (sim->now_us() + 1000 <= target_us && !g_stop) {
+      sim->AdvanceTo(sim->now_us() + 1000);
+      link.Pump();
+      rig_server.Pump();
+    }
+    sim->AdvanceTo(target_us);
     link.Pump();
 
     // Sleep until the next 1 ms step is due, or until the host sends something.
-    const double next_step_wall_us = static_cast<double>((sim->now_us() / 1000 + 1) * 1000) / cmd.speed;
+    const double next_step_wall_us =
+        static_cast<double>((sim->now_us() / 1000 + 1) * 1000) / cmd.speed + slipped_us;
     const double wait_us = next_step_wall_us - wall_us;
     std::vector<pollfd> fds;
     for (int fd : link.PollFds()) fds.push_back(pollfd{fd, POLLIN, 0});

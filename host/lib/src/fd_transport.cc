@@ -194,7 +194,7 @@ Result<std::unique_ptr<Transport>> OpenSim(const DeviceUri& uri, std::string* er
 }
 
 Result<std::unique_ptr<Transport>> LaunchSim(const std::string& config, const std::vector<std::string>& options,
-                                             std::string* truth_address, std::string* error) {
+                                             std::string* truth_address, std::string* error, std::string* rig_address) {
   DeviceUri uri;
   uri.config = config;
   const std::string program = FindPalpaSim();
@@ -234,9 +234,13 @@ Result<std::unique_ptr<Transport>> LaunchSim(const std::string& config, const st
     const size_t truth_at = text.find("truth on ");
     const bool truth_ready = truth_address == nullptr ||
                              (truth_at != std::string::npos && text.find('\n', truth_at) != std::string::npos);
-    if (at != std::string::npos && text.find('\n', at) != std::string::npos && truth_ready) {
+    const size_t rig_at = text.find("by Modbus on ");
+    const bool rig_ready = rig_address == nullptr ||
+                           (rig_at != std::string::npos && text.find('\n', rig_at) != std::string::npos);
+    if (at != std::string::npos && text.find('\n', at) != std::string::npos && truth_ready && rig_ready) {
       address = text.substr(at + 17, text.find('\n', at) - at - 17);
       if (truth_address != nullptr) *truth_address = text.substr(truth_at + 9, text.find('\n', truth_at) - truth_at - 9);
+      if (rig_address != nullptr) *rig_address = text.substr(rig_at + 13, text.find('\n', rig_at) - rig_at - 13);
       break;
     }
   }

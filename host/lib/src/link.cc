@@ -226,6 +226,7 @@ void Link::OnFrame(const pp::Frame& frame, double now) {  // mutex_ held
     if constexpr (std::is_same_v<M, pp::HelloReply>) {
       if (session_.OnHelloReply(m) == Status::kStale) return;
       hello_wanted_ = false;
+      ++hello_replies_;
       // The board answers within a few ticks: cap the back-off at 0.5 s so a command that lost
       // several retransmissions in a row still completes well inside the command timeout.
       sender_.Configure(pp::SenderConfig{pp::kMaxWindow, m.rx_buffer_bytes, 50000, 2000, 500000});
@@ -344,7 +345,9 @@ void Link::HeartbeatLoop() {
       SendUnsequenced(hb);
       lock.lock();
     }
-    changed_.wait_for(lock, std::chrono::duration<double>(period_s), [&] { return stop_; });
+    // A new session can shorten the period (a board at a faster time scale): wake up for it.
+    const uint64_t replies = hello_replies_;
+    changed_.wait_for(lock, std::chrono::duration<double>(period_s), [&] { return stop_ || hello_replies_ != replies; });
   }
 }
 

@@ -1,9 +1,11 @@
 // The palpa command line as a person uses it: exit codes, named errors, nothing sent on a bad
 // command line, and the commands against palpa-sim.
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -37,7 +39,8 @@ bool Has(const Run& r, const std::string& text) { return r.output.find(text) != 
 TEST_GROUP(CliUsage){};
 
 TEST(CliUsage, HelpForEveryCommand) {
-  for (const char* command : {"list", "info", "diag", "config", "set", "line", "monitor", "record", "estop", "clear", "demo"}) {
+  for (const char* command : {"list", "info", "diag", "config", "set", "line", "monitor", "record",
+                              "estop", "clear", "demo", "calibrate"}) {
     const Run r = Palpa(std::string(command) + " --help");
     LONGS_EQUAL_TEXT(0, r.code, command);
     CHECK_TEXT(Has(r, "usage: palpa"), command);
@@ -154,4 +157,45 @@ TEST(CliBoard, MonitorRecordEstopClear) {
   r = Palpa(device + "--json diag");
   CHECK(nlohmann::json::parse(r.output)["faults_latched"].get<int>() != 0);
   LONGS_EQUAL(0, Palpa(device + "clear").code);
+}
+
+TEST_GROUP(CliCalibrate){};
+
+TEST(CliCalibrate, BadArgumentsAreNamedBeforeAnythingStarts) {
+  const std::string nowhere = "--device tcp:127.0.0.1:1 ";
+  Run r = Palpa(nowhere + "calibrate --rig sim --finger 1");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "--out DIR"));
+  r = Palpa(nowhere + "calibrate --rig sim --finger 9 --out /tmp");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "--finger 9"));
+  r = Palpa(nowhere + "calibrate --rig sim --finger 1 --out /tmp");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "--rig sim goes with a simulated device"));
+  std::ofstream("/tmp/palpa-cli-rig.json")
+      << "{\"name\": \"lab\", \"stage\": {\"driver\": \"modbus\"}}";
+  r = Palpa(nowhere + "calibrate --rig /tmp/palpa-cli-rig.json --finger 1 --out /tmp");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "stage.address: missing"));
+  r = Palpa("calibrate --rig sim --finger 1 --out /tmp/palpa-cli-none --resume");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "no journal"));
+}
+
+TEST(CliCalibrate, QuickCalibrationOnTheSimulatedRigWritesAValidFileRawDataAndAReport) {
+  char pattern[] = "/tmp/palpa-cal-cli-XXXXXX";
+  const std::string dir = mkdtemp(pattern);
+  const Run r = Palpa("calibrate --rig sim --finger 1 --quick --out " + dir);
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  CHECK(Has(r, "calibrated PN-1"));
+  std::ifstream file(dir + "/PN-1.json");
+  const nlohmann::json j = nlohmann::json::parse(file);
+  CHECK(j["compensator"]["kind"] == "pi");
+  CHECK(j["static_inverse"].size() >= 8);
+  std::ifstream html(dir + "/PN-1.html");
+  std::string report((std::istreambuf_iterator<char>(html)), std::istreambuf_iterator<char>());
+  CHECK(report.find("<svg") != std::string::npos);
+  CHECK(report.find("Regulator static correction") != std::string::npos);
+  CHECK(access((dir + "/PN-1.journal.json").c_str(), F_OK) !=
+        0);  // a finished run leaves no journal
 }

@@ -26,6 +26,10 @@ struct RigDevices {
   std::unique_ptr<ForceSensor> force;
 };
 
+/// The description of palpa-sim's rig (calibration/rigs/sim.json) with both devices pointed at
+/// `modbus_uri` (modbus-tcp://127.0.0.1:PORT/1, as palpa-sim printed it).
+RigDescription SimRigDescription(const std::string& modbus_uri);
+
 /// Connects both devices; on failure nothing is left open and *error says which device and why.
 std::optional<RigDevices> OpenRigDevices(const RigDescription& rig, std::string* error);
 

@@ -143,6 +143,7 @@ class Link {
   uint32_t hello_nonce_ = 0;
   double hello_sent_s_ = -1;
   bool hello_wanted_ = true;
+  uint64_t hello_replies_ = 0;  ///< wakes the heartbeat loop to the new session's timeout
   struct Pending {
     bool done = false;
     CommandResult result;

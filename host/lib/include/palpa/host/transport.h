@@ -37,9 +37,11 @@ Result<std::unique_ptr<Transport>> OpenTransport(const std::string& uri, std::st
 
 /// Starts palpa-sim with CONFIG and extra options (e.g. {"--plant", "3", "--speed", "4"}) and
 /// connects to it. With `truth_address` non-null the simulator also streams its truth side channel
-/// (for demos and benchmarks) and *truth_address receives where ("tcp:127.0.0.1:PORT").
+/// (for demos and benchmarks) and *truth_address receives where ("tcp:127.0.0.1:PORT"); with
+/// `rig_address` non-null (and --rig-modbus among the options) it waits for the rig's address too.
 Result<std::unique_ptr<Transport>> LaunchSim(const std::string& config, const std::vector<std::string>& options,
-                                             std::string* truth_address, std::string* error);
+                                             std::string* truth_address, std::string* error,
+                                             std::string* rig_address = nullptr);
 
 /// The pid.codes test id palpa uses until one is allocated.
 inline constexpr uint16_t kUsbVendorId = 0x1209;

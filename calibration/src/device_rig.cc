@@ -1,0 +1,89 @@
+// The board through the host library, and scaled real time.
+#include "palpa/calibration/device_rig.h"
+
+#include <chrono>
+#include <thread>
+
+namespace palpa::calibration {
+
+DeviceBoardPort::DeviceBoardPort(host::Device& device) : device_(device) {
+  subscription_ = device_.Subscribe([this](const host::TelemetryFrame& f) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const protocol::Telemetry& t = f.telemetry;
+    // The newest tick's samples: one per line, the last `line_count` of the batch.
+    for (uint8_t i = 0; i < t.line_count && i < protocol::kMaxLines; ++i) {
+      measured_kpa_[i] = t.samples[t.sample_count - t.line_count + i].measured_pa / 1000.0;
+    }
+    faults_ = t.fault_bitmap;
+    last_frame_s_ =
+        std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  });
+}
+
+DeviceBoardPort::~DeviceBoardPort() { device_.Unsubscribe(subscription_); }
+
+bool DeviceBoardPort::jamming(uint8_t finger) {
+  return device_.info().fingers[finger].kind == protocol::FingerKind::kJamming;
+}
+
+uint8_t DeviceBoardPort::driven_line(uint8_t finger) {
+  const protocol::FingerSummary f = device_.info().fingers[finger];
+  return f.kind == protocol::FingerKind::kJamming ? f.line_b : f.line_a;
+}
+
+RigStatus DeviceBoardPort::SetDrive(uint8_t finger, double kpa_a, double kpa_b) {
+  const protocol::FingerSummary f = device_.info().fingers[finger];
+  std::vector<std::pair<uint8_t, double>> lines = {{f.line_a, kpa_a}};
+  if (f.line_b != protocol::kNoLine) lines.push_back({f.line_b, kpa_b});
+  const host::Outcome o = device_.SetLines(lines, true);
+  return o.ok() ? RigStatus{} : RigStatus::Fail(o.message);
+}
+
+RigStatus DeviceBoardPort::MeasuredKpa(uint8_t line, double* kpa) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  *kpa = measured_kpa_[line];
+  return {};
+}
+
+RigStatus DeviceBoardPort::SetTrim(uint8_t line, bool on) {
+  if (!known_[line]) {
+    std::string error;
+    const auto read = device_.ReadLine(line, &error);
+    if (!read.ok()) return RigStatus::Fail(error);
+    configured_[line] = read.value;
+    known_[line] = true;
+  }
+  protocol::ConfigureLine c = configured_[line];
+  if (!on) c.trim_kp = c.trim_ki_per_s = 0;
+  const host::Outcome o = device_.ConfigureLine(c);
+  return o.ok() ? RigStatus{} : RigStatus::Fail(o.message);
+}
+
+RigStatus DeviceBoardPort::Faults(uint32_t* bitmap) {
+  if (!device_.link().session_open())
+    return RigStatus::Fail("the board does not answer (no session)");
+  std::lock_guard<std::mutex> lock(mutex_);
+  const double now =
+      std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  if (last_frame_s_ > 0 && now - last_frame_s_ > 1.0)
+    return RigStatus::Fail("no telemetry from the board for over 1 s");
+  *bitmap = faults_;
+  return {};
+}
+
+RigStatus DeviceBoardPort::VentAll() {
+  std::vector<std::pair<uint8_t, double>> lines;
+  for (uint8_t i = 0; i < device_.info().line_count; ++i) lines.push_back({i, 0.0});
+  const host::Outcome o = device_.SetLines(lines, false);
+  return o.ok() ? RigStatus{} : RigStatus::Fail(o.message);
+}
+
+double ScaledTime::Now() {
+  return scale_ * std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+void ScaledTime::Wait(double seconds) {
+  std::this_thread::sleep_for(std::chrono::duration<double>(seconds / scale_));
+}
+
+}  // namespace palpa::calibration

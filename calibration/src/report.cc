@@ -1,0 +1,197 @@
+// HTML calibration report with inline SVG charts.
+#include "palpa/calibration/report.h"
+
+#include <cstdio>
+#include <map>
+
+#include "palpa/host/svg_chart.h"
+
+namespace palpa::calibration {
+namespace {
+
+using host::Chart;
+using host::Series;
+
+std::string Escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else
+      out += c;
+  }
+  return out;
+}
+
+std::string Fixed(double v, int decimals) {
+  char b[32];
+  std::snprintf(b, sizeof(b), "%.*f", decimals, v);
+  return b;
+}
+
+std::string SweepChart(const CalibrationRun& run) {
+  const host::CalibrationFile& f = run.file;
+  const bool jamming = f.kind == protocol::FingerKind::kJamming;
+  Chart c;
+  c.title =
+      jamming ? "Stiffness sweep at the recommended bias" : "Deformation sweep (contact detection)";
+  c.x_label = jamming ? "vacuum (kPa, magnitude)" : "pressure (kPa)";
+  c.y_label = jamming ? "stiffness (N/mm)" : "deformation (mm)";
+  Series readings{"readings, in order", {}, "#2471a3", false, false};
+  for (const SweepSample& s : run.sweep)
+    readings.points.push_back({s.drive_pa / 1000, s.output / 1000});
+  c.series.push_back(readings);
+  Series mid{"calibrated curve (mid-line)", {}, "#c0392b", false, true};
+  for (const host::CurvePoint& p : f.curve)
+    mid.points.push_back({jamming ? -p.kpa : p.kpa, p.output});
+  c.series.push_back(mid);
+  if (f.rising_fit && f.falling_fit) {
+    c.series.push_back({"rising fit",
+                        {{10, f.rising_fit->intercept + 10 * f.rising_fit->slope},
+                         {90, f.rising_fit->intercept + 90 * f.rising_fit->slope}},
+                        "#229954",
+                        true,
+                        false});
+    c.series.push_back({"falling fit",
+                        {{10, f.falling_fit->intercept + 10 * f.falling_fit->slope},
+                         {90, f.falling_fit->intercept + 90 * f.falling_fit->slope}},
+                        "#7d3c98",
+                        true,
+                        false});
+    c.series.push_back({"Table 5-4 inflation",
+                        {{10, 0.0428 * 10 - 0.2501}, {90, 0.0428 * 90 - 0.2501}},
+                        "#999",
+                        true,
+                        false});
+  }
+  return host::RenderSvg(c);
+}
+
+std::string CorrectionChart(const host::CalibrationFile& f) {
+  Chart c;
+  c.title = "Regulator static correction (trim off)";
+  c.x_label = "command (kPa)";
+  c.y_label = "measured - command (kPa)";
+  Series rising{"rising", {}, "#2471a3", false, false},
+      falling{"falling", {}, "#c0392b", false, false};
+  for (const protocol::CorrectionPoint& p : f.regulator_correction->points) {
+    rising.points.push_back({p.command_pa / 1000.0, (p.rising_pa - p.command_pa) / 1000.0});
+    falling.points.push_back({p.command_pa / 1000.0, (p.falling_pa - p.command_pa) / 1000.0});
+  }
+  c.series = {rising, falling};
+  return host::RenderSvg(c);
+}
+
+std::string ResidualChart(const CalibrationRun& run) {
+  const host::CalibrationFile& f = run.file;
+  Chart c;
+  c.title = "Compensator fit residuals along the sweep";
+  c.x_label = "reading";
+  c.y_label = "model - reading (output unit x 1000)";
+  Series r{"residual", {}, "#2471a3", false, true};
+  if (f.compensator == protocol::CompensatorKind::kPrandtlIshlinskii ||
+      f.compensator == protocol::CompensatorKind::kAsymmetricPi) {
+    const PlayModel m = ModelOf(f.compensator, f.compensator_params);
+    std::vector<double> u;
+    for (const SweepSample& s : run.sweep) u.push_back(std::max(0.0, s.drive_pa));
+    const std::vector<double> y = m.Simulate(u);
+    for (size_t k = 0; k < y.size(); ++k)
+      r.points.push_back({static_cast<double>(k), y[k] - run.sweep[k].output});
+  }
+  c.series = {r};
+  return host::RenderSvg(c);
+}
+
+std::string LoopsChart(const CalibrationRun& run) {
+  Chart c;
+  c.title = "Force-depth loops (first press of each grid point)";
+  c.x_label = "depth (mm)";
+  c.y_label = "force (N)";
+  const size_t repeats =
+      run.file.grid.empty() ? 1 : static_cast<size_t>(run.file.grid.front().cycles);
+  for (size_t g = 0; g < run.file.grid.size() && g * repeats < run.presses.size(); ++g) {
+    const PressCycle& p = run.presses[g * repeats];
+    Series s{"bias " + Fixed(run.file.grid[g].bias_kpa, 0) + ", vacuum " +
+                 Fixed(run.file.grid[g].vacuum_kpa, 0),
+             {},
+             "",
+             false,
+             false};
+    for (const auto& q : p.loading) s.points.push_back(q);
+    for (const auto& q : p.unloading) s.points.push_back(q);
+    c.series.push_back(s);
+  }
+  return host::RenderSvg(c);
+}
+
+std::string GridChart(const host::CalibrationFile& f) {
+  Chart c;
+  c.title = "Stiffness against vacuum, per bias (mean of the repeats)";
+  c.x_label = "vacuum (kPa)";
+  c.y_label = "stiffness (N/mm)";
+  std::map<double, Series> by_bias;
+  for (const host::GridPoint& g : f.grid) {
+    Series& s = by_bias[g.bias_kpa];
+    s.name = "bias " + Fixed(g.bias_kpa, 0) + " kPa";
+    s.points.push_back({g.vacuum_kpa, g.stiffness_mean});
+  }
+  for (auto& [bias, s] : by_bias) c.series.push_back(s);
+  return host::RenderSvg(c);
+}
+
+}  // namespace
+
+std::string RenderReport(const CalibrationRun& run) {
+  const host::CalibrationFile& f = run.file;
+  const bool jamming = f.kind == protocol::FingerKind::kJamming;
+  std::string h = "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>palpa calibration " +
+                  Escape(f.actuator_serial) +
+                  "</title><style>body{font-family:sans-serif;max-width:900px;margin:2em "
+                  "auto}td,th{padding:2px 8px;text-align:right}"
+                  "table{border-collapse:collapse}tr:nth-child(even){background:#f4f4f4}</style></"
+                  "head><body>\n";
+  h += "<h1>Calibration of " + Escape(f.actuator_serial) + "</h1>\n<p>" +
+       (jamming ? "Jamming" : "Pneumatic") + " finger " + std::to_string(f.finger + 1) +
+       " of board " + std::to_string(f.board_id) + ", " + Escape(f.date) + ", rig " +
+       Escape(f.rig) + ". " + std::to_string(f.quality.points) +
+       " sweep readings; compensator fit residual " + Fixed(f.quality.residual_rms * 1000, 1) +
+       " RMS, " + Fixed(f.quality.residual_max * 1000, 1) + " max (" + (jamming ? "mN/mm" : "µm") +
+       ").</p>\n";
+  if (!f.quality.flags.empty()) {
+    h += "<p><b>Flags:</b></p><ul>";
+    for (const std::string& flag : f.quality.flags) h += "<li>" + Escape(flag) + "</li>";
+    h += "</ul>\n";
+  }
+  if (f.rising_fit && f.falling_fit) {
+    h += "<p>Branch fits, mm against kPa over 10–90 %: rising " + Fixed(f.rising_fit->slope, 4) +
+         "·p " + Fixed(f.rising_fit->intercept, 3) + " (R² " + Fixed(f.rising_fit->r2, 3) +
+         "), falling " + Fixed(f.falling_fit->slope, 4) + "·p " +
+         Fixed(f.falling_fit->intercept, 3) + " (R² " + Fixed(f.falling_fit->r2, 3) +
+         "); thesis Table 5-4: 0.0428 and 0.0475.</p>\n";
+  }
+  if (jamming && f.recommended_bias_kpa) {
+    h += "<p>Recommended bias: <b>" + Fixed(*f.recommended_bias_kpa, 0) +
+         " kPa</b> (least press loop area where the stiffness range is "
+         "kept).</p>\n<table><tr><th>bias kPa</th><th>vacuum kPa</th>"
+         "<th>cycles</th><th>stiffness N/mm</th><th>spread</th><th>loop mJ</th><th>R² "
+         "min</th></tr>\n";
+    for (const host::GridPoint& g : f.grid) {
+      h += "<tr><td>" + Fixed(g.bias_kpa, 0) + "</td><td>" + Fixed(g.vacuum_kpa, 0) + "</td><td>" +
+           std::to_string(g.cycles) + "</td><td>" + Fixed(g.stiffness_mean, 3) + "</td><td>" +
+           Fixed(g.stiffness_spread, 3) + "</td><td>" + Fixed(g.loop_area_mean, 3) + "</td><td>" +
+           Fixed(g.r2_min, 4) + "</td></tr>\n";
+    }
+    h += "</table>\n" + GridChart(f) + LoopsChart(run);
+  }
+  h += SweepChart(run);
+  if (f.regulator_correction) h += CorrectionChart(f);
+  h += ResidualChart(run);
+  h += "</body></html>\n";
+  return h;
+}
+
+}  // namespace palpa::calibration

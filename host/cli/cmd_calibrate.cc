@@ -1,0 +1,257 @@
+// palpa calibrate: the thesis protocol on a rig (lab hardware by a rig file, or palpa-sim's rig),
+// with a progress bar and time remaining, a journal to resume from, and the calibration file,
+// raw data and an HTML report written to the output directory.
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <fstream>
+#include <sstream>
+
+#include "cli.h"
+#include "palpa/calibration/device_rig.h"
+#include "palpa/calibration/report.h"
+#include "palpa/calibration/rig_file.h"
+#include "palpa/calibration/thesis_protocol.h"
+#include "palpa/host/calibration_file.h"
+#include "palpa/host/svg_chart.h"
+#include "palpa/host/transport.h"
+
+namespace palpa::cli {
+namespace {
+
+namespace cal = calibration;
+
+struct CalibrateArgs {
+  std::string rig;
+  int finger = -1;
+  std::string protocol = "thesis";
+  std::string out;
+  bool resume = false;
+  bool quick = false;
+  double speed = 4;
+};
+
+/// Short settings for demonstrations and tests: fewer points, faster presses, two repeats.
+cal::ProtocolOptions Quick() {
+  cal::ProtocolOptions o;
+  o.dwell_s = 0.5;
+  o.contact.speed_mm_s = 1.0;
+  o.press_depth_mm = 2;
+  o.press_speed_mm_s = 2;
+  o.repeats = 2;
+  o.biases_kpa = {0, 20};
+  o.vacuums_kpa = {0, -100};
+  o.pneumatic_sweep = cal::SweepPlan{100000, 20000, 2};
+  o.jamming_sweep = cal::SweepPlan{100000, 20000, 1};
+  o.correction_points = 4;
+  o.compensator_operators = 8;
+  return o;
+}
+
+std::string UtcNow() {
+  const std::time_t t = std::time(nullptr);
+  char b[32];
+  std::strftime(b, sizeof(b), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
+  return b;
+}
+
+void ProgressBar(const cal::Progress& p, std::chrono::steady_clock::time_point start) {
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double left = p.done > 0 ? elapsed * (p.total - p.done) / p.done : 0;
+  const int width = 30, filled = p.total > 0 ? width * p.done / p.total : 0;
+  std::fprintf(stderr, "\r[%s%s] %3d/%d  %s left  %-48.48s",
+               std::string(static_cast<size_t>(filled), '#').c_str(),
+               std::string(static_cast<size_t>(width - filled), '.').c_str(), p.done, p.total,
+               p.done > 0 ? (std::to_string(static_cast<int>(left / 60)) + "m" +
+                             std::to_string(static_cast<int>(left) % 60) + "s")
+                                .c_str()
+                          : "--",
+               p.step.c_str());
+  std::fflush(stderr);
+}
+
+bool WriteText(const std::string& path, const std::string& text) {
+  const std::string temporary = path + ".part";
+  {
+    std::ofstream out(temporary);
+    out << text;
+    if (!out) return false;
+  }
+  return std::rename(temporary.c_str(), path.c_str()) == 0;
+}
+
+}  // namespace
+
+int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
+  CalibrateArgs a;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    auto value = [&](std::string& out) {
+      if (i + 1 >= args.size()) return false;
+      out = args[++i];
+      return true;
+    };
+    std::string v;
+    if (arg == "--resume") {
+      a.resume = true;
+    } else if (arg == "--quick") {
+      a.quick = true;
+    } else if (arg == "--rig") {
+      if (!value(a.rig)) return Usage("calibrate", "--rig needs FILE or sim");
+    } else if (arg == "--out") {
+      if (!value(a.out)) return Usage("calibrate", "--out needs a directory");
+    } else if (arg == "--protocol") {
+      if (!value(a.protocol) || a.protocol != "thesis")
+        return Usage("calibrate", "--protocol: this build has 'thesis'");
+    } else if (arg == "--finger") {
+      double n = 0;
+      if (!value(v) || !ParseNumber(v, n) || n < 1 || n > 8 || n != std::floor(n)) {
+        return Usage("calibrate", "--finger " + v + ": expected a finger number 1 to 8");
+      }
+      a.finger = static_cast<int>(n) - 1;
+    } else if (arg == "--speed") {
+      if (!value(v) || !ParseNumber(v, a.speed) || a.speed < 1 || a.speed > 100) {
+        return Usage(
+            "calibrate",
+            "--speed " + v + ": expected 1 to 100 (palpa-sim's time scale, --rig sim only)");
+      }
+    } else {
+      return Usage("calibrate", "unexpected argument '" + arg + "'");
+    }
+  }
+  if (a.rig.empty() || a.finger < 0 || a.out.empty()) {
+    return Usage("calibrate", "needs --rig FILE|sim, --finger N and --out DIR");
+  }
+  mkdir(a.out.c_str(), 0755);
+  struct stat st {};
+  if (stat(a.out.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
+    return Usage("calibrate", "--out " + a.out + ": not a directory");
+
+  // The rig and the board: palpa-sim serving both, or a rig file and --device.
+  std::string error;
+  std::optional<cal::RigDescription> description;
+  host::Device* device = nullptr;
+  std::unique_ptr<host::Device> own_device;
+  if (a.rig == "sim") {
+    if (!c.device_uri.empty() && c.device_uri.rfind("sim", 0) != 0) {
+      return Usage("calibrate", "--rig sim goes with a simulated device (--device sim[:CONFIG])");
+    }
+    const std::string config = c.device_uri.size() > 4 ? c.device_uri.substr(4) : "thesis-5finger";
+    std::string rig_address;
+    char speed[16];
+    std::snprintf(speed, sizeof(speed), "%g", a.speed);
+    auto transport = host::LaunchSim(config,
+                                     {"--speed", speed, "--rig-modbus", "tcp:127.0.0.1:0",
+                                      "--rig-finger", std::to_string(a.finger)},
+                                     nullptr, &error, &rig_address);
+    if (!transport.ok()) {
+      std::fprintf(stderr, "palpa calibrate: %s\n", error.c_str());
+      return kExitConnect;
+    }
+    auto opened = host::Device::Attach(std::move(transport.value), host::DeviceOptions{}, &error);
+    if (!opened.ok()) {
+      std::fprintf(stderr, "palpa calibrate: %s\n", error.c_str());
+      return kExitConnect;
+    }
+    own_device = std::move(opened.value);
+    device = own_device.get();
+    description = cal::SimRigDescription("modbus-tcp://" + rig_address.substr(4) + "/1");
+  } else {
+    description = cal::LoadRigDescription(a.rig, &error);
+    if (!description) return Usage("calibrate", "--rig " + error);
+    device = c.Device();
+    if (device == nullptr) return kExitConnect;
+  }
+  if (a.finger >= device->info().finger_count) {
+    return Usage("calibrate", "--finger " + std::to_string(a.finger + 1) + ": the board has " +
+                                  std::to_string(device->info().finger_count) + " fingers");
+  }
+  auto devices = cal::OpenRigDevices(*description, &error);
+  if (!devices) {
+    std::fprintf(stderr, "palpa calibrate: rig %s: %s\n", description->name.c_str(), error.c_str());
+    return kExitConnect;
+  }
+  const auto finger_config = device->ReadFinger(static_cast<uint8_t>(a.finger), &error);
+  if (!finger_config.ok()) {
+    std::fprintf(stderr, "palpa calibrate: %s\n", error.c_str());
+    return kExitFailed;
+  }
+  const std::string serial(finger_config.value.actuator_serial.data(),
+                           strnlen(finger_config.value.actuator_serial.data(),
+                                   finger_config.value.actuator_serial.size()));
+  if (!host::ValidSerial(serial)) {
+    std::fprintf(stderr,
+                 "palpa calibrate: finger %d has no usable actuator serial ('%s'); set it with "
+                 "palpa config set\n",
+                 a.finger + 1, serial.c_str());
+    return kExitFailed;
+  }
+
+  cal::DeviceBoardPort board(*device);
+  cal::ScaledTime time(device->info().time_scale);
+  cal::Rig rig{*devices->stage,     *devices->force,  board, time,
+               description->limits, description->name};
+  const std::string base = a.out + "/" + serial;
+  cal::Journal journal;
+  if (a.resume) {
+    std::ifstream in(base + ".journal.json");
+    if (!in) return Usage("calibrate", "--resume: no journal " + base + ".journal.json");
+    try {
+      in >> journal.state;
+    } catch (const std::exception& e) {
+      return Usage("calibrate",
+                   "--resume: " + base + ".journal.json is not a journal (" + e.what() + ")");
+    }
+  }
+  journal.save = [&base](const cal::Journal& j) {
+    WriteText(base + ".journal.json", j.state.dump());
+  };
+  const cal::RunInfo info{serial, device->info().board_id, UtcNow(), description->name,
+                          serial + ".csv"};
+  cal::CalibrationRun run;
+  const auto start = std::chrono::steady_clock::now();
+  const cal::ProtocolOptions options = a.quick ? Quick() : cal::ProtocolOptions{};
+  const cal::RigStatus s = cal::RunThesisProtocol(
+      rig, static_cast<uint8_t>(a.finger), options, info, journal,
+      [&](const cal::Progress& p) { ProgressBar(p, start); }, &run);
+  std::fprintf(stderr, "\n");
+  if (!s.ok) {
+    std::fprintf(stderr,
+                 "palpa calibrate: stopped: %s\nThe stage was retracted and the board vented. What "
+                 "was finished is in "
+                 "%s.journal.json; run again with --resume to continue.\n",
+                 s.error.c_str(), base.c_str());
+    return kExitFailed;
+  }
+  std::string csv;
+  for (const std::string& row : run.csv) csv += row + "\n";
+  if (!WriteText(base + ".csv", csv) || !host::SaveCalibration(run.file, base + ".json", &error) ||
+      !WriteText(base + ".html", cal::RenderReport(run))) {
+    std::fprintf(stderr, "palpa calibrate: cannot write the results in %s: %s\n", a.out.c_str(),
+                 error.c_str());
+    return kExitFailed;
+  }
+  unlink((base + ".journal.json").c_str());
+  std::printf("calibrated %s (finger %d): %s.json, %s.csv, %s.html\n", serial.c_str(), a.finger + 1,
+              base.c_str(), base.c_str(), base.c_str());
+  if (run.file.rising_fit) {
+    std::printf(
+        "  deformation branches: rising %.4f, falling %.4f mm/kPa (Table 5-4: 0.0428, 0.0475)\n",
+        run.file.rising_fit->slope, run.file.falling_fit->slope);
+  }
+  if (run.file.recommended_bias_kpa)
+    std::printf("  recommended bias: %.0f kPa\n", *run.file.recommended_bias_kpa);
+  std::printf(
+      "  compensator %s(%zu params), fit residual %.4f RMS\n",
+      protocol::EnumNames(protocol::CompensatorKind{})[static_cast<size_t>(run.file.compensator)],
+      run.file.compensator_params.size(), run.file.quality.residual_rms);
+  return kExitOk;
+}
+
+}  // namespace palpa::cli
