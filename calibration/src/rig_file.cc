@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "palpa/calibration/modbus_devices.h"
+#include "palpa/calibration/netft.h"
 #include "palpa/host/json_check.h"
 
 namespace palpa::calibration {
@@ -49,7 +50,27 @@ std::optional<RigDescription> ParseRigDescription(const std::string& text, std::
     RigDescription rig;
     rig.name = o.Text("name");
     rig.stage = Device(o, "stage", kStageRegisters);
-    rig.force = Device(o, "force_sensor", kForceRegisters);
+    const json& force = o.At("force_sensor");
+    if (force.is_object() && force.value("driver", "") == "netft") {
+      JsonObject f(force, "force_sensor",
+                   {"driver", "address", "counts_per_force", "axis", "sign", "timeout_ms"});
+      std::string why;
+      auto c = ParseNetFtAddress(f.Text("address"), &why);
+      if (!c) throw JsonInvalid("force_sensor.address: " + why);
+      if (f.Has("counts_per_force")) c->counts_per_force = f.Number("counts_per_force", 1, 1e9);
+      if (f.Has("axis")) {
+        const std::string axis = f.Choice("axis", {"fx", "fy", "fz"});
+        c->axis = axis == "fx" ? 0 : axis == "fy" ? 1 : 2;
+      }
+      if (f.Has("sign")) {
+        c->sign = f.Number("sign", -1, 1);
+        if (c->sign != 1 && c->sign != -1) throw JsonInvalid("force_sensor.sign: must be 1 or -1");
+      }
+      if (f.Has("timeout_ms")) c->timeout_ms = static_cast<int>(f.Integer("timeout_ms", 10, 10000));
+      rig.netft = c;
+    } else {
+      rig.force = Device(o, "force_sensor", kForceRegisters);
+    }
     if (o.Has("limits")) {
       JsonObject l(o.At("limits"), "limits",
                    {"max_force_n", "min_position_mm", "max_position_mm", "retract_mm"});
@@ -93,14 +114,17 @@ std::optional<RigDevices> OpenRigDevices(const RigDescription& rig, std::string*
     if (error != nullptr) *error = "stage: " + why;
     return std::nullopt;
   }
-  auto force = ModbusDevice::Open(rig.force, &why);
-  if (!force) {
+  RigDevices d;
+  d.stage = std::make_unique<ModbusStage>(std::move(stage));
+  if (rig.netft) {
+    d.force = NetFtForceSensor::Open(*rig.netft, &why);
+  } else if (auto force = ModbusDevice::Open(rig.force, &why)) {
+    d.force = std::make_unique<ModbusForceSensor>(std::move(force));
+  }
+  if (!d.force) {
     if (error != nullptr) *error = "force sensor: " + why;
     return std::nullopt;
   }
-  RigDevices d;
-  d.stage = std::make_unique<ModbusStage>(std::move(stage));
-  d.force = std::make_unique<ModbusForceSensor>(std::move(force));
   return d;
 }
 

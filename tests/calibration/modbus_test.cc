@@ -1,6 +1,6 @@
-// Modbus rig drivers: register maps (every bad field named), value encodings in every byte and
-// word order, the drivers against palpa-sim's rig over TCP and over RTU on a socat pty pair, and
-// against an independent server (pymodbus) to show palpa speaks standard Modbus.
+// Rig drivers: register maps (every bad field named), value encodings in every byte and word
+// order, the Modbus drivers against palpa-sim's rig over TCP and over RTU on a socat pty pair and
+// against an independent server (pymodbus), and the Net F/T driver against palpa-sim's RDT server.
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <signal.h>
@@ -178,6 +178,26 @@ TEST(ModbusRig, DriversMoveTheSimulatedStageAndReadItsForceOverTcp) {
   auto devices = cal::OpenRigDevices(SimRig(ModbusUri(sim.rig_address())), &error);
   CHECK_TEXT(devices.has_value(), error.c_str());
   ExerciseRig(*devices);
+}
+
+TEST(ModbusRig, TheForceCanComeFromASimulatedNetFtOverRdt) {
+  pt::SimProcess sim;
+  CHECK(sim.Start({"--config", "thesis-5finger", "--listen", "tcp:127.0.0.1:0", "--rig-modbus",
+                   "tcp:127.0.0.1:0", "--rig-netft", "udp:127.0.0.1:0", "--speed", "10"}));
+  json j = json::parse(ReadText(std::string(PALPA_SOURCE_DIR) + "/calibration/rigs/sim.json"));
+  j["stage"]["address"] = ModbusUri(sim.rig_address());
+  j["force_sensor"] = {
+      {"driver", "netft"}, {"address", "netft://" + sim.netft_address().substr(4)}, {"axis", "fz"}};
+  std::string error;
+  const auto rig = cal::ParseRigDescription(j.dump(), &error);
+  CHECK_TEXT(rig.has_value(), error.c_str());
+  CHECK(rig->netft.has_value());
+  auto devices = cal::OpenRigDevices(*rig, &error);
+  CHECK_TEXT(devices.has_value(), error.c_str());
+  ExerciseRig(*devices);
+  j["force_sensor"]["axis"] = "fw";
+  CHECK_FALSE(cal::ParseRigDescription(j.dump(), &error).has_value());
+  CHECK(error.find("force_sensor.axis") != std::string::npos);
 }
 
 TEST(ModbusRig, DriversWorkOverRtuOnAPtyPair) {

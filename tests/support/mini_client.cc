@@ -7,6 +7,7 @@
 #include <netinet/tcp.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <termios.h>
@@ -20,7 +21,9 @@ namespace palpa::testing {
 namespace {
 
 int64_t NowMs() {
-  return std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  return std::chrono::duration_cast<std::chrono::milliseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
 }
 
 }  // namespace
@@ -102,10 +105,11 @@ pp::Result<pp::HelloReply> MiniClient::Hello(uint32_t nonce, int timeout_ms) {
   Send(pp::Hello{nonce, next_seq_});
   const int64_t deadline = NowMs() + timeout_ms;
   while (NowMs() < deadline) {
-    for (const ReceivedFrame& f : Read(static_cast<int>(deadline - NowMs()), [](const ReceivedFrame& r) {
-           return r.Is<pp::HelloReply>();
-         })) {
-      if (f.Is<pp::HelloReply>() && f.As<pp::HelloReply>().host_nonce == nonce) return f.As<pp::HelloReply>();
+    for (const ReceivedFrame& f :
+         Read(static_cast<int>(deadline - NowMs()),
+              [](const ReceivedFrame& r) { return r.Is<pp::HelloReply>(); })) {
+      if (f.Is<pp::HelloReply>() && f.As<pp::HelloReply>().host_nonce == nonce)
+        return f.As<pp::HelloReply>();
       backlog.push_back(f);
     }
   }
@@ -115,9 +119,9 @@ pp::Result<pp::HelloReply> MiniClient::Hello(uint32_t nonce, int timeout_ms) {
 pp::Status MiniClient::WaitAnswer(uint8_t seq, uint8_t type, int timeout_ms) {
   const int64_t deadline = NowMs() + timeout_ms;
   while (NowMs() < deadline) {
-    for (const ReceivedFrame& f : Read(static_cast<int>(deadline - NowMs()), [](const ReceivedFrame& r) {
-           return (r.header.flags & pp::flags::kReliable) != 0;
-         })) {
+    for (const ReceivedFrame& f : Read(
+             static_cast<int>(deadline - NowMs()),
+             [](const ReceivedFrame& r) { return (r.header.flags & pp::flags::kReliable) != 0; })) {
       backlog.push_back(f);
       if ((f.header.flags & pp::flags::kReliable) == 0 || f.header.seq != seq) continue;
       if (f.Is<pp::Ack>() && f.As<pp::Ack>().acked_type == type) return pp::Status::kOk;
@@ -133,6 +137,7 @@ bool SimProcess::Start(const std::vector<std::string>& args) {
   if (pipe(out) != 0) return false;
   pid_ = fork();
   if (pid_ == 0) {
+    prctl(PR_SET_PDEATHSIG, SIGTERM);  // never outlive the process that started it
     dup2(out[1], STDOUT_FILENO);
     close(out[0]);
     std::vector<char*> argv;
@@ -162,9 +167,13 @@ bool SimProcess::Start(const std::vector<std::string>& args) {
       *found = text.substr(start, end - start);
       return true;
     };
-    auto wants = [&args](const char* option) { return std::find(args.begin(), args.end(), option) != args.end(); };
-    if (line_after("listening on ", &address_) && (!wants("--truth") || line_after("truth on ", &truth_address_)) &&
-        (!wants("--rig-modbus") || line_after("by Modbus on ", &rig_address_))) {
+    auto wants = [&args](const char* option) {
+      return std::find(args.begin(), args.end(), option) != args.end();
+    };
+    if (line_after("listening on ", &address_) &&
+        (!wants("--truth") || line_after("truth on ", &truth_address_)) &&
+        (!wants("--rig-modbus") || line_after("by Modbus on ", &rig_address_)) &&
+        (!wants("--rig-netft") || line_after("as Net F/T on ", &netft_address_))) {
       return true;
     }
   }

@@ -58,9 +58,14 @@ class SimProcess {
   ~SimProcess();
   /// Sends SIGTERM and returns the exit status (-1 if it had to be killed).
   int Stop();
-  const std::string& address() const { return address_; }  ///< "tcp:127.0.0.1:PORT" or "serial:PATH"
+  const std::string& address() const {
+    return address_;
+  }  ///< "tcp:127.0.0.1:PORT" or "serial:PATH"
   const std::string& truth_address() const { return truth_address_; }  ///< when --truth was given
   const std::string& rig_address() const { return rig_address_; }  ///< when --rig-modbus was given
+  const std::string& netft_address() const {
+    return netft_address_;
+  }  ///< when --rig-netft was given
   int pid() const { return pid_; }
 
  private:
@@ -69,6 +74,7 @@ class SimProcess {
   std::string address_;
   std::string truth_address_;
   std::string rig_address_;
+  std::string netft_address_;
 };
 
 }  // namespace palpa::testing

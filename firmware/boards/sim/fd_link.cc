@@ -93,7 +93,7 @@ void FdLink::Pump() {
       continue;
     }
     if (n == 0 && !is_pty_) Disconnect();  // the host closed the connection
-    break;                                  // EAGAIN, or EIO on a pty with no client
+    break;                                 // EAGAIN, or EIO on a pty with no client
   }
   if (io_fd_ < 0) return;
   while (!tx_.empty()) {
@@ -128,6 +128,8 @@ size_t FdLink::DoWrite(const uint8_t* data, size_t size) {
   return n;
 }
 
-size_t FdLink::DoWriteSpace() const { return tx_.size() < kTxCapacity ? kTxCapacity - tx_.size() : 0; }
+size_t FdLink::DoWriteSpace() const {
+  return tx_.size() < kTxCapacity ? kTxCapacity - tx_.size() : 0;
+}
 
 }  // namespace palpa::sim

@@ -34,8 +34,8 @@ class FdLink final : public hal::ByteLink {
 
   static constexpr size_t kTxCapacity = 64 * 1024;
   int listen_fd_ = -1;
-  int io_fd_ = -1;     ///< TCP client, or the pty master
-  int pty_slave_ = -1; ///< kept open so the master never sees a hang-up between clients
+  int io_fd_ = -1;      ///< TCP client, or the pty master
+  int pty_slave_ = -1;  ///< kept open so the master never sees a hang-up between clients
   bool is_pty_ = false;
   std::string symlink_;
   std::string address_;

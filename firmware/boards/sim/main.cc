@@ -10,6 +10,7 @@
 
 #include "fd_link.h"
 #include "rig_modbus_server.h"
+#include "rig_netft_server.h"
 #include "sim_board.h"
 #include "sim_options.h"
 #include "truth_stream.h"
@@ -73,7 +74,8 @@ int main(int argc, char** argv) {
   }
   std::unique_ptr<palpa::sim::RigModel> rig;
   palpa::sim::RigModbusServer rig_server;
-  if (!cmd.rig_modbus.empty()) {
+  palpa::sim::RigNetFtServer netft;
+  if (!cmd.rig_modbus.empty() || !cmd.rig_netft.empty()) {
     if (cmd.rig_finger >= sim->board().config().finger_count) {
       std::fprintf(stderr, "palpa-sim: --rig-finger %u: %s has %u fingers\n", cmd.rig_finger,
                    cmd.board.config.c_str(), sim->board().config().finger_count);
@@ -81,7 +83,8 @@ int main(int argc, char** argv) {
     }
     rig = std::make_unique<palpa::sim::RigModel>(sim->plant(), cmd.rig_finger,
                                                  cmd.board.plant.seed * 17u + 5u);
-    if (!rig_server.Open(cmd.rig_modbus, *rig, &error)) {
+    if ((!cmd.rig_modbus.empty() && !rig_server.Open(cmd.rig_modbus, *rig, &error)) ||
+        (!cmd.rig_netft.empty() && !netft.Open(cmd.rig_netft, *rig, &error))) {
       std::fprintf(stderr, "palpa-sim: %s\n", error.c_str());
       return 1;
     }
@@ -91,9 +94,12 @@ int main(int argc, char** argv) {
               cmd.board.plant.seed, static_cast<double>(cmd.speed));
   std::printf("palpa-sim: listening on %s\n", link.address().c_str());
   if (!cmd.truth.empty()) std::printf("palpa-sim: truth on %s\n", truth.address().c_str());
-  if (rig)
+  if (!cmd.rig_modbus.empty()) {
     std::printf("palpa-sim: rig (finger %u) by Modbus on %s\n", cmd.rig_finger,
                 rig_server.address().c_str());
+  }
+  if (!cmd.rig_netft.empty())
+    std::printf("palpa-sim: rig force sensor as Net F/T on %s\n", netft.address().c_str());
   std::fflush(stdout);
 
   const uint64_t truth_every_us = static_cast<uint64_t>(cmd.truth_every_ms) * 1000;
@@ -130,6 +136,7 @@ int main(int argc, char** argv) {
       sim->AdvanceTo(sim->now_us() + 1000);
       link.Pump();
       rig_server.Pump();
+      netft.Pump();  // one record per millisecond while streaming
     }
     sim->AdvanceTo(target_us);
     link.Pump();
@@ -141,6 +148,7 @@ int main(int argc, char** argv) {
     std::vector<pollfd> fds;
     for (int fd : link.PollFds()) fds.push_back(pollfd{fd, POLLIN, 0});
     for (int fd : rig_server.PollFds()) fds.push_back(pollfd{fd, POLLIN, 0});
+    if (netft.fd() >= 0) fds.push_back(pollfd{netft.fd(), POLLIN, 0});
     const timespec timeout{0, wait_us > 0 ? static_cast<long>(wait_us * 1000) : 0};
     ppoll(fds.data(), fds.size(), &timeout, nullptr);
   }

@@ -5,19 +5,22 @@
 
 namespace palpa::sim {
 
-std::unique_ptr<SimBoard> SimBoard::Create(const SimBoardOptions& options, hal::ByteLink& link, std::string* error) {
+std::unique_ptr<SimBoard> SimBoard::Create(const SimBoardOptions& options, hal::ByteLink& link,
+                                           std::string* error) {
   const core::BoardConfig* config = core::FindBoardConfig(options.config.c_str());
   if (config == nullptr) {
     if (error != nullptr) {
       *error = "unknown board configuration '" + options.config + "' (known:";
-      for (uint8_t i = 0; i < core::kBoardConfigCount; ++i) *error += std::string(" ") + core::kBoardConfigs[i].name;
+      for (uint8_t i = 0; i < core::kBoardConfigCount; ++i)
+        *error += std::string(" ") + core::kBoardConfigs[i].name;
       *error += ")";
     }
     return nullptr;
   }
   std::unique_ptr<SimBoard> sim(new SimBoard());
-  sim->plant_ = std::make_unique<Plant>(config->lines.data(), config->line_count, config->fingers.data(),
-                                        config->finger_count, options.plant);
+  sim->plant_ =
+      std::make_unique<Plant>(config->lines.data(), config->line_count, config->fingers.data(),
+                              config->finger_count, options.plant);
   sim->dac_ = std::make_unique<SimAnalogOutput>(*sim->plant_);
   sim->adc_ = std::make_unique<SimAnalogInput>(*sim->plant_);
   core::BoardIdentity id;
@@ -25,10 +28,12 @@ std::unique_ptr<SimBoard> SimBoard::Create(const SimBoardOptions& options, hal::
   id.board_id = options.board_id;
   id.plant_simulated = true;
   id.time_scale = options.time_scale;
-  id.boot_nonce = options.boot_nonce != 0 ? options.boot_nonce : options.plant.seed * 2246822519u + 0x5EED;
+  id.boot_nonce =
+      options.boot_nonce != 0 ? options.boot_nonce : options.plant.seed * 2246822519u + 0x5EED;
   id.rx_buffer_bytes = 4096;
-  core::BoardIo io{sim->clock_, *sim->dac_, sim->adc_.get(), sim->supply_, sim->dump_, sim->pump_,
-                   nullptr, link, nullptr, 0};
+  core::BoardIo io{sim->clock_, *sim->dac_, sim->adc_.get(), sim->supply_,
+                   sim->dump_,  sim->pump_, nullptr,         link,
+                   nullptr,     0};
   sim->board_ = std::make_unique<core::Board>(*config, io, id);
   sim->board_->Start();
   return sim;

@@ -47,7 +47,8 @@ class PulsedValve final : public hal::DigitalOutput {
 class SimBoard {
  public:
   /// Returns nullptr (and sets *error) when the configuration name is unknown.
-  static std::unique_ptr<SimBoard> Create(const SimBoardOptions& options, hal::ByteLink& link, std::string* error);
+  static std::unique_ptr<SimBoard> Create(const SimBoardOptions& options, hal::ByteLink& link,
+                                          std::string* error);
 
   /// Runs the plant and the board up to virtual time `us` (1 ms plant steps, a board loop pass
   /// at every step).
@@ -64,7 +65,9 @@ class SimBoard {
   /// here so that a stalled host process does not thin out their samples.
   void OnStep(std::function<void(uint64_t now_us)> callback) { on_step_ = std::move(callback); }
 
-  void OnSetpointGeneration(std::function<void(uint32_t generation, bool dac)> callback) { stamp_ = std::move(callback); }
+  void OnSetpointGeneration(std::function<void(uint32_t generation, bool dac)> callback) {
+    stamp_ = std::move(callback);
+  }
   Plant& plant() { return *plant_; }
   const Plant& plant() const { return *plant_; }
   bool pump_on() const { return pump_.level; }

@@ -17,17 +17,22 @@ const char* const kSimUsage =
     "  --unit N             simulated actuator unit (0 = nominal; others differ as real units do)\n"
     "  --seed N             regulator and sensor units, noise (default 1)\n"
     "  --speed X            virtual seconds per real second, 0.01 to 100 (default 1)\n"
-    "  --plant LEVEL        0 ideal, 1 regulator, 2 actuator hysteresis, 3 sensors and rig (default 3)\n"
+    "  --plant LEVEL        0 ideal, 1 regulator, 2 actuator hysteresis, 3 sensors and rig "
+    "(default 3)\n"
     "  --effects LIST       creep, rate, history=FRACTION (jamming vacuum-history effect)\n"
     "  --no-static-errors   regulators without static errors\n"
     "  --truth SPEC         stream true pressures, deformations and stiffnesses as JSON lines to\n"
     "                       file:PATH or tcp:127.0.0.1:PORT (a side channel: not in the protocol)\n"
     "  --truth-every-ms N   truth sample period in virtual ms (default 10)\n"
-    "  --stamp file:PATH    write CLOCK_MONOTONIC stamps when a setpoint generation is applied and\n"
+    "  --stamp file:PATH    write CLOCK_MONOTONIC stamps when a setpoint generation is applied "
+    "and\n"
     "                       when it first reaches the DAC (latency benchmark)\n"
-    "  --rig-modbus SPEC    serve the calibration rig (linear stage and force sensor over the same\n"
+    "  --rig-modbus SPEC    serve the calibration rig (linear stage and force sensor over the "
+    "same\n"
     "                       plant and clock) by Modbus on tcp:127.0.0.1:PORT (0 = any free port)\n"
     "                       or rtu:PATH (115200 8N1; e.g. one end of a socat pty pair)\n"
+    "  --rig-netft SPEC     serve the rig's force sensor as an ATI Net F/T (RDT over UDP) on\n"
+    "                       udp:127.0.0.1:PORT (0 = any free port)\n"
     "  --rig-finger N       the finger under the rig's indenter (default 0)\n"
     "  --help               this text\n";
 
@@ -50,7 +55,8 @@ bool ParseEffects(const std::string& list, Effects& effects, std::string* error)
   size_t at = 0;
   while (at <= list.size()) {
     const size_t comma = list.find(',', at);
-    const std::string item = list.substr(at, comma == std::string::npos ? std::string::npos : comma - at);
+    const std::string item =
+        list.substr(at, comma == std::string::npos ? std::string::npos : comma - at);
     if (item == "creep") {
       effects.creep = true;
     } else if (item == "rate") {
@@ -60,7 +66,8 @@ bool ParseEffects(const std::string& list, Effects& effects, std::string* error)
       if (!Number("--effects history", item.substr(8), 0.0, 0.5, h, error)) return false;
       effects.history = static_cast<float>(h);
     } else {
-      *error = "--effects " + list + ": unknown effect '" + item + "' (expected creep, rate, history=FRACTION)";
+      *error = "--effects " + list + ": unknown effect '" + item +
+               "' (expected creep, rate, history=FRACTION)";
       return false;
     }
     if (comma == std::string::npos) break;
@@ -71,7 +78,8 @@ bool ParseEffects(const std::string& list, Effects& effects, std::string* error)
 
 }  // namespace
 
-bool ParseSimCommandLine(const std::vector<std::string>& args, SimCommandLine& out, std::string* error) {
+bool ParseSimCommandLine(const std::vector<std::string>& args, SimCommandLine& out,
+                         std::string* error) {
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
     if (arg == "--help" || arg == "-h") {
@@ -131,6 +139,12 @@ bool ParseSimCommandLine(const std::vector<std::string>& args, SimCommandLine& o
         return false;
       }
       out.rig_modbus = value;
+    } else if (arg == "--rig-netft") {
+      if (value.rfind("udp:", 0) != 0) {
+        *error = "--rig-netft " + value + ": expected udp:HOST:PORT";
+        return false;
+      }
+      out.rig_netft = value;
     } else if (arg == "--rig-finger") {
       if (!Number(arg, value, 0, 7, n, error) || n != static_cast<int>(n)) {
         *error = "--rig-finger " + value + ": expected a finger 0 to 7";

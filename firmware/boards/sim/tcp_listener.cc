@@ -13,7 +13,8 @@
 
 namespace palpa::sim {
 
-int ListenTcp(const std::string& spec, const char* option, std::string* address, std::string* error) {
+int ListenTcp(const std::string& spec, const char* option, std::string* address,
+              std::string* error) {
   const std::string where = std::string(option) + " " + spec + ": ";
   const std::string rest = spec.substr(4);
   const size_t colon = rest.rfind(':');

@@ -9,6 +9,7 @@ namespace palpa::sim {
 /// Parses `spec` ("tcp:" already checked by the caller), binds and listens. On success returns
 /// the socket and sets `address` to "tcp:HOST:PORT" with the port actually bound; on failure
 /// returns -1 and sets `error`, which names `option` and `spec`.
-int ListenTcp(const std::string& spec, const char* option, std::string* address, std::string* error);
+int ListenTcp(const std::string& spec, const char* option, std::string* address,
+              std::string* error);
 
 }  // namespace palpa::sim

@@ -36,24 +36,30 @@ void TruthStream::Pump() {
   client_fd_ = accept(listen_fd_, nullptr, nullptr);
 }
 
-std::string TruthStream::Format(const PlantTruth& truth, uint64_t board_time_us, const BoardFacts& board) {
+std::string TruthStream::Format(const PlantTruth& truth, uint64_t board_time_us,
+                                const BoardFacts& board) {
   char buffer[160];
-  std::string line = "{\"board_time_us\":" + std::to_string(board_time_us) + ",\"board\":{\"safe\":" +
-                     (board.safe ? "true" : "false") + ",\"faults\":" + std::to_string(board.faults) +
-                     ",\"last_host_frame_us\":" + std::to_string(board.last_host_frame_us) + "},\"lines\":[";
+  std::string line = "{\"board_time_us\":" + std::to_string(board_time_us) +
+                     ",\"board\":{\"safe\":" + (board.safe ? "true" : "false") +
+                     ",\"faults\":" + std::to_string(board.faults) +
+                     ",\"last_host_frame_us\":" + std::to_string(board.last_host_frame_us) +
+                     "},\"lines\":[";
   for (size_t i = 0; i < truth.lines.size(); ++i) {
     const LineTruth& l = truth.lines[i];
-    std::snprintf(buffer, sizeof(buffer), "%s{\"command_pa\":%.1f,\"outlet_pa\":%.1f,\"chamber_pa\":%.1f}",
-                  i ? "," : "", l.command_pa, l.outlet_pa, l.chamber_pa);
+    std::snprintf(buffer, sizeof(buffer),
+                  "%s{\"command_pa\":%.1f,\"outlet_pa\":%.1f,\"chamber_pa\":%.1f}", i ? "," : "",
+                  l.command_pa, l.outlet_pa, l.chamber_pa);
     line += buffer;
   }
   line += "],\"fingers\":[";
   for (size_t i = 0; i < truth.fingers.size(); ++i) {
     const FingerTruth& f = truth.fingers[i];
     if (f.jamming) {
-      std::snprintf(buffer, sizeof(buffer), "%s{\"stiffness_n_per_mm\":%.5f}", i ? "," : "", f.stiffness_n_per_mm);
+      std::snprintf(buffer, sizeof(buffer), "%s{\"stiffness_n_per_mm\":%.5f}", i ? "," : "",
+                    f.stiffness_n_per_mm);
     } else {
-      std::snprintf(buffer, sizeof(buffer), "%s{\"deformation_mm\":%.5f}", i ? "," : "", f.deformation_mm);
+      std::snprintf(buffer, sizeof(buffer), "%s{\"deformation_mm\":%.5f}", i ? "," : "",
+                    f.deformation_mm);
     }
     line += buffer;
   }

@@ -27,7 +27,8 @@ class TruthStream {
   void Pump();
 
   /// One JSON line for a truth sample (no trailing newline).
-  static std::string Format(const PlantTruth& truth, uint64_t board_time_us, const BoardFacts& board);
+  static std::string Format(const PlantTruth& truth, uint64_t board_time_us,
+                            const BoardFacts& board);
 
  private:
   FILE* file_ = nullptr;

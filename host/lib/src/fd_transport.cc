@@ -7,6 +7,7 @@
 #include <netinet/tcp.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -28,7 +29,8 @@ FdTransport::~FdTransport() {
 Result<size_t> FdTransport::Read(uint8_t* out, size_t capacity, int timeout_ms) {
   pollfd p{fd_, POLLIN, 0};
   const int ready = poll(&p, 1, timeout_ms);
-  if (ready < 0) return errno == EINTR ? Result<size_t>(size_t{0}) : Result<size_t>(Status::kIoError);
+  if (ready < 0)
+    return errno == EINTR ? Result<size_t>(size_t{0}) : Result<size_t>(Status::kIoError);
   if (ready == 0) return size_t{0};
   const ssize_t n = read(fd_, out, capacity);
   if (n > 0) return static_cast<size_t>(n);
@@ -51,7 +53,8 @@ Status FdTransport::Write(const uint8_t* data, size_t size) {
       if (poll(&p, 1, 1000) == 0) return Status::kTimeout;
       continue;
     }
-    return errno == EPIPE || errno == ECONNRESET || errno == EIO ? Status::kDisconnected : Status::kIoError;
+    return errno == EPIPE || errno == ECONNRESET || errno == EIO ? Status::kDisconnected
+                                                                 : Status::kIoError;
   }
   return Status::kOk;
 }
@@ -60,17 +63,28 @@ namespace {
 
 speed_t BaudConstant(uint32_t baud) {
   switch (baud) {
-    case 9600: return B9600;
-    case 19200: return B19200;
-    case 38400: return B38400;
-    case 57600: return B57600;
-    case 115200: return B115200;
-    case 230400: return B230400;
-    case 460800: return B460800;
-    case 921600: return B921600;
-    case 1000000: return B1000000;
-    case 2000000: return B2000000;
-    default: return 0;
+    case 9600:
+      return B9600;
+    case 19200:
+      return B19200;
+    case 38400:
+      return B38400;
+    case 57600:
+      return B57600;
+    case 115200:
+      return B115200;
+    case 230400:
+      return B230400;
+    case 460800:
+      return B460800;
+    case 921600:
+      return B921600;
+    case 1000000:
+      return B1000000;
+    case 2000000:
+      return B2000000;
+    default:
+      return 0;
   }
 }
 
@@ -111,7 +125,8 @@ int ConnectTcp(const DeviceUri& uri, std::string* error, Status* status) {
   hints.ai_socktype = SOCK_STREAM;
   addrinfo* found = nullptr;
   const std::string where = "tcp:" + uri.host + ":" + std::to_string(uri.port);
-  if (getaddrinfo(uri.host.c_str(), std::to_string(uri.port).c_str(), &hints, &found) != 0 || found == nullptr) {
+  if (getaddrinfo(uri.host.c_str(), std::to_string(uri.port).c_str(), &hints, &found) != 0 ||
+      found == nullptr) {
     *error = where + ": unknown host";
     *status = Status::kNotFound;
     return -1;
@@ -142,7 +157,8 @@ Result<std::unique_ptr<Transport>> OpenTcp(const DeviceUri& uri, std::string* er
   Status status = Status::kOk;
   const int fd = ConnectTcp(uri, error, &status);
   if (fd < 0) return status;
-  return std::unique_ptr<Transport>(new FdTransport(fd, "tcp:" + uri.host + ":" + std::to_string(uri.port)));
+  return std::unique_ptr<Transport>(
+      new FdTransport(fd, "tcp:" + uri.host + ":" + std::to_string(uri.port)));
 }
 
 SimTransport::~SimTransport() {
@@ -179,7 +195,8 @@ std::string FindPalpaSim() {
 
 Result<std::unique_ptr<Transport>> OpenSim(const DeviceUri& uri, std::string* error) {
   std::vector<std::string> options;
-  if (const char* args_env = getenv("PALPA_SIM_ARGS"); args_env != nullptr) {  // e.g. "--plant 1 --speed 10"
+  if (const char* args_env = getenv("PALPA_SIM_ARGS");
+      args_env != nullptr) {  // e.g. "--plant 1 --speed 10"
     const std::string a(args_env);
     size_t at = 0;
     while (at < a.size()) {
@@ -193,8 +210,10 @@ Result<std::unique_ptr<Transport>> OpenSim(const DeviceUri& uri, std::string* er
   return LaunchSim(uri.config, options, nullptr, error);
 }
 
-Result<std::unique_ptr<Transport>> LaunchSim(const std::string& config, const std::vector<std::string>& options,
-                                             std::string* truth_address, std::string* error, std::string* rig_address) {
+Result<std::unique_ptr<Transport>> LaunchSim(const std::string& config,
+                                             const std::vector<std::string>& options,
+                                             std::string* truth_address, std::string* error,
+                                             std::string* rig_address) {
   DeviceUri uri;
   uri.config = config;
   const std::string program = FindPalpaSim();
@@ -205,9 +224,11 @@ Result<std::unique_ptr<Transport>> LaunchSim(const std::string& config, const st
   }
   const pid_t child = fork();
   if (child == 0) {
+    prctl(PR_SET_PDEATHSIG, SIGTERM);  // never outlive the process that started it
     dup2(out[1], STDOUT_FILENO);
     close(out[0]);
-    std::vector<std::string> args = {program, "--config", uri.config, "--listen", "tcp:127.0.0.1:0"};
+    std::vector<std::string> args = {program, "--config", uri.config, "--listen",
+                                     "tcp:127.0.0.1:0"};
     args.insert(args.end(), options.begin(), options.end());
     if (truth_address != nullptr) {
       args.push_back("--truth");
@@ -232,15 +253,19 @@ Result<std::unique_ptr<Transport>> LaunchSim(const std::string& config, const st
     text.append(buffer, static_cast<size_t>(n));
     const size_t at = text.find("listening on tcp:");
     const size_t truth_at = text.find("truth on ");
-    const bool truth_ready = truth_address == nullptr ||
-                             (truth_at != std::string::npos && text.find('\n', truth_at) != std::string::npos);
+    const bool truth_ready =
+        truth_address == nullptr ||
+        (truth_at != std::string::npos && text.find('\n', truth_at) != std::string::npos);
     const size_t rig_at = text.find("by Modbus on ");
-    const bool rig_ready = rig_address == nullptr ||
-                           (rig_at != std::string::npos && text.find('\n', rig_at) != std::string::npos);
-    if (at != std::string::npos && text.find('\n', at) != std::string::npos && truth_ready && rig_ready) {
+    const bool rig_ready = rig_address == nullptr || (rig_at != std::string::npos &&
+                                                      text.find('\n', rig_at) != std::string::npos);
+    if (at != std::string::npos && text.find('\n', at) != std::string::npos && truth_ready &&
+        rig_ready) {
       address = text.substr(at + 17, text.find('\n', at) - at - 17);
-      if (truth_address != nullptr) *truth_address = text.substr(truth_at + 9, text.find('\n', truth_at) - truth_at - 9);
-      if (rig_address != nullptr) *rig_address = text.substr(rig_at + 13, text.find('\n', rig_at) - rig_at - 13);
+      if (truth_address != nullptr)
+        *truth_address = text.substr(truth_at + 9, text.find('\n', truth_at) - truth_at - 9);
+      if (rig_address != nullptr)
+        *rig_address = text.substr(rig_at + 13, text.find('\n', rig_at) - rig_at - 13);
       break;
     }
   }
@@ -262,7 +287,8 @@ Result<std::unique_ptr<Transport>> LaunchSim(const std::string& config, const st
     waitpid(child, nullptr, 0);
     return status;
   }
-  return std::unique_ptr<Transport>(new SimTransport(fd, child, "sim:" + uri.config + " (palpa-sim on tcp:" + address + ")"));
+  return std::unique_ptr<Transport>(
+      new SimTransport(fd, child, "sim:" + uri.config + " (palpa-sim on tcp:" + address + ")"));
 }
 
 Result<std::unique_ptr<Transport>> OpenTransport(const std::string& uri, std::string* error) {
@@ -270,11 +296,16 @@ Result<std::unique_ptr<Transport>> OpenTransport(const std::string& uri, std::st
   const Status s = ParseDeviceUri(uri, parsed, error);
   if (s != Status::kOk) return s;
   switch (parsed.kind) {
-    case DeviceUri::Kind::kSim: return OpenSim(parsed, error);
-    case DeviceUri::Kind::kSerial: return OpenSerial(parsed, error);
-    case DeviceUri::Kind::kTcp: return OpenTcp(parsed, error);
-    case DeviceUri::Kind::kHid: return OpenHid(parsed, error);
-    case DeviceUri::Kind::kUsb: return OpenUsb(parsed, error);
+    case DeviceUri::Kind::kSim:
+      return OpenSim(parsed, error);
+    case DeviceUri::Kind::kSerial:
+      return OpenSerial(parsed, error);
+    case DeviceUri::Kind::kTcp:
+      return OpenTcp(parsed, error);
+    case DeviceUri::Kind::kHid:
+      return OpenHid(parsed, error);
+    case DeviceUri::Kind::kUsb:
+      return OpenUsb(parsed, error);
   }
   return Status::kInvalidArgument;
 }

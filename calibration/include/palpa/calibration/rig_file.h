@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "palpa/calibration/netft.h"
 #include "palpa/calibration/register_map.h"
 #include "palpa/calibration/rig.h"
 
@@ -14,7 +15,8 @@ namespace palpa::calibration {
 struct RigDescription {
   std::string name;
   RegisterMap stage;
-  RegisterMap force;
+  RegisterMap force;                 ///< a Modbus force sensor...
+  std::optional<NetFtConfig> netft;  ///< ...or an ATI Net F/T
   SafetyLimits limits;
 };
 
