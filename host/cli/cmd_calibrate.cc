@@ -33,6 +33,7 @@ struct CalibrateArgs {
   std::string out;
   bool resume = false;
   bool quick = false;
+  bool apply = false;
   double speed = 4;
 };
 
@@ -102,6 +103,8 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
       a.resume = true;
     } else if (arg == "--quick") {
       a.quick = true;
+    } else if (arg == "--apply") {
+      a.apply = true;
     } else if (arg == "--rig") {
       if (!value(a.rig)) return Usage("calibrate", "--rig needs FILE or sim");
     } else if (arg == "--out") {
@@ -251,6 +254,12 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
       "  compensator %s(%zu params), fit residual %.4f RMS\n",
       protocol::EnumNames(protocol::CompensatorKind{})[static_cast<size_t>(run.file.compensator)],
       run.file.compensator_params.size(), run.file.quality.residual_rms);
+  if (a.apply) {
+    const host::Outcome o = device->ApplyCalibration(static_cast<uint8_t>(a.finger), run.file);
+    if (!o.ok()) return Report(c, o, "apply calibration");
+    std::printf("  applied to finger %d (static inverse, compensator, regulator correction%s)\n", a.finger + 1,
+                run.file.recommended_bias_kpa ? ", bias" : "");
+  }
   return kExitOk;
 }
 

@@ -40,13 +40,14 @@ const std::map<std::string, Command>& Commands() {
                   "Telemetry to CSV; the first line is a JSON header (board, configuration, units, clock)."}},
       {"estop", {CmdEStop, "estop", "Every line to its safe value now, latched until cleared."}},
       {"clear", {CmdClear, "clear", "Clear latched faults whose cause is gone; outputs stay safe until new setpoints."}},
-      {"calibrate", {CmdCalibrate, "calibrate --rig FILE|sim --finger N --out DIR [--protocol thesis] [--resume] [--quick]",
+      {"calibrate", {CmdCalibrate, "calibrate --rig FILE|sim --finger N --out DIR [--protocol thesis] [--resume] [--quick] [--apply]",
                      "Runs the thesis calibration of one finger on a rig: zero, regulator correction, then a\n"
                      "deformation sweep (pneumatic) or the bias x vacuum indentation grid (jamming) and a\n"
                      "hysteresis sweep. Writes DIR/SERIAL.json (the calibration file), SERIAL.csv (raw readings)\n"
                      "and SERIAL.html (report). --rig sim starts palpa-sim serving board and rig (--speed X, 1-100,\n"
                      "default 4); a rig FILE names the stage and force sensor (docs/calibration.md). A stopped\n"
-                     "run keeps DIR/SERIAL.journal.json: --resume continues it. --quick: short settings."}},
+                     "run keeps DIR/SERIAL.journal.json: --resume continues it. --quick: short settings.\n"
+                     "--apply uploads the result to the finger (one staged change)."}},
       {"demo", {CmdDemo, "demo [--out FILE.svg] [--speed X]",
                 "Starts a simulated thesis-5finger board and plays the thesis's discrimination stimuli:\n"
                 "18 three-finger pneumatic combinations and 9 two-finger jamming ones; prints target\n"

@@ -185,9 +185,10 @@ TEST(CliCalibrate, BadArgumentsAreNamedBeforeAnythingStarts) {
 TEST(CliCalibrate, QuickCalibrationOnTheSimulatedRigWritesAValidFileRawDataAndAReport) {
   char pattern[] = "/tmp/palpa-cal-cli-XXXXXX";
   const std::string dir = mkdtemp(pattern);
-  const Run r = Palpa("calibrate --rig sim --finger 1 --quick --out " + dir);
+  const Run r = Palpa("calibrate --rig sim --finger 1 --quick --apply --out " + dir);
   LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
   CHECK(Has(r, "calibrated PN-1"));
+  CHECK(Has(r, "applied to finger 1"));
   std::ifstream file(dir + "/PN-1.json");
   const nlohmann::json j = nlohmann::json::parse(file);
   CHECK(j["compensator"]["kind"] == "pi");
