@@ -45,6 +45,14 @@ RigStatus DeviceBoardPort::MeasuredKpa(uint8_t line, double* kpa) {
   return {};
 }
 
+RigStatus DeviceBoardPort::LineRangeKpa(uint8_t line, double* kpa) {
+  std::string error;
+  const auto read = device_.ReadLine(line, &error);
+  if (!read.ok()) return RigStatus::Fail(error);
+  *kpa = std::max(std::abs(read.value.limit_min_pa), std::abs(read.value.limit_max_pa)) / 1000.0;
+  return {};
+}
+
 RigStatus DeviceBoardPort::SetTrim(uint8_t line, bool on) {
   if (!known_[line]) {
     std::string error;

@@ -114,18 +114,23 @@ RigStatus ZeroOnVentedSurface(Rig& rig, uint8_t finger, const ContactOptions& o,
   return FindSurface(rig, 0, o, zero_mm);
 }
 
-RigStatus RegulatorCorrection(Rig& rig, uint8_t finger, int points, double dwell_s,
+RigStatus RegulatorCorrection(Rig& rig, uint8_t finger, uint8_t line, int points, double dwell_s,
                               std::vector<protocol::CorrectionPoint>* out) {
   const bool jamming = rig.board.jamming(finger);
-  const uint8_t line = rig.board.driven_line(finger);
-  RigStatus s = rig.board.SetTrim(line, false);
+  const bool vacuum = jamming && line == rig.board.driven_line(finger);
+  double range = 0;
+  RigStatus s = rig.board.LineRangeKpa(line, &range);
+  if (!s.ok) return AbortSafe(rig, "board: " + s.error);
+  s = rig.board.SetTrim(line, false);
   if (!s.ok) return AbortSafe(rig, "board: " + s.error);
   std::vector<double> commands, rising(points), falling(points);
-  // From 10 % (above the regulator's minimum set pressure) to 90 % of the range.
-  for (int i = 0; i < points; ++i) commands.push_back(10.0 + 80.0 * i / (points - 1));
+  // From 10 % (above the regulator's minimum set pressure) to 90 % of the line's range.
+  for (int i = 0; i < points; ++i) commands.push_back(range * (0.1 + 0.8 * i / (points - 1)));
   auto settle = [&](double kpa, double* measured) {
-    RigStatus r =
-        jamming ? rig.board.SetDrive(finger, 20, -kpa) : rig.board.SetDrive(finger, kpa, 0);
+    // The other line of a jamming finger at its working value: the bias at 20 kPa, vacuum released.
+    RigStatus r = !jamming ? rig.board.SetDrive(finger, kpa, 0)
+                  : vacuum ? rig.board.SetDrive(finger, 20, -kpa)
+                           : rig.board.SetDrive(finger, kpa, 0);
     if (!r.ok) return r;
     rig.time.Wait(dwell_s);
     uint32_t faults = 0;
@@ -139,7 +144,7 @@ RigStatus RegulatorCorrection(Rig& rig, uint8_t finger, int points, double dwell
   rig.board.SetTrim(line, true);
   if (!s.ok) return AbortSafe(rig, "regulator correction: " + s.error);
   out->clear();
-  const double sign = jamming ? -1 : 1;
+  const double sign = vacuum ? -1 : 1;
   for (int i = 0; i < points; ++i) {
     protocol::CorrectionPoint p;
     p.command_pa = static_cast<int32_t>(std::lround(sign * commands[i] * 1000));

@@ -71,14 +71,14 @@ std::string SweepChart(const CalibrationRun& run) {
   return host::RenderSvg(c);
 }
 
-std::string CorrectionChart(const host::CalibrationFile& f) {
+std::string CorrectionChart(const host::RegulatorCorrection& rc) {
   Chart c;
-  c.title = "Regulator static correction (trim off)";
+  c.title = "Regulator static correction, line " + std::to_string(rc.line + 1) + " (trim off)";
   c.x_label = "command (kPa)";
   c.y_label = "measured - command (kPa)";
   Series rising{"rising", {}, "#2471a3", false, false},
       falling{"falling", {}, "#c0392b", false, false};
-  for (const protocol::CorrectionPoint& p : f.regulator_correction->points) {
+  for (const protocol::CorrectionPoint& p : rc.points) {
     rising.points.push_back({p.command_pa / 1000.0, (p.rising_pa - p.command_pa) / 1000.0});
     falling.points.push_back({p.command_pa / 1000.0, (p.falling_pa - p.command_pa) / 1000.0});
   }
@@ -188,7 +188,7 @@ std::string RenderReport(const CalibrationRun& run) {
     h += "</table>\n" + GridChart(f) + LoopsChart(run);
   }
   h += SweepChart(run);
-  if (f.regulator_correction) h += CorrectionChart(f);
+  for (const host::RegulatorCorrection& rc : f.regulator_corrections) h += CorrectionChart(rc);
   h += ResidualChart(run);
   h += "</body></html>\n";
   return h;

@@ -110,7 +110,10 @@ RigStatus RunThesisProtocol(Rig& rig, uint8_t finger, const ProtocolOptions& o, 
     if (journal.save) journal.save(journal);
     if (progress) progress(p);
   };
-  out->csv = {"phase,drive_kpa,measured_kpa,output,extra1,extra2"};
+  // Columns per phase (docs/calibration.md): correction: line, command, rising, falling (kPa);
+  // grid: bias, vacuum (kPa), stiffness mean, spread (N/mm), loop area (mJ); sweep: commanded and
+  // measured drive (kPa), output (µm or mN/mm).
+  out->csv = {"phase,v1,v2,v3,v4,v5"};
 
   // 1. Zero (every run, also a resumed one: the rig may have been moved).
   step("zero on the vented surface");
@@ -119,24 +122,36 @@ RigStatus RunThesisProtocol(Rig& rig, uint8_t finger, const ProtocolOptions& o, 
   if (!s.ok) return s;
   done();
 
-  // 2. Regulator static correction of the driven line.
-  if (!st.contains("correction")) {
-    step("regulator static correction");
-    std::vector<protocol::CorrectionPoint> points;
-    s = RegulatorCorrection(rig, finger, o.correction_points, o.dwell_s, &points);
-    if (!s.ok) return s;
-    json c = json::array();
-    for (const auto& q : points) c.push_back({q.command_pa, q.rising_pa, q.falling_pa});
-    st["correction"] = c;
+  // 2. Regulator static correction of each of the finger's lines (bias and vacuum on a jamming
+  //    finger): the feed-forward map of every pressure loop it uses.
+  std::vector<uint8_t> lines = {rig.board.driven_line(finger)};
+  if (jamming) lines.insert(lines.begin(), rig.board.bias_line(finger));
+  if (!st.contains("corrections")) st["corrections"] = json::object();
+  for (uint8_t line : lines) {
+    const std::string key = std::to_string(line);
+    if (!st["corrections"].contains(key)) {
+      step("regulator static correction, line " + std::to_string(line + 1));
+      std::vector<protocol::CorrectionPoint> points;
+      s = RegulatorCorrection(rig, finger, line, o.correction_points, o.dwell_s, &points);
+      if (!s.ok) return s;
+      json c = json::array();
+      for (const auto& q : points) c.push_back({q.command_pa, q.rising_pa, q.falling_pa});
+      st["corrections"][key] = c;
+      if (journal.save) journal.save(journal);
+    }
   }
   done();
-  host::RegulatorCorrection correction;
-  correction.line = rig.board.driven_line(finger);
-  for (const json& q : st["correction"]) {
-    correction.points.push_back({q[0].get<int32_t>(), q[1].get<int32_t>(), q[2].get<int32_t>()});
-    out->csv.push_back(
-        Csv({q[0].get<double>() / 1000, q[1].get<double>() / 1000, q[2].get<double>() / 1000, 0, 0},
-            "correction"));
+  std::vector<host::RegulatorCorrection> corrections;
+  for (uint8_t line : lines) {
+    host::RegulatorCorrection correction;
+    correction.line = line;
+    for (const json& q : st["corrections"][std::to_string(line)]) {
+      correction.points.push_back({q[0].get<int32_t>(), q[1].get<int32_t>(), q[2].get<int32_t>()});
+      out->csv.push_back(Csv({static_cast<double>(line + 1), q[0].get<double>() / 1000,
+                              q[1].get<double>() / 1000, q[2].get<double>() / 1000, 0},
+                             "correction"));
+    }
+    corrections.push_back(correction);
   }
 
   // 3. Jamming: the indentation grid and the recommended bias.
@@ -231,7 +246,7 @@ RigStatus RunThesisProtocol(Rig& rig, uint8_t finger, const ProtocolOptions& o, 
   if (jamming) f.bias_kpa = bias;
   f.raw_data = info.raw_data;
   f.grid = grid;
-  f.regulator_correction = correction;
+  f.regulator_corrections = corrections;
   const double drive_max = jamming ? o.jamming_sweep.drive_max : o.pneumatic_sweep.drive_max;
   std::string error;
   const int inverse_points = static_cast<int>(std::clamp<size_t>(sweep.size() / 2, 2, 12));

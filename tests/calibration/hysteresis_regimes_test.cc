@@ -1,6 +1,7 @@
 // Where each compensator breaks, and what palpa guarantees there: on the simulated rig (short
 // runs), every regime holds the line limits, produces no NaN, and raises saturated where the model
-// is outside its range; the figures themselves are in docs/hysteresis.md (tests/bench/hysteresis.sh).
+// is outside its range; the figures themselves are in docs/hysteresis.md
+// (tests/bench/hysteresis.sh).
 #include <cmath>
 #include <random>
 
@@ -47,7 +48,8 @@ std::unique_ptr<pt::FingerRig> Configured(const pt::Method& m, const pt::Identif
   const cal::HysteresisFit fit = pt::FitMethod(m, id, rig->drive_max());
   CHECK_TEXT(m.kind == pp::CompensatorKind::kNone || fit.ok(), fit.error.c_str());
   std::string reason;
-  LONGS_EQUAL_TEXT((int)pp::Status::kOk, (int)rig->Configure(id.inverse, m.kind, fit.params, &reason), reason.c_str());
+  LONGS_EQUAL_TEXT((int)pp::Status::kOk,
+                   (int)rig->Configure(id.inverse, m.kind, fit.params, &reason), reason.c_str());
   return rig;
 }
 
@@ -62,9 +64,11 @@ void CheckGuard(pt::FingerRig& rig, const pt::TrackingResult& r) {
 
 }  // namespace
 
-TEST_GROUP(HysteresisRegimes) {
-  void setup() override { CHECK_TEXT(Identification().error.empty(), Identification().error.c_str()); }
-};
+TEST_GROUP(HysteresisRegimes){void setup() override{
+    CHECK_TEXT(Identification().error.empty(), Identification().error.c_str());
+}
+}
+;
 
 TEST(HysteresisRegimes, HeldOutUnitWithCreepKeepsThePiGapUnderThirtyPercent) {
   auto none = Configured(Named("none"), Identification());
@@ -81,12 +85,14 @@ TEST(HysteresisRegimes, BranchIsWrongOnMinorLoopsButStaysInItsLimits) {
   auto pi = Configured(Named("pi(16)"), Identification());
   const pt::GapResult p = pt::BranchGap(*pi, Identification().inverse, kDwellMs);
   CHECK(b.nested_gap_small > 2 * p.nested_gap_small);  // its reversal rule does not know nesting
-  CheckGuard(*branch, pt::Track(*branch, Identification().inverse, pt::InputSet::kBandLimitedRandom, 8, 4));
+  CheckGuard(*branch,
+             pt::Track(*branch, Identification().inverse, pt::InputSet::kBandLimitedRandom, 8, 4));
 }
 
 TEST(HysteresisRegimes, FastInputsLagButNeverLeaveTheLimits) {
   auto pi = Configured(Named("pi(16)"), Identification());
-  const pt::TrackingResult r = pt::Track(*pi, Identification().inverse, pt::InputSet::kFastRamps, 6, 5);
+  const pt::TrackingResult r =
+      pt::Track(*pi, Identification().inverse, pt::InputSet::kFastRamps, 6, 5);
   CheckGuard(*pi, r);
   CHECK(r.rms > 200);  // µm: the chamber's lag, which no static compensator can remove
 }
@@ -95,7 +101,8 @@ TEST(HysteresisRegimes, BelowTheIdentifiedRangeTheFingerSaturatesAndSaysSo) {
   // A jamming finger is never softer than with the vacuum released: a target below that is
   // accepted (the static inverse maps it to 0 Pa) but outside every compensator's model.
   pt::FingerRig source({3, 1, 46, palpa::sim::Effects{}});
-  const pt::Identified id = pt::Identify(source, cal::SweepPlan{source.drive_max(), 10000, 2}, 3 * kDwellMs);
+  const pt::Identified id =
+      pt::Identify(source, cal::SweepPlan{source.drive_max(), 10000, 2}, 3 * kDwellMs);
   CHECK_TEXT(id.error.empty(), id.error.c_str());
   const double bottom = id.inverse.front().output;
   for (const char* name : {"pi(16)", "api(8)", "branch(12)"}) {

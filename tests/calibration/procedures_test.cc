@@ -38,7 +38,7 @@ TEST(Procedures, RegulatorCorrectionShowsTheStaticErrorAndTheBoardTakesIt) {
   pt::SimRig sim({"thesis-5finger", 0, 1, 4});
   cal::Rig rig = sim.rig();
   std::vector<pp::CorrectionPoint> points;
-  const cal::RigStatus s = cal::RegulatorCorrection(rig, 0, 6, 1.5, &points);
+  const cal::RigStatus s = cal::RegulatorCorrection(rig, 0, 0, 6, 1.5, &points);
   CHECK_TEXT(s.ok, s.error.c_str());
   LONGS_EQUAL(6, points.size());
   double largest = 0;

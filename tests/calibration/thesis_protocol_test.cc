@@ -82,6 +82,10 @@ TEST(ThesisProtocol, JammingFingerRecommendsTheBiasWithTheSmallerLoop) {
       cal::RunThesisProtocol(rig, 3, Short(), Info("JAM-1"), journal, nullptr, &run);
   CHECK_TEXT(s.ok, s.error.c_str());
   LONGS_EQUAL(4, run.file.grid.size());
+  LONGS_EQUAL(2, run.file.regulator_corrections.size());  // the bias line and the vacuum line
+  CHECK(run.file.regulator_corrections[0].points.back().command_pa <=
+        20000);  // within the bias line's range
+  CHECK(run.file.regulator_corrections[1].points.back().command_pa < -50000);
   LONGS_EQUAL(8, run.presses.size());
   DOUBLES_EQUAL(20, *run.file.recommended_bias_kpa, 0);  // bias shrinks the press loop (Fig 5-36)
   // Stiffness rises with vacuum at the bias: ≈ 0.7 → 1.3 N/mm.
@@ -113,7 +117,7 @@ TEST(ThesisProtocol, AnInterruptedRunResumesFromItsJournal) {
   }
   const size_t kept = journal.state["sweep"].size();
   CHECK(kept >= 4);
-  CHECK(journal.state.contains("correction"));
+  CHECK(journal.state.contains("corrections"));
   pt::SimRig sim({"thesis-5finger", 0, 0, 24});
   cal::Rig rig = sim.rig();
   cal::CalibrationRun run;

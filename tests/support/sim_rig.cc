@@ -93,6 +93,12 @@ RigStatus SimRig::MeasuredKpa(uint8_t line, double* kpa) {
   return {};
 }
 
+RigStatus SimRig::LineRangeKpa(uint8_t line, double* kpa) {
+  const pp::ConfigureLine& c = board_.config().lines[line];
+  *kpa = std::max(std::abs(c.limit_min_pa), std::abs(c.limit_max_pa)) / 1000.0;
+  return {};
+}
+
 RigStatus SimRig::SetTrim(uint8_t line, bool on) {
   pp::ConfigureLine c = board_.config().lines[line];
   c.trim_kp = on ? configured_[line].trim_kp : 0.0f;

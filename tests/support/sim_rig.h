@@ -48,8 +48,10 @@ class SimRig final : public calibration::RigTime,
   // BoardPort
   bool jamming(uint8_t finger) override;
   uint8_t driven_line(uint8_t finger) override;
+  uint8_t bias_line(uint8_t finger) override { return board_.config().fingers[finger].line_a; }
   calibration::RigStatus SetDrive(uint8_t finger, double kpa_a, double kpa_b) override;
   calibration::RigStatus MeasuredKpa(uint8_t line, double* kpa) override;
+  calibration::RigStatus LineRangeKpa(uint8_t line, double* kpa) override;
   calibration::RigStatus SetTrim(uint8_t line, bool on) override;
   calibration::RigStatus Faults(uint32_t* bitmap) override;
   calibration::RigStatus VentAll() override;

@@ -47,7 +47,7 @@ CalibrationFile Read(const json& root) {
   Obj o(root, "",
         {"schema", "schema_version", "actuator_serial", "kind", "board_id", "finger", "date", "rig",
          "conditions", "raw_data", "curve", "fits", "grid", "static_inverse",
-         "regulator_correction", "compensator", "recommended_bias_kpa", "quality"});
+         "regulator_corrections", "compensator", "recommended_bias_kpa", "quality"});
   CalibrationFile c;
   if (o.Text("schema") != "palpa-calibration")
     throw Invalid("schema: must be \"palpa-calibration\"");
@@ -131,31 +131,39 @@ CalibrationFile Read(const json& root) {
     CheckMonotone(outputs, "static_inverse.output", 1);
     CheckMonotone(setpoints, "static_inverse.setpoint_pa", jamming ? -1 : 1);
   }
-  if (o.Has("regulator_correction")) {
-    Obj r(o.At("regulator_correction"), "regulator_correction", {"line", "points"});
-    RegulatorCorrection rc;
-    rc.line = static_cast<uint8_t>(r.Integer("line", 0, pp::kMaxLines - 1));
-    const json& list = r.List("points", 2, pp::kMaxCorrectionPoints);
-    std::vector<double> command, rising, falling;
-    for (size_t i = 0; i < list.size(); ++i) {
-      Obj p(list[i], r.Item("points", i), {"command_pa", "rising_pa", "falling_pa"});
-      pp::CorrectionPoint q;
-      q.command_pa =
-          static_cast<int32_t>(p.Integer("command_pa", pp::kMinPressurePa, pp::kMaxPressurePa));
-      q.rising_pa =
-          static_cast<int32_t>(p.Integer("rising_pa", pp::kMinPressurePa, pp::kMaxPressurePa));
-      q.falling_pa =
-          static_cast<int32_t>(p.Integer("falling_pa", pp::kMinPressurePa, pp::kMaxPressurePa));
-      command.push_back(q.command_pa);
-      rising.push_back(q.rising_pa);
-      falling.push_back(q.falling_pa);
-      rc.points.push_back(q);
+  if (o.Has("regulator_corrections")) {
+    const json& list = o.List("regulator_corrections", 0, 2);
+    for (size_t k = 0; k < list.size(); ++k) {
+      const std::string where = o.Item("regulator_corrections", k);
+      Obj r(list[k], where, {"line", "points"});
+      RegulatorCorrection rc;
+      rc.line = static_cast<uint8_t>(r.Integer("line", 0, pp::kMaxLines - 1));
+      for (const RegulatorCorrection& other : c.regulator_corrections) {
+        if (other.line == rc.line)
+          throw Invalid(where + ".line: line " + std::to_string(rc.line) + " appears twice");
+      }
+      const json& points = r.List("points", 2, pp::kMaxCorrectionPoints);
+      std::vector<double> command, rising, falling;
+      for (size_t i = 0; i < points.size(); ++i) {
+        Obj p(points[i], r.Item("points", i), {"command_pa", "rising_pa", "falling_pa"});
+        pp::CorrectionPoint q;
+        q.command_pa =
+            static_cast<int32_t>(p.Integer("command_pa", pp::kMinPressurePa, pp::kMaxPressurePa));
+        q.rising_pa =
+            static_cast<int32_t>(p.Integer("rising_pa", pp::kMinPressurePa, pp::kMaxPressurePa));
+        q.falling_pa =
+            static_cast<int32_t>(p.Integer("falling_pa", pp::kMinPressurePa, pp::kMaxPressurePa));
+        command.push_back(q.command_pa);
+        rising.push_back(q.rising_pa);
+        falling.push_back(q.falling_pa);
+        rc.points.push_back(q);
+      }
+      const int direction = command.back() > command.front() ? 1 : -1;
+      CheckMonotone(command, where + ".points.command_pa", direction);
+      CheckMonotone(rising, where + ".points.rising_pa", direction);
+      CheckMonotone(falling, where + ".points.falling_pa", direction);
+      c.regulator_corrections.push_back(rc);
     }
-    const int direction = command.back() > command.front() ? 1 : -1;
-    CheckMonotone(command, "regulator_correction.points.command_pa", direction);
-    CheckMonotone(rising, "regulator_correction.points.rising_pa", direction);
-    CheckMonotone(falling, "regulator_correction.points.falling_pa", direction);
-    c.regulator_correction = rc;
   }
   {
     Obj k(o.At("compensator"), "compensator", {"kind", "params"});
@@ -238,13 +246,17 @@ json Write(const CalibrationFile& c) {
   j["static_inverse"] = json::array();
   for (const pp::InversePoint& p : c.static_inverse)
     j["static_inverse"].push_back({{"output", p.output}, {"setpoint_pa", p.setpoint_pa}});
-  if (c.regulator_correction) {
-    json points = json::array();
-    for (const pp::CorrectionPoint& p : c.regulator_correction->points) {
-      points.push_back(
-          {{"command_pa", p.command_pa}, {"rising_pa", p.rising_pa}, {"falling_pa", p.falling_pa}});
+  if (!c.regulator_corrections.empty()) {
+    j["regulator_corrections"] = json::array();
+    for (const RegulatorCorrection& rc : c.regulator_corrections) {
+      json points = json::array();
+      for (const pp::CorrectionPoint& p : rc.points) {
+        points.push_back({{"command_pa", p.command_pa},
+                          {"rising_pa", p.rising_pa},
+                          {"falling_pa", p.falling_pa}});
+      }
+      j["regulator_corrections"].push_back({{"line", rc.line}, {"points", points}});
     }
-    j["regulator_correction"] = {{"line", c.regulator_correction->line}, {"points", points}};
   }
   j["compensator"] = {
       {"kind", pp::EnumNames(pp::CompensatorKind{})[static_cast<size_t>(c.compensator)]},

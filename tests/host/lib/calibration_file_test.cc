@@ -36,8 +36,8 @@ ph::CalibrationFile Example() {
   c.rising_fit = ph::LineFit{0.0428, -0.25, 0.97};
   c.falling_fit = ph::LineFit{0.0475, -0.05, 0.98};
   c.static_inverse = {{0, 0}, {300, 10000}, {1200, 30000}, {2600, 60000}, {4200, 100000}};
-  c.regulator_correction =
-      ph::RegulatorCorrection{0, {{0, 0, 0}, {50000, 50600, 49500}, {90000, 90800, 89700}}};
+  c.regulator_corrections.push_back(
+      ph::RegulatorCorrection{0, {{0, 0, 0}, {50000, 50600, 49500}, {90000, 90800, 89700}}});
   c.compensator = pp::CompensatorKind::kPrandtlIshlinskii;
   c.compensator_params = {-200, 0.03f, 0, 25000, 0.01f, 0.005f};
   c.quality.residual_rms = 12;
@@ -74,7 +74,7 @@ TEST(CalibrationFile, SavesAtomicallyAndReadsBackEveryField) {
   LONGS_EQUAL(5, back->curve.size());
   DOUBLES_EQUAL(1.2, back->curve[2].output, 1e-12);
   LONGS_EQUAL(30000, back->static_inverse[2].setpoint_pa);
-  LONGS_EQUAL(49500, back->regulator_correction->points[1].falling_pa);
+  LONGS_EQUAL(49500, back->regulator_corrections[0].points[1].falling_pa);
   CHECK(back->compensator == pp::CompensatorKind::kPrandtlIshlinskii);
   LONGS_EQUAL(6, back->compensator_params.size());
   DOUBLES_EQUAL(0.98, back->falling_fit->r2, 1e-12);
@@ -117,9 +117,11 @@ TEST(CalibrationFile, EveryBadFieldIsNamedByItsPath) {
          j["static_inverse"] = json::array({{{"output", 0}, {"setpoint_pa", 0}}});
        },
        "static_inverse: has 1 entries"},
-      {[](json& j) { j["regulator_correction"]["line"] = 8; }, "regulator_correction.line"},
-      {[](json& j) { j["regulator_correction"]["points"][1]["rising_pa"] = 0; },
-       "regulator_correction.points.rising_pa[1]"},
+      {[](json& j) { j["regulator_corrections"][0]["line"] = 8; }, "regulator_corrections[0].line"},
+      {[](json& j) { j["regulator_corrections"][0]["points"][1]["rising_pa"] = 0; },
+       "regulator_corrections[0].points.rising_pa[1]"},
+      {[](json& j) { j["regulator_corrections"].push_back(j["regulator_corrections"][0]); },
+       "regulator_corrections[1].line: line 0 appears twice"},
       {[](json& j) { j["compensator"]["kind"] = "magic"; }, "compensator.kind: unknown"},
       {[](json& j) { j["compensator"]["params"][5] = -0.1; },
        "compensator.params: cumulative weight"},
@@ -187,7 +189,7 @@ TEST(CalibrationFile, DeviceFindsCalibrationsByActuatorSerialAndUploadsThemAtomi
   // applies nothing, not even its valid finger record.
   ph::CalibrationFile half = Example();
   half.compensator_params = {0, 0.02f, 0, 0.001f};
-  half.regulator_correction->points[1] = {90000, 95500, 93000};
+  half.regulator_corrections[0].points[1] = {90000, 95500, 93000};
   const ph::Outcome refused = d.ApplyCalibration(0, half);
   LONGS_EQUAL((int)pp::Status::kBadValue, (int)refused.status);
   LONGS_EQUAL(6, d.ReadFinger(0).value.param_count);  // the earlier calibration is untouched

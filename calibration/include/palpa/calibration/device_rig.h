@@ -18,8 +18,10 @@ class DeviceBoardPort final : public BoardPort {
   ~DeviceBoardPort() override;
   bool jamming(uint8_t finger) override;
   uint8_t driven_line(uint8_t finger) override;
+  uint8_t bias_line(uint8_t finger) override { return device_.info().fingers[finger].line_a; }
   RigStatus SetDrive(uint8_t finger, double kpa_a, double kpa_b) override;
   RigStatus MeasuredKpa(uint8_t line, double* kpa) override;
+  RigStatus LineRangeKpa(uint8_t line, double* kpa) override;
   RigStatus SetTrim(uint8_t line, bool on) override;
   RigStatus Faults(uint32_t* bitmap) override;
   RigStatus VentAll() override;

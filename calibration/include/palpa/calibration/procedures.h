@@ -34,9 +34,10 @@ RigStatus FindSurface(Rig& rig, double expected_mm, const ContactOptions& o, dou
 /// Tares the force sensor clear of the finger, vents it and finds the vented surface (the zero).
 RigStatus ZeroOnVentedSurface(Rig& rig, uint8_t finger, const ContactOptions& o, double* zero_mm);
 
-/// Regulator static correction of the finger's driven line: trim off, commands up and down in
-/// `points` steps over the line's range, the settled sensor reading at each. Trim back on after.
-RigStatus RegulatorCorrection(Rig& rig, uint8_t finger, int points, double dwell_s,
+/// Regulator static correction of one of the finger's lines: trim off, commands up and down in
+/// `points` steps over 10–90 % of the line's range, the settled sensor reading at each (the other
+/// line of a jamming finger held at its working value). Trim back on after.
+RigStatus RegulatorCorrection(Rig& rig, uint8_t finger, uint8_t line, int points, double dwell_s,
                               std::vector<protocol::CorrectionPoint>* out);
 
 /// Pneumatic: each drive (kPa) held for dwell_s, the surface found by contact detection; samples

@@ -47,10 +47,14 @@ class BoardPort {
  public:
   virtual ~BoardPort() = default;
   virtual bool jamming(uint8_t finger) = 0;
-  virtual uint8_t driven_line(uint8_t finger) = 0;
+  virtual uint8_t driven_line(
+      uint8_t finger) = 0;  ///< the pressure (pneumatic) or vacuum (jamming) line
+  virtual uint8_t bias_line(uint8_t finger) = 0;  ///< jamming: the bias line (line_a)
   /// Raw mode: `kpa_a` on line_a (pressure or bias), `kpa_b` on line_b (vacuum, ≤ 0).
   virtual RigStatus SetDrive(uint8_t finger, double kpa_a, double kpa_b) = 0;
   virtual RigStatus MeasuredKpa(uint8_t line, double* kpa) = 0;
+  /// The largest magnitude the line's limits allow (kPa): the range a correction covers.
+  virtual RigStatus LineRangeKpa(uint8_t line, double* kpa) = 0;
   /// Turns the line's PI trim off (feed-forward only) or back to its configured gains.
   virtual RigStatus SetTrim(uint8_t line, bool on) = 0;
   virtual RigStatus Faults(uint32_t* bitmap) = 0;

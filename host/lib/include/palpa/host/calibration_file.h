@@ -70,7 +70,7 @@ struct CalibrationFile {
   std::optional<LineFit> rising_fit, falling_fit;  ///< pneumatic deformation branches
   std::vector<GridPoint> grid;                     ///< jamming indentation grid
   std::vector<protocol::InversePoint> static_inverse;
-  std::optional<RegulatorCorrection> regulator_correction;
+  std::vector<RegulatorCorrection> regulator_corrections;  ///< one per line of the finger, at most two
   protocol::CompensatorKind compensator = protocol::CompensatorKind::kNone;
   std::vector<float> compensator_params;
   std::optional<double> recommended_bias_kpa;

@@ -86,8 +86,8 @@ class Device {
   const std::vector<std::string>& calibration_notes() const { return calibration_notes_; }
 
   /// Uploads a calibration to finger f in one staged, all-or-nothing change: static inverse,
-  /// compensator and its parameters, the recommended bias (jamming), the regulator correction of
-  /// the driven line. Refused when the finger's kind or actuator serial differ from the file's.
+  /// compensator and its parameters, the recommended bias (jamming), the regulator corrections of
+  /// the finger's lines. Refused when the finger's kind or actuator serial differ from the file's.
   /// The finger's curves follow the calibration afterwards.
   Outcome ApplyCalibration(uint8_t finger, const struct CalibrationFile& calibration);
 
