@@ -94,15 +94,10 @@ std::optional<RigDescription> ParseRigDescription(const std::string& text, std::
 }
 
 std::optional<RigDescription> LoadRigDescription(const std::string& path, std::string* error) {
-  std::ifstream in(path);
-  if (!in) {
-    if (error != nullptr) *error = path + ": cannot be read";
-    return std::nullopt;
-  }
-  std::stringstream text;
-  text << in.rdbuf();
+  const auto text = host::ReadTextFile(path, error);
+  if (!text) return std::nullopt;
   std::string why;
-  auto rig = ParseRigDescription(text.str(), &why);
+  auto rig = ParseRigDescription(*text, &why);
   if (!rig && error != nullptr) *error = path + ": " + why;
   return rig;
 }

@@ -66,6 +66,22 @@ void BranchFits(const std::vector<SweepSample>& sweep, double drive_max, host::C
 
 }  // namespace
 
+ProtocolOptions QuickProtocol() {
+  ProtocolOptions o;
+  o.dwell_s = 0.5;
+  o.contact.speed_mm_s = 1.0;
+  o.press_depth_mm = 2;
+  o.press_speed_mm_s = 2;
+  o.repeats = 2;
+  o.biases_kpa = {0, 20};
+  o.vacuums_kpa = {0, -100};
+  o.pneumatic_sweep = SweepPlan{100000, 20000, 2};
+  o.jamming_sweep = SweepPlan{100000, 20000, 1};
+  o.correction_points = 4;
+  o.compensator_operators = 8;
+  return o;
+}
+
 double RecommendBias(const std::vector<host::GridPoint>& grid) {
   // "Kept" allows for what a few presses resolve: a bias may lose a fifth of the widest range.
   constexpr double kRangeKept = 0.8;

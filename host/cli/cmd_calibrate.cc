@@ -37,23 +37,6 @@ struct CalibrateArgs {
   double speed = 4;
 };
 
-/// Short settings for demonstrations and tests: fewer points, faster presses, two repeats.
-cal::ProtocolOptions Quick() {
-  cal::ProtocolOptions o;
-  o.dwell_s = 0.5;
-  o.contact.speed_mm_s = 1.0;
-  o.press_depth_mm = 2;
-  o.press_speed_mm_s = 2;
-  o.repeats = 2;
-  o.biases_kpa = {0, 20};
-  o.vacuums_kpa = {0, -100};
-  o.pneumatic_sweep = cal::SweepPlan{100000, 20000, 2};
-  o.jamming_sweep = cal::SweepPlan{100000, 20000, 1};
-  o.correction_points = 4;
-  o.compensator_operators = 8;
-  return o;
-}
-
 std::string UtcNow() {
   const std::time_t t = std::time(nullptr);
   char b[32];
@@ -219,7 +202,7 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
                           serial + ".csv"};
   cal::CalibrationRun run;
   const auto start = std::chrono::steady_clock::now();
-  const cal::ProtocolOptions options = a.quick ? Quick() : cal::ProtocolOptions{};
+  const cal::ProtocolOptions options = a.quick ? cal::QuickProtocol() : cal::ProtocolOptions{};
   const cal::RigStatus s = cal::RunThesisProtocol(
       rig, static_cast<uint8_t>(a.finger), options, info, journal,
       [&](const cal::Progress& p) { ProgressBar(p, start); }, &run);
@@ -257,8 +240,8 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
   if (a.apply) {
     const host::Outcome o = device->ApplyCalibration(static_cast<uint8_t>(a.finger), run.file);
     if (!o.ok()) return Report(c, o, "apply calibration");
-    std::printf("  applied to finger %d (static inverse, compensator, regulator correction%s)\n", a.finger + 1,
-                run.file.recommended_bias_kpa ? ", bias" : "");
+    std::printf("  applied to finger %d (static inverse, compensator, regulator correction%s)\n",
+                a.finger + 1, run.file.recommended_bias_kpa ? ", bias" : "");
   }
   return kExitOk;
 }

@@ -61,18 +61,6 @@ bool WaitUntil(const std::function<bool()>& done, double seconds) {
   return false;
 }
 
-int FreePort() {
-  const int fd = socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof(a));
-  socklen_t n = sizeof(a);
-  getsockname(fd, reinterpret_cast<sockaddr*>(&a), &n);
-  close(fd);
-  return ntohs(a.sin_port);
-}
-
 /// Short moves through the drivers: up, down into the vented film (a contact force), tare.
 void ExerciseRig(cal::RigDevices& d) {
   CHECK(d.stage->MoveTo(1.0, 5.0).ok);
@@ -225,7 +213,7 @@ TEST(ModbusRig, DriversWorkOverRtuOnAPtyPair) {
 }
 
 TEST(ModbusRig, DriversSpeakStandardModbusToAnIndependentServer) {
-  const int port = FreePort();
+  const int port = palpa::testing::FreeTcpPort();
   char log_pattern[] = "/tmp/palpa-pymodbus-XXXXXX";
   const int log_fd = mkstemp(log_pattern);
   close(log_fd);

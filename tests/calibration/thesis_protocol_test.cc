@@ -17,19 +17,12 @@ namespace ph = palpa::host;
 
 namespace {
 
+/// The quick settings, with a finer pneumatic sweep so its fits can be held to Table 5-4.
 cal::ProtocolOptions Short() {
-  cal::ProtocolOptions o;
+  cal::ProtocolOptions o = cal::QuickProtocol();
   o.dwell_s = 1;
   o.contact.speed_mm_s = 0.5;
-  o.press_depth_mm = 2;
-  o.press_speed_mm_s = 2;
-  o.repeats = 2;
-  o.biases_kpa = {0, 20};
-  o.vacuums_kpa = {0, -100};
   o.pneumatic_sweep = cal::SweepPlan{100000, 10000, 2};
-  o.jamming_sweep = cal::SweepPlan{100000, 20000, 1};
-  o.correction_points = 4;
-  o.compensator_operators = 8;
   return o;
 }
 

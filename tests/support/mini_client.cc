@@ -132,6 +132,18 @@ pp::Status MiniClient::WaitAnswer(uint8_t seq, uint8_t type, int timeout_ms) {
   return pp::Status::kTimeout;
 }
 
+int FreeTcpPort() {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof(a));
+  socklen_t n = sizeof(a);
+  getsockname(fd, reinterpret_cast<sockaddr*>(&a), &n);
+  close(fd);
+  return ntohs(a.sin_port);
+}
+
 bool SimProcess::Start(const std::vector<std::string>& args) {
   int out[2];
   if (pipe(out) != 0) return false;

@@ -50,6 +50,9 @@ class MiniClient {
   pp::OwningFrameDecoder decoder_;
 };
 
+/// A TCP port on 127.0.0.1 that was free a moment ago (for servers that cannot pick their own).
+int FreeTcpPort();
+
 /// palpa-sim as a child process; stopped with SIGTERM when destroyed.
 class SimProcess {
  public:

@@ -293,15 +293,10 @@ std::optional<CalibrationFile> ParseCalibration(const std::string& text, std::st
 }
 
 std::optional<CalibrationFile> LoadCalibration(const std::string& path, std::string* error) {
-  std::ifstream in(path);
-  if (!in) {
-    if (error != nullptr) *error = path + ": cannot be read";
-    return std::nullopt;
-  }
-  std::stringstream text;
-  text << in.rdbuf();
+  const auto text = ReadTextFile(path, error);
+  if (!text) return std::nullopt;
   std::string why;
-  auto c = ParseCalibration(text.str(), &why);
+  auto c = ParseCalibration(*text, &why);
   if (!c && error != nullptr) *error = path + ": " + why;
   return c;
 }

@@ -3,6 +3,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 
 namespace palpa::host {
 namespace {
@@ -14,6 +16,17 @@ std::string Num(double v) {
 }
 
 }  // namespace
+
+std::optional<std::string> ReadTextFile(const std::string& path, std::string* error) {
+  std::ifstream in(path);
+  if (!in) {
+    if (error != nullptr) *error = path + ": cannot be read";
+    return std::nullopt;
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
 
 JsonObject::JsonObject(const nlohmann::json& j, std::string path, std::set<std::string> known)
     : j_(j), path_(std::move(path)) {

@@ -31,6 +31,9 @@ struct ProtocolOptions {
   int compensator_operators = 16;
 };
 
+/// Short settings for demonstrations and tests: fewer and faster points, two repeats.
+ProtocolOptions QuickProtocol();
+
 /// What a run records as it goes; saved by the caller after every step (resume reads it back).
 struct Journal {
   nlohmann::json state = nlohmann::json::object();

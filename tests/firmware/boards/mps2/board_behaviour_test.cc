@@ -24,24 +24,12 @@ namespace pp = palpa::protocol;
 
 namespace {
 
-int FreePort() {
-  const int fd = socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof(a));
-  socklen_t len = sizeof(a);
-  getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len);
-  close(fd);
-  return ntohs(a.sin_port);
-}
-
 /// QEMU running the application image; always killed.
 class Qemu {
  public:
   bool Start() {
     if (access(PALPA_MPS2_IMAGE, R_OK) != 0) return false;
-    port_ = FreePort();
+    port_ = palpa::testing::FreeTcpPort();
     pid_ = fork();
     if (pid_ == 0) {
       const std::string serial = "tcp:127.0.0.1:" + std::to_string(port_) + ",server=on,wait=on";

@@ -2,6 +2,7 @@
 // Used by calibration files, rig descriptions and register maps.
 #pragma once
 
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -9,6 +10,9 @@
 #include <nlohmann/json.hpp>
 
 namespace palpa::host {
+
+/// A whole text file, or nullopt with "PATH: cannot be read" in *error.
+std::optional<std::string> ReadTextFile(const std::string& path, std::string* error);
 
 /// A validation failure; what() starts with the JSON path of the field.
 struct JsonInvalid : std::runtime_error {
