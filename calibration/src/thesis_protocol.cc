@@ -72,6 +72,7 @@ ProtocolOptions QuickProtocol() {
   o.contact.speed_mm_s = 1.0;
   o.press_depth_mm = 2;
   o.press_speed_mm_s = 2;
+  o.sweep_press_speed_mm_s = 2;
   o.repeats = 2;
   o.biases_kpa = {0, 20};
   o.vacuums_kpa = {0, -100};
@@ -197,6 +198,11 @@ RigStatus RunThesisProtocol(Rig& rig, uint8_t finger, const ProtocolOptions& o, 
           r2.push_back(cycle.r2);
           out->presses.push_back(cycle);
         }
+        // Vacuum released between points: each condition is approached from rest (the same
+        // branch of the vacuum history every time), and the pump rests inside its run-time limit.
+        s = rig.board.SetDrive(finger, b, 0);
+        if (!s.ok) return AbortSafe(rig, "board: " + s.error);
+        rig.time.Wait(o.dwell_s);
         const auto [km, ks] = MeanSpread(k);
         st["grid"].push_back({b, v, o.repeats, km, ks, MeanSpread(loop).first,
                               *std::min_element(r2.begin(), r2.end())});
@@ -227,7 +233,7 @@ RigStatus RunThesisProtocol(Rig& rig, uint8_t finger, const ProtocolOptions& o, 
       if (!s.ok) return AbortSafe(rig, "board: " + s.error);
       rig.time.Wait(o.dwell_s);
       PressCycle cycle;
-      s = Press(rig, zero, o.press_depth_mm, o.press_speed_mm_s, &cycle);
+      s = Press(rig, zero, o.press_depth_mm, o.sweep_press_speed_mm_s, &cycle);
       if (!s.ok) return s;
       double measured = 0;
       rig.board.MeasuredKpa(rig.board.driven_line(finger), &measured);

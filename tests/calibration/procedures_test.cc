@@ -113,7 +113,7 @@ TEST(Procedures, EverySafetyStopRetractsAndVents) {
       {"force sensor lost", [](pt::SimRig& sim, cal::Rig&) { sim.force_lost = true; },
        "force sensor lost"},
       {"board fault", [](pt::SimRig& sim, cal::Rig&) { sim.board().Send(pp::EStop{}); },
-       "board fault"},
+       "board fault: estop_command"},
   };
   for (const Case& c : cases) {
     pt::SimRig sim({"thesis-5finger", 3, 0, 7});

@@ -21,7 +21,10 @@ struct ProtocolOptions {
   double dwell_s = 3;  ///< settling at each drive before reading
   ContactOptions contact{};
   double press_depth_mm = 3;      ///< thesis: 3 mm
-  double press_speed_mm_s = 0.1;  ///< thesis: 0.1 mm/s
+  double press_speed_mm_s = 0.1;  ///< thesis: 0.1 mm/s (the grid, where loop areas are taken)
+  /// The stiffness sweep's presses measure the slope only, so they go faster: the whole sweep then
+  /// holds vacuum for minutes, inside the board's pump run-time limit (10 min by default).
+  double sweep_press_speed_mm_s = 1.0;
   int repeats = 8;                ///< thesis: 8 per condition
   std::vector<double> biases_kpa = {0, 10, 20};
   std::vector<double> vacuums_kpa = {0, -50, -100};
