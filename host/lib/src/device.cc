@@ -17,10 +17,11 @@ Device::Device(std::unique_ptr<Link> link, DeviceOptions options)
   for (uint8_t f = 0; f < b.finger_count; ++f) modes_.push_back(b.fingers[f].mode);
   curves_.resize(b.finger_count);
   calibration_notes_.resize(b.finger_count);
-  AttachCalibrations();
 }
 
 void Device::AttachCalibrations() {
+  if (calibrations_attached_) return;
+  calibrations_attached_ = true;
   const std::string dir =
       options_.calibration_dir.empty() ? DefaultCalibrationDir() : options_.calibration_dir;
   for (uint8_t f = 0; f < curves_.size(); ++f) {
@@ -54,6 +55,7 @@ void Device::AttachCalibrations() {
 }
 
 Outcome Device::ApplyCalibration(uint8_t finger, const CalibrationFile& c) {
+  AttachCalibrations();  // so the lookup cannot later overwrite what this sets
   std::string error;
   const auto current = ReadFinger(finger, &error);
   if (!current.ok()) return Outcome{current.status, "apply calibration: " + error, {}};
@@ -157,6 +159,7 @@ Outcome Device::EnsureMode(uint8_t finger, pp::FingerMode mode) {
 }
 
 Outcome Device::Set(const std::vector<FingerRequest>& requests, bool wait) {
+  AttachCalibrations();  // the curves requests are mapped through
   const pp::HelloReply b = link_->board();
   pp::SetFingerTargets targets{};
   pp::SetLineSetpoints lines{};

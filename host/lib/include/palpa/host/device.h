@@ -81,9 +81,16 @@ class Device {
   Outcome StopRecording();
 
   /// The curves used for finger f (nominal until a calibration is attached).
-  FingerCurves& curves(uint8_t finger) { return curves_[finger]; }
+  FingerCurves& curves(uint8_t finger) {
+    AttachCalibrations();
+    return curves_[finger];
+  }
   /// What opening found for each finger: which calibration it uses, or why it uses none.
-  const std::vector<std::string>& calibration_notes() const { return calibration_notes_; }
+  /// Looked up on first use (Set, curves, this), not on opening: an E-stop never waits for it.
+  const std::vector<std::string>& calibration_notes() {
+    AttachCalibrations();
+    return calibration_notes_;
+  }
 
   /// Uploads a calibration to finger f in one staged, all-or-nothing change: static inverse,
   /// compensator and its parameters, the recommended bias (jamming), the regulator corrections of
@@ -104,7 +111,8 @@ class Device {
   std::vector<pp::FingerMode> modes_;
   std::vector<FingerCurves> curves_;
   std::vector<std::string> calibration_notes_;
-  void AttachCalibrations();
+  bool calibrations_attached_ = false;
+  void AttachCalibrations();  ///< once per device
   // Recording.
   std::mutex record_mutex_;
   std::ofstream record_;
