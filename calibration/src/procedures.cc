@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "palpa/protocol/faults.h"
+#include "palpa/host/link.h"
 
 namespace palpa::calibration {
 namespace {
@@ -33,13 +33,7 @@ RigStatus Watch(Rig& rig, double* force, double* position) {
   uint32_t faults = 0;
   s = rig.board.Faults(&faults);
   if (!s.ok) return RigStatus::Fail("board lost: " + s.error);
-  if (faults != 0) {
-    std::string names;
-    for (uint8_t bit = 0; bit < static_cast<uint8_t>(protocol::Fault::kCount); ++bit) {
-      if ((faults & (1u << bit)) != 0) names += std::string(names.empty() ? "" : ", ") + protocol::kFaultNames[bit];
-    }
-    return RigStatus::Fail("board fault: " + names);
-  }
+  if (faults != 0) return RigStatus::Fail("board fault: " + host::FaultNames(faults));
   return {};
 }
 

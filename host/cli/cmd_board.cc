@@ -59,14 +59,6 @@ std::vector<std::string> UsbDevices() {
   return found;
 }
 
-std::string FaultNames(uint32_t bitmap) {
-  std::string text;
-  for (uint8_t f = 0; f < static_cast<uint8_t>(pp::Fault::kCount); ++f) {
-    if (bitmap & (1u << f)) text += std::string(text.empty() ? "" : ", ") + pp::kFaultNames[f];
-  }
-  return text.empty() ? "none" : text;
-}
-
 }  // namespace
 
 int CmdList(Context& c, const std::vector<std::string>& args) {
@@ -119,7 +111,7 @@ int CmdInfo(Context& c, const std::vector<std::string>& args) {
   std::printf("firmware      %s, protocol %u, catalog 0x%08x%s\n", firmware.c_str(), b.protocol_version, b.catalog_hash,
               d->link().catalog_matches() ? "" : " (differs from this host's)");
   std::printf("configuration %s%s\n", b.config_name.data(), b.config_is_default ? " (factory default)" : " (saved)");
-  std::printf("reset cause   %s; faults: %s\n", pp::kResetCauseNames[static_cast<int>(b.reset_cause)], FaultNames(b.fault_bitmap).c_str());
+  std::printf("reset cause   %s; faults: %s\n", pp::kResetCauseNames[static_cast<int>(b.reset_cause)], host::FaultNames(b.fault_bitmap).c_str());
   if (b.time_scale != 1.0f) std::printf("time scale    %gx\n", static_cast<double>(b.time_scale));
   for (uint8_t i = 0; i < b.line_count; ++i) {
     std::printf("line %u        %-8s %7.1f … %6.1f kPa%s\n", i + 1, pp::kLineKindNames[static_cast<int>(b.lines[i].kind)],
@@ -169,8 +161,8 @@ int CmdDiag(Context& c, const std::vector<std::string>& args) {
   }
   std::printf("reset cause     %s (boot %u), up %.1f s\n", pp::kResetCauseNames[static_cast<int>(diag.value.reset_cause)],
               diag.value.boot_count, static_cast<double>(diag.value.uptime_us) / 1e6);
-  std::printf("faults latched  %s\n", FaultNames(diag.value.fault_bitmap).c_str());
-  std::printf("faults active   %s\n", FaultNames(diag.value.active_conditions).c_str());
+  std::printf("faults latched  %s\n", host::FaultNames(diag.value.fault_bitmap).c_str());
+  std::printf("faults active   %s\n", host::FaultNames(diag.value.active_conditions).c_str());
   for (uint8_t i = 0; i < diag.value.history_count; ++i) {
     const auto& h = diag.value.history[i];
     std::printf("  %10.3f s  %-20s detail %d\n", static_cast<double>(h.time_us) / 1e6,

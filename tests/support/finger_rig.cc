@@ -6,20 +6,10 @@
 namespace palpa::testing {
 namespace pp = protocol;
 
-namespace {
-sim::SimBoardOptions BoardOptions(const FingerRigOptions& options) {
-  sim::SimBoardOptions o;
-  o.config = "thesis-5finger";
-  o.plant.level = 3;
-  o.plant.unit = options.unit;
-  o.plant.seed = options.seed;
-  o.plant.effects = options.effects;
-  return o;
-}
-}  // namespace
-
 FingerRig::FingerRig(const FingerRigOptions& options)
-    : options_(options), board_(BoardOptions(options)), rig_(options.seed * 31u + 7u) {
+    : options_(options),
+      board_(PlantBoardOptions("thesis-5finger", options.unit, options.seed, options.effects)),
+      rig_(options.seed * 31u + 7u) {
   const pp::ConfigureFinger& f = board_.config().fingers[options.finger];
   jamming_ = f.kind == pp::FingerKind::kJamming;
   driven_line_ = jamming_ ? f.line_b : f.line_a;

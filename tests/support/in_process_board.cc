@@ -8,6 +8,17 @@
 namespace palpa::testing {
 namespace pp = protocol;
 
+sim::SimBoardOptions PlantBoardOptions(const std::string& config, uint32_t unit, uint32_t seed,
+                                       sim::Effects effects) {
+  sim::SimBoardOptions o;
+  o.config = config;
+  o.plant.level = 3;
+  o.plant.unit = unit;
+  o.plant.seed = seed;
+  o.plant.effects = effects;
+  return o;
+}
+
 InProcessBoard::InProcessBoard(const sim::SimBoardOptions& options) {
   std::string error;
   sim_ = sim::SimBoard::Create(options, link_, &error);

@@ -12,6 +12,10 @@
 
 namespace palpa::testing {
 
+/// A level-3 plant behind `config`, with the given actuator unit, seed and second-order effects.
+sim::SimBoardOptions PlantBoardOptions(const std::string& config, uint32_t unit, uint32_t seed,
+                                       sim::Effects effects);
+
 class InProcessBoard {
  public:
   explicit InProcessBoard(const sim::SimBoardOptions& options);

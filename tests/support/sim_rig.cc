@@ -7,19 +7,8 @@ namespace palpa::testing {
 namespace pp = protocol;
 using calibration::RigStatus;
 
-namespace {
-sim::SimBoardOptions BoardOptions(const SimRigOptions& o) {
-  sim::SimBoardOptions b;
-  b.config = o.config;
-  b.plant.level = 3;
-  b.plant.unit = o.unit;
-  b.plant.seed = o.seed;
-  b.plant.effects = o.effects;
-  return b;
-}
-}  // namespace
-
-SimRig::SimRig(const SimRigOptions& options) : board_(BoardOptions(options)) {
+SimRig::SimRig(const SimRigOptions& options)
+    : board_(PlantBoardOptions(options.config, options.unit, options.seed, options.effects)) {
   model_ = std::make_unique<sim::RigModel>(board_.sim().plant(), options.finger,
                                            options.seed * 17u + 5u);
   board_.sim().OnStep([this](uint64_t) { model_->Step(0.001f); });

@@ -4,7 +4,17 @@
 #include <chrono>
 #include <random>
 
+#include "palpa/protocol/faults.h"
+
 namespace palpa::host {
+
+std::string FaultNames(uint32_t bitmap) {
+  std::string text;
+  for (uint8_t f = 0; f < static_cast<uint8_t>(pp::Fault::kCount); ++f) {
+    if (bitmap & (1u << f)) text += std::string(text.empty() ? "" : ", ") + pp::kFaultNames[f];
+  }
+  return text.empty() ? "none" : text;
+}
 
 double SteadySeconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -351,39 +361,27 @@ void Link::HeartbeatLoop() {
   }
 }
 
-uint32_t Link::StreamSetpoints(pp::SetLineSetpoints m) {
+template <class M>
+uint32_t Link::StreamLatest(Stream& stream, M m) {
   std::lock_guard<std::mutex> lock(mutex_);
-  m.generation = ++setpoints_.generation;
+  m.generation = ++stream.generation;
   uint8_t frame[pp::kMaxFrameSize];
   const auto n = pp::EncodeMessageFrame(m, 0, 0, frame, sizeof(frame));
   if (!n.ok()) {
-    setpoints_.refused = n.status;
-    setpoints_.refused_generation = m.generation;
+    stream.refused = n.status;
+    stream.refused_generation = m.generation;
     return m.generation;
   }
-  setpoints_.frame.assign(frame, frame + n.value);
-  setpoints_.active = true;
-  setpoints_.sent_s = SteadySeconds();
+  stream.frame.assign(frame, frame + n.value);
+  stream.active = true;
+  stream.sent_s = SteadySeconds();
   WriteFrame(frame, n.value);
   return m.generation;
 }
 
-uint32_t Link::StreamTargets(pp::SetFingerTargets m) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  m.generation = ++targets_.generation;
-  uint8_t frame[pp::kMaxFrameSize];
-  const auto n = pp::EncodeMessageFrame(m, 0, 0, frame, sizeof(frame));
-  if (!n.ok()) {
-    targets_.refused = n.status;
-    targets_.refused_generation = m.generation;
-    return m.generation;
-  }
-  targets_.frame.assign(frame, frame + n.value);
-  targets_.active = true;
-  targets_.sent_s = SteadySeconds();
-  WriteFrame(frame, n.value);
-  return m.generation;
-}
+uint32_t Link::StreamSetpoints(pp::SetLineSetpoints m) { return StreamLatest(setpoints_, m); }
+
+uint32_t Link::StreamTargets(pp::SetFingerTargets m) { return StreamLatest(targets_, m); }
 
 Status Link::WaitApplied(bool setpoints, uint32_t generation, int timeout_ms) {
   std::unique_lock<std::mutex> lock(mutex_);

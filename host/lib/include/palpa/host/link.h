@@ -33,6 +33,9 @@ struct LinkOptions {
 };
 
 /// A telemetry frame as received, with the host time it maps to.
+/// A latched-fault bitmap in words: "host_silence, leak", or "none".
+std::string FaultNames(uint32_t bitmap);
+
 struct TelemetryFrame {
   pp::Telemetry telemetry;
   double host_time_s = 0;  ///< host steady-clock time of the first sample
@@ -160,6 +163,9 @@ class Link {
     std::vector<uint8_t> frame;
   };
   Stream setpoints_, targets_;
+  /// Both latest-wins streams: the next generation, encoded once, kept for retransmission.
+  template <class M>
+  uint32_t StreamLatest(Stream& stream, M m);
   uint32_t heartbeat_generation_ = 0;
   bool estop_acked_ = false;
   LinkCounters counters_;
