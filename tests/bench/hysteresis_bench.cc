@@ -13,6 +13,7 @@
 #include <sstream>
 #include <string>
 
+#include "doc_block.h"
 #include "hysteresis_experiments.h"
 #include "palpa/host/svg_chart.h"
 
@@ -34,20 +35,6 @@ std::string Figure(double v, int decimals = 1) {
   char buf[32];
   std::snprintf(buf, sizeof(buf), "%.*f", decimals, v);
   return buf;
-}
-
-/// Replaces the block between the bench markers in a Markdown file.
-bool ReplaceBlock(const std::string& path, const std::string& block) {
-  std::ifstream in(path);
-  if (!in) return false;
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string s = text.str();
-  const std::string begin = "<!-- hysteresis-bench:begin -->", end = "<!-- hysteresis-bench:end -->";
-  const size_t b = s.find(begin), e = s.find(end);
-  if (b == std::string::npos || e == std::string::npos || e < b) return false;
-  s = s.substr(0, b + begin.size()) + "\n" + block + s.substr(e);
-  return pb::WriteFile(path, s);
 }
 
 struct JammingRow {
@@ -242,7 +229,7 @@ int main(int argc, char** argv) {
           Figure(100 * r.own_levels.max_relative) + " % | " + Figure(100 * r.levels.mean_relative) + " / " +
           Figure(100 * r.levels.max_relative) + " % |\n";
   }
-  if (!ReplaceBlock(docs + "/hysteresis.md", md)) {
+  if (!palpa::bench::ReplaceBlock(docs + "/hysteresis.md", "hysteresis-bench", md)) {
     std::fprintf(stderr, "cannot update the bench block of %s/hysteresis.md\n", docs.c_str());
     return 1;
   }

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "doc_block.h"
 #include "palpa/host/svg_chart.h"
 #include "pressure_loop.h"
 
@@ -92,18 +93,10 @@ int main(int argc, char** argv) {
   }
   if (argc < 2) return 0;
   const std::string path = std::string(argv[1]) + "/hysteresis.md";
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string s = text.str();
-  const std::string begin = "<!-- loop-bench:begin -->", end = "<!-- loop-bench:end -->";
-  const size_t b = s.find(begin), e = s.find(end);
-  if (b == std::string::npos || e == std::string::npos || e < b) {
+  if (!palpa::bench::ReplaceBlock(path, "loop-bench", md)) {
     std::fprintf(stderr, "%s has no loop-bench block\n", path.c_str());
     return 1;
   }
-  s = s.substr(0, b + begin.size()) + "\n" + md + s.substr(e);
-  if (!palpa::host::WriteFile(path, s)) return 1;
   std::printf("\nwrote the loop block of %s\n", path.c_str());
   return 0;
 }

@@ -67,7 +67,18 @@ std::string RenderSvg(const Chart& c) {
   svg += "<text x='" + Num(c.width / 2) + "' y='22' text-anchor='middle' font-size='14'>" + c.title + "</text>\n";
   svg += "<rect x='" + Num(left) + "' y='" + Num(top) + "' width='" + Num(pw) + "' height='" + Num(ph) +
          "' fill='none' stroke='#444'/>\n";
-  for (double t : Ticks(x0, x1, 8)) {
+  // A log axis is labelled at 1, 2 and 5 of each decade (round numbers a reader can place).
+  std::vector<double> x_ticks;
+  if (c.log_x) {
+    for (int decade = static_cast<int>(std::floor(x0)); decade <= static_cast<int>(std::ceil(x1)); ++decade) {
+      for (double m : {1.0, 2.0, 5.0}) {
+        const double t = decade + std::log10(m);
+        if (t >= x0 - 1e-9 && t <= x1 + 1e-9) x_ticks.push_back(t);
+      }
+    }
+  }
+  if (x_ticks.size() < 2) x_ticks = Ticks(x0, x1, 8);
+  for (double t : x_ticks) {
     const double x = left + (t - x0) / (x1 - x0) * pw;
     svg += "<line x1='" + Num(x) + "' y1='" + Num(top) + "' x2='" + Num(x) + "' y2='" + Num(top + ph) + "' stroke='#eee'/>";
     svg += "<text x='" + Num(x) + "' y='" + Num(top + ph + 16) + "' text-anchor='middle'>" +
