@@ -8,7 +8,9 @@ namespace pp = protocol;
 using calibration::RigStatus;
 
 SimRig::SimRig(const SimRigOptions& options)
-    : board_(PlantBoardOptions(options.config, options.unit, options.seed, options.effects)) {
+    : board_(PlantBoardOptions(options.config, options.unit, options.seed, options.effects)),
+      finger_(options.finger),
+      noise_rng_(options.seed * 31u + 7u) {
   model_ = std::make_unique<sim::RigModel>(board_.sim().plant(), options.finger,
                                            options.seed * 17u + 5u);
   board_.sim().OnStep([this](uint64_t) { model_->Step(0.001f); });
@@ -47,14 +49,24 @@ RigStatus SimRig::Stop() {
 
 RigStatus SimRig::Read(double* newtons) {
   if (force_lost) return RigStatus::Fail("no data from the force sensor");
-  *newtons = model_->ReadForceN();
+  *newtons = model_->ReadForceN() + force_drift_n_per_s * (Now() - tared_at_s_);
+  if (force_extra_noise_n > 0) {
+    *newtons += std::normal_distribution<double>(0, force_extra_noise_n)(noise_rng_);
+  }
   return {};
 }
 
 RigStatus SimRig::Tare() {
   if (force_lost) return RigStatus::Fail("no data from the force sensor");
   model_->Tare();
+  tared_at_s_ = Now();
   return {};
+}
+
+void SimRig::ScaleActuator(float factor) {
+  sim::Plant& plant = board_.sim().plant();
+  if (sim::JammingActuator* j = plant.jamming(finger_)) j->ScaleUnit(factor);
+  if (sim::PneumaticActuator* p = plant.pneumatic(finger_)) p->ScaleUnit(factor);
 }
 
 bool SimRig::jamming(uint8_t finger) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <random>
 
 #include "in_process_board.h"
 #include "palpa/calibration/rig.h"
@@ -33,6 +34,12 @@ class SimRig final : public calibration::RigTime,
   // Fault injection.
   bool force_lost = false;
   bool stage_lost = false;
+  double force_drift_n_per_s = 0;  ///< the force sensor's zero walks away from its tare
+  double force_extra_noise_n = 0;  ///< RMS noise on top of the sensor's own (a worse sensor)
+  /// The actuator under the indenter changed by this factor since its last calibration.
+  void ScaleActuator(float factor);
+  /// A line of the board leaks (RegulatorLine::set_leak).
+  void Leak(uint8_t line, float ratio) { board_.sim().plant().SetLeak(line, ratio); }
 
   // RigTime
   double Now() override { return static_cast<double>(board_.sim().now_us()) * 1e-6; }
@@ -58,6 +65,9 @@ class SimRig final : public calibration::RigTime,
 
  private:
   InProcessBoard board_;
+  uint8_t finger_ = 0;
+  double tared_at_s_ = 0;
+  std::mt19937 noise_rng_;
   std::unique_ptr<sim::RigModel> model_;
   std::array<protocol::ConfigureLine, protocol::kMaxLines> configured_{};  ///< trims to restore
 };

@@ -51,6 +51,13 @@ void RegulatorLine::Step(float command_pa, bool vented) {
     delay_[delay_index_] = target;
     delay_index_ = static_cast<uint8_t>((delay_index_ + 1) % delay_steps_);
   }
+  if (leak_ > 0) {
+    // Outlet droop of one tubing-flow unit per unit (an assumption: the regulator's output
+    // resistance is about the tubing's); the leak drains the chamber toward 0.
+    outlet_ += lag_alpha_ * (delayed - (outlet_ - chamber_) - outlet_);
+    chamber_ += chamber_alpha_ * (outlet_ - chamber_) - chamber_alpha_ * leak_ * chamber_;
+    return;
+  }
   outlet_ += lag_alpha_ * (delayed - outlet_);
   chamber_ += chamber_alpha_ * (outlet_ - chamber_);
 }

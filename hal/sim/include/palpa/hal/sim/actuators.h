@@ -28,6 +28,8 @@ class PneumaticActuator {
   /// The quasi-static major loop (no creep, no rate), for the Table 5-4 comparison.
   float RisingMajorMm(float kpa) const;
   float FallingMajorMm(float kpa) const;
+  /// Fault injection: the unit changed since it was calibrated (worn, damaged, swapped).
+  void ScaleUnit(float factor) { unit_gain_ *= factor; }
 
  private:
   float Reversible(float kpa) const;
@@ -51,6 +53,8 @@ class JammingActuator {
   /// Stiffness without history, for a steady vacuum and bias.
   float StaticStiffness(float bias_pa, float vacuum_pa) const;
   float history_fraction() const { return history_fraction_; }
+  /// Fault injection: the unit changed since it was calibrated (worn, damaged, swapped).
+  void ScaleUnit(float factor) { unit_gain_ *= factor; }
 
   /// Force (N) of a press at depth_mm, loading or unloading, to max_depth_mm, at the current
   /// vacuum and bias. The loop between the two is the material hysteresis (a): always smaller

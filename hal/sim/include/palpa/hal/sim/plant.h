@@ -68,6 +68,8 @@ class Plant {
   /// The regulator of a line, for tests of level 1.
   const RegulatorLine& regulator(uint8_t line) const { return lines_[line].regulator; }
   JammingActuator* jamming(uint8_t finger);
+  /// Fault injection: a leaking line (see RegulatorLine::set_leak).
+  void SetLeak(uint8_t line, float ratio) { lines_[line].regulator.set_leak(ratio); }
   PneumaticActuator* pneumatic(uint8_t finger);
 
  private:

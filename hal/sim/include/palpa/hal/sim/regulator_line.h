@@ -43,6 +43,11 @@ class RegulatorLine {
   /// The regulator's static output for a steady command (after its play settles).
   float StaticOutput(float command_magnitude_pa) const;
 
+  /// Fault injection: a leak from the chamber to atmosphere, its conductance `ratio` times the
+  /// tubing's. The chamber then holds outlet / (1 + ratio), and the regulator's outlet droops by
+  /// what flows (its flow is finite), so a leak shows at the sensor only through that droop.
+  void set_leak(float ratio) { leak_ = ratio < 0 ? 0 : ratio; }
+
  private:
   RegulatorSetup setup_{};
   float lag_alpha_ = 1;
@@ -54,6 +59,7 @@ class RegulatorLine {
   float play_ = 0;
   float outlet_ = 0;
   float chamber_ = 0;
+  float leak_ = 0;
 };
 
 }  // namespace palpa::sim
