@@ -1,5 +1,7 @@
 // The thesis protocol, step by step, with a journal for resuming.
-#include "palpa/calibration/thesis_protocol.h"
+#include "palpa/calibration/calibration_protocol.h"
+
+#include "palpa/calibration/quality_checks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -108,7 +110,7 @@ double RecommendBias(const std::vector<host::GridPoint>& grid) {
   return best;
 }
 
-RigStatus RunThesisProtocol(Rig& rig, uint8_t finger, const ProtocolOptions& o, const RunInfo& info,
+RigStatus RunCalibration(Rig& rig, uint8_t finger, const ProtocolOptions& o, const RunInfo& info,
                             Journal& journal, const std::function<void(const Progress&)>& progress,
                             CalibrationRun* out) {
   const bool jamming = rig.board.jamming(finger);
@@ -116,7 +118,10 @@ RigStatus RunThesisProtocol(Rig& rig, uint8_t finger, const ProtocolOptions& o, 
   const std::vector<double> drives =
       SweepDrives(jamming ? o.jamming_sweep : o.pneumatic_sweep);  // Pa
   const int grid_points =
-      jamming ? static_cast<int>(o.biases_kpa.size() * o.vacuums_kpa.size()) : 0;
+      !jamming                                    ? 0
+      : o.map_protocol == MapProtocol::kAdaptive ? o.adaptive.max_cycles
+                                                  : static_cast<int>(o.biases_kpa.size() * o.vacuums_kpa.size());
+  const double started = rig.time.Now(), earlier = st.value("rig_time_s", 0.0);
   Progress p{0, 2 + grid_points + static_cast<int>(drives.size()), ""};
   auto step = [&](const std::string& what) {
     p.step = what;
@@ -124,6 +129,7 @@ RigStatus RunThesisProtocol(Rig& rig, uint8_t finger, const ProtocolOptions& o, 
   };
   auto done = [&] {
     ++p.done;
+    st["rig_time_s"] = earlier + rig.time.Now() - started;
     if (journal.save) journal.save(journal);
     if (progress) progress(p);
   };
@@ -134,8 +140,8 @@ RigStatus RunThesisProtocol(Rig& rig, uint8_t finger, const ProtocolOptions& o, 
 
   // 1. Zero (every run, also a resumed one: the rig may have been moved).
   step("zero on the vented surface");
-  double zero = 0;
-  RigStatus s = ZeroOnVentedSurface(rig, finger, o.contact, &zero);
+  double zero = 0, tare_noise = 0;
+  RigStatus s = ZeroOnVentedSurface(rig, finger, o.contact, &zero, &tare_noise);
   if (!s.ok) return s;
   done();
 
@@ -171,53 +177,29 @@ RigStatus RunThesisProtocol(Rig& rig, uint8_t finger, const ProtocolOptions& o, 
     corrections.push_back(correction);
   }
 
-  // 3. Jamming: the indentation grid and the recommended bias.
+  // 3. Jamming: the stiffness map (the thesis's grid, or adaptive) and the recommended bias.
   double bias = o.biases_kpa.empty() ? 20 : o.biases_kpa.back();
   std::vector<host::GridPoint> grid;
+  const bool adaptive = o.map_protocol == MapProtocol::kAdaptive;
   if (jamming) {
-    if (!st.contains("grid")) st["grid"] = json::array();
-    size_t index = 0;
-    for (double b : o.biases_kpa) {
-      for (double v : o.vacuums_kpa) {
-        if (index++ < st["grid"].size()) {
-          ++p.done;
-          continue;
-        }
-        step("indentation grid: bias " + std::to_string(static_cast<int>(b)) + " kPa, vacuum " +
-             std::to_string(static_cast<int>(v)) + " kPa");
-        s = rig.board.SetDrive(finger, b, v);
-        if (!s.ok) return AbortSafe(rig, "board: " + s.error);
-        rig.time.Wait(o.dwell_s);
-        std::vector<double> k, loop, r2;
-        for (int r = 0; r < o.repeats; ++r) {
-          PressCycle cycle;
-          s = Press(rig, zero, o.press_depth_mm, o.press_speed_mm_s, &cycle);
-          if (!s.ok) return s;
-          k.push_back(cycle.stiffness_n_per_mm);
-          loop.push_back(cycle.loop_area_mj);
-          r2.push_back(cycle.r2);
-          out->presses.push_back(cycle);
-        }
-        // Vacuum released between points: each condition is approached from rest (the same
-        // branch of the vacuum history every time), and the pump rests inside its run-time limit.
-        s = rig.board.SetDrive(finger, b, 0);
-        if (!s.ok) return AbortSafe(rig, "board: " + s.error);
-        rig.time.Wait(o.dwell_s);
-        const auto [km, ks] = MeanSpread(k);
-        st["grid"].push_back({b, v, o.repeats, km, ks, MeanSpread(loop).first,
-                              *std::min_element(r2.begin(), r2.end())});
-        done();
-      }
-    }
-    for (const json& g : st["grid"]) {
-      grid.push_back(host::GridPoint{g[0].get<double>(), g[1].get<double>(), g[2].get<int>(),
-                                     g[3].get<double>(), g[4].get<double>(), g[5].get<double>(),
-                                     std::clamp(g[6].get<double>(), 0.0, 1.0)});
-      out->csv.push_back(Csv({g[0].get<double>(), g[1].get<double>(), g[3].get<double>(),
-                              g[4].get<double>(), g[5].get<double>()},
+    const PressSettings press{o.press_depth_mm, o.press_speed_mm_s, o.dwell_s};
+    if (!st.contains("map")) st["map"] = json::object();
+    MapHooks hooks;
+    hooks.step = step;
+    hooks.done = done;
+    s = adaptive ? RunAdaptiveMap(rig, finger, zero, press, o.adaptive, st["map"], hooks, &out->map,
+                                  &out->map_estimate, &out->presses)
+                 : RunGridMap(rig, finger, zero, press, o.biases_kpa, o.vacuums_kpa, o.repeats,
+                              st["map"], hooks, &out->map, &out->presses);
+    if (!s.ok) return s;
+    out->map_estimate = EstimateMap(out->map, o.adaptive.box);
+    grid = SummariseConditions(out->map);
+    for (const host::GridPoint& g : grid) {
+      out->csv.push_back(Csv({g.bias_kpa, g.vacuum_kpa, g.stiffness_mean, g.stiffness_spread,
+                              g.loop_area_mean},
                              "grid"));
     }
-    bias = RecommendBias(grid);
+    bias = adaptive ? RecommendBiasFromMap(out->map, o.adaptive.box) : RecommendBias(grid);
   }
 
   // 4. The hysteresis sweep: deformation by contact detection, or stiffness by one press per point.
@@ -247,7 +229,10 @@ RigStatus RunThesisProtocol(Rig& rig, uint8_t finger, const ProtocolOptions& o, 
     done();
   }
   rig.board.SetDrive(finger, 0, 0);
-  GuardedMove(rig, rig.limits.retract_mm, 2.0);
+  s = GuardedMove(rig, rig.limits.retract_mm, 2.0);
+  double end_free = 0;
+  if (s.ok) s = ReadForceMean(rig, 10, &end_free);  // clear of everything: the zero at the end
+  if (!s.ok) return s;
   for (size_t k = 0; k < sweep.size(); ++k) {
     out->csv.push_back(
         Csv({drives[k] / 1000, sweep[k].drive_pa / 1000, sweep[k].output, 0, 0}, "sweep"));
@@ -273,11 +258,11 @@ RigStatus RunThesisProtocol(Rig& rig, uint8_t finger, const ProtocolOptions& o, 
   std::string error;
   const int inverse_points = static_cast<int>(std::clamp<size_t>(sweep.size() / 2, 2, 12));
   f.static_inverse = FitStaticInverse(sweep, inverse_points, jamming, &error);
-  if (f.static_inverse.size() < 2) return RigStatus::Fail("static inverse: " + error);
+  const bool fitted = f.static_inverse.size() >= 2;  // if not, the detectors still say why
   for (const protocol::InversePoint& q : f.static_inverse) {
     f.curve.push_back({q.setpoint_pa / 1000.0, q.output / 1000.0});
   }
-  if (!jamming) BranchFits(sweep, drive_max, f);
+  if (!jamming && fitted) BranchFits(sweep, drive_max, f);
   const HysteresisFit fit = FitPi(sweep, o.compensator_operators, drive_max);
   if (fit.ok()) {
     f.compensator = fit.kind;
@@ -289,6 +274,40 @@ RigStatus RunThesisProtocol(Rig& rig, uint8_t finger, const ProtocolOptions& o, 
   }
   if (jamming) f.recommended_bias_kpa = bias;
   f.quality.points = static_cast<int>(sweep.size());
+  f.quality.protocol = jamming && adaptive ? "adaptive" : "thesis";
+  f.quality.cycles = static_cast<int>(out->map.size());
+  f.quality.rig_time_s = earlier + rig.time.Now() - started;
+  if (jamming) f.quality.map_error = out->map_estimate.map_error;
+
+  // 6. The failure detectors.
+  CheckInputs in;
+  in.jamming = jamming;
+  in.force_noise_class_n = rig.force_noise_n;
+  in.tare_noise_n = tare_noise;
+  in.map = out->map;
+  in.free_readings = {end_free};
+  in.sweep_points = static_cast<int>(sweep.size());
+  in.corrections = corrections;
+  in.box = o.adaptive.box;
+  in.previous = info.previous;
+  f.quality.checks = RunQualityChecks(in, f);
+  for (const host::QualityCheck& c : f.quality.checks) {
+    if (!c.passed) f.quality.flags.push_back(c.name + ": " + c.detail);
+  }
+  if (jamming && adaptive && out->map_estimate.map_error > o.adaptive.target_error) {
+    char why[160];
+    std::snprintf(why, sizeof(why),
+                  "map: estimated error %.1f %% still above the %.1f %% target after the budget "
+                  "of %d cycles",
+                  100 * out->map_estimate.map_error, 100 * o.adaptive.target_error,
+                  o.adaptive.max_cycles);
+    f.quality.flags.push_back(why);
+  }
+  if (!fitted) {
+    std::string why = "static inverse: " + error;
+    for (const std::string& flag : f.quality.flags) why += "; " + flag;
+    return RigStatus::Fail(why);
+  }
   return {};
 }
 

@@ -105,7 +105,25 @@ RigStatus FindSurface(Rig& rig, double expected_mm, const ContactOptions& o, dou
   }
 }
 
-RigStatus ZeroOnVentedSurface(Rig& rig, uint8_t finger, const ContactOptions& o, double* zero_mm) {
+RigStatus ReadForceMean(Rig& rig, int count, double* mean_n, double* rms_n) {
+  std::vector<double> readings;
+  for (int i = 0; i < count; ++i) {
+    double force = 0;
+    const RigStatus s = rig.force.Read(&force);
+    if (!s.ok) return AbortSafe(rig, "force sensor lost: " + s.error);
+    readings.push_back(force);
+    rig.time.Wait(0.01);
+  }
+  double mean = 0, square = 0;
+  for (double f : readings) mean += f / count;
+  for (double f : readings) square += (f - mean) * (f - mean) / count;
+  *mean_n = mean;
+  if (rms_n != nullptr) *rms_n = std::sqrt(square);
+  return {};
+}
+
+RigStatus ZeroOnVentedSurface(Rig& rig, uint8_t finger, const ContactOptions& o, double* zero_mm,
+                              double* noise_n) {
   RigStatus s = rig.board.SetDrive(finger, 0, 0);
   if (!s.ok) return AbortSafe(rig, "board: " + s.error);
   s = GuardedMove(rig, rig.limits.retract_mm, o.fast_mm_s);
@@ -113,6 +131,11 @@ RigStatus ZeroOnVentedSurface(Rig& rig, uint8_t finger, const ContactOptions& o,
   rig.time.Wait(2.0);  // vented and settled, indenter clear: the force sensor's zero
   s = rig.force.Tare();
   if (!s.ok) return AbortSafe(rig, "force sensor: " + s.error);
+  if (noise_n != nullptr) {
+    double mean = 0;
+    s = ReadForceMean(rig, 100, &mean, noise_n);
+    if (!s.ok) return s;
+  }
   return FindSurface(rig, 0, o, zero_mm);
 }
 
@@ -193,6 +216,9 @@ RigStatus Press(Rig& rig, double surface_mm, double depth_mm, double speed_mm_s,
   }
   RigStatus s = GuardedMove(rig, surface_mm + 0.2, 2.0);
   if (!s.ok) return s;
+  // Clear of the finger the sensor should read its tare: ten readings, a tenth of a second.
+  s = ReadForceMean(rig, 10, &out->free_force_n);
+  if (!s.ok) return s;
   auto sweep = [&](double to, std::vector<std::pair<double, double>>* samples) {
     RigStatus r = rig.stage.MoveTo(to, speed_mm_s);
     if (!r.ok) return AbortSafe(rig, "stage: " + r.error);
@@ -234,6 +260,7 @@ RigStatus Press(Rig& rig, double surface_mm, double depth_mm, double speed_mm_s,
   const double n = static_cast<double>(out->loading.size());
   const double spread = syy - sy * sy / n;
   out->stiffness_n_per_mm = k;
+  out->residual_n = n > 2 ? std::sqrt(residual / (n - 2)) : 0;
   out->r2 = spread > 0 ? 1 - residual / spread : 1;
   // Loop area: ∫F dd loading minus unloading (trapezoids, N·mm = mJ).
   auto work = [](std::vector<std::pair<double, double>> v) {

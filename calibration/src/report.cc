@@ -3,6 +3,7 @@
 
 #include <cstdio>
 #include <map>
+#include <set>
 
 #include "palpa/host/svg_chart.h"
 
@@ -108,15 +109,16 @@ std::string ResidualChart(const CalibrationRun& run) {
 
 std::string LoopsChart(const CalibrationRun& run) {
   Chart c;
-  c.title = "Force-depth loops (first press of each grid point)";
+  c.title = "Force-depth loops (first press at each condition, up to 12)";
   c.x_label = "depth (mm)";
   c.y_label = "force (N)";
-  const size_t repeats =
-      run.file.grid.empty() ? 1 : static_cast<size_t>(run.file.grid.front().cycles);
-  for (size_t g = 0; g < run.file.grid.size() && g * repeats < run.presses.size(); ++g) {
-    const PressCycle& p = run.presses[g * repeats];
-    Series s{"bias " + Fixed(run.file.grid[g].bias_kpa, 0) + ", vacuum " +
-                 Fixed(run.file.grid[g].vacuum_kpa, 0),
+  // The presses of this session are the last ones of the map (a resumed run lost the others').
+  const size_t offset = run.map.size() - std::min(run.map.size(), run.presses.size());
+  std::set<std::pair<double, double>> shown;
+  for (size_t i = offset; i < run.map.size() && c.series.size() < 12; ++i) {
+    if (!shown.insert({run.map[i].bias_kpa, run.map[i].vacuum_kpa}).second) continue;
+    const PressCycle& p = run.presses[i - offset];
+    Series s{"bias " + Fixed(run.map[i].bias_kpa, 0) + ", vacuum " + Fixed(run.map[i].vacuum_kpa, 0),
              {},
              "",
              false,
@@ -161,6 +163,22 @@ std::string RenderReport(const CalibrationRun& run) {
        " sweep readings; compensator fit residual " + Fixed(f.quality.residual_rms * 1000, 1) +
        " RMS, " + Fixed(f.quality.residual_max * 1000, 1) + " max (" + (jamming ? "mN/mm" : "µm") +
        ").</p>\n";
+  if (jamming) {
+    h += "<p>Stiffness map: " + Escape(f.quality.protocol) + " protocol, " +
+         std::to_string(f.quality.cycles) + " indentation cycles; cross-validated map error " +
+         (f.quality.map_error ? Fixed(100 * *f.quality.map_error, 1) + " %" : "unknown") +
+         ". Rig time of the run " + Fixed(f.quality.rig_time_s / 60, 1) + " min.</p>\n";
+  }
+  if (!f.quality.checks.empty()) {
+    h += "<table><tr><th>check</th><th>figure</th><th>limit</th><th>verdict</th><th "
+         "style=\"text-align:left\">what was measured</th></tr>\n";
+    for (const host::QualityCheck& k : f.quality.checks) {
+      h += "<tr><td>" + Escape(k.name) + "</td><td>" + Fixed(k.value, 4) + "</td><td>" +
+           Fixed(k.limit, 4) + "</td><td>" + (k.passed ? "pass" : "<b>FAIL</b>") +
+           "</td><td style=\"text-align:left\">" + Escape(k.detail) + "</td></tr>\n";
+    }
+    h += "</table>\n";
+  }
   if (!f.quality.flags.empty()) {
     h += "<p><b>Flags:</b></p><ul>";
     for (const std::string& flag : f.quality.flags) h += "<li>" + Escape(flag) + "</li>";

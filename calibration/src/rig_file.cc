@@ -46,9 +46,10 @@ RigDescription SimRigDescription(const std::string& modbus_uri) {
 std::optional<RigDescription> ParseRigDescription(const std::string& text, std::string* error) {
   try {
     const json j = json::parse(text);
-    JsonObject o(j, "", {"name", "comment", "stage", "force_sensor", "limits"});
+    JsonObject o(j, "", {"name", "comment", "stage", "force_sensor", "force_noise_n", "limits"});
     RigDescription rig;
     rig.name = o.Text("name");
+    if (o.Has("force_noise_n")) rig.force_noise_n = o.Number("force_noise_n", 1e-6, 10);
     rig.stage = Device(o, "stage", kStageRegisters);
     const json& force = o.At("force_sensor");
     if (force.is_object() && force.value("driver", "") == "netft") {

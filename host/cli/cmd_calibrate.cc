@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -16,7 +17,7 @@
 #include "palpa/calibration/device_rig.h"
 #include "palpa/calibration/report.h"
 #include "palpa/calibration/rig_file.h"
-#include "palpa/calibration/thesis_protocol.h"
+#include "palpa/calibration/calibration_protocol.h"
 #include "palpa/host/calibration_file.h"
 #include "palpa/host/svg_chart.h"
 #include "palpa/host/transport.h"
@@ -35,6 +36,9 @@ struct CalibrateArgs {
   bool quick = false;
   bool apply = false;
   double speed = 4;
+  double target_pct = 2.5;
+  int max_cycles = 18;
+  std::string previous;  ///< empty: DIR/SERIAL.json when there is one
 };
 
 std::string UtcNow() {
@@ -93,8 +97,18 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
     } else if (arg == "--out") {
       if (!value(a.out)) return Usage("calibrate", "--out needs a directory");
     } else if (arg == "--protocol") {
-      if (!value(a.protocol) || a.protocol != "thesis")
-        return Usage("calibrate", "--protocol: this build has 'thesis'");
+      if (!value(a.protocol) || (a.protocol != "thesis" && a.protocol != "adaptive"))
+        return Usage("calibrate", "--protocol " + a.protocol + ": expected thesis or adaptive");
+    } else if (arg == "--target") {
+      if (!value(v) || !ParseNumber(v, a.target_pct) || a.target_pct < 0.5 || a.target_pct > 50)
+        return Usage("calibrate", "--target " + v + ": expected a map error of 0.5 to 50 (%)");
+    } else if (arg == "--max-cycles") {
+      double n = 0;
+      if (!value(v) || !ParseNumber(v, n) || n < 6 || n > 200 || n != std::floor(n))
+        return Usage("calibrate", "--max-cycles " + v + ": expected 6 to 200 indentation cycles");
+      a.max_cycles = static_cast<int>(n);
+    } else if (arg == "--previous") {
+      if (!value(a.previous)) return Usage("calibrate", "--previous needs a calibration file");
     } else if (arg == "--finger") {
       double n = 0;
       if (!value(v) || !ParseNumber(v, n) || n < 1 || n > 8 || n != std::floor(n)) {
@@ -182,7 +196,7 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
   cal::DeviceBoardPort board(*device);
   cal::ScaledTime time(device->info().time_scale);
   cal::Rig rig{*devices->stage,     *devices->force,  board, time,
-               description->limits, description->name};
+               description->limits, description->name, description->force_noise_n};
   const std::string base = a.out + "/" + serial;
   cal::Journal journal;
   if (a.resume) {
@@ -198,12 +212,27 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
   journal.save = [&base](const cal::Journal& j) {
     WriteText(base + ".journal.json", j.state.dump());
   };
+  // The actuator's last calibration, for the detector that notices it changed.
+  std::optional<host::CalibrationFile> previous;
+  const std::string previous_path = a.previous.empty() ? base + ".json" : a.previous;
+  if (!a.previous.empty() || access(previous_path.c_str(), F_OK) == 0) {
+    previous = host::LoadCalibration(previous_path, &error);
+    if (!previous) return Usage("calibrate", "previous calibration " + error);
+    if (previous->actuator_serial != serial) {
+      return Usage("calibrate", "--previous " + previous_path + ": calibrates " +
+                                    previous->actuator_serial + ", not " + serial);
+    }
+  }
   const cal::RunInfo info{serial, device->info().board_id, UtcNow(), description->name,
-                          serial + ".csv"};
+                          serial + ".csv", previous ? &*previous : nullptr};
   cal::CalibrationRun run;
   const auto start = std::chrono::steady_clock::now();
-  const cal::ProtocolOptions options = a.quick ? cal::QuickProtocol() : cal::ProtocolOptions{};
-  const cal::RigStatus s = cal::RunThesisProtocol(
+  cal::ProtocolOptions options = a.quick ? cal::QuickProtocol() : cal::ProtocolOptions{};
+  if (a.protocol == "adaptive") options.map_protocol = cal::MapProtocol::kAdaptive;
+  options.adaptive.target_error = a.target_pct / 100;
+  options.adaptive.max_cycles = a.max_cycles;
+  options.adaptive.min_cycles = std::min(options.adaptive.min_cycles, a.max_cycles);
+  const cal::RigStatus s = cal::RunCalibration(
       rig, static_cast<uint8_t>(a.finger), options, info, journal,
       [&](const cal::Progress& p) { ProgressBar(p, start); }, &run);
   std::fprintf(stderr, "\n");
@@ -233,6 +262,20 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
   }
   if (run.file.recommended_bias_kpa)
     std::printf("  recommended bias: %.0f kPa\n", *run.file.recommended_bias_kpa);
+  if (run.file.quality.map_error) {
+    std::printf("  stiffness map: %s, %d cycles, cross-validated error %.1f %%\n",
+                run.file.quality.protocol.c_str(), run.file.quality.cycles,
+                100 * *run.file.quality.map_error);
+  }
+  for (const host::QualityCheck& k : run.file.quality.checks) {
+    std::printf("  check %-10s %s  %s\n", k.name.c_str(), k.passed ? "pass" : "FAIL", k.detail.c_str());
+  }
+  for (const std::string& flag : run.file.quality.flags) {
+    const bool from_check = std::any_of(
+        run.file.quality.checks.begin(), run.file.quality.checks.end(),
+        [&](const host::QualityCheck& k) { return !k.passed && flag.rfind(k.name + ": ", 0) == 0; });
+    if (!from_check) std::printf("  note: %s\n", flag.c_str());
+  }
   std::printf(
       "  compensator %s(%zu params), fit residual %.4f RMS\n",
       protocol::EnumNames(protocol::CompensatorKind{})[static_cast<size_t>(run.file.compensator)],

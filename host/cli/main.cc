@@ -40,7 +40,7 @@ const std::map<std::string, Command>& Commands() {
                   "Telemetry to CSV; the first line is a JSON header (board, configuration, units, clock)."}},
       {"estop", {CmdEStop, "estop", "Every line to its safe value now, latched until cleared."}},
       {"clear", {CmdClear, "clear", "Clear latched faults whose cause is gone; outputs stay safe until new setpoints."}},
-      {"calibrate", {CmdCalibrate, "calibrate --rig FILE|sim --finger N --out DIR [--protocol thesis] [--resume] [--quick] [--apply]",
+      {"calibrate", {CmdCalibrate, "calibrate --rig FILE|sim --finger N --out DIR [--protocol thesis|adaptive] [--target PCT] [--max-cycles N] [--previous FILE] [--resume] [--quick] [--apply]",
                      "Runs the thesis calibration of one finger on a rig: zero, regulator correction, then a\n"
                      "deformation sweep (pneumatic) or the bias x vacuum indentation grid (jamming) and a\n"
                      "hysteresis sweep. Writes DIR/SERIAL.json (the calibration file), SERIAL.csv (raw readings)\n"

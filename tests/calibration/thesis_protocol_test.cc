@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "palpa/calibration/thesis_protocol.h"
+#include "palpa/calibration/calibration_protocol.h"
 #include "palpa/core/board_config.h"
 #include "sim_rig.h"
 
@@ -53,7 +53,7 @@ TEST(ThesisProtocol, PneumaticFingerGivesAValidCalibrationCloseToTable54) {
   cal::Journal journal;
   cal::CalibrationRun run;
   int reports = 0;
-  const cal::RigStatus s = cal::RunThesisProtocol(
+  const cal::RigStatus s = cal::RunCalibration(
       rig, 0, Short(), Info("PN-1"), journal, [&](const cal::Progress&) { ++reports; }, &run);
   CHECK_TEXT(s.ok, s.error.c_str());
   CHECK(reports > 10);
@@ -72,7 +72,7 @@ TEST(ThesisProtocol, JammingFingerRecommendsTheBiasWithTheSmallerLoop) {
   cal::Journal journal;
   cal::CalibrationRun run;
   const cal::RigStatus s =
-      cal::RunThesisProtocol(rig, 3, Short(), Info("JAM-1"), journal, nullptr, &run);
+      cal::RunCalibration(rig, 3, Short(), Info("JAM-1"), journal, nullptr, &run);
   CHECK_TEXT(s.ok, s.error.c_str());
   LONGS_EQUAL(4, run.file.grid.size());
   LONGS_EQUAL(2, run.file.regulator_corrections.size());  // the bias line and the vacuum line
@@ -98,7 +98,7 @@ TEST(ThesisProtocol, AnInterruptedRunResumesFromItsJournal) {
     cal::Rig rig = sim.rig();
     cal::CalibrationRun run;
     // The force sensor drops out part-way through the sweep.
-    const cal::RigStatus s = cal::RunThesisProtocol(
+    const cal::RigStatus s = cal::RunCalibration(
         rig, 0, Short(), Info("PN-1"), journal,
         [&](const cal::Progress& p) {
           if (p.done == 8) sim.force_lost = true;
@@ -115,7 +115,7 @@ TEST(ThesisProtocol, AnInterruptedRunResumesFromItsJournal) {
   cal::Rig rig = sim.rig();
   cal::CalibrationRun run;
   int first_done = -1;
-  const cal::RigStatus s = cal::RunThesisProtocol(
+  const cal::RigStatus s = cal::RunCalibration(
       rig, 0, Short(), Info("PN-1"), journal,
       [&](const cal::Progress& p) {
         if (first_done < 0 && p.step.find("sweep") != std::string::npos) first_done = p.done;

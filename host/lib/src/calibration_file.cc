@@ -192,7 +192,9 @@ CalibrationFile Read(const json& root) {
   if (o.Has("recommended_bias_kpa"))
     c.recommended_bias_kpa = o.Number("recommended_bias_kpa", 0, 20);
   {
-    Obj q(o.At("quality"), "quality", {"residual_rms", "residual_max", "points", "flags"});
+    Obj q(o.At("quality"), "quality",
+          {"residual_rms", "residual_max", "points", "flags", "protocol", "cycles", "rig_time_s",
+           "map_error", "checks"});
     c.quality.residual_rms = q.Number("residual_rms", 0, 1e6);
     c.quality.residual_max = q.Number("residual_max", 0, 1e6);
     c.quality.points = static_cast<int>(q.Integer("points", 0, 10000000));
@@ -200,6 +202,26 @@ CalibrationFile Read(const json& root) {
     for (size_t i = 0; i < flags.size(); ++i) {
       if (!flags[i].is_string()) throw Invalid(q.Item("flags", i) + ": must be a string");
       c.quality.flags.push_back(flags[i].get<std::string>());
+    }
+    // Run figures and detector verdicts: optional, so files from before them still load.
+    if (q.Has("protocol")) {
+      c.quality.protocol = q.Choice("protocol", {"thesis", "adaptive"});
+    }
+    if (q.Has("cycles")) c.quality.cycles = static_cast<int>(q.Integer("cycles", 0, 100000));
+    if (q.Has("rig_time_s")) c.quality.rig_time_s = q.Number("rig_time_s", 0, 1e7);
+    if (q.Has("map_error")) c.quality.map_error = q.Number("map_error", 0, 100);
+    if (q.Has("checks")) {
+      const json& checks = q.List("checks", 0, 16);
+      for (size_t i = 0; i < checks.size(); ++i) {
+        Obj k(checks[i], q.Item("checks", i), {"name", "value", "limit", "passed", "detail"});
+        QualityCheck check;
+        check.name = k.Text("name");
+        check.value = k.Number("value", -1e9, 1e9);
+        check.limit = k.Number("limit", -1e9, 1e9);
+        check.passed = k.Flag("passed");
+        check.detail = k.Text("detail");
+        c.quality.checks.push_back(check);
+      }
     }
   }
   return c;
@@ -266,6 +288,20 @@ json Write(const CalibrationFile& c) {
                   {"residual_max", c.quality.residual_max},
                   {"points", c.quality.points},
                   {"flags", c.quality.flags}};
+  if (!c.quality.protocol.empty()) j["quality"]["protocol"] = c.quality.protocol;
+  if (c.quality.cycles > 0) j["quality"]["cycles"] = c.quality.cycles;
+  if (c.quality.rig_time_s > 0) j["quality"]["rig_time_s"] = c.quality.rig_time_s;
+  if (c.quality.map_error) j["quality"]["map_error"] = *c.quality.map_error;
+  if (!c.quality.checks.empty()) {
+    j["quality"]["checks"] = json::array();
+    for (const QualityCheck& k : c.quality.checks) {
+      j["quality"]["checks"].push_back({{"name", k.name},
+                                        {"value", k.value},
+                                        {"limit", k.limit},
+                                        {"passed", k.passed},
+                                        {"detail", k.detail}});
+    }
+  }
   return j;
 }
 

@@ -72,6 +72,12 @@ std::string JsonObject::Text(const char* key) const {
   return v.get<std::string>();
 }
 
+bool JsonObject::Flag(const char* key) const {
+  const nlohmann::json& v = At(key);
+  if (!v.is_boolean()) throw JsonInvalid(Join(key) + ": must be true or false");
+  return v.get<bool>();
+}
+
 std::string JsonObject::Choice(const char* key, const std::set<std::string>& choices) const {
   const std::string v = Text(key);
   if (choices.count(v)) return v;

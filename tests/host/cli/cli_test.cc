@@ -180,6 +180,18 @@ TEST(CliCalibrate, BadArgumentsAreNamedBeforeAnythingStarts) {
   r = Palpa("calibrate --rig sim --finger 1 --out /tmp/palpa-cli-none --resume");
   LONGS_EQUAL(2, r.code);
   CHECK(Has(r, "no journal"));
+  r = Palpa(nowhere + "calibrate --rig sim --finger 4 --out /tmp --protocol fast");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "--protocol fast: expected thesis or adaptive"));
+  r = Palpa(nowhere + "calibrate --rig sim --finger 4 --out /tmp --protocol adaptive --target 0");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "--target 0"));
+  r = Palpa(nowhere + "calibrate --rig sim --finger 4 --out /tmp --max-cycles 3");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "--max-cycles 3: expected 6 to 200"));
+  r = Palpa("calibrate --rig sim --finger 4 --out /tmp --previous /tmp/palpa-cli-no-such.json");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "palpa-cli-no-such.json"));
 }
 
 TEST(CliCalibrate, QuickCalibrationOnTheSimulatedRigWritesAValidFileRawDataAndAReport) {
@@ -199,4 +211,28 @@ TEST(CliCalibrate, QuickCalibrationOnTheSimulatedRigWritesAValidFileRawDataAndAR
   CHECK(report.find("Regulator static correction") != std::string::npos);
   CHECK(access((dir + "/PN-1.journal.json").c_str(), F_OK) !=
         0);  // a finished run leaves no journal
+}
+
+TEST(CliCalibrate, AdaptiveMapOnAJammingFingerReportsItsChecks) {
+  char pattern[] = "/tmp/palpa-cal-cli-XXXXXX";
+  const std::string dir = mkdtemp(pattern);
+  const Run r = Palpa("calibrate --rig sim --finger 4 --quick --protocol adaptive --max-cycles 8 --out " + dir);
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  CHECK(Has(r, "stiffness map: adaptive, 8 cycles"));
+  for (const char* check : {"check points", "check noise", "check force_zero", "check leak"})
+    CHECK_TEXT(Has(r, check), check);
+  std::ifstream file(dir + "/JAM-1.json");
+  const nlohmann::json j = nlohmann::json::parse(file);
+  CHECK(j["quality"]["protocol"] == "adaptive");
+  LONGS_EQUAL(4, j["quality"]["checks"].size());
+  std::ifstream html(dir + "/JAM-1.html");
+  std::string report((std::istreambuf_iterator<char>(html)), std::istreambuf_iterator<char>());
+  CHECK(report.find("what was measured") != std::string::npos);
+  // A calibration of another actuator is refused as its previous one.
+  nlohmann::json other = j;
+  other["actuator_serial"] = "JAM-2";
+  std::ofstream(dir + "/other.json") << other.dump();
+  const Run refused = Palpa("calibrate --rig sim --finger 4 --quick --out " + dir + " --previous " + dir + "/other.json");
+  LONGS_EQUAL(2, refused.code);
+  CHECK(Has(refused, "calibrates JAM-2, not JAM-1"));
 }

@@ -43,6 +43,12 @@ ph::CalibrationFile Example() {
   c.quality.residual_rms = 12;
   c.quality.residual_max = 40;
   c.quality.points = 120;
+  c.quality.protocol = "adaptive";
+  c.quality.cycles = 17;
+  c.quality.rig_time_s = 1234.5;
+  c.quality.map_error = 0.021;
+  c.quality.checks = {{"noise", 0.0016, 0.0051, true, "force noise 1.6 mN"},
+                      {"leak", 1.7, 1, false, "line 2 holds 85 kPa at a 90 kPa command"}};
   return c;
 }
 
@@ -78,6 +84,14 @@ TEST(CalibrationFile, SavesAtomicallyAndReadsBackEveryField) {
   CHECK(back->compensator == pp::CompensatorKind::kPrandtlIshlinskii);
   LONGS_EQUAL(6, back->compensator_params.size());
   DOUBLES_EQUAL(0.98, back->falling_fit->r2, 1e-12);
+  STRCMP_EQUAL("adaptive", back->quality.protocol.c_str());
+  LONGS_EQUAL(17, back->quality.cycles);
+  DOUBLES_EQUAL(1234.5, back->quality.rig_time_s, 1e-9);
+  DOUBLES_EQUAL(0.021, *back->quality.map_error, 1e-12);
+  LONGS_EQUAL(2, back->quality.checks.size());
+  STRCMP_EQUAL("leak", back->quality.checks[1].name.c_str());
+  CHECK_FALSE(back->quality.checks[1].passed);
+  DOUBLES_EQUAL(1.7, back->quality.checks[1].value, 1e-12);
   // Only the file itself is in the directory: the temporary was renamed over it.
   LONGS_EQUAL(0,
               access((ph::CalibrationPath(dir, "PN-1") + ".tmp" + std::to_string(getpid())).c_str(),
@@ -129,6 +143,11 @@ TEST(CalibrationFile, EveryBadFieldIsNamedByItsPath) {
        "compensator.params[1]: must be a finite number"},
       {[](json& j) { j["fits"]["rising"]["r2"] = 1.5; }, "fits.rising.r2"},
       {[](json& j) { j["quality"]["flags"] = json::array({1}); }, "quality.flags[0]"},
+      {[](json& j) { j["quality"]["protocol"] = "quick"; }, "quality.protocol"},
+      {[](json& j) { j["quality"]["checks"][0]["passed"] = "yes"; },
+       "quality.checks[0].passed: must be true or false"},
+      {[](json& j) { j["quality"]["checks"][1].erase("limit"); }, "quality.checks[1].limit: missing"},
+      {[](json& j) { j["quality"]["map_error"] = -0.1; }, "quality.map_error"},
       {[](json& j) { j["kind"] = "jamming"; }, "conditions.bias_kpa: missing"},
   };
   for (const Case& c : cases) {

@@ -1,8 +1,8 @@
-// The thesis's calibration, automated end to end for one finger: zero, the regulator's static
-// correction, then (pneumatic) a deformation sweep with nested reversals or (jamming) the
-// indentation grid over bias × vacuum with repeats, the recommended bias, and a stiffness sweep
-// at it; fits, static inverse, compensator, quality figures — a calibration file and its raw data.
-// Each finished step is kept in a journal, so an interrupted run resumes where it stopped.
+// A finger's calibration end to end: zero, the regulator's static correction, then (pneumatic) a
+// deformation sweep with nested reversals or (jamming) the stiffness map over bias × vacuum —
+// the thesis's grid or the adaptive protocol — the recommended bias, and a stiffness sweep at it;
+// fits, static inverse, compensator, the failure detectors' verdicts — a calibration file and its
+// raw data. Each finished step is kept in a journal, so an interrupted run resumes where it stopped.
 #pragma once
 
 #include <functional>
@@ -11,13 +11,19 @@
 
 #include <nlohmann/json.hpp>
 
+#include "palpa/calibration/map_protocols.h"
 #include "palpa/calibration/procedures.h"
 #include "palpa/calibration/sweep.h"
 #include "palpa/host/calibration_file.h"
 
 namespace palpa::calibration {
 
+/// How a jamming finger's stiffness map is taken (pneumatic fingers have no map: both the same).
+enum class MapProtocol { kThesisGrid, kAdaptive };
+
 struct ProtocolOptions {
+  MapProtocol map_protocol = MapProtocol::kThesisGrid;
+  AdaptiveOptions adaptive{};
   double dwell_s = 3;  ///< settling at each drive before reading
   ContactOptions contact{};
   double press_depth_mm = 3;      ///< thesis: 3 mm
@@ -54,18 +60,21 @@ struct RunInfo {
   std::string date;  ///< UTC ISO 8601
   std::string rig;
   std::string raw_data;  ///< CSV file name beside the calibration
+  const host::CalibrationFile* previous = nullptr;  ///< the actuator's last calibration, if any
 };
 
 struct CalibrationRun {
   host::CalibrationFile file;
   std::vector<std::string> csv;     ///< raw readings, first line the header
-  std::vector<PressCycle> presses;  ///< jamming: every press of the grid, for the report
+  std::vector<MapPress> map;         ///< jamming: every press of the stiffness map
+  std::vector<PressCycle> presses;   ///< the force-depth readings of those taken in this session
+  MapEstimate map_estimate;
   std::vector<SweepSample> sweep;
 };
 
 /// Runs (or resumes) the protocol; on a safety stop returns its reason with everything safe,
 /// and the journal keeps what was finished.
-RigStatus RunThesisProtocol(Rig& rig, uint8_t finger, const ProtocolOptions& options,
+RigStatus RunCalibration(Rig& rig, uint8_t finger, const ProtocolOptions& options,
                             const RunInfo& info, Journal& journal,
                             const std::function<void(const Progress&)>& progress,
                             CalibrationRun* out);

@@ -32,7 +32,12 @@ RigStatus AbortSafe(Rig& rig, const std::string& why);
 RigStatus FindSurface(Rig& rig, double expected_mm, const ContactOptions& o, double* surface_mm);
 
 /// Tares the force sensor clear of the finger, vents it and finds the vented surface (the zero).
-RigStatus ZeroOnVentedSurface(Rig& rig, uint8_t finger, const ContactOptions& o, double* zero_mm);
+/// With `noise_n`, also the RMS of a second of readings after the tare (the sensor's noise).
+RigStatus ZeroOnVentedSurface(Rig& rig, uint8_t finger, const ContactOptions& o, double* zero_mm,
+                              double* noise_n = nullptr);
+
+/// The mean of `count` readings 10 ms apart (and their RMS spread), wherever the indenter is.
+RigStatus ReadForceMean(Rig& rig, int count, double* mean_n, double* rms_n = nullptr);
 
 /// Regulator static correction of one of the finger's lines: trim off, commands up and down in
 /// `points` steps over 10–90 % of the line's range, the settled sensor reading at each (the other
@@ -51,6 +56,8 @@ struct PressCycle {
   double r2 = 0;                  ///< of that fit
   double loop_area_mj = 0;        ///< between loading and unloading (N·mm = mJ)
   double peak_force_n = 0;
+  double residual_n = 0;    ///< RMS of the loading fit's residuals: the force sensor's noise, mostly
+  double free_force_n = 0;  ///< mean reading just clear of the surface before the press: its zero
   std::vector<std::pair<double, double>> loading, unloading;  ///< (depth mm, force N)
 };
 RigStatus Press(Rig& rig, double surface_mm, double depth_mm, double speed_mm_s, PressCycle* out);

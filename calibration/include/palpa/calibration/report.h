@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "palpa/calibration/thesis_protocol.h"
+#include "palpa/calibration/calibration_protocol.h"
 
 namespace palpa::calibration {
 

@@ -69,6 +69,10 @@ struct SafetyLimits {
   double retract_mm = 5;        ///< where a retract goes
 };
 
+/// An ATI Nano17 SI-12-0.12 reading: 0.003 N resolution (its quantisation, 0.0009 N RMS) with about
+/// half a count of noise on top — the sensor class the thesis calibrated with.
+inline constexpr double kNano17NoiseN = 0.0017;
+
 struct Rig {
   Stage& stage;
   ForceSensor& force;
@@ -76,6 +80,7 @@ struct Rig {
   RigTime& time;
   SafetyLimits limits{};
   std::string name = "sim";
+  double force_noise_n = kNano17NoiseN;  ///< the force sensor's class (noise check)
 };
 
 }  // namespace palpa::calibration

@@ -18,6 +18,7 @@ struct RigDescription {
   RegisterMap force;                 ///< a Modbus force sensor...
   std::optional<NetFtConfig> netft;  ///< ...or an ATI Net F/T
   SafetyLimits limits;
+  double force_noise_n = kNano17NoiseN;  ///< the force sensor's class: RMS noise of one reading
 };
 
 std::optional<RigDescription> ParseRigDescription(const std::string& text, std::string* error);

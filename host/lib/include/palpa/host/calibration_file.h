@@ -40,11 +40,25 @@ struct GridPoint {
   double r2_min = 0;
 };
 
+/// One failure detector's verdict: its figure against its limit (docs/calibration.md).
+struct QualityCheck {
+  std::string name;  ///< points, noise, force_zero, leak, previous
+  double value = 0;
+  double limit = 0;
+  bool passed = true;
+  std::string detail;  ///< what was measured, in words
+};
+
 struct CalibrationQuality {
   double residual_rms = 0;  ///< of the output curve's fit, output unit
   double residual_max = 0;
   int points = 0;                  ///< settled readings the fits used
-  std::vector<std::string> flags;  ///< detectors that fired (empty: clean)
+  std::vector<std::string> flags;  ///< detectors that fired and other warnings (empty: clean)
+  std::string protocol;            ///< "thesis" or "adaptive"; empty in older files
+  int cycles = 0;                  ///< indentation cycles of the stiffness map
+  double rig_time_s = 0;           ///< of the whole run
+  std::optional<double> map_error;  ///< jamming: cross-validated map error (fraction of value)
+  std::vector<QualityCheck> checks;
 };
 
 struct RegulatorCorrection {

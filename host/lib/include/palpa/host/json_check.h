@@ -29,6 +29,7 @@ class JsonObject {
   double Number(const char* key, double lo, double hi) const;
   long Integer(const char* key, long lo, long hi) const;
   std::string Text(const char* key) const;
+  bool Flag(const char* key) const;  ///< a JSON true or false
   /// One of `choices`; the error lists them.
   std::string Choice(const char* key, const std::set<std::string>& choices) const;
   const nlohmann::json& List(const char* key, size_t lo, size_t hi) const;
