@@ -23,7 +23,7 @@ std::unique_ptr<SimBoard> SimBoard::Create(const SimBoardOptions& options, hal::
                               config->finger_count, options.plant);
   sim->dac_ = std::make_unique<SimAnalogOutput>(*sim->plant_);
   sim->adc_ = std::make_unique<SimAnalogInput>(*sim->plant_);
-  core::BoardIdentity id;
+  core::BoardIdentity& id = sim->identity_;
   id.kind = protocol::BoardKind::kSim;
   id.board_id = options.board_id;
   id.plant_simulated = true;
@@ -31,13 +31,57 @@ std::unique_ptr<SimBoard> SimBoard::Create(const SimBoardOptions& options, hal::
   id.boot_nonce =
       options.boot_nonce != 0 ? options.boot_nonce : options.plant.seed * 2246822519u + 0x5EED;
   id.rx_buffer_bytes = 4096;
-  core::BoardIo io{sim->clock_, *sim->dac_, sim->adc_.get(), sim->supply_,
-                   sim->dump_,  sim->pump_, nullptr,         link,
-                   nullptr,     0};
-  sim->board_ = std::make_unique<core::Board>(*config, io, id);
-  sim->board_->Start();
+  sim->config_ = config;
+  sim->link_ = &link;
+  // The flash as it leaves the factory: this build's image in slot 0 (the body stands in for
+  // the code: nothing executes it here), the bootloader's first pass still to come.
+  const core::FlashLayout& layout = core::kDefaultLayout;
+  sim->flash_ = std::make_unique<hal::fake::SimulatedNorFlash>(layout.total, layout.sector_size,
+                                                               options.plant.seed);
+  static const char kBody[] = "palpa-sim application image";
+  protocol::ImageFields f;
+  f.load_address = layout.xip_base + layout.slot_offset[0];
+  f.version_major = id.firmware_major;
+  f.version_minor = id.firmware_minor;
+  f.version_revision = id.firmware_patch;
+  f.board_kind = protocol::BoardKind::kSim;
+  f.slot = 0;
+  f.rollback_counter = 1;
+  uint8_t image[protocol::ImageSize(sizeof(kBody))];
+  const uint32_t size = protocol::WriteImage(f, reinterpret_cast<const uint8_t*>(kBody),
+                                             sizeof(kBody), image, sizeof(image));
+  sim->flash_->Program(layout.slot_offset[0], image, size);
+  sim->BootBoard(protocol::ResetCause::kPowerOn);
   return sim;
 }
+
+void SimBoard::BootBoard(protocol::ResetCause cause) {
+  const core::FlashLayout& layout = core::kDefaultLayout;
+  core::SlotImage slots[2];
+  last_boot_ = core::Boot(*flash_, layout, protocol::BoardKind::kSim, slots);
+  ++boots_;
+  core::BoardIdentity id = identity_;
+  id.reset_cause = cause;
+  id.boot_nonce = identity_.boot_nonce + 0x9E3779B9u * (boots_ - 1);  // a new nonce per boot
+  id.recovery = last_boot_.slot > 1;
+  if (!id.recovery) {
+    const protocol::ImageInfo& info = slots[last_boot_.slot].info;
+    id.firmware_major = info.version_major;
+    id.firmware_minor = info.version_minor;
+    id.firmware_patch = static_cast<uint8_t>(info.version_revision);
+    id.active_slot = last_boot_.slot;
+  }
+  id.rollback_counter = core::BootStore(flash_.get(), layout).Load().rollback_floor;
+  update_ = std::make_unique<core::UpdateEngine>(flash_.get(), layout, protocol::BoardKind::kSim,
+                                                 last_boot_.slot);
+  if (id.recovery) id.active_slot = static_cast<uint8_t>(1 - update_->inactive_slot());
+  core::BoardIo io{clock_, *dac_, adc_.get(), supply_, dump_, pump_, nullptr, *link_, nullptr, 0,
+                   update_.get()};
+  board_ = std::make_unique<core::Board>(*config_, io, id);
+  board_->Start();
+}
+
+void SimBoard::Reset(protocol::ResetCause cause) { BootBoard(cause); }
 
 void SimBoard::AdvanceTo(uint64_t us) {
   constexpr uint64_t kStepUs = 1000;
@@ -62,6 +106,10 @@ void SimBoard::AdvanceTo(uint64_t us) {
 
 void SimBoard::StepBoard() {
   const bool ticked = board_->Step();
+  if (board_->reboot_requested()) {  // UpdateReboot's Ack went out with this pass's flush
+    BootBoard(protocol::ResetCause::kUpdate);
+    return;
+  }
   if (!stamp_) return;
   // A tick writes the DAC before the link is served: a generation applied by this pass's
   // dispatch reaches the DAC on the next tick.

@@ -8,6 +8,9 @@
 #include <string>
 
 #include "palpa/core/board.h"
+#include "palpa/core/boot_state.h"
+#include "palpa/core/update_engine.h"
+#include "palpa/hal/fake/simulated_nor_flash.h"
 #include "palpa/hal/byte_link.h"
 #include "palpa/hal/clock.h"
 #include "palpa/hal/digital_io.h"
@@ -59,6 +62,13 @@ class SimBoard {
   core::Board& board() { return *board_; }
   const core::Board& board() const { return *board_; }
 
+  /// The board's flash (bootloader, two image slots, boot state) and what its last boot chose.
+  hal::fake::SimulatedNorFlash& flash() { return *flash_; }
+  const core::BootDecision& last_boot() const { return last_boot_; }
+  uint32_t boots() const { return boots_; }
+  /// Resets the board as a power cycle or a watchdog would: the bootloader chooses again.
+  void Reset(protocol::ResetCause cause);
+
   /// Called when a new setpoint generation is applied (dac=false, at the dispatch) and when the
   /// DAC is first written with it (dac=true, at the next tick): the latency benchmark's stamps.
   /// Called after every 1 ms step (plant and board), with the virtual time: side channels sample
@@ -100,6 +110,15 @@ class SimBoard {
   PulsedValve supply_, dump_;
   Pin pump_;
   std::unique_ptr<core::Board> board_;
+  const core::BoardConfig* config_ = nullptr;
+  hal::ByteLink* link_ = nullptr;
+  core::BoardIdentity identity_{};
+  std::unique_ptr<hal::fake::SimulatedNorFlash> flash_;
+  std::unique_ptr<core::UpdateEngine> update_;
+  core::BootDecision last_boot_{};
+  uint32_t boots_ = 0;
+  /// The bootloader's pass and the application's start on the chosen slot.
+  void BootBoard(protocol::ResetCause cause);
   std::function<void(uint32_t, bool)> stamp_;
   std::function<void(uint64_t)> on_step_;
   uint32_t stamped_generation_ = 0;

@@ -3,6 +3,7 @@
 
 #include <cstring>
 
+#include "palpa/core/update_engine.h"
 #include "palpa/protocol/crc32.h"
 
 namespace palpa::core {
@@ -117,7 +118,10 @@ void Board::Tick(uint64_t now_us) {
   }
   const uint32_t newly = Supervise(settings_, supervisor_, in);
   const bool was_safe = safe_;
-  safe_ = supervisor_.latched != 0 || !released_;
+  // Update mode keeps every line safe from Enter until the reboot (DESIGN §9).
+  const bool updating =
+      identity_.recovery || (io_.update != nullptr && io_.update->in_update_mode());
+  safe_ = supervisor_.latched != 0 || !released_ || updating;
   if (safe_ && !was_safe) Hold();
 
   float setpoints[kMaxLines] = {};

@@ -4,6 +4,7 @@
 #include "board_dispatch.h"
 
 #include "palpa/core/board_reports.h"
+#include "palpa/core/update_engine.h"
 #include "palpa/protocol/codec.h"
 #include "palpa/protocol/crc32.h"
 
@@ -49,6 +50,9 @@ void BoardDispatch::OnFrame(const protocol::Frame& frame, uint64_t now_us) {
   const bool reliable = (h.flags & flags::kReliable) != 0;
   const uint8_t answer_flags = reliable ? flags::kReliable : 0;
   if ((h.flags & flags::kFromBoard) != 0) return;  // our own frames looped back: ignore
+  // Recovery mode speaks the bootstrap set and nothing else (the control core is not trusted).
+  if (b_.identity_.recovery && !protocol::IsBootstrap(h.type))
+    return Answer(h.type, h.seq, answer_flags, Status::kUnsupported, 0);
   const Status admitted = b_.session_.Admit(h.type);
   if (admitted != Status::kOk) return Answer(h.type, h.seq, answer_flags, admitted, 0);
   if (b_.session_.open()) b_.last_host_frame_us_ = now_us;  // any valid frame of the session
@@ -113,6 +117,7 @@ Outcome BoardDispatch::Apply(const protocol::Heartbeat& m, const protocol::Heade
 
 Outcome BoardDispatch::Apply(const protocol::SetLineSetpoints& m, const protocol::Header&) {
   if (b_.supervisor_.latched != 0) return {Status::kFaulted, b_.supervisor_.latched};
+  if (b_.io_.update != nullptr && b_.io_.update->in_update_mode()) return {Status::kBusy, 0};
   if (!b_.session_.setpoints().WouldAccept(m.generation)) return {};  // stale: dropped silently
   for (uint8_t i = 0; i < m.entry_count; ++i) {
     const protocol::LineSetpoint& e = m.entries[i];
@@ -135,6 +140,7 @@ Outcome BoardDispatch::Apply(const protocol::SetLineSetpoints& m, const protocol
 
 Outcome BoardDispatch::Apply(const protocol::SetFingerTargets& m, const protocol::Header&) {
   if (b_.supervisor_.latched != 0) return {Status::kFaulted, b_.supervisor_.latched};
+  if (b_.io_.update != nullptr && b_.io_.update->in_update_mode()) return {Status::kBusy, 0};
   if (!b_.session_.targets().WouldAccept(m.generation)) return {};
   for (uint8_t i = 0; i < m.entry_count; ++i) {
     const protocol::FingerTarget& e = m.entries[i];

@@ -42,7 +42,15 @@ class BoardDispatch {
   Outcome Apply(const protocol::ClearFault& m, const protocol::Header&);
   Outcome Apply(const protocol::GetLoopStats&, const protocol::Header& h);
   Outcome Apply(const protocol::GetDiagnostics&, const protocol::Header& h);
-  /// Everything else: board-to-host messages, and the update set until the bootloader lands.
+  Outcome Apply(const protocol::UpdateEnter& m, const protocol::Header&);
+  Outcome Apply(const protocol::UpdateErase& m, const protocol::Header&);
+  Outcome Apply(const protocol::UpdateWrite& m, const protocol::Header&);
+  Outcome Apply(const protocol::UpdateQuery& m, const protocol::Header& h);
+  Outcome Apply(const protocol::UpdateActivate& m, const protocol::Header&);
+  Outcome Apply(const protocol::UpdateReboot&, const protocol::Header&);
+  Outcome Apply(const protocol::UpdateConfirm& m, const protocol::Header&);
+  Outcome Apply(const protocol::SlotsQuery&, const protocol::Header& h);
+  /// Everything else: board-to-host messages.
   template <class M>
   Outcome Apply(const M&, const protocol::Header&) {
     return {Status::kUnsupported};

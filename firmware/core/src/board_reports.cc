@@ -94,6 +94,16 @@ void BoardReports::Diagnostics(Board& b, uint8_t seq) {
   QueueAnswer(b.tx_, d, seq, BoardFlags(b, flags::kReliable));
 }
 
+void BoardReports::UpdateStatus(Board& b, protocol::UpdateStatus r, uint8_t seq) {
+  r.boot_nonce = b.session_.boot_nonce();
+  QueueAnswer(b.tx_, r, seq, BoardFlags(b, flags::kReliable));
+}
+
+void BoardReports::Slots(Board& b, protocol::SlotsReport r, uint8_t seq) {
+  r.boot_nonce = b.session_.boot_nonce();
+  QueueAnswer(b.tx_, r, seq, BoardFlags(b, flags::kReliable));
+}
+
 protocol::Status BoardReports::ConfigReport(Board& b, const protocol::GetConfig& request, uint8_t seq) {
   uint8_t body[480];
   protocol::Result<size_t> size = protocol::Status::kNotFound;

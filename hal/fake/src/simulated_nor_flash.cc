@@ -8,6 +8,7 @@ SimulatedNorFlash::SimulatedNorFlash(uint32_t size, uint32_t sector_size, uint32
 
 bool SimulatedNorFlash::Spend() {
   if (!powered_) return false;
+  ++touched_;
   if (budget_ < 0) return true;
   if (budget_ == 0) {
     powered_ = false;

@@ -35,6 +35,7 @@ struct BoardIo {
   hal::ByteLink& link;
   hal::Flash* flash;                 ///< nullptr: nothing persists
   uint32_t flash_config_base = 0;
+  class UpdateEngine* update = nullptr;  ///< nullptr: the board cannot be updated over the link
 };
 
 struct BoardIdentity {
@@ -49,6 +50,8 @@ struct BoardIdentity {
   uint8_t active_slot = 0;
   uint32_t rollback_counter = 0;
   uint16_t rx_buffer_bytes = 1024;
+  /// No valid image: the bootloader's recovery mode — the bootstrap set only, every line safe.
+  bool recovery = false;
 };
 
 class Board {
@@ -76,6 +79,8 @@ class Board {
   bool config_is_default() const { return config_is_default_; }
   uint64_t last_host_frame_us() const { return last_host_frame_us_; }
   uint32_t applied_setpoint_generation() const { return session_.setpoints().applied(); }
+  /// UpdateReboot was acknowledged: the shell resets the board once the Ack is sent.
+  bool reboot_requested() const { return reboot_requested_; }
   /// The live configuration's memory, for tests that corrupt it on purpose.
   BoardConfig& live_config_for_test() { return live_; }
 
@@ -116,6 +121,7 @@ class Board {
   bool released_ = false;  ///< new setpoints arrived since the last shutdown or clear
   bool safe_ = true;
   bool estop_requested_ = false;
+  bool reboot_requested_ = false;
 
   std::array<LineParams, protocol::kMaxLines> line_params_{};
   std::array<LineState, protocol::kMaxLines> line_state_{};

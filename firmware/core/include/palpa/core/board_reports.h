@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "palpa/protocol/messages_admin.h"
+#include "palpa/protocol/messages_update.h"
 #include "palpa/protocol/status.h"
 
 namespace palpa::core {
@@ -18,6 +19,9 @@ class BoardReports {
   static void Diagnostics(Board& board, uint8_t seq);
   /// kNotFound for a section that does not exist, kOutOfRange for an offset past its end.
   static protocol::Status ConfigReport(Board& board, const protocol::GetConfig& request, uint8_t seq);
+  /// Reports of the update set, stamped with the boot nonce.
+  static void UpdateStatus(Board& board, protocol::UpdateStatus report, uint8_t seq);
+  static void Slots(Board& board, protocol::SlotsReport report, uint8_t seq);
 };
 
 }  // namespace palpa::core

@@ -25,6 +25,8 @@ class SimulatedNorFlash final : public Flash {
   bool powered() const { return powered_; }
   const std::vector<uint8_t>& contents() const { return memory_; }
   uint32_t erases() const { return erases_; }
+  /// Bytes erased or programmed so far: the scale CutPowerAfter counts in.
+  uint64_t bytes_touched() const { return touched_; }
 
  private:
   Status DoErase(uint32_t offset) override;
@@ -41,6 +43,7 @@ class SimulatedNorFlash final : public Flash {
   int64_t budget_ = -1;  ///< -1: no power cut scheduled
   bool powered_ = true;
   uint32_t erases_ = 0;
+  uint64_t touched_ = 0;
 };
 
 }  // namespace palpa::hal::fake

@@ -1,0 +1,190 @@
+// Image header and TLV parsing with the hash check, read in 64-byte pieces.
+#include "palpa/protocol/image.h"
+
+namespace palpa::protocol {
+namespace {
+
+uint16_t U16(const uint8_t* p) { return static_cast<uint16_t>(p[0] | p[1] << 8); }
+uint32_t U32(const uint8_t* p) {
+  return static_cast<uint32_t>(p[0]) | static_cast<uint32_t>(p[1]) << 8 |
+         static_cast<uint32_t>(p[2]) << 16 | static_cast<uint32_t>(p[3]) << 24;
+}
+
+Status Fail(ImageError why, ImageError* error) {
+  *error = why;
+  return Status::kImageInvalid;
+}
+
+/// Walks one TLV area at `offset`; calls `visit(type, length, value_offset)` for each entry.
+template <class Visit>
+bool WalkTlvs(ImageSource& source, uint32_t offset, uint16_t magic, uint32_t limit,
+              uint32_t* area_size, Visit visit) {
+  uint8_t info[4];
+  if (offset + 4 > limit || !source.Read(offset, info, 4)) return false;
+  const uint16_t total = U16(info + 2);
+  if (U16(info) != magic || total < 4 || offset + total > limit) return false;
+  for (uint32_t at = offset + 4; at < offset + total;) {
+    uint8_t entry[4];
+    if (at + 4 > offset + total || !source.Read(at, entry, 4)) return false;
+    const uint16_t length = U16(entry + 2);
+    if (at + 4 + length > offset + total) return false;
+    if (!visit(static_cast<TlvType>(U16(entry)), length, at + 4)) return false;
+    at += 4 + length;
+  }
+  *area_size = total;
+  return true;
+}
+
+void Put16(uint8_t* p, uint16_t v) {
+  p[0] = static_cast<uint8_t>(v);
+  p[1] = static_cast<uint8_t>(v >> 8);
+}
+void Put32(uint8_t* p, uint32_t v) {
+  for (int i = 0; i < 4; ++i) p[i] = static_cast<uint8_t>(v >> (8 * i));
+}
+/// One TLV entry at p; returns its size.
+uint32_t PutTlv(uint8_t* p, TlvType type, const uint8_t* value, uint16_t length) {
+  Put16(p, static_cast<uint16_t>(type));
+  Put16(p + 2, length);
+  for (uint16_t i = 0; i < length; ++i) p[4 + i] = value[i];
+  return 4u + length;
+}
+
+}  // namespace
+
+uint32_t WriteImage(const ImageFields& f, const uint8_t* body, uint32_t body_size, uint8_t* out,
+                    uint32_t capacity) {
+  const uint32_t size = ImageSize(body_size);
+  if (size > capacity || body_size > capacity) return 0;
+  constexpr uint16_t kProtectedSize = 4 + 5 + 5 + 8;
+  uint8_t* h = out;
+  for (uint32_t i = 0; i < kImageHeaderSize; ++i) h[i] = 0;
+  Put32(h, kImageMagic);
+  Put32(h + 4, f.load_address);
+  Put16(h + 8, kImageHeaderSize);
+  Put16(h + 10, kProtectedSize);
+  Put32(h + 12, body_size);
+  h[20] = f.version_major;
+  h[21] = f.version_minor;
+  Put16(h + 22, f.version_revision);
+  Put32(h + 24, f.build);
+  for (uint32_t i = 0; i < body_size; ++i) out[kImageHeaderSize + i] = body[i];
+  uint8_t* p = out + kImageHeaderSize + body_size;
+  Put16(p, kProtectedTlvInfoMagic);
+  Put16(p + 2, kProtectedSize);
+  uint32_t at = 4;
+  const uint8_t kind = static_cast<uint8_t>(f.board_kind);
+  at += PutTlv(p + at, TlvType::kBoardKind, &kind, 1);
+  at += PutTlv(p + at, TlvType::kLoadSlot, &f.slot, 1);
+  uint8_t counter[4];
+  Put32(counter, f.rollback_counter);
+  at += PutTlv(p + at, TlvType::kSecurityCounter, counter, 4);
+  const Sha256Digest digest = Sha256Of(out, kImageHeaderSize + body_size + kProtectedSize);
+  uint8_t* t = p + kProtectedSize;
+  Put16(t, kTlvInfoMagic);
+  Put16(t + 2, 4 + 4 + 32);
+  PutTlv(t + 4, TlvType::kSha256, digest.data(), 32);
+  return size;
+}
+
+const char* ImageErrorName(ImageError e) {
+  switch (e) {
+    case ImageError::kNone:
+      return "valid";
+    case ImageError::kUnreadable:
+      return "unreadable";
+    case ImageError::kBadMagic:
+      return "no image (bad magic)";
+    case ImageError::kBadHeader:
+      return "header not of this format";
+    case ImageError::kTooLarge:
+      return "larger than the slot";
+    case ImageError::kBadTlvArea:
+      return "TLV area malformed";
+    case ImageError::kMissingTlv:
+      return "board kind, slot, rollback counter or SHA-256 missing";
+    case ImageError::kHashMismatch:
+      return "SHA-256 does not match";
+  }
+  return "?";
+}
+
+Status VerifyImage(ImageSource& source, uint32_t slot_size, ImageInfo* info, ImageError* error) {
+  *error = ImageError::kNone;
+  *info = ImageInfo{};
+  uint8_t h[kImageHeaderSize];
+  if (slot_size < kImageHeaderSize || !source.Read(0, h, sizeof(h)))
+    return Fail(ImageError::kUnreadable, error);
+  if (U32(h) != kImageMagic) return Fail(ImageError::kBadMagic, error);
+  const uint16_t header_size = U16(h + 8), protected_size = U16(h + 10);
+  info->load_address = U32(h + 4);
+  info->body_size = U32(h + 12);
+  const uint32_t flags = U32(h + 16);
+  info->version_major = h[20];
+  info->version_minor = h[21];
+  info->version_revision = U16(h + 22);
+  info->build = U32(h + 24);
+  if (header_size != kImageHeaderSize || flags != 0) return Fail(ImageError::kBadHeader, error);
+  if (info->body_size > slot_size - kImageHeaderSize) return Fail(ImageError::kTooLarge, error);
+  const uint32_t protected_at = kImageHeaderSize + info->body_size;
+
+  // Protected TLVs: what the hash covers besides header and body.
+  bool kind = false, slot = false, counter = false;
+  uint32_t protected_total = 0;
+  auto read_value = [&](uint32_t at, uint16_t length, uint8_t* out, uint16_t want) {
+    return length == want && source.Read(at, out, want);
+  };
+  const bool protected_ok = WalkTlvs(
+      source, protected_at, kProtectedTlvInfoMagic, slot_size, &protected_total,
+      [&](TlvType type, uint16_t length, uint32_t at) {
+        uint8_t v[4];
+        switch (type) {
+          case TlvType::kBoardKind:
+            if (!read_value(at, length, v, 1) || v[0] >= static_cast<uint8_t>(BoardKind::kCount))
+              return false;
+            info->board_kind = static_cast<BoardKind>(v[0]);
+            return kind = true;
+          case TlvType::kLoadSlot:
+            if (!read_value(at, length, v, 1) || v[0] > 1) return false;
+            info->slot = v[0];
+            return slot = true;
+          case TlvType::kSecurityCounter:
+            if (!read_value(at, length, v, 4)) return false;
+            info->rollback_counter = U32(v);
+            return counter = true;
+          default:
+            return true;  // unknown protected entries are covered by the hash: harmless
+        }
+      });
+  if (!protected_ok || protected_total != protected_size)
+    return Fail(ImageError::kBadTlvArea, error);
+
+  // Unprotected TLVs: the hash (the signature slot is reserved and not yet checked).
+  bool hashed = false;
+  Sha256Digest recorded{};
+  uint32_t tlv_total = 0;
+  const bool tlv_ok = WalkTlvs(source, protected_at + protected_total, kTlvInfoMagic, slot_size,
+                               &tlv_total, [&](TlvType type, uint16_t length, uint32_t at) {
+                                 if (type != TlvType::kSha256) return true;
+                                 hashed = length == 32 && source.Read(at, recorded.data(), 32);
+                                 return hashed;
+                               });
+  if (!tlv_ok) return Fail(ImageError::kBadTlvArea, error);
+  if (!kind || !slot || !counter || !hashed) return Fail(ImageError::kMissingTlv, error);
+  info->total_size = protected_at + protected_total + tlv_total;
+
+  Sha256Hasher hasher;
+  uint8_t piece[64];
+  const uint32_t covered = protected_at + protected_total;
+  for (uint32_t at = 0; at < covered;) {
+    const uint32_t n = covered - at < sizeof(piece) ? covered - at : sizeof(piece);
+    if (!source.Read(at, piece, n)) return Fail(ImageError::kUnreadable, error);
+    hasher.Update(piece, n);
+    at += n;
+  }
+  info->sha256 = hasher.Finish();
+  if (info->sha256 != recorded) return Fail(ImageError::kHashMismatch, error);
+  return Status::kOk;
+}
+
+}  // namespace palpa::protocol
