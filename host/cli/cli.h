@@ -42,6 +42,8 @@ int CmdEStop(Context& c, const std::vector<std::string>& args);
 int CmdClear(Context& c, const std::vector<std::string>& args);
 int CmdDemo(Context& c, const std::vector<std::string>& args);
 int CmdCalibrate(Context& c, const std::vector<std::string>& args);
+int CmdFlash(Context& c, const std::vector<std::string>& args);
+int CmdPackage(Context& c, const std::vector<std::string>& args);
 
 /// One finger request from "N=VALUE": L2 (level), 0.5 (0..1), 1.2mm, 0.9N/mm, -10kPa. Fingers are
 /// numbered from 1 on the command line. Returns false with a message naming the argument.

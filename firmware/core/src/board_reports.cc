@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "palpa/core/board.h"
+#include "palpa/core/update_engine.h"
 #include "palpa/protocol/codec.h"
 
 namespace palpa::core {
@@ -48,7 +49,7 @@ void BoardReports::HelloReply(Board& b, uint32_t host_nonce, uint8_t seq) {
   r.time_scale = id.time_scale;
   r.rx_buffer_bytes = id.rx_buffer_bytes;
   r.active_slot = id.active_slot;
-  r.rollback_counter = id.rollback_counter;
+  r.rollback_counter = b.io_.update != nullptr ? b.io_.update->rollback_floor() : id.rollback_counter;
   r.host_timeout_us = b.live_.board.host_timeout_us;
   r.fault_bitmap = b.supervisor_.latched;
   r.config_name = b.live_.board.config_name;

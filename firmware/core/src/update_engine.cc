@@ -52,13 +52,15 @@ Status UpdateEngine::Erase(const protocol::UpdateErase& m, uint32_t* detail) {
   *detail = 0;
   const Status w = Writable(m.slot);
   if (w != Status::kOk) return w;
+  // The sectors covering [offset, offset + length): the host need not know the sector size.
   const uint32_t sector = layout_.sector_size;
-  if (m.offset % sector != 0 || m.length == 0 || m.length % sector != 0 ||
-      m.offset + m.length > layout_.slot_size || m.offset + m.length < m.offset) {
-    *detail = sector;
+  if (m.length == 0 || m.offset + m.length > layout_.slot_size || m.offset + m.length < m.offset) {
+    *detail = layout_.slot_size;
     return Status::kOutOfRange;
   }
-  for (uint32_t at = m.offset; at < m.offset + m.length; at += sector) {
+  const uint32_t first = m.offset / sector * sector;
+  const uint32_t end = (m.offset + m.length + sector - 1) / sector * sector;
+  for (uint32_t at = first; at < end; at += sector) {
     const Status e = flash_->Erase(layout_.slot_offset[m.slot] + at);
     if (e != Status::kOk) {
       *detail = at;
@@ -66,11 +68,11 @@ Status UpdateEngine::Erase(const protocol::UpdateErase& m, uint32_t* detail) {
     }
   }
   // Written bytes inside the erased range are gone; erased coverage grows when contiguous.
-  if (m.offset < written_) {
+  if (first < written_) {
     written_ = 0;  // the hash covers from 0: start it again
     hash_.Reset();
   }
-  if (m.offset <= erased_ && m.offset + m.length > erased_) erased_ = m.offset + m.length;
+  if (first <= erased_ && end > erased_) erased_ = end;
   return Status::kOk;
 }
 

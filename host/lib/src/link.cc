@@ -118,9 +118,10 @@ void Link::SendHello() {  // mutex_ held
   SendUnsequenced(pp::Hello{hello_nonce_, initial_seq});
 }
 
-CommandResult Link::CommandPacket(uint8_t type, const uint8_t* body, size_t size) {
+CommandResult Link::CommandPacket(uint8_t type, const uint8_t* body, size_t size, int timeout_ms) {
   std::unique_lock<std::mutex> lock(mutex_);
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(options_.command_timeout_ms);
+  const auto deadline = std::chrono::steady_clock::now() +
+                        std::chrono::milliseconds(timeout_ms < 0 ? options_.command_timeout_ms : timeout_ms);
   if (!changed_.wait_until(lock, deadline, [&] { return session_.open() || stop_; }) || stop_) {
     return CommandResult{Status::kNoSession, 0, 0, {}, "no session with the board"};
   }

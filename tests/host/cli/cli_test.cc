@@ -40,7 +40,7 @@ TEST_GROUP(CliUsage){};
 
 TEST(CliUsage, HelpForEveryCommand) {
   for (const char* command : {"list", "info", "diag", "config", "set", "line", "monitor", "record",
-                              "estop", "clear", "demo", "calibrate"}) {
+                              "estop", "clear", "demo", "calibrate", "flash", "package"}) {
     const Run r = Palpa(std::string(command) + " --help");
     LONGS_EQUAL_TEXT(0, r.code, command);
     CHECK_TEXT(Has(r, "usage: palpa"), command);
@@ -235,4 +235,59 @@ TEST(CliCalibrate, AdaptiveMapOnAJammingFingerReportsItsChecks) {
   const Run refused = Palpa("calibrate --rig sim --finger 4 --quick --out " + dir + " --previous " + dir + "/other.json");
   LONGS_EQUAL(2, refused.code);
   CHECK(Has(refused, "calibrates JAM-2, not JAM-1"));
+}
+
+TEST_GROUP(CliFlash){};
+
+TEST(CliFlash, PackagesAreMadeCheckedAndFlashedOverTheLink) {
+  char pattern[] = "/tmp/palpa-flash-cli-XXXXXX";
+  const std::string dir = mkdtemp(pattern);
+  std::ofstream(dir + "/a.bin") << std::string(20000, 'a');
+  std::ofstream(dir + "/b.bin") << std::string(20000, 'b');
+  Run r = Palpa("package " + dir + "/a.bin " + dir + "/b.bin --version 0.3.0 --counter 3 --out " +
+                dir + "/new.palpa");
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  r = Palpa("package " + dir + "/a.bin " + dir + "/b.bin --version 0.0.9 --counter 0 --out " + dir +
+            "/old.palpa");
+  LONGS_EQUAL(0, r.code);
+  // Bad command lines and bad packages are named before anything is sent.
+  const std::string nowhere = "--device tcp:127.0.0.1:1 ";
+  r = Palpa(nowhere + "flash");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "needs a PACKAGE"));
+  r = Palpa(nowhere + "flash " + dir + "/missing.palpa");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "cannot be read"));
+  std::ofstream(dir + "/text.palpa") << "hello";
+  r = Palpa(nowhere + "flash " + dir + "/text.palpa");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "not a palpa update package"));
+  {
+    std::ifstream in(dir + "/new.palpa", std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::ofstream(dir + "/cut.palpa", std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  }
+  r = Palpa(nowhere + "flash " + dir + "/cut.palpa");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "truncated"));
+  r = Palpa(nowhere + "flash " + dir + "/new.palpa --reset-line gpiochip9:1");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "--reset-line 'gpiochip9:1': no GPIO chip"));
+  r = Palpa("package " + dir + "/a.bin --version 1 --counter 1 --out x");
+  LONGS_EQUAL(2, r.code);
+
+  palpa::testing::SimProcess sim;
+  CHECK(sim.Start({"--config", "thesis-pneumatic-3", "--listen", "tcp:127.0.0.1:0"}));
+  const std::string device = "--device " + sim.address() + " ";
+  r = Palpa(device + "flash " + dir + "/new.palpa --dry-run");
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  CHECK(Has(r, "would write 0.3.0"));
+  r = Palpa(device + "flash " + dir + "/new.palpa");
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  CHECK(Has(r, "updated 0.1.0 → 0.3.0 (slot 1), confirmed"));
+  r = Palpa(device + "info");
+  CHECK(Has(r, "firmware      0.3.0"));
+  r = Palpa(device + "flash " + dir + "/old.palpa");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "anti-rollback counter 0 is below the board's 3"));
 }

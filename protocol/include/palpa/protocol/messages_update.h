@@ -28,7 +28,7 @@ struct UpdateEnter {
 struct UpdateErase {
   static constexpr MessageInfo kInfo{MessageType::kUpdateErase, "UpdateErase", Sender::kHost,
                                      Delivery::kReliable,
-                                     "erase a sector-aligned range of the inactive slot"};
+                                     "erase the sectors covering a range of the inactive slot"};
   uint8_t slot = 0;
   uint32_t offset = 0;
   uint32_t length = 0;

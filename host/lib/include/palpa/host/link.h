@@ -83,9 +83,10 @@ class Link {
   std::string Versions() const;
   std::string Describe() const { return transport_->Describe(); }
 
-  /// Sends a reliable command and waits for its Ack, Nack or report.
+  /// Sends a reliable command and waits for its Ack, Nack or report (`timeout_ms` < 0: the
+  /// link's command timeout; an erase of flash gets a longer one).
   template <class M>
-  CommandResult Command(const M& m) {
+  CommandResult Command(const M& m, int timeout_ms = -1) {
     uint8_t packet[pp::kMaxPacketSize] = {};
     pp::FieldError field;
     const auto size = pp::EncodePacket(m, 0, 0, packet, sizeof(packet), &field);
@@ -93,7 +94,8 @@ class Link {
       return CommandResult{size.status, 0, 0, {}, std::string("cannot encode ") + M::kInfo.name + ": field " +
                                                       (field.field ? field.field : "?") + " is " + pp::StatusName(size.status)};
     }
-    return CommandPacket(static_cast<uint8_t>(M::kInfo.type), packet + pp::kHeaderSize, size.value - pp::kHeaderSize);
+    return CommandPacket(static_cast<uint8_t>(M::kInfo.type), packet + pp::kHeaderSize, size.value - pp::kHeaderSize,
+                         timeout_ms);
   }
 
   /// Latest-wins streams: the link fills in the generation, sends at once and resends until
@@ -122,7 +124,7 @@ class Link {
 
  private:
   explicit Link(std::unique_ptr<Transport> transport, LinkOptions options);
-  CommandResult CommandPacket(uint8_t type, const uint8_t* body, size_t size);
+  CommandResult CommandPacket(uint8_t type, const uint8_t* body, size_t size, int timeout_ms);
   void ReaderLoop();
   void HeartbeatLoop();
   void DispatchLoop();

@@ -1,0 +1,35 @@
+// A GPIO output line on Linux through libgpiod (v1 API): the reset and boot pins of a board the
+// host flashes. Tests link a fake libgpiod in its place (a link-time seam).
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "palpa/hal/digital_io.h"
+
+struct gpiod_chip;
+struct gpiod_line;
+
+namespace palpa::hal::linux_gpio {
+
+class GpioOutput final : public DigitalOutput {
+ public:
+  /// "CHIP:LINE" (gpiochip0:17, or a chip's label or number: 0:17). Requests the line as an
+  /// output at `initial`; nullptr with *error naming the chip, the line and the reason.
+  static std::unique_ptr<GpioOutput> Open(const std::string& spec, bool initial,
+                                          std::string* error);
+  ~GpioOutput();
+  GpioOutput(const GpioOutput&) = delete;
+  GpioOutput& operator=(const GpioOutput&) = delete;
+
+  bool ok() const { return ok_; }  ///< false once a write has failed
+
+ private:
+  GpioOutput(gpiod_chip* chip, gpiod_line* line) : chip_(chip), line_(line) {}
+  void DoSet(bool level) override;
+  gpiod_chip* chip_;
+  gpiod_line* line_;
+  bool ok_ = true;
+};
+
+}  // namespace palpa::hal::linux_gpio

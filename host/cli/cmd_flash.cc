@@ -1,0 +1,215 @@
+// palpa flash and palpa package: updating a board's firmware over its link, and making the
+// update package (both slot builds of one release) from the slots' binaries.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <thread>
+
+#include "cli.h"
+#include "palpa/core/flash_layout.h"
+#include "palpa/hal/linux/gpio_output.h"
+#include "palpa/host/boot_pins.h"
+#include "palpa/host/flasher.h"
+
+namespace palpa::cli {
+namespace {
+
+namespace pp = protocol;
+
+bool ReadBytes(const std::string& path, std::vector<uint8_t>* out) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  out->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return true;
+}
+
+bool WriteBytes(const std::string& path, const std::vector<uint8_t>& bytes) {
+  const std::string part = path + ".part";
+  {
+    std::ofstream out(part, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(bytes.data()),
+              static_cast<std::streamsize>(bytes.size()));
+    if (!out) return false;
+  }
+  return std::rename(part.c_str(), path.c_str()) == 0;
+}
+
+void Progress(const host::FlashProgress& p) {
+  static int shown = -1;  // the bar is redrawn when a whole per cent has passed
+  if (p.step != "write") {
+    if (p.done == p.total) std::fprintf(stderr, "%s  %s\n", shown >= 0 ? "\n" : "", p.step.c_str());
+    shown = -1;
+    return;
+  }
+  const int percent = p.total > 0 ? static_cast<int>(100.0 * p.done / p.total) : 100;
+  if (percent == shown) return;
+  shown = percent;
+  const int width = 30, filled = percent * width / 100;
+  const double rate = p.seconds > 0 ? p.done / p.seconds / 1024 : 0;
+  std::fprintf(stderr, "\r[%s%s] %3d %%  %u/%u bytes  %.1f KiB/s",
+               std::string(static_cast<size_t>(filled), '#').c_str(),
+               std::string(static_cast<size_t>(width - filled), '.').c_str(), percent, p.done,
+               p.total, rate);
+  std::fflush(stderr);
+}
+
+/// "1.2.3" into its parts; false when malformed.
+bool ParseVersion(const std::string& text, uint8_t* major, uint8_t* minor, uint16_t* patch) {
+  unsigned a = 0, b = 0, c = 0;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%u.%u.%u%c", &a, &b, &c, &tail) != 3 || a > 255 || b > 255 ||
+      c > 65535)
+    return false;
+  *major = static_cast<uint8_t>(a);
+  *minor = static_cast<uint8_t>(b);
+  *patch = static_cast<uint16_t>(c);
+  return true;
+}
+
+}  // namespace
+
+int CmdFlash(Context& c, const std::vector<std::string>& args) {
+  std::string package_path, reset_spec, boot_spec;
+  host::FlashOptions options;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a == "--resume") {
+      options.resume = true;
+    } else if (a == "--dry-run") {
+      options.dry_run = true;
+    } else if (a == "--reset-line" || a == "--boot-line") {
+      if (i + 1 >= args.size()) return Usage("flash", a + " needs CHIP:LINE");
+      (a == "--reset-line" ? reset_spec : boot_spec) = args[++i];
+    } else if (!a.empty() && a[0] == '-') {
+      return Usage("flash", "unexpected option '" + a + "'");
+    } else if (package_path.empty()) {
+      package_path = a;
+    } else {
+      return Usage("flash", "unexpected argument '" + a + "' (one package at a time)");
+    }
+  }
+  if (package_path.empty()) return Usage("flash", "needs a PACKAGE (made by palpa package)");
+  std::vector<uint8_t> bytes;
+  if (!ReadBytes(package_path, &bytes)) return Usage("flash", package_path + ": cannot be read");
+  std::string error;
+  const auto package = host::ReadPackage(bytes, &error);
+  if (!package) return Usage("flash", package_path + ": " + error);
+
+  // Boards whose application cannot take the update: their bootloader, by the pins.
+  std::unique_ptr<hal::linux_gpio::GpioOutput> reset_pin, boot_pin;
+  if (!reset_spec.empty()) {
+    reset_pin = hal::linux_gpio::GpioOutput::Open(reset_spec, true, &error);
+    if (!reset_pin) return Usage("flash", "--reset-line " + error);
+  }
+  if (!boot_spec.empty()) {
+    boot_pin = hal::linux_gpio::GpioOutput::Open(boot_spec, false, &error);
+    if (!boot_pin) return Usage("flash", "--boot-line " + error);
+  }
+  host::BootPins pins(reset_pin.get(), boot_pin.get(),
+                      [](int ms) { std::this_thread::sleep_for(std::chrono::milliseconds(ms)); });
+  if (reset_pin || boot_pin) {
+    if (!options.dry_run) pins.ResetIntoBootloader();
+    options.before_reboot = [&pins] { pins.ReleaseBoot(); };
+  }
+
+  host::Device* device = c.Device();
+  if (device == nullptr) return kExitConnect;
+  const pp::HelloReply before = device->link().board();
+  std::printf("board %s %u, slot %u running %s\n",
+              pp::EnumNames(pp::BoardKind{})[static_cast<size_t>(before.board_kind)],
+              before.board_id, before.active_slot,
+              host::VersionText(before.firmware_major, before.firmware_minor, before.firmware_patch)
+                  .c_str());
+  options.progress = Progress;
+  const host::FlashReport r = host::FlashPackage(device->link(), *package, options);
+  std::fprintf(stderr, "\n");
+  if (r.status != pp::Status::kOk) {
+    std::fprintf(stderr, "palpa flash: %s\n", r.message.c_str());
+    return r.status == pp::Status::kRollbackRefused || r.status == pp::Status::kImageInvalid
+               ? kExitUsage
+               : kExitFailed;
+  }
+  std::printf("%s\n", r.message.c_str());
+  if (!options.dry_run) {
+    std::printf(
+        "  %u bytes written%s in %.2f s (%.1f KiB/s)\n", r.bytes_written,
+        r.resumed_from > 0 ? (" (resumed at " + std::to_string(r.resumed_from) + ")").c_str() : "",
+        r.write_seconds, r.write_seconds > 0 ? r.bytes_written / r.write_seconds / 1024 : 0.0);
+  }
+  return kExitOk;
+}
+
+int CmdPackage(Context&, const std::vector<std::string>& args) {
+  std::string kind_text = "sim", version_text, out;
+  std::vector<std::string> bodies;
+  uint32_t counter = 0;
+  bool have_counter = false;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&](std::string& v) {
+      if (i + 1 >= args.size()) return false;
+      v = args[++i];
+      return true;
+    };
+    std::string v;
+    if (a == "--kind") {
+      if (!value(kind_text)) return Usage("package", "--kind needs a board kind");
+    } else if (a == "--version") {
+      if (!value(version_text)) return Usage("package", "--version needs MAJOR.MINOR.PATCH");
+    } else if (a == "--counter") {
+      double n = 0;
+      if (!value(v) || !ParseNumber(v, n) || n < 0 || n > 4294967295.0 || n != std::floor(n))
+        return Usage("package", "--counter " + v + ": expected a whole number 0 to 4294967295");
+      counter = static_cast<uint32_t>(n);
+      have_counter = true;
+    } else if (a == "--out") {
+      if (!value(out)) return Usage("package", "--out needs a file");
+    } else if (!a.empty() && a[0] == '-') {
+      return Usage("package", "unexpected option '" + a + "'");
+    } else {
+      bodies.push_back(a);
+    }
+  }
+  if (bodies.size() != 2 || version_text.empty() || !have_counter || out.empty())
+    return Usage("package", "needs SLOT0.bin SLOT1.bin --version X.Y.Z --counter N --out FILE");
+  host::ImageSpec spec;
+  if (!ParseVersion(version_text, &spec.version_major, &spec.version_minor, &spec.version_revision))
+    return Usage("package", "--version " + version_text + ": expected MAJOR.MINOR.PATCH");
+  bool known = false;
+  for (size_t k = 0; k < static_cast<size_t>(pp::BoardKind::kCount); ++k) {
+    if (kind_text == pp::EnumNames(pp::BoardKind{})[k]) {
+      spec.board_kind = static_cast<pp::BoardKind>(k);
+      known = true;
+    }
+  }
+  if (!known)
+    return Usage("package", "--kind " + kind_text + ": expected sim, mps2-an386, stm32f4 or linux");
+  spec.rollback_counter = counter;
+  host::UpdatePackage package;
+  const core::FlashLayout& layout = core::kDefaultLayout;
+  for (uint8_t slot = 0; slot < 2; ++slot) {
+    if (!ReadBytes(bodies[slot], &spec.body))
+      return Usage("package", bodies[slot] + ": cannot be read");
+    if (pp::ImageSize(static_cast<uint32_t>(spec.body.size())) > layout.slot_size) {
+      return Usage("package", bodies[slot] + ": " + std::to_string(spec.body.size()) +
+                                  " bytes do not fit a slot of " +
+                                  std::to_string(layout.slot_size));
+    }
+    spec.slot = slot;
+    spec.load_address = layout.xip_base + layout.slot_offset[slot];
+    package.slot_image[slot] = host::BuildImage(spec);
+  }
+  if (!WriteBytes(out, host::WritePackage(package))) {
+    std::fprintf(stderr, "palpa package: cannot write %s\n", out.c_str());
+    return kExitFailed;
+  }
+  std::printf("%s: %s %s, counter %u, slot images of %zu and %zu bytes\n", out.c_str(),
+              kind_text.c_str(), version_text.c_str(), counter, package.slot_image[0].size(),
+              package.slot_image[1].size());
+  return kExitOk;
+}
+
+}  // namespace palpa::cli

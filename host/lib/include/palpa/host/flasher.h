@@ -1,0 +1,47 @@
+// Flashing a board over the link it is controlled with: the package checked against the board
+// (kind, anti-rollback counter), the image for the inactive slot erased and written (resumable
+// from what the board reports written, with its hash), activated for one trial boot, the board
+// rebooted and seen to answer Hello on the new image, then confirmed.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "palpa/host/firmware_image.h"
+#include "palpa/host/link.h"
+
+namespace palpa::host {
+
+struct FlashProgress {
+  std::string step;              ///< "erase", "write", "verify", "activate", "reboot", "confirm"
+  uint32_t done = 0, total = 0;  ///< bytes (write) or 0/1
+  double seconds = 0;            ///< since the write began
+};
+
+struct FlashOptions {
+  bool resume = false;   ///< go on from what the board reports written (when its hash agrees)
+  bool dry_run = false;  ///< check and report the version change; write nothing
+  int erase_timeout_ms = 60000;
+  int reboot_timeout_ms = 15000;
+  /// Called just before the reboot into the new image (release a held boot pin here).
+  std::function<void()> before_reboot;
+  std::function<void(const FlashProgress&)> progress;
+};
+
+struct FlashReport {
+  Status status = Status::kOk;
+  std::string message;  ///< what happened, or why not, in words
+  std::string from_version, to_version;
+  uint8_t slot = 0;            ///< the slot written
+  uint32_t bytes_written = 0;  ///< this run (less than the image when resumed)
+  uint32_t resumed_from = 0;
+  double write_seconds = 0;
+};
+
+/// "1.2.3".
+std::string VersionText(uint8_t major, uint8_t minor, unsigned patch);
+
+/// Runs the update on an open link (its session reconnects across the reboot).
+FlashReport FlashPackage(Link& link, const UpdatePackage& package, const FlashOptions& options);
+
+}  // namespace palpa::host

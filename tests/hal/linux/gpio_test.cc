@@ -1,0 +1,69 @@
+// GPIO lines through the libgpiod seam: specs parsed and refused with the reason, lines
+// requested, driven and released; the reset and boot pin sequences of `palpa flash`.
+#include <string>
+#include <vector>
+
+#include "fake_gpiod.h"
+#include "palpa/hal/linux/gpio_output.h"
+#include "palpa/host/boot_pins.h"
+
+#include "CppUTest/TestHarness.h"
+
+namespace fg = palpa::testing::fake_gpiod;
+using palpa::hal::linux_gpio::GpioOutput;
+
+TEST_GROUP(Gpio){void setup() override{fg::Reset();
+fg::state().chips = {"gpiochip0", "gpiochip1"};
+}
+void teardown() override { fg::Reset(); }  // the fake's log is freed inside the test
+}
+;
+
+TEST(Gpio, SpecsAreCheckedAndEveryFailureSaysWhy) {
+  std::string error;
+  CHECK(GpioOutput::Open("gpiochip0", false, &error) == nullptr);
+  CHECK(error.find("expected CHIP:LINE") != std::string::npos);
+  CHECK(GpioOutput::Open("gpiochip0:x", false, &error) == nullptr);
+  CHECK(error.find("not a line number") != std::string::npos);
+  CHECK(GpioOutput::Open("gpiochip7:3", false, &error) == nullptr);
+  CHECK(error.find("no GPIO chip 'gpiochip7'") != std::string::npos);
+  CHECK(GpioOutput::Open("gpiochip0:40", false, &error) == nullptr);
+  CHECK(error.find("has no line 40") != std::string::npos);
+  fg::state().busy = {"gpiochip1:4"};
+  CHECK(GpioOutput::Open("gpiochip1:4", false, &error) == nullptr);
+  CHECK(error.find("another program") != std::string::npos);
+  LONGS_EQUAL(0, fg::state().open_chips);  // nothing left open after a failure
+}
+
+TEST(Gpio, ALineIsRequestedDrivenAndReleased) {
+  std::string error;
+  {
+    auto line = GpioOutput::Open("1:5", true, &error);  // a chip by number
+    CHECK_TEXT(line != nullptr, error.c_str());
+    line->Set(false);
+    line->Set(true);
+  }
+  const std::vector<std::string> expected = {"request gpiochip1:5=1", "set gpiochip1:5=0",
+                                             "set gpiochip1:5=1", "release gpiochip1:5"};
+  CHECK(fg::state().log == expected);
+  LONGS_EQUAL(0, fg::state().open_chips);
+}
+
+TEST(Gpio, BootPinsHoldBootWhileResetPulsesAndReleaseItBeforeTheReboot) {
+  std::string error;
+  auto reset = GpioOutput::Open("gpiochip0:1", true, &error);
+  auto boot = GpioOutput::Open("gpiochip0:2", false, &error);
+  std::vector<int> waits;
+  palpa::host::BootPins pins(reset.get(), boot.get(), [&](int ms) { waits.push_back(ms); });
+  pins.ResetIntoBootloader();
+  pins.ReleaseBoot();
+  pins.ResetIntoApplication();
+  const std::vector<std::string> expected = {
+      "request gpiochip0:1=1", "request gpiochip0:2=0",
+      "set gpiochip0:2=1",                           // boot asserted before the reset...
+      "set gpiochip0:1=0",     "set gpiochip0:1=1",  // ...pulsed
+      "set gpiochip0:2=0",  // released before the reboot into the new image
+      "set gpiochip0:2=0",     "set gpiochip0:1=0",     "set gpiochip0:1=1"};
+  CHECK(fg::state().log == expected);
+  CHECK(waits.size() == 4 && waits[0] == palpa::host::BootPins::kResetPulseMs);
+}
