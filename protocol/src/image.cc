@@ -54,22 +54,25 @@ uint32_t PutTlv(uint8_t* p, TlvType type, const uint8_t* value, uint16_t length)
 
 uint32_t WriteImage(const ImageFields& f, const uint8_t* body, uint32_t body_size, uint8_t* out,
                     uint32_t capacity) {
-  const uint32_t size = ImageSize(body_size);
+  const uint16_t header_size = f.header_size;
+  if (header_size < kImageHeaderSize || header_size > kMaxImageHeaderSize || header_size % 4 != 0)
+    return 0;
+  const uint32_t size = ImageSize(body_size, header_size);
   if (size > capacity || body_size > capacity) return 0;
   constexpr uint16_t kProtectedSize = 4 + 5 + 5 + 8;
   uint8_t* h = out;
-  for (uint32_t i = 0; i < kImageHeaderSize; ++i) h[i] = 0;
+  for (uint32_t i = 0; i < header_size; ++i) h[i] = 0;
   Put32(h, kImageMagic);
   Put32(h + 4, f.load_address);
-  Put16(h + 8, kImageHeaderSize);
+  Put16(h + 8, header_size);
   Put16(h + 10, kProtectedSize);
   Put32(h + 12, body_size);
   h[20] = f.version_major;
   h[21] = f.version_minor;
   Put16(h + 22, f.version_revision);
   Put32(h + 24, f.build);
-  for (uint32_t i = 0; i < body_size; ++i) out[kImageHeaderSize + i] = body[i];
-  uint8_t* p = out + kImageHeaderSize + body_size;
+  for (uint32_t i = 0; i < body_size; ++i) out[header_size + i] = body[i];
+  uint8_t* p = out + header_size + body_size;
   Put16(p, kProtectedTlvInfoMagic);
   Put16(p + 2, kProtectedSize);
   uint32_t at = 4;
@@ -79,7 +82,7 @@ uint32_t WriteImage(const ImageFields& f, const uint8_t* body, uint32_t body_siz
   uint8_t counter[4];
   Put32(counter, f.rollback_counter);
   at += PutTlv(p + at, TlvType::kSecurityCounter, counter, 4);
-  const Sha256Digest digest = Sha256Of(out, kImageHeaderSize + body_size + kProtectedSize);
+  const Sha256Digest digest = Sha256Of(out, header_size + body_size + kProtectedSize);
   uint8_t* t = p + kProtectedSize;
   Put16(t, kTlvInfoMagic);
   Put16(t + 2, 4 + 4 + 32);
@@ -124,9 +127,13 @@ Status VerifyImage(ImageSource& source, uint32_t slot_size, ImageInfo* info, Ima
   info->version_minor = h[21];
   info->version_revision = U16(h + 22);
   info->build = U32(h + 24);
-  if (header_size != kImageHeaderSize || flags != 0) return Fail(ImageError::kBadHeader, error);
-  if (info->body_size > slot_size - kImageHeaderSize) return Fail(ImageError::kTooLarge, error);
-  const uint32_t protected_at = kImageHeaderSize + info->body_size;
+  if (header_size < kImageHeaderSize || header_size > kMaxImageHeaderSize || header_size % 4 != 0 ||
+      flags != 0 || header_size > slot_size) {
+    return Fail(ImageError::kBadHeader, error);
+  }
+  info->header_size = header_size;
+  if (info->body_size > slot_size - header_size) return Fail(ImageError::kTooLarge, error);
+  const uint32_t protected_at = header_size + info->body_size;
 
   // Protected TLVs: what the hash covers besides header and body.
   bool kind = false, slot = false, counter = false;

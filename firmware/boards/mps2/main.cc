@@ -11,6 +11,9 @@
 #include "board_shell.h"
 #include "palpa/core/board.h"
 #include "palpa/core/compiled_configs.h"
+#include "palpa/core/flash_layout.h"
+#include "palpa/core/update_engine.h"
+#include "palpa/hal/mps2/code_flash.h"
 #include "palpa/hal/mps2/drivers.h"
 #include "palpa/hal/mps2/registers.h"
 #include "palpa/protocol/codec.h"
@@ -153,8 +156,20 @@ int main() {
   id.boot_count = g_reset_record.boot_count;
   id.boot_nonce = 0x4D505332u ^ (g_reset_record.boot_count * 2654435761u);
   id.rx_buffer_bytes = palpa::hal::mps2::Uart::kRxSize;
+  palpa::core::UpdateEngine* update = nullptr;
+#ifdef PALPA_SLOT_IMAGE
+  // Started by the bootloader from a slot (VTOR says which): updates go to the other one.
+  const palpa::core::FlashLayout& layout = palpa::core::kDefaultLayout;
+  static palpa::hal::mps2::CodeFlash flash(layout.xip_base, layout.total, layout.sector_size);
+  id.active_slot = *palpa::hal::mps2::kScbVtor >= layout.slot_offset[1] ? 1 : 0;
+  static palpa::core::UpdateEngine engine(&flash, layout, id.kind, id.active_slot);
+  id.rollback_counter = engine.rollback_floor();
+  update = &engine;
+#endif
   g_board = new (g_board_storage) palpa::core::Board(
-      *config, palpa::core::BoardIo{g_clock, g_plant, &g_plant, g_supply, g_dump, g_pump, nullptr, g_uart, nullptr, 0}, id);
+      *config, palpa::core::BoardIo{g_clock, g_plant, &g_plant, g_supply, g_dump, g_pump, nullptr, g_uart, nullptr, 0,
+                                    update},
+      id);
   g_board->Start();
 #ifdef PALPA_SELFTEST
   if (cause == palpa::protocol::ResetCause::kWatchdog) {
@@ -210,6 +225,11 @@ int main() {
       ++plant_ms;
     }
     g_uart.PumpTx();
+    if (g_board->reboot_requested()) {  // UpdateReboot: its Ack out first, then the bootloader
+      for (int i = 0; i < 100000; ++i) g_uart.PumpTx();
+      g_reset_record.Set(palpa::protocol::ResetCause::kUpdate);
+      palpa::hal::mps2::SystemReset();
+    }
 #ifdef PALPA_SELFTEST
     if (now > 2000000) {
       char text[160];

@@ -29,6 +29,7 @@ constexpr char kPackageMagic[8] = {'P', 'A', 'L', 'P', 'A', 'P', 'K', 'G'};
 
 std::vector<uint8_t> BuildImage(const ImageSpec& s) {
   protocol::ImageFields f;
+  f.header_size = s.header_size;
   f.load_address = s.load_address;
   f.version_major = s.version_major;
   f.version_minor = s.version_minor;
@@ -38,7 +39,7 @@ std::vector<uint8_t> BuildImage(const ImageSpec& s) {
   f.slot = s.slot;
   f.rollback_counter = s.rollback_counter;
   const auto body_size = static_cast<uint32_t>(s.body.size());
-  std::vector<uint8_t> image(protocol::ImageSize(body_size));
+  std::vector<uint8_t> image(protocol::ImageSize(body_size, s.header_size));
   protocol::WriteImage(f, s.body.data(), body_size, image.data(),
                        static_cast<uint32_t>(image.size()));
   return image;

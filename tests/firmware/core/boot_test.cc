@@ -40,6 +40,24 @@ TEST(FirmwareImage, ABuiltImageVerifiesAndAnyCorruptedByteIsRefused) {
   CHECK(ph::VerifyImageBytes(truncated, &info, &error) != pp::Status::kOk);
 }
 
+TEST(FirmwareImage, APaddedHeaderPutsTheBodyOnItsBoundaryAndTheHashCoversThePadding) {
+  ph::ImageSpec spec;
+  spec.body = {1, 2, 3, 4, 5, 6, 7, 8};
+  spec.header_size = 256;  // a Cortex-M vector table after it is 256-byte aligned
+  spec.board_kind = pp::BoardKind::kMps2An386;
+  std::vector<uint8_t> image = ph::BuildImage(spec);
+  pp::ImageInfo info;
+  pp::ImageError error;
+  LONGS_EQUAL((int)pp::Status::kOk, (int)ph::VerifyImageBytes(image, &info, &error));
+  LONGS_EQUAL(256, info.header_size);
+  LONGS_EQUAL(1, image[256]);
+  image[100] = 0x55;  // inside the padding
+  CHECK(ph::VerifyImageBytes(image, &info, &error) != pp::Status::kOk);
+  LONGS_EQUAL((int)pp::ImageError::kHashMismatch, (int)error);
+  spec.header_size = 30;  // not a header this format has
+  CHECK(ph::VerifyImageBytes(ph::BuildImage(spec), &info, &error) != pp::Status::kOk);
+}
+
 TEST(FirmwareImage, Sha256MatchesTheSystemsSha256sum) {
   std::mt19937 rng(9);
   for (size_t size : {0ul, 55ul, 56ul, 64ul, 1000ul, 65537ul}) {

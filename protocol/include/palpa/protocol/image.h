@@ -14,7 +14,10 @@
 namespace palpa::protocol {
 
 inline constexpr uint32_t kImageMagic = 0x96f3b83d;  ///< MCUboot's IMAGE_MAGIC
-inline constexpr uint16_t kImageHeaderSize = 32;
+inline constexpr uint16_t kImageHeaderSize = 32;     ///< the header's fields; zeros may pad it
+/// The largest header (fields and padding): a Cortex-M vector table after it must sit on a
+/// boundary of its own size rounded up to a power of two, so an image for an MCU pads its header.
+inline constexpr uint16_t kMaxImageHeaderSize = 1024;
 inline constexpr uint16_t kTlvInfoMagic = 0x6907;           ///< unprotected TLV area
 inline constexpr uint16_t kProtectedTlvInfoMagic = 0x6908;  ///< protected TLV area
 
@@ -29,6 +32,7 @@ enum class TlvType : uint16_t {
 
 /// What a well-formed image says of itself.
 struct ImageInfo {
+  uint16_t header_size = kImageHeaderSize;  ///< where the body (an MCU's vector table) starts
   uint32_t load_address = 0;
   uint32_t body_size = 0;
   uint32_t total_size = 0;  ///< header + body + both TLV areas: what occupies the slot
@@ -65,6 +69,7 @@ class ImageSource {
 
 /// What an image says of itself when it is made (ImageInfo less what follows from the body).
 struct ImageFields {
+  uint16_t header_size = kImageHeaderSize;  ///< the body starts here (≥ 32, a multiple of 4)
   uint32_t load_address = 0;
   uint8_t version_major = 0, version_minor = 0;
   uint16_t version_revision = 0;
@@ -75,8 +80,8 @@ struct ImageFields {
 };
 
 /// Bytes an image of a body this size occupies.
-constexpr uint32_t ImageSize(uint32_t body_size) {
-  return kImageHeaderSize + body_size + (4 + 5 + 5 + 8) + (4 + 4 + 32);
+constexpr uint32_t ImageSize(uint32_t body_size, uint16_t header_size = kImageHeaderSize) {
+  return header_size + body_size + (4 + 5 + 5 + 8) + (4 + 4 + 32);
 }
 
 /// Writes header, body, protected TLVs and the SHA-256 TLV into `out`; returns the image size,

@@ -2,10 +2,6 @@
 // palpa-sim are held to the same checks through the host library — Hello with a matching catalog,
 // configuration, setpoints with the plant following in telemetry, and every line safe once the
 // host goes quiet.
-#include <netinet/in.h>
-#include <signal.h>
-#include <sys/socket.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -14,6 +10,7 @@
 #include <thread>
 
 #include "mini_client.h"
+#include "qemu_process.h"
 #include "palpa/protocol/faults.h"
 #include "palpa/host/device.h"
 
@@ -23,45 +20,6 @@ namespace ph = palpa::host;
 namespace pp = palpa::protocol;
 
 namespace {
-
-/// QEMU running the application image; always killed.
-class Qemu {
- public:
-  bool Start() {
-    if (access(PALPA_MPS2_IMAGE, R_OK) != 0) return false;
-    port_ = palpa::testing::FreeTcpPort();
-    pid_ = fork();
-    if (pid_ == 0) {
-      const std::string serial = "tcp:127.0.0.1:" + std::to_string(port_) + ",server=on,wait=on";
-      execl(PALPA_QEMU, PALPA_QEMU, "-M", "mps2-an386", "-nographic", "-monitor", "none", "-semihosting-config",
-            "enable=on,target=native", "-serial", serial.c_str(), "-kernel", PALPA_MPS2_IMAGE, static_cast<char*>(nullptr));
-      _exit(127);
-    }
-    for (int i = 0; i < 100; ++i) {  // until QEMU listens; the first connection starts the CPU
-      const int fd = socket(AF_INET, SOCK_STREAM, 0);
-      sockaddr_in a{};
-      a.sin_family = AF_INET;
-      a.sin_port = htons(static_cast<uint16_t>(port_));
-      a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-      const bool up = connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof(a)) == 0;
-      close(fd);  // QEMU listens again for the next client (the host under test)
-      if (up) return true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-    return false;
-  }
-  ~Qemu() {
-    if (pid_ > 0) {
-      kill(pid_, SIGKILL);
-      waitpid(pid_, nullptr, 0);
-    }
-  }
-  std::string address() const { return "tcp:127.0.0.1:" + std::to_string(port_); }
-
- private:
-  int port_ = 0;
-  pid_t pid_ = -1;
-};
 
 void CheckBoardBehaviour(const std::string& address, pp::BoardKind kind) {
   std::string error;
@@ -133,8 +91,9 @@ void CheckBoardBehaviour(const std::string& address, pp::BoardKind kind) {
 TEST_GROUP(QemuBoard){};
 
 TEST(QemuBoard, BehavesAsTheProtocolSays) {
-  Qemu qemu;
-  CHECK_TEXT(qemu.Start(), "QEMU or the mps2 image is missing (build the mps2 preset)");
+  palpa::testing::QemuProcess qemu;
+  CHECK_TEXT(access(PALPA_MPS2_IMAGE, R_OK) == 0 && qemu.Start(PALPA_QEMU, {"-kernel", PALPA_MPS2_IMAGE}),
+             "QEMU or the mps2 image is missing (build the mps2 preset)");
   CheckBoardBehaviour(qemu.address(), pp::BoardKind::kMps2An386);
 }
 

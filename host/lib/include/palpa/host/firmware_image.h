@@ -14,6 +14,7 @@ namespace palpa::host {
 
 struct ImageSpec {
   std::vector<uint8_t> body;  ///< the binary linked to run from the slot
+  uint16_t header_size = protocol::kImageHeaderSize;  ///< padded for an MCU's vector table
   uint32_t load_address = 0;  ///< where the slot appears in the board's address map
   uint8_t version_major = 0, version_minor = 0;
   uint16_t version_revision = 0;
