@@ -5,6 +5,7 @@ independent writer of the format the C++ parser in protocol/image.h checks.
 
     make_image.py --kind mps2-an386 --slot 0 --load-address 0x8000 --version 0.1.0 \
                   --counter 1 [--header-size 256] BODY.bin OUT.img
+    make_image.py --package SLOT0.img SLOT1.img OUT.palpa    (the update package: both slots)
 """
 import argparse
 import hashlib
@@ -35,7 +36,21 @@ def build(body, kind, slot, load_address, version, counter, header_size):
     return covered + struct.pack("<HH", TLV_INFO_MAGIC, 4 + 4 + 32) + tlv(TLV_SHA256, digest)
 
 
+def package(slot0, slot1, out):
+    """PALPAPKG, version 1, two entries: slot (u8), size (u32 LE), the image."""
+    data = b"PALPAPKG" + bytes([1, 2])
+    for slot, path in enumerate((slot0, slot1)):
+        with open(path, "rb") as f:
+            image = f.read()
+        data += struct.pack("<BI", slot, len(image)) + image
+    with open(out, "wb") as f:
+        f.write(data)
+
+
 def main():
+    if len(sys.argv) == 5 and sys.argv[1] == "--package":
+        package(*sys.argv[2:])
+        return
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--kind", required=True, choices=BOARD_KINDS)
     p.add_argument("--slot", required=True, type=int, choices=[0, 1])

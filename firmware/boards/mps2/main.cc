@@ -162,7 +162,7 @@ int main() {
   const palpa::core::FlashLayout& layout = palpa::core::kDefaultLayout;
   static palpa::hal::mps2::CodeFlash flash(layout.xip_base, layout.total, layout.sector_size);
   id.active_slot = *palpa::hal::mps2::kScbVtor >= layout.slot_offset[1] ? 1 : 0;
-  static palpa::core::UpdateEngine engine(&flash, layout, id.kind, id.active_slot);
+  static palpa::core::UpdateEngine engine(&flash, layout, id.kind, id.active_slot, &g_watchdog);
   id.rollback_counter = engine.rollback_floor();
   update = &engine;
 #endif

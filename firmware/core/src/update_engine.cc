@@ -10,8 +10,13 @@ using protocol::Status;
 }  // namespace
 
 UpdateEngine::UpdateEngine(hal::Flash* flash, const FlashLayout& layout, protocol::BoardKind kind,
-                           uint8_t running)
-    : flash_(flash), layout_(layout), kind_(kind), running_(running), store_(flash, layout) {
+                           uint8_t running, hal::Watchdog* watchdog)
+    : flash_(flash),
+      watchdog_(watchdog),
+      layout_(layout),
+      kind_(kind),
+      running_(running),
+      store_(flash, layout) {
   if (running <= 1) {
     inactive_ = static_cast<uint8_t>(1 - running);
   } else {  // recovery: anything but the slot the state still calls good (if any)
@@ -61,6 +66,7 @@ Status UpdateEngine::Erase(const protocol::UpdateErase& m, uint32_t* detail) {
   const uint32_t first = m.offset / sector * sector;
   const uint32_t end = (m.offset + m.length + sector - 1) / sector * sector;
   for (uint32_t at = first; at < end; at += sector) {
+    Kick();
     const Status e = flash_->Erase(layout_.slot_offset[m.slot] + at);
     if (e != Status::kOk) {
       *detail = at;
@@ -93,6 +99,7 @@ Status UpdateEngine::Write(const protocol::UpdateWrite& m, uint32_t* detail) {
   }
   if (m.offset != written_) return Status::kOutOfRange;  // *detail: where to resume
   if (end > erased_) return Status::kUnavailable;        // erase first
+  Kick();
   const Status p = flash_->Program(base + m.offset, m.data.data(), m.data_size);
   uint8_t back[protocol::kMaxUpdateChunk];
   if (p != Status::kOk || flash_->Read(base + m.offset, back, m.data_size) != Status::kOk)
@@ -126,7 +133,9 @@ Status UpdateEngine::Activate(const protocol::UpdateActivate& m, uint32_t* detai
     *detail = written_;
     return Status::kUnavailable;  // not all written
   }
+  Kick();  // a whole image's hash follows
   const SlotImage image = InspectSlot(*flash_, layout_, m.slot, kind_);
+  Kick();
   if (!image.valid || image.info.total_size != m.image_size) {
     *detail = static_cast<uint32_t>(image.error);
     return Status::kImageInvalid;
@@ -170,6 +179,7 @@ protocol::SlotsReport UpdateEngine::Slots() {
   for (uint8_t slot = 0; slot < 2; ++slot) {
     protocol::SlotInfo& info = r.slots[slot];
     if (flash_ == nullptr) continue;
+    Kick();  // each slot's check hashes its image
     const SlotImage image = InspectSlot(*flash_, layout_, slot, kind_);
     if (!image.valid) {
       info.state = image.error == protocol::ImageError::kBadMagic ? protocol::SlotState::kEmpty

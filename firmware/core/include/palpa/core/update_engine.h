@@ -8,6 +8,7 @@
 #include <cstdint>
 
 #include "palpa/core/boot_state.h"
+#include "palpa/hal/watchdog.h"
 #include "palpa/protocol/messages_update.h"
 #include "palpa/protocol/sha256.h"
 
@@ -16,8 +17,10 @@ namespace palpa::core {
 class UpdateEngine {
  public:
   /// `running` is the slot executing now (kNoSlot in recovery mode: both slots are writable).
+  /// `watchdog` (may be nullptr) is kicked between sectors of an erase and around every flash
+  /// operation: a long erase is work, not a hung loop. The lines are safe throughout (update mode).
   UpdateEngine(hal::Flash* flash, const FlashLayout& layout, protocol::BoardKind kind,
-               uint8_t running);
+               uint8_t running, hal::Watchdog* watchdog = nullptr);
 
   bool in_update_mode() const { return update_mode_; }
 
@@ -37,7 +40,11 @@ class UpdateEngine {
 
  private:
   protocol::Status Writable(uint8_t slot) const;
+  void Kick() {
+    if (watchdog_ != nullptr) watchdog_->Kick();
+  }
   hal::Flash* flash_;
+  hal::Watchdog* watchdog_;
   FlashLayout layout_;
   protocol::BoardKind kind_;
   uint8_t running_;
