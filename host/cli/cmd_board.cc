@@ -110,6 +110,7 @@ int CmdInfo(Context& c, const std::vector<std::string>& args) {
               b.plant_simulated ? " (simulated plant)" : "");
   std::printf("firmware      %s, protocol %u, catalog 0x%08x%s\n", firmware.c_str(), b.protocol_version, b.catalog_hash,
               d->link().catalog_matches() ? "" : " (differs from this host's)");
+  std::printf("image slot    %u, anti-rollback counter %u\n", b.active_slot, b.rollback_counter);
   std::printf("configuration %s%s\n", b.config_name.data(), b.config_is_default ? " (factory default)" : " (saved)");
   std::printf("reset cause   %s; faults: %s\n", pp::kResetCauseNames[static_cast<int>(b.reset_cause)], host::FaultNames(b.fault_bitmap).c_str());
   if (b.time_scale != 1.0f) std::printf("time scale    %gx\n", static_cast<double>(b.time_scale));

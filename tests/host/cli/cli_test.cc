@@ -287,6 +287,7 @@ TEST(CliFlash, PackagesAreMadeCheckedAndFlashedOverTheLink) {
   CHECK(Has(r, "updated 0.1.0 → 0.3.0 (slot 1), confirmed"));
   r = Palpa(device + "info");
   CHECK(Has(r, "firmware      0.3.0"));
+  CHECK(Has(r, "image slot    1, anti-rollback counter 3"));
   r = Palpa(device + "flash " + dir + "/old.palpa");
   LONGS_EQUAL(2, r.code);
   CHECK(Has(r, "anti-rollback counter 0 is below the board's 3"));
