@@ -238,3 +238,42 @@ TEST(LatestWins, ReorderedStreamConvergesToTheLatestValue) {
   }
   LONGS_EQUAL(2000, board.applied_heartbeat());
 }
+
+TEST(ReliableChannel, AnAnswerToAResentCommandKeepsTheBackOff) {
+  // Karn: only an answer to a command sent once is a round-trip sample and drops the back-off.
+  pp::ReliableSender sender;
+  sender.Reset(0);
+  auto ignore = [](const uint8_t*, size_t) {};
+  auto outcome = [](const pp::CommandOutcome&) {};
+  CHECK(sender.Submit(pp::ClearFault{1}, 1).ok());
+  sender.Transmit(0, ignore);
+  sender.OnAnswer(0, pp::Status::kOk, 0, 1000, outcome);  // a clean 1 ms round trip
+  const uint32_t base = sender.rto_us();
+  CHECK(sender.Submit(pp::ClearFault{1}, 2).ok());
+  sender.Transmit(10000, ignore);
+  sender.Transmit(10000 + base + 1, ignore);  // timed out: resent, the timeout doubled
+  const uint32_t backed_off = sender.rto_us();
+  CHECK(backed_off > base);
+  sender.OnAnswer(1, pp::Status::kOk, 0, 10000 + base + 2000, outcome);
+  LONGS_EQUAL(backed_off, sender.rto_us());  // which transmission was answered is unknown
+  CHECK(sender.Submit(pp::ClearFault{1}, 3).ok());
+  sender.Transmit(100000, ignore);
+  sender.OnAnswer(2, pp::Status::kOk, 0, 101000, outcome);  // sent once: a sample
+  CHECK(sender.rto_us() < backed_off);
+}
+
+TEST(ReliableChannel, RoomIsCountedInBytesAsWellAsCommands) {
+  pp::SenderConfig config;
+  config.max_bytes_in_flight = 600;
+  pp::ReliableSender sender(config);
+  sender.Reset(0);
+  pp::UpdateWrite w;
+  w.data_size = 240;
+  CHECK(sender.HasRoomFor(246));
+  CHECK(sender.Submit(w, 1).ok());
+  CHECK(sender.HasRoomFor(246));
+  CHECK(sender.Submit(w, 2).ok());
+  CHECK_FALSE(sender.HasRoomFor(246));  // a third would overrun the board's receive buffer
+  CHECK(sender.HasRoomFor(2));          // a small command still fits
+  LONGS_EQUAL((int)pp::Status::kWindowFull, (int)sender.Submit(w, 3).status);
+}

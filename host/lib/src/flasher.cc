@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <deque>
 #include <thread>
 
 namespace palpa::host {
@@ -103,28 +104,45 @@ FlashReport FlashPackage(Link& link, const UpdatePackage& package, const FlashOp
     progress("erase", 1, 1, 0);
   }
 
-  // 2. Write, contiguously; a Nack at the wrong offset names the resume point.
+  // 2. Write, contiguously, several chunks in the link's window at once (they arrive in order);
+  //    a Nack at the wrong offset names the resume point.
+  constexpr size_t kInFlight = 4;
+  struct Flight {
+    uint32_t ticket, at, size;
+  };
+  std::deque<Flight> flight;
+  auto drain = [&] {
+    for (const Flight& f : flight) link.Await(f.ticket);
+    flight.clear();
+  };
   const auto began = std::chrono::steady_clock::now();
-  for (uint32_t at = start; at < size;) {
-    pp::UpdateWrite w;
-    w.slot = slot;
-    w.offset = at;
-    w.data_size = static_cast<uint8_t>(std::min<uint32_t>(pp::kMaxUpdateChunk, size - at));
-    std::copy(image.begin() + at, image.begin() + at + w.data_size, w.data.begin());
-    r = link.Command(w);
-    if (r.status == Status::kOutOfRange && r.detail < at) {
-      at = r.detail;  // the board has less than we thought (it reset): from there
+  for (uint32_t next = start; next < size || !flight.empty();) {
+    while (next < size && flight.size() < kInFlight) {
+      pp::UpdateWrite w;
+      w.slot = slot;
+      w.offset = next;
+      w.data_size = static_cast<uint8_t>(std::min<uint32_t>(pp::kMaxUpdateChunk, size - next));
+      std::copy(image.begin() + next, image.begin() + next + w.data_size, w.data.begin());
+      flight.push_back({link.Submit(w), next, w.data_size});
+      next += w.data_size;
+    }
+    const Flight f = flight.front();
+    flight.pop_front();
+    r = link.Await(f.ticket);
+    if (r.status == Status::kOutOfRange && r.detail < f.at) {
+      drain();  // the board has less than we thought (it reset): from there
+      next = r.detail;
       continue;
     }
     if (r.status != Status::kOk) {
+      drain();
       report.write_seconds = Since(began);
       return Fail(report, r.status,
-                  "write at " + std::to_string(at) + " of " + std::to_string(size) + ": " + Why(r) +
+                  "write at " + std::to_string(f.at) + " of " + std::to_string(size) + ": " + Why(r) +
                       "; run again with --resume to go on from what the board has");
     }
-    at += w.data_size;
-    report.bytes_written += w.data_size;
-    progress("write", at, size, Since(began));
+    report.bytes_written += f.size;
+    progress("write", f.at + f.size, size, Since(began));
   }
   report.write_seconds = Since(began);
 

@@ -108,8 +108,13 @@ class ReliableSender {
       if (!p.answered) {
         MarkConsumedBefore(seq);
         p.consumed = p.answered = true;
-        if (p.transmissions == 1) SampleRoundTrip(now_us - p.sent_us);
-        rto_us_ = base_rto_us_;  // new data answered: drop the back-off (as TCP does on a new ACK)
+        // Karn: only an answer to a command sent once is a round-trip sample, and only such an
+        // answer drops the back-off. Dropping it on any answer kept the timeout below the
+        // queueing delay of a full window on a slow link: every command went out twice.
+        if (p.transmissions == 1) {
+          SampleRoundTrip(now_us - p.sent_us);
+          rto_us_ = base_rto_us_;
+        }
         on_outcome(CommandOutcome{p.cookie, p.seq, p.type, status, detail});
         // Earlier commands were consumed but their answers lost: ask again, the board replays.
         for (uint8_t s = base_seq_; s != seq; ++s) {
@@ -166,6 +171,11 @@ class ReliableSender {
   uint64_t NextDeadline() const;
 
   size_t pending() const { return static_cast<uint8_t>(next_seq_ - base_seq_); }
+  /// Whether a command with a body of `body_size` bytes fits the window and the bytes in flight now.
+  bool HasRoomFor(size_t body_size) const {
+    return pending() == 0 || (pending() < config_.window &&
+                              BytesInFlight() + FramedSize(kHeaderSize + body_size) <= config_.max_bytes_in_flight);
+  }
   uint8_t next_seq() const { return next_seq_; }
   uint32_t rto_us() const { return rto_us_; }
   uint32_t BytesInFlight() const;

@@ -98,6 +98,24 @@ class Link {
                          timeout_ms);
   }
 
+  /// Queues a reliable command without waiting for its answer (commands go out in the order of
+  /// the calls, several in the window); Await(ticket) gives the answer. A command that cannot be
+  /// queued is answered at once.
+  template <class M>
+  uint32_t Submit(const M& m, int timeout_ms = -1) {
+    uint8_t packet[pp::kMaxPacketSize] = {};
+    pp::FieldError field;
+    const auto size = pp::EncodePacket(m, 0, 0, packet, sizeof(packet), &field);
+    if (!size.ok()) {
+      return FailedTicket(CommandResult{size.status, 0, 0, {}, std::string("cannot encode ") + M::kInfo.name + ": field " +
+                                                             (field.field ? field.field : "?") + " is " +
+                                                             pp::StatusName(size.status)});
+    }
+    return SubmitPacket(static_cast<uint8_t>(M::kInfo.type), packet + pp::kHeaderSize, size.value - pp::kHeaderSize,
+                        timeout_ms);
+  }
+  CommandResult Await(uint32_t ticket, int timeout_ms = -1);
+
   /// Latest-wins streams: the link fills in the generation, sends at once and resends until
   /// telemetry shows it applied. Returns the generation.
   uint32_t StreamSetpoints(pp::SetLineSetpoints m);
@@ -125,6 +143,8 @@ class Link {
  private:
   explicit Link(std::unique_ptr<Transport> transport, LinkOptions options);
   CommandResult CommandPacket(uint8_t type, const uint8_t* body, size_t size, int timeout_ms);
+  uint32_t SubmitPacket(uint8_t type, const uint8_t* body, size_t size, int timeout_ms);
+  uint32_t FailedTicket(CommandResult result);  ///< a ticket already answered with `result`
   void ReaderLoop();
   void HeartbeatLoop();
   void DispatchLoop();
