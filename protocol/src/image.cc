@@ -1,14 +1,10 @@
 // Image header and TLV parsing with the hash check, read in 64-byte pieces.
 #include "palpa/protocol/image.h"
 
+#include "palpa/protocol/little_endian.h"
+
 namespace palpa::protocol {
 namespace {
-
-uint16_t U16(const uint8_t* p) { return static_cast<uint16_t>(p[0] | p[1] << 8); }
-uint32_t U32(const uint8_t* p) {
-  return static_cast<uint32_t>(p[0]) | static_cast<uint32_t>(p[1]) << 8 |
-         static_cast<uint32_t>(p[2]) << 16 | static_cast<uint32_t>(p[3]) << 24;
-}
 
 Status Fail(ImageError why, ImageError* error) {
   *error = why;
@@ -21,31 +17,24 @@ bool WalkTlvs(ImageSource& source, uint32_t offset, uint16_t magic, uint32_t lim
               uint32_t* area_size, Visit visit) {
   uint8_t info[4];
   if (offset + 4 > limit || !source.Read(offset, info, 4)) return false;
-  const uint16_t total = U16(info + 2);
-  if (U16(info) != magic || total < 4 || offset + total > limit) return false;
+  const uint16_t total = LoadLe16(info + 2);
+  if (LoadLe16(info) != magic || total < 4 || offset + total > limit) return false;
   for (uint32_t at = offset + 4; at < offset + total;) {
     uint8_t entry[4];
     if (at + 4 > offset + total || !source.Read(at, entry, 4)) return false;
-    const uint16_t length = U16(entry + 2);
+    const uint16_t length = LoadLe16(entry + 2);
     if (at + 4 + length > offset + total) return false;
-    if (!visit(static_cast<TlvType>(U16(entry)), length, at + 4)) return false;
+    if (!visit(static_cast<TlvType>(LoadLe16(entry)), length, at + 4)) return false;
     at += 4 + length;
   }
   *area_size = total;
   return true;
 }
 
-void Put16(uint8_t* p, uint16_t v) {
-  p[0] = static_cast<uint8_t>(v);
-  p[1] = static_cast<uint8_t>(v >> 8);
-}
-void Put32(uint8_t* p, uint32_t v) {
-  for (int i = 0; i < 4; ++i) p[i] = static_cast<uint8_t>(v >> (8 * i));
-}
 /// One TLV entry at p; returns its size.
 uint32_t PutTlv(uint8_t* p, TlvType type, const uint8_t* value, uint16_t length) {
-  Put16(p, static_cast<uint16_t>(type));
-  Put16(p + 2, length);
+  StoreLe16(p, static_cast<uint16_t>(type));
+  StoreLe16(p + 2, length);
   for (uint16_t i = 0; i < length; ++i) p[4 + i] = value[i];
   return 4u + length;
 }
@@ -62,30 +51,30 @@ uint32_t WriteImage(const ImageFields& f, const uint8_t* body, uint32_t body_siz
   constexpr uint16_t kProtectedSize = 4 + 5 + 5 + 8;
   uint8_t* h = out;
   for (uint32_t i = 0; i < header_size; ++i) h[i] = 0;
-  Put32(h, kImageMagic);
-  Put32(h + 4, f.load_address);
-  Put16(h + 8, header_size);
-  Put16(h + 10, kProtectedSize);
-  Put32(h + 12, body_size);
+  StoreLe32(h, kImageMagic);
+  StoreLe32(h + 4, f.load_address);
+  StoreLe16(h + 8, header_size);
+  StoreLe16(h + 10, kProtectedSize);
+  StoreLe32(h + 12, body_size);
   h[20] = f.version_major;
   h[21] = f.version_minor;
-  Put16(h + 22, f.version_revision);
-  Put32(h + 24, f.build);
+  StoreLe16(h + 22, f.version_revision);
+  StoreLe32(h + 24, f.build);
   for (uint32_t i = 0; i < body_size; ++i) out[header_size + i] = body[i];
   uint8_t* p = out + header_size + body_size;
-  Put16(p, kProtectedTlvInfoMagic);
-  Put16(p + 2, kProtectedSize);
+  StoreLe16(p, kProtectedTlvInfoMagic);
+  StoreLe16(p + 2, kProtectedSize);
   uint32_t at = 4;
   const uint8_t kind = static_cast<uint8_t>(f.board_kind);
   at += PutTlv(p + at, TlvType::kBoardKind, &kind, 1);
   at += PutTlv(p + at, TlvType::kLoadSlot, &f.slot, 1);
   uint8_t counter[4];
-  Put32(counter, f.rollback_counter);
+  StoreLe32(counter, f.rollback_counter);
   at += PutTlv(p + at, TlvType::kSecurityCounter, counter, 4);
   const Sha256Digest digest = Sha256Of(out, header_size + body_size + kProtectedSize);
   uint8_t* t = p + kProtectedSize;
-  Put16(t, kTlvInfoMagic);
-  Put16(t + 2, 4 + 4 + 32);
+  StoreLe16(t, kTlvInfoMagic);
+  StoreLe16(t + 2, 4 + 4 + 32);
   PutTlv(t + 4, TlvType::kSha256, digest.data(), 32);
   return size;
 }
@@ -118,15 +107,15 @@ Status VerifyImage(ImageSource& source, uint32_t slot_size, ImageInfo* info, Ima
   uint8_t h[kImageHeaderSize];
   if (slot_size < kImageHeaderSize || !source.Read(0, h, sizeof(h)))
     return Fail(ImageError::kUnreadable, error);
-  if (U32(h) != kImageMagic) return Fail(ImageError::kBadMagic, error);
-  const uint16_t header_size = U16(h + 8), protected_size = U16(h + 10);
-  info->load_address = U32(h + 4);
-  info->body_size = U32(h + 12);
-  const uint32_t flags = U32(h + 16);
+  if (LoadLe32(h) != kImageMagic) return Fail(ImageError::kBadMagic, error);
+  const uint16_t header_size = LoadLe16(h + 8), protected_size = LoadLe16(h + 10);
+  info->load_address = LoadLe32(h + 4);
+  info->body_size = LoadLe32(h + 12);
+  const uint32_t flags = LoadLe32(h + 16);
   info->version_major = h[20];
   info->version_minor = h[21];
-  info->version_revision = U16(h + 22);
-  info->build = U32(h + 24);
+  info->version_revision = LoadLe16(h + 22);
+  info->build = LoadLe32(h + 24);
   if (header_size < kImageHeaderSize || header_size > kMaxImageHeaderSize || header_size % 4 != 0 ||
       flags != 0 || header_size > slot_size) {
     return Fail(ImageError::kBadHeader, error);
@@ -157,7 +146,7 @@ Status VerifyImage(ImageSource& source, uint32_t slot_size, ImageInfo* info, Ima
             return slot = true;
           case TlvType::kSecurityCounter:
             if (!read_value(at, length, v, 4)) return false;
-            info->rollback_counter = U32(v);
+            info->rollback_counter = LoadLe32(v);
             return counter = true;
           default:
             return true;  // unknown protected entries are covered by the hash: harmless

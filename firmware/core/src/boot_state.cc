@@ -1,6 +1,8 @@
 // Boot-state records and the bootloader's choice of slot.
 #include "palpa/core/boot_state.h"
 
+#include "palpa/protocol/little_endian.h"
+
 #include "palpa/protocol/crc32.h"
 
 namespace palpa::core {
@@ -9,14 +11,6 @@ namespace {
 using protocol::Status;
 
 constexpr uint32_t kRecordMagic = 0x54534250;  // "PBST"
-
-void Put32(uint8_t* p, uint32_t v) {
-  for (int i = 0; i < 4; ++i) p[i] = static_cast<uint8_t>(v >> (8 * i));
-}
-uint32_t Get32(const uint8_t* p) {
-  return static_cast<uint32_t>(p[0]) | static_cast<uint32_t>(p[1]) << 8 |
-         static_cast<uint32_t>(p[2]) << 16 | static_cast<uint32_t>(p[3]) << 24;
-}
 
 /// A slot of flash read as an image.
 class SlotSource final : public protocol::ImageSource {
@@ -45,15 +39,17 @@ bool BootStore::ReadRecord(uint8_t sector, uint32_t index, BootState* state, boo
   bool all_ones = true;
   for (uint8_t b : r) all_ones = all_ones && b == 0xFF;
   *erased = all_ones;
-  if (all_ones || Get32(r) != kRecordMagic || Get32(r + 28) != protocol::Crc32(r, 28)) return false;
+  if (all_ones || protocol::LoadLe32(r) != kRecordMagic ||
+      protocol::LoadLe32(r + 28) != protocol::Crc32(r, 28))
+    return false;
   if (r[8] > 1 && r[8] != kNoSlot) return false;
   if (r[9] > 1 && r[9] != kNoSlot) return false;
   if (r[10] > static_cast<uint8_t>(TrialState::kBooting)) return false;
-  state->sequence = Get32(r + 4);
+  state->sequence = protocol::LoadLe32(r + 4);
   state->confirmed = r[8];
   state->trial = r[9];
   state->trial_state = static_cast<TrialState>(r[10]);
-  state->rollback_floor = Get32(r + 12);
+  state->rollback_floor = protocol::LoadLe32(r + 12);
   return true;
 }
 
@@ -83,13 +79,13 @@ Status BootStore::Save(BootState state) {
   state.sequence = newest_.sequence + 1;
   uint8_t r[kRecordSize];
   for (uint8_t& b : r) b = 0;
-  Put32(r, kRecordMagic);
-  Put32(r + 4, state.sequence);
+  protocol::StoreLe32(r, kRecordMagic);
+  protocol::StoreLe32(r + 4, state.sequence);
   r[8] = state.confirmed;
   r[9] = state.trial;
   r[10] = static_cast<uint8_t>(state.trial_state);
-  Put32(r + 12, state.rollback_floor);
-  Put32(r + 28, protocol::Crc32(r, 28));
+  protocol::StoreLe32(r + 12, state.rollback_floor);
+  protocol::StoreLe32(r + 28, protocol::Crc32(r, 28));
   // The first erased record after the newest one in its sector (a torn one is skipped).
   const uint32_t records = layout_.sector_size / kRecordSize;
   uint8_t sector = newest_sector_;

@@ -1,6 +1,8 @@
 // Two-copy configuration storage with CRCs and a header written last.
 #include "palpa/core/config_store.h"
 
+#include "palpa/protocol/little_endian.h"
+
 #include "palpa/protocol/crc32.h"
 
 namespace palpa::core {
@@ -9,13 +11,6 @@ namespace {
 constexpr uint32_t kMagic = 0x50434647;  // "GFCP"
 constexpr uint32_t kHeaderSize = 20;
 
-void Put32(uint8_t* p, uint32_t v) {
-  for (int i = 0; i < 4; ++i) p[i] = static_cast<uint8_t>(v >> (8 * i));
-}
-uint32_t Get32(const uint8_t* p) {
-  return static_cast<uint32_t>(p[0]) | static_cast<uint32_t>(p[1]) << 8 |
-         static_cast<uint32_t>(p[2]) << 16 | static_cast<uint32_t>(p[3]) << 24;
-}
 
 // One blob buffer shared by load and save: both run between ticks, never together.
 uint8_t g_blob[kMaxConfigBlob];
@@ -25,7 +20,8 @@ uint8_t g_blob[kMaxConfigBlob];
 bool ConfigStore::ReadHeader(uint8_t copy, Header& header) {
   uint8_t raw[kHeaderSize];
   if (flash_->Read(base_ + copy * flash_->sector_size(), raw, sizeof(raw)) != Status::kOk) return false;
-  header = Header{Get32(raw), Get32(raw + 4), Get32(raw + 8), Get32(raw + 12), Get32(raw + 16)};
+  header = Header{protocol::LoadLe32(raw), protocol::LoadLe32(raw + 4), protocol::LoadLe32(raw + 8),
+                  protocol::LoadLe32(raw + 12), protocol::LoadLe32(raw + 16)};
   return header.magic == kMagic && protocol::Crc32(raw, 16) == header.header_crc &&
          header.length <= flash_->sector_size() - kHeaderSize && header.length <= sizeof(g_blob);
 }
@@ -77,11 +73,11 @@ Status ConfigStore::Save(const BoardConfig& config) {
   if (flash_->Erase(at) != Status::kOk) return Status::kIoError;
   if (flash_->Program(at + kHeaderSize, g_blob, size.value) != Status::kOk) return Status::kIoError;
   uint8_t header[kHeaderSize];
-  Put32(header, kMagic);
-  Put32(header + 4, sequence_ + 1);
-  Put32(header + 8, static_cast<uint32_t>(size.value));
-  Put32(header + 12, protocol::Crc32(g_blob, size.value));
-  Put32(header + 16, protocol::Crc32(header, 16));
+  protocol::StoreLe32(header, kMagic);
+  protocol::StoreLe32(header + 4, sequence_ + 1);
+  protocol::StoreLe32(header + 8, static_cast<uint32_t>(size.value));
+  protocol::StoreLe32(header + 12, protocol::Crc32(g_blob, size.value));
+  protocol::StoreLe32(header + 16, protocol::Crc32(header, 16));
   if (flash_->Program(at, header, sizeof(header)) != Status::kOk) return Status::kIoError;
   ++sequence_;
   newest_ = copy;
