@@ -34,14 +34,6 @@ std::vector<SweepSample> SamplesFrom(const json& j) {
   return s;
 }
 
-/// Mean and population spread.
-std::pair<double, double> MeanSpread(const std::vector<double>& v) {
-  double m = 0, s = 0;
-  for (double x : v) m += x / static_cast<double>(v.size());
-  for (double x : v) s += (x - m) * (x - m) / static_cast<double>(v.size());
-  return {m, std::sqrt(s)};
-}
-
 /// Straight lines through the major rising and falling passes over 10–90 % of the range (the
 /// Table 5-4 comparison), in mm against kPa.
 void BranchFits(const std::vector<SweepSample>& sweep, double drive_max, host::CalibrationFile& f) {
@@ -85,31 +77,6 @@ ProtocolOptions QuickProtocol() {
   return o;
 }
 
-double RecommendBias(const std::vector<host::GridPoint>& grid) {
-  // "Kept" allows for what a few presses resolve: a bias may lose a fifth of the widest range.
-  constexpr double kRangeKept = 0.8;
-  std::map<double, std::pair<double, double>> range;  // bias → (min, max) stiffness
-  std::map<double, std::vector<double>> loops;
-  for (const host::GridPoint& g : grid) {
-    auto& r = range.try_emplace(g.bias_kpa, 1e9, -1e9).first->second;
-    r.first = std::min(r.first, g.stiffness_mean);
-    r.second = std::max(r.second, g.stiffness_mean);
-    loops[g.bias_kpa].push_back(g.loop_area_mean);
-  }
-  double widest = 0;
-  for (const auto& [bias, r] : range) widest = std::max(widest, r.second - r.first);
-  double best = range.empty() ? 0 : range.begin()->first, least = 1e300;
-  for (const auto& [bias, r] : range) {
-    if (r.second - r.first < kRangeKept * widest) continue;
-    const double loop = MeanSpread(loops[bias]).first;
-    if (loop < least) {
-      least = loop;
-      best = bias;
-    }
-  }
-  return best;
-}
-
 RigStatus RunCalibration(Rig& rig, uint8_t finger, const ProtocolOptions& o, const RunInfo& info,
                             Journal& journal, const std::function<void(const Progress&)>& progress,
                             CalibrationRun* out) {
@@ -117,10 +84,10 @@ RigStatus RunCalibration(Rig& rig, uint8_t finger, const ProtocolOptions& o, con
   json& st = journal.state;
   const std::vector<double> drives =
       SweepDrives(jamming ? o.jamming_sweep : o.pneumatic_sweep);  // Pa
-  const int grid_points =
-      !jamming                                    ? 0
-      : o.map_protocol == MapProtocol::kAdaptive ? o.adaptive.max_cycles
-                                                  : static_cast<int>(o.biases_kpa.size() * o.vacuums_kpa.size());
+  const bool adaptive = o.map_protocol == MapProtocol::kAdaptive;
+  const int grid_points = !jamming  ? 0
+                          : adaptive ? o.adaptive.max_cycles
+                                     : static_cast<int>(o.biases_kpa.size() * o.vacuums_kpa.size());
   const double started = rig.time.Now(), earlier = st.value("rig_time_s", 0.0);
   Progress p{0, 2 + grid_points + static_cast<int>(drives.size()), ""};
   auto step = [&](const std::string& what) {
@@ -180,7 +147,6 @@ RigStatus RunCalibration(Rig& rig, uint8_t finger, const ProtocolOptions& o, con
   // 3. Jamming: the stiffness map (the thesis's grid, or adaptive) and the recommended bias.
   double bias = o.biases_kpa.empty() ? 20 : o.biases_kpa.back();
   std::vector<host::GridPoint> grid;
-  const bool adaptive = o.map_protocol == MapProtocol::kAdaptive;
   if (jamming) {
     const PressSettings press{o.press_depth_mm, o.press_speed_mm_s, o.dwell_s};
     if (!st.contains("map")) st["map"] = json::object();
@@ -192,7 +158,7 @@ RigStatus RunCalibration(Rig& rig, uint8_t finger, const ProtocolOptions& o, con
                  : RunGridMap(rig, finger, zero, press, o.biases_kpa, o.vacuums_kpa, o.repeats,
                               st["map"], hooks, &out->map, &out->presses);
     if (!s.ok) return s;
-    out->map_estimate = EstimateMap(out->map, o.adaptive.box);
+    if (!adaptive) out->map_estimate = EstimateMap(out->map, o.adaptive.box);  // adaptive: its own
     grid = SummariseConditions(out->map);
     for (const host::GridPoint& g : grid) {
       out->csv.push_back(Csv({g.bias_kpa, g.vacuum_kpa, g.stiffness_mean, g.stiffness_spread,

@@ -1,8 +1,6 @@
 // The thesis grid and the adaptive protocol for a jamming finger's stiffness map.
 #include "palpa/calibration/map_protocols.h"
 
-#include "palpa/calibration/calibration_protocol.h"  // RecommendBias
-
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -50,6 +48,14 @@ void Append(json& state, const std::vector<MapPress>& presses) {
 
 std::string Kpa(double v) { return std::to_string(static_cast<int>(std::lround(v))); }
 
+/// Mean and population spread.
+std::pair<double, double> MeanSpread(const std::vector<double>& v) {
+  double m = 0, s = 0;
+  for (double x : v) m += x / static_cast<double>(v.size());
+  for (double x : v) s += (x - m) * (x - m) / static_cast<double>(v.size());
+  return {m, std::sqrt(s)};
+}
+
 }  // namespace
 
 std::vector<MapSample> StiffnessSamples(const std::vector<MapPress>& presses) {
@@ -59,6 +65,10 @@ std::vector<MapSample> StiffnessSamples(const std::vector<MapPress>& presses) {
 }
 
 MapEstimate EstimateMap(const std::vector<MapPress>& presses, const MapBox& box) {
+  return EstimateMap(presses, StiffnessSurface(StiffnessSamples(presses), box));
+}
+
+MapEstimate EstimateMap(const std::vector<MapPress>& presses, const StiffnessSurface& surface) {
   MapEstimate e;
   e.cycles = static_cast<int>(presses.size());
   std::map<std::pair<double, double>, std::vector<double>> by_condition;
@@ -76,7 +86,6 @@ MapEstimate EstimateMap(const std::vector<MapPress>& presses, const MapBox& box)
     freedom += static_cast<int>(k.size()) - 1;
   }
   e.press_noise = freedom > 0 ? std::sqrt(squares / freedom) : 0;
-  const StiffnessSurface surface(StiffnessSamples(presses), box);
   if (!surface.ok()) return e;
   e.cv_error = surface.CrossValidatedError();
   // A held-out press misses by the map's error and its own noise together.
@@ -110,6 +119,31 @@ std::vector<host::GridPoint> SummariseConditions(const std::vector<MapPress>& pr
     out.push_back(g);
   }
   return out;
+}
+
+double RecommendBias(const std::vector<host::GridPoint>& grid) {
+  // "Kept" allows for what a few presses resolve: a bias may lose a fifth of the widest range.
+  constexpr double kRangeKept = 0.8;
+  std::map<double, std::pair<double, double>> range;  // bias → (min, max) stiffness
+  std::map<double, std::vector<double>> loops;
+  for (const host::GridPoint& g : grid) {
+    auto& r = range.try_emplace(g.bias_kpa, 1e9, -1e9).first->second;
+    r.first = std::min(r.first, g.stiffness_mean);
+    r.second = std::max(r.second, g.stiffness_mean);
+    loops[g.bias_kpa].push_back(g.loop_area_mean);
+  }
+  double widest = 0;
+  for (const auto& [bias, r] : range) widest = std::max(widest, r.second - r.first);
+  double best = range.empty() ? 0 : range.begin()->first, least = 1e300;
+  for (const auto& [bias, r] : range) {
+    if (r.second - r.first < kRangeKept * widest) continue;
+    const double loop = MeanSpread(loops[bias]).first;
+    if (loop < least) {
+      least = loop;
+      best = bias;
+    }
+  }
+  return best;
 }
 
 double RecommendBiasFromMap(const std::vector<MapPress>& presses, const MapBox& box) {
@@ -217,7 +251,8 @@ RigStatus RunAdaptiveMap(Rig& rig, uint8_t finger, double zero_mm, const PressSe
   for (;;) {
     const int taken = static_cast<int>(presses->size());
     MapSample next{};
-    *estimate = EstimateMap(*presses, box);
+    const StiffnessSurface surface(StiffnessSamples(*presses), box);  // fitted once per cycle
+    *estimate = EstimateMap(*presses, surface);
     if (taken < static_cast<int>(start.size())) {
       next = start[static_cast<size_t>(taken)];
     } else {
@@ -226,7 +261,6 @@ RigStatus RunAdaptiveMap(Rig& rig, uint8_t finger, double zero_mm, const PressSe
           estimate->map_error <= o.target_error) {
         return {};
       }
-      const StiffnessSurface surface(StiffnessSamples(*presses), box);
       // Without a repeat the noise is unknown and the estimate is all error: learn it once.
       next = taken >= o.min_cycles - 1 && estimate->repeated_conditions == 0
                  ? surface.WorstPredicted()

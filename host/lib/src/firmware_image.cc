@@ -28,19 +28,9 @@ constexpr char kPackageMagic[8] = {'P', 'A', 'L', 'P', 'A', 'P', 'K', 'G'};
 }  // namespace
 
 std::vector<uint8_t> BuildImage(const ImageSpec& s) {
-  protocol::ImageFields f;
-  f.header_size = s.header_size;
-  f.load_address = s.load_address;
-  f.version_major = s.version_major;
-  f.version_minor = s.version_minor;
-  f.version_revision = s.version_revision;
-  f.build = s.build;
-  f.board_kind = s.board_kind;
-  f.slot = s.slot;
-  f.rollback_counter = s.rollback_counter;
   const auto body_size = static_cast<uint32_t>(s.body.size());
   std::vector<uint8_t> image(protocol::ImageSize(body_size, s.header_size));
-  protocol::WriteImage(f, s.body.data(), body_size, image.data(),
+  protocol::WriteImage(s, s.body.data(), body_size, image.data(),
                        static_cast<uint32_t>(image.size()));
   return image;
 }

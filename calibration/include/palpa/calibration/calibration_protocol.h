@@ -79,8 +79,4 @@ RigStatus RunCalibration(Rig& rig, uint8_t finger, const ProtocolOptions& option
                             const std::function<void(const Progress&)>& progress,
                             CalibrationRun* out);
 
-/// The bias with the least mean press loop area among those that keep at least 80 % of the
-/// widest stiffness range (DESIGN §5: bias shrinks the loop; the range must stay).
-double RecommendBias(const std::vector<host::GridPoint>& grid);
-
 }  // namespace palpa::calibration

@@ -55,10 +55,16 @@ struct MapEstimate {
   int repeated_conditions = 0;
 };
 MapEstimate EstimateMap(const std::vector<MapPress>& presses, const MapBox& box);
+/// The same from a surface already fitted to those presses.
+MapEstimate EstimateMap(const std::vector<MapPress>& presses, const StiffnessSurface& surface);
 
 std::vector<MapSample> StiffnessSamples(const std::vector<MapPress>& presses);
 /// The presses summarised per condition, in the order the conditions were first taken.
 std::vector<host::GridPoint> SummariseConditions(const std::vector<MapPress>& presses);
+
+/// The bias with the least mean press loop area among those that keep at least 80 % of the
+/// widest stiffness range (DESIGN §5: bias shrinks the loop; the range must stay).
+double RecommendBias(const std::vector<host::GridPoint>& grid);
 
 /// The bias recommended from a scattered map: over the lattice, the least mean press loop among
 /// the biases keeping 80 % of the widest stiffness range (RecommendBias on fitted surfaces).

@@ -30,19 +30,23 @@ enum class TlvType : uint16_t {
   kLoadSlot = 0xA1,         ///< u8 slot the body is linked for, protected
 };
 
-/// What a well-formed image says of itself.
-struct ImageInfo {
-  uint16_t header_size = kImageHeaderSize;  ///< where the body (an MCU's vector table) starts
+/// What an image says of itself when it is made: header and protected TLVs.
+struct ImageFields {
+  uint16_t header_size = kImageHeaderSize;  ///< the body starts here (≥ 32, a multiple of 4)
   uint32_t load_address = 0;
-  uint32_t body_size = 0;
-  uint32_t total_size = 0;  ///< header + body + both TLV areas: what occupies the slot
   uint8_t version_major = 0, version_minor = 0;
   uint16_t version_revision = 0;
   uint32_t build = 0;
   BoardKind board_kind = BoardKind::kSim;
   uint8_t slot = 0;
   uint32_t rollback_counter = 0;
-  Sha256Digest sha256{};  ///< over header + body + protected TLVs, as recorded and as computed
+};
+
+/// What a well-formed image says of itself: its fields, and what follows from its body.
+struct ImageInfo : ImageFields {
+  uint32_t body_size = 0;
+  uint32_t total_size = 0;  ///< header + body + both TLV areas: what occupies the slot
+  Sha256Digest sha256{};    ///< over header + body + protected TLVs, as recorded and as computed
 };
 
 /// Why an image was refused.
@@ -65,18 +69,6 @@ class ImageSource {
 
  protected:
   ~ImageSource() = default;
-};
-
-/// What an image says of itself when it is made (ImageInfo less what follows from the body).
-struct ImageFields {
-  uint16_t header_size = kImageHeaderSize;  ///< the body starts here (≥ 32, a multiple of 4)
-  uint32_t load_address = 0;
-  uint8_t version_major = 0, version_minor = 0;
-  uint16_t version_revision = 0;
-  uint32_t build = 0;
-  BoardKind board_kind = BoardKind::kSim;
-  uint8_t slot = 0;
-  uint32_t rollback_counter = 0;
 };
 
 /// Bytes an image of a body this size occupies.

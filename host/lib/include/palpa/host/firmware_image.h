@@ -12,16 +12,10 @@
 
 namespace palpa::host {
 
-struct ImageSpec {
+/// An image to build: its fields (header_size padded for an MCU's vector table, load_address
+/// where the slot appears in the board's address map) and the body.
+struct ImageSpec : protocol::ImageFields {
   std::vector<uint8_t> body;  ///< the binary linked to run from the slot
-  uint16_t header_size = protocol::kImageHeaderSize;  ///< padded for an MCU's vector table
-  uint32_t load_address = 0;  ///< where the slot appears in the board's address map
-  uint8_t version_major = 0, version_minor = 0;
-  uint16_t version_revision = 0;
-  uint32_t build = 0;
-  protocol::BoardKind board_kind = protocol::BoardKind::kSim;
-  uint8_t slot = 0;
-  uint32_t rollback_counter = 0;
 };
 
 /// Header, body, protected TLVs (kind, slot, counter), TLVs (SHA-256).
