@@ -1,17 +1,15 @@
 // Table-driven CRC-32, slicing by 4 so the tick's telemetry framing stays cheap on a Cortex-M.
 #include "palpa/protocol/crc32.h"
 
-#include <array>
+#include "crc32_tables.h"
 
 namespace palpa::protocol {
 namespace {
 
 constexpr uint32_t kPolynomial = 0xEDB88320u;  // 0x04C11DB7 reflected
 
-using Tables = std::array<std::array<uint32_t, 256>, 4>;
-
-constexpr Tables MakeTables() {
-  Tables tables{};
+constexpr Crc32Tables MakeTables() {
+  Crc32Tables tables{};
   for (uint32_t i = 0; i < 256; ++i) {
     uint32_t c = i;
     for (int bit = 0; bit < 8; ++bit) c = (c & 1u) ? (c >> 1) ^ kPolynomial : c >> 1;
@@ -26,21 +24,20 @@ constexpr Tables MakeTables() {
   return tables;
 }
 
-constexpr Tables kTables = MakeTables();
-
 }  // namespace
+
+constinit const Crc32Tables kCrc32Tables = MakeTables();
 
 uint32_t Crc32Update(uint32_t crc, const uint8_t* data, size_t size) {
   uint32_t c = ~crc;
   while (size >= 4) {
-    c ^= static_cast<uint32_t>(data[0]) | (static_cast<uint32_t>(data[1]) << 8) |
-         (static_cast<uint32_t>(data[2]) << 16) | (static_cast<uint32_t>(data[3]) << 24);
-    c = kTables[3][c & 0xFFu] ^ kTables[2][(c >> 8) & 0xFFu] ^ kTables[1][(c >> 16) & 0xFFu] ^
-        kTables[0][c >> 24];
+    uint32_t word;
+    __builtin_memcpy(&word, data, sizeof(word));  // one load; both targets are little-endian
+    c = Crc32Word(c, word);
     data += 4;
     size -= 4;
   }
-  while (size-- > 0) c = (c >> 8) ^ kTables[0][(c ^ *data++) & 0xFFu];
+  while (size-- > 0) c = Crc32Byte(c, *data++);
   return ~c;
 }
 

@@ -1,6 +1,7 @@
 // Frame decoder and encoder: CRC and COBS around a packet, with resynchronisation on 0x00.
 #include "palpa/protocol/framing.h"
 
+#include "frame_encoder.h"
 #include "palpa/protocol/crc32.h"
 
 namespace palpa::protocol {
@@ -72,6 +73,9 @@ FrameDecoder::Event FrameDecoder::Finish() {
 Result<size_t> EncodeFrameInPlace(uint8_t* packet, size_t packet_size, uint8_t* out,
                                   size_t out_capacity) {
   if (packet_size < kHeaderSize || packet_size > kMaxPacketSize) return Status::kBadLength;
+  if (out_capacity > CobsMaxEncodedSize(packet_size + kCrcSize)) {
+    return EncodeFrameWordwise(packet, packet_size, out);
+  }
   const uint32_t crc = Crc32(packet, packet_size);
   for (size_t i = 0; i < kCrcSize; ++i) packet[packet_size + i] = static_cast<uint8_t>(crc >> (8 * i));
   if (out_capacity < 1) return Status::kOverflow;

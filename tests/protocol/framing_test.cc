@@ -3,6 +3,8 @@
 #include <vector>
 
 #include "palpa/protocol/codec.h"
+#include "palpa/protocol/cobs.h"
+#include "palpa/protocol/crc32.h"
 #include "palpa/protocol/framing.h"
 
 #include "CppUTest/TestHarness.h"
@@ -184,4 +186,59 @@ TEST(FrameEncoder, MaximumPacketFitsTheMaximumFrame) {
   for (size_t i = 0; i < n.value; ++i) last = d.Process(frame[i]);
   CHECK(last == pp::FrameDecoder::Event::kFrame);
   LONGS_EQUAL(pp::kMaxBodySize, d.frame().body_size);
+}
+
+namespace {
+
+// The frame as DESIGN §3 defines it, built from the public CRC and COBS: the reference the
+// fast encoder must equal byte for byte.
+std::vector<uint8_t> ReferenceFrame(const std::vector<uint8_t>& packet) {
+  std::vector<uint8_t> raw = packet;
+  const uint32_t crc = pp::Crc32(packet.data(), packet.size());
+  for (int i = 0; i < 4; ++i) raw.push_back(static_cast<uint8_t>(crc >> (8 * i)));
+  std::vector<uint8_t> out(pp::CobsMaxEncodedSize(raw.size()));
+  out.resize(pp::CobsEncode(raw.data(), raw.size(), out.data(), out.size()));
+  out.push_back(0);
+  return out;
+}
+
+std::vector<uint8_t> FastFrame(const std::vector<uint8_t>& packet) {
+  std::vector<uint8_t> buffer = packet;
+  buffer.resize(packet.size() + pp::kCrcSize);
+  std::vector<uint8_t> out(pp::kMaxFrameSize + 16);  // room for the word-wise path
+  const auto n = pp::EncodeFrameInPlace(buffer.data(), packet.size(), out.data(), out.size());
+  CHECK(n.ok());
+  out.resize(n.value);
+  return out;
+}
+
+}  // namespace
+
+TEST(FrameEncoder, WordwisePathEqualsCrcThenCobsForEverySizeAndZeroDensity) {
+  std::mt19937 rng(11);
+  for (size_t size = pp::kHeaderSize; size <= pp::kMaxPacketSize; ++size) {
+    for (int zero_percent : {0, 5, 30, 50, 90, 100}) {
+      std::vector<uint8_t> packet(size);
+      for (uint8_t& b : packet) {
+        b = static_cast<int>(rng() % 100) < zero_percent ? 0 : static_cast<uint8_t>(rng() | 1u);
+      }
+      CHECK(FastFrame(packet) == ReferenceFrame(packet));
+    }
+  }
+}
+
+TEST(FrameEncoder, WordwisePathSplitsLongZeroFreeRunsAsCobsDoes) {
+  // Runs of 250..260 non-zero bytes starting at every offset within a word, with and without a
+  // zero after them, and a CRC that may itself contain zeros: every way a 254-byte block can end.
+  for (size_t run = 250; run <= 256 - 3; ++run) {
+    for (size_t start = 0; start < 4 && start + run <= pp::kMaxPacketSize; ++start) {
+      for (bool zero_after : {false, true}) {
+        std::vector<uint8_t> packet(start, 0);
+        for (size_t i = 0; i < run; ++i) packet.push_back(static_cast<uint8_t>(1 + i % 255));
+        if (zero_after && packet.size() < pp::kMaxPacketSize) packet.push_back(0);
+        if (packet.size() < pp::kHeaderSize) continue;
+        CHECK(FastFrame(packet) == ReferenceFrame(packet));
+      }
+    }
+  }
 }
