@@ -14,5 +14,6 @@ set(CMAKE_FIND_ROOT_PATH_MODE_INCLUDE ONLY)
 # Cortex-M4F with its single-precision FPU; float only (no soft double), no exceptions, no RTTI.
 set(PALPA_CPU_FLAGS "-mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16")
 set(CMAKE_C_FLAGS_INIT "${PALPA_CPU_FLAGS} -ffunction-sections -fdata-sections")
+set(CMAKE_ASM_FLAGS_INIT "${PALPA_CPU_FLAGS}")
 set(CMAKE_CXX_FLAGS_INIT "${PALPA_CPU_FLAGS} -ffunction-sections -fdata-sections -fno-exceptions -fno-rtti -fno-threadsafe-statics -fno-use-cxa-atexit -Wdouble-promotion -fsingle-precision-constant")
 set(CMAKE_EXE_LINKER_FLAGS_INIT "${PALPA_CPU_FLAGS} -nostartfiles -Wl,--gc-sections --specs=picolibc.specs")

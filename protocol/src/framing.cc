@@ -73,7 +73,8 @@ FrameDecoder::Event FrameDecoder::Finish() {
 Result<size_t> EncodeFrameInPlace(uint8_t* packet, size_t packet_size, uint8_t* out,
                                   size_t out_capacity) {
   if (packet_size < kHeaderSize || packet_size > kMaxPacketSize) return Status::kBadLength;
-  if (out_capacity > CobsMaxEncodedSize(packet_size + kCrcSize)) {
+  // Room for the largest frame (the telemetry buffers have it) avoids a division per frame.
+  if (out_capacity >= kMaxFrameSize || out_capacity > CobsMaxEncodedSize(packet_size + kCrcSize)) {
     return EncodeFrameWordwise(packet, packet_size, out);
   }
   const uint32_t crc = Crc32(packet, packet_size);
