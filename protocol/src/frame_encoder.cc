@@ -1,11 +1,12 @@
-// Fused CRC-32 + COBS frame encoder: one load per four packet bytes, zero bytes found a word at a
-// time, so telemetry framing stays within its instruction budget on a Cortex-M4.
-#include "frame_encoder.h"
-
+// Frame encoder: COBS(packet ‖ crc32_le(packet)) ‖ 0x00 in one pass a word at a time — CRC and
+// COBS share each load and a word's zero bytes are coded by pattern — so telemetry framing stays
+// within its instruction budget on a Cortex-M4.
 #include <array>
 
 #include "crc32_tables.h"
-#include "palpa/protocol/wire.h"
+#include "palpa/protocol/cobs.h"
+#include "palpa/protocol/crc32.h"
+#include "palpa/protocol/framing.h"
 
 namespace palpa::protocol {
 namespace {
@@ -15,17 +16,14 @@ inline uint32_t ZeroBytes(uint32_t word) {
   return ~(((word & 0x7F7F7F7Fu) + 0x7F7F7F7Fu) | word) & 0x80808080u;
 }
 
-// Which of the four bytes are not zero, as bits 0..3 (bit k: the k-th byte in memory). One
-// multiply gathers bits 7, 15, 23, 31 into 28..31 without carries.
-inline uint32_t NonZeroPattern(uint32_t zero_bytes) {
-  return ((zero_bytes * 0x00204081u) >> 28) ^ 0xFu;
-}
+// Which of the four bytes are zero, as bits 0..3 (bit k: the k-th byte in memory). One multiply
+// gathers bits 7, 15, 23, 31 into 28..31 without carries.
+inline uint32_t ZeroPattern(uint32_t zero_bytes) { return (zero_bytes * 0x00204081u) >> 28; }
 
 // What a word with zero bytes in a given pattern does to the COBS output, found once per pattern
 // instead of zero by zero: every zero but the last becomes the code byte of a block that ends
 // inside the word (its length is the distance to the next zero), the first one closes the block
 // that was open, and the last one opens a new block.
-// Indexed by the non-zero pattern (the ARMv7E-M loop gets that one from its byte-wise add).
 struct alignas(8) WordCodes {
   uint32_t inner_codes;  // OR-ed into the word: code bytes at the zeros before the last
   int8_t first_zero;     // offset of the first zero from the end of the word (-4 … -1)
@@ -35,17 +33,17 @@ static_assert(sizeof(WordCodes) == 8, "the ARMv7E-M loop loads an entry with one
 
 constexpr std::array<WordCodes, 16> MakeWordCodes() {
   std::array<WordCodes, 16> table{};
-  for (uint32_t non_zero = 0; non_zero < 15; ++non_zero) {
-    WordCodes codes{0, 4, 0};
+  for (uint32_t pattern = 1; pattern < 16; ++pattern) {
+    WordCodes codes{0, 0, 0};
     int previous = -1;
     for (int k = 0; k < 4; ++k) {
-      if ((non_zero >> k & 1u) != 0) continue;
+      if ((pattern >> k & 1u) == 0) continue;
       if (previous < 0) codes.first_zero = static_cast<int8_t>(k - 4);
       if (previous >= 0) codes.inner_codes |= static_cast<uint32_t>(k - previous) << (8 * previous);
       previous = k;
     }
     codes.last_zero = static_cast<int8_t>(previous - 4);
-    table[non_zero] = codes;
+    table[pattern] = codes;
   }
   return table;
 }
@@ -75,7 +73,7 @@ struct CobsCursor {
       __builtin_memcpy(at, &word, sizeof(word));
       return false;
     }
-    const WordCodes& codes = kWordCodes[NonZeroPattern(zeros)];
+    const WordCodes& codes = kWordCodes[ZeroPattern(zeros)];
     const uint32_t coded = word | codes.inner_codes;
     __builtin_memcpy(at, &coded, sizeof(coded));
     CloseAt(dst + codes.first_zero);
@@ -120,17 +118,23 @@ struct FrameWords {
   uint32_t crc;  // inverted CRC register
 };
 
-#if defined(PALPA_FRAME_WORDS_V7EM)
-extern "C" void palpa_frame_words_v7em(FrameWords* state, const uint8_t* words_end,
-                                       const uint32_t* crc_tables, const WordCodes* codes);
+// The open block may grow by up to seven bytes in the tail (three packet bytes and the CRC).
+constexpr ptrdiff_t kLongestTail = 3 + kCrcSize;
 
-void WordLoop(FrameWords& s, const uint8_t* words_end) {
-  palpa_frame_words_v7em(&s, words_end, kCrc32Tables[0].data(), kWordCodes.data());
+#if defined(PALPA_FRAME_WORDS_V7EM)
+extern "C" uint8_t* palpa_frame_v7em(FrameWords* state, uint8_t* packet_end,
+                                     const uint32_t* crc_tables, const WordCodes* codes);
+
+uint8_t* FastFrame(FrameWords& s, uint8_t* packet_end) {
+  return palpa_frame_v7em(&s, packet_end, kCrc32Tables[0].data(), kWordCodes.data());
 }
 #else
-void WordLoop(FrameWords& s, const uint8_t* words_end) {
+// Encodes the whole frame unless a block could fill up: returns the end of the frame (after the
+// delimiter), or nullptr with `s` saying where the byte-wise path has to take over.
+uint8_t* FastFrame(FrameWords& s, uint8_t* packet_end) {
   CobsCursor cobs{s.code_at, s.dst};
   const uint8_t* in = s.in;
+  const uint8_t* const words_end = in + ((packet_end - in) & ~ptrdiff_t{3});
   uint32_t crc = s.crc;
   Crc32Bases tables;
   while (in != words_end) {
@@ -142,37 +146,64 @@ void WordLoop(FrameWords& s, const uint8_t* words_end) {
     if (!cobs.Word(word) && cobs.dst - cobs.code_at > 250) break;
   }
   s = FrameWords{in, cobs.dst, cobs.code_at, crc};
+  if (in != words_end || cobs.dst - cobs.code_at + kLongestTail >= 0xFF) return nullptr;
+  // The last one to three packet bytes into the CRC, the CRC after the packet, then four to
+  // seven bytes that cannot fill a block: one word and the rest.
+  for (const uint8_t* p = in; p != packet_end; ++p) crc = Crc32Byte(crc, *p);
+  crc = ~crc;
+  __builtin_memcpy(packet_end, &crc, kCrcSize);
+  uint32_t word;
+  __builtin_memcpy(&word, in, sizeof(word));
+  cobs.Word(word);
+  for (const uint8_t* p = in + 4; p != packet_end + kCrcSize; ++p) cobs.ShortByte(*p);
+  *cobs.code_at = static_cast<uint8_t>(cobs.dst - cobs.code_at);
+  *cobs.dst = kFrameDelimiter;
+  return cobs.dst + 1;
 }
 #endif
 
-}  // namespace
-
+// Writes COBS(packet ‖ crc32_le(packet)) ‖ 0x00 and returns its length. `packet` has kCrcSize
+// spare bytes after it (the CRC goes there); `out` holds CobsMaxEncodedSize(size + 4) + 1 bytes.
 size_t EncodeFrameWordwise(uint8_t* packet, size_t packet_size, uint8_t* out) {
+  uint8_t* const packet_end = packet + packet_size;
   FrameWords words{packet, out + 1, out, ~0u};
-  WordLoop(words, packet + (packet_size & ~size_t{3}));
-  const uint8_t* const in = words.in;
+  if (const uint8_t* end = FastFrame(words, packet_end)) return static_cast<size_t>(end - out);
+  // A long zero-free run: the rest of the packet and the CRC byte by byte, splitting full blocks.
   uint32_t crc = words.crc;
-  CobsCursor cobs{words.code_at, words.dst};
-  // The rest of the packet (fewer than four bytes, or everything after a long zero-free run),
-  // then the CRC, little-endian, in the spare bytes after the packet.
-  const uint8_t* const packet_end = packet + packet_size;
-  for (const uint8_t* p = in; p != packet_end; ++p) crc = Crc32Byte(crc, *p);
+  for (const uint8_t* p = words.in; p != packet_end; ++p) crc = Crc32Byte(crc, *p);
   crc = ~crc;
   __builtin_memcpy(packet + packet_size, &crc, kCrcSize);
-  const uint8_t* const frame_end = packet_end + kCrcSize;
-  constexpr ptrdiff_t kShortTail = kCrcSize + 3;
-  if (frame_end - in <= kShortTail && cobs.dst - cobs.code_at + kShortTail < 0xFF) {
-    // The usual end: four to seven bytes that cannot fill a block, one word and the rest.
-    uint32_t word;
-    __builtin_memcpy(&word, in, sizeof(word));
-    cobs.Word(word);
-    for (const uint8_t* p = in + 4; p != frame_end; ++p) cobs.ShortByte(*p);
-    *cobs.code_at = static_cast<uint8_t>(cobs.dst - cobs.code_at);
-  } else {
-    cobs.Bytes(in, frame_end);
-  }
+  CobsCursor cobs{words.code_at, words.dst};
+  cobs.Bytes(words.in, packet_end + kCrcSize);
   *cobs.dst = kFrameDelimiter;
   return static_cast<size_t>(cobs.dst - out) + 1;
+}
+
+}  // namespace
+
+Result<size_t> EncodeFrameInPlace(uint8_t* packet, size_t packet_size, uint8_t* out,
+                                  size_t out_capacity) {
+  if (packet_size < kHeaderSize || packet_size > kMaxPacketSize) return Status::kBadLength;
+  // Room for the largest frame (the telemetry buffers have it) avoids a division per frame.
+  if (out_capacity >= kMaxFrameSize || out_capacity > CobsMaxEncodedSize(packet_size + kCrcSize)) {
+    return EncodeFrameWordwise(packet, packet_size, out);
+  }
+  const uint32_t crc = Crc32(packet, packet_size);
+  for (size_t i = 0; i < kCrcSize; ++i)
+    packet[packet_size + i] = static_cast<uint8_t>(crc >> (8 * i));
+  if (out_capacity < 1) return Status::kOverflow;
+  const size_t encoded = CobsEncode(packet, packet_size + kCrcSize, out, out_capacity - 1);
+  if (encoded == 0) return Status::kOverflow;
+  out[encoded] = kFrameDelimiter;
+  return encoded + 1;
+}
+
+Result<size_t> EncodeFrame(const uint8_t* packet, size_t packet_size, uint8_t* out,
+                           size_t out_capacity) {
+  if (packet_size < kHeaderSize || packet_size > kMaxPacketSize) return Status::kBadLength;
+  uint8_t raw[kMaxPacketSize + kCrcSize];
+  for (size_t i = 0; i < packet_size; ++i) raw[i] = packet[i];
+  return EncodeFrameInPlace(raw, packet_size, out, out_capacity);
 }
 
 }  // namespace palpa::protocol

@@ -1,7 +1,6 @@
-// Frame decoder and encoder: CRC and COBS around a packet, with resynchronisation on 0x00.
+// Frame decoder: CRC and COBS around a packet, with resynchronisation on 0x00.
 #include "palpa/protocol/framing.h"
 
-#include "frame_encoder.h"
 #include "palpa/protocol/crc32.h"
 
 namespace palpa::protocol {
@@ -68,30 +67,6 @@ FrameDecoder::Event FrameDecoder::Finish() {
   }
   last_error_ = error;
   return Event::kError;
-}
-
-Result<size_t> EncodeFrameInPlace(uint8_t* packet, size_t packet_size, uint8_t* out,
-                                  size_t out_capacity) {
-  if (packet_size < kHeaderSize || packet_size > kMaxPacketSize) return Status::kBadLength;
-  // Room for the largest frame (the telemetry buffers have it) avoids a division per frame.
-  if (out_capacity >= kMaxFrameSize || out_capacity > CobsMaxEncodedSize(packet_size + kCrcSize)) {
-    return EncodeFrameWordwise(packet, packet_size, out);
-  }
-  const uint32_t crc = Crc32(packet, packet_size);
-  for (size_t i = 0; i < kCrcSize; ++i) packet[packet_size + i] = static_cast<uint8_t>(crc >> (8 * i));
-  if (out_capacity < 1) return Status::kOverflow;
-  const size_t encoded = CobsEncode(packet, packet_size + kCrcSize, out, out_capacity - 1);
-  if (encoded == 0) return Status::kOverflow;
-  out[encoded] = kFrameDelimiter;
-  return encoded + 1;
-}
-
-Result<size_t> EncodeFrame(const uint8_t* packet, size_t packet_size, uint8_t* out,
-                           size_t out_capacity) {
-  if (packet_size < kHeaderSize || packet_size > kMaxPacketSize) return Status::kBadLength;
-  uint8_t raw[kMaxPacketSize + kCrcSize];
-  for (size_t i = 0; i < packet_size; ++i) raw[i] = packet[i];
-  return EncodeFrameInPlace(raw, packet_size, out, out_capacity);
 }
 
 }  // namespace palpa::protocol
