@@ -1,6 +1,7 @@
 // COBS encoder (Cheshire & Baker 1999), one pass, bounded by the caller's buffer.
 #include "palpa/protocol/cobs.h"
 
+#include "cobs_cursor.h"
 #include "palpa/protocol/wire.h"
 
 namespace palpa::protocol {
@@ -9,26 +10,9 @@ namespace {
 // The common case, when the caller's buffer is large enough for the worst case: no bounds checks
 // per byte (the telemetry frame is encoded every couple of ticks on a small MCU).
 size_t CobsEncodeUnchecked(const uint8_t* in, size_t size, uint8_t* out) {
-  const uint8_t* const end = in + size;
-  uint8_t* code_at = out;
-  uint8_t* dst = out + 1;
-  // The block length is dst - code_at: no separate counter to keep in a byte-sized register.
-  while (in != end) {
-    const uint8_t byte = *in++;
-    if (byte == 0) {
-      *code_at = static_cast<uint8_t>(dst - code_at);
-      code_at = dst++;
-      continue;
-    }
-    *dst++ = byte;
-    if (dst - code_at == 0xFF) {  // a full block: 254 data bytes
-      *code_at = 0xFF;
-      if (in == end) return static_cast<size_t>(dst - out);  // a full block ends the input
-      code_at = dst++;
-    }
-  }
-  *code_at = static_cast<uint8_t>(dst - code_at);
-  return static_cast<size_t>(dst - out);
+  CobsCursor cobs{out, out + 1};
+  cobs.Bytes(in, in + size);
+  return static_cast<size_t>(cobs.dst - out);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 // within its instruction budget on a Cortex-M4.
 #include <array>
 
+#include "cobs_cursor.h"
 #include "crc32_tables.h"
 #include "palpa/protocol/cobs.h"
 #include "palpa/protocol/crc32.h"
@@ -50,65 +51,23 @@ constexpr std::array<WordCodes, 16> MakeWordCodes() {
 
 constexpr std::array<WordCodes, 16> kWordCodes = MakeWordCodes();
 
-// COBS state: `code_at` is the pending code byte of the open block, `dst` the next free byte;
-// the block length (code byte included) is dst - code_at.
-struct CobsCursor {
-  uint8_t* code_at;
-  uint8_t* dst;
-
-  // Ends the open block at `zero_at`, where a zero byte was (speculatively) copied: that byte
-  // becomes the next block's code byte.
-  void CloseAt(uint8_t* zero_at) {
-    *code_at = static_cast<uint8_t>(zero_at - code_at);
-    code_at = zero_at;
+// Copies one word; its zero bytes become code bytes. False when it had no zero, which is the
+// only case that lengthens the open block.
+inline bool CobsWord(CobsCursor& cobs, uint32_t word) {
+  uint8_t* const at = cobs.dst;
+  cobs.dst = at + 4;
+  const uint32_t zeros = ZeroBytes(word);
+  if (zeros == 0) {
+    __builtin_memcpy(at, &word, sizeof(word));
+    return false;
   }
-
-  // Copies one word; its zero bytes become code bytes. False when it had no zero, which is the
-  // only case that lengthens the open block.
-  bool Word(uint32_t word) {
-    uint8_t* const at = dst;
-    dst = at + 4;
-    const uint32_t zeros = ZeroBytes(word);
-    if (zeros == 0) {
-      __builtin_memcpy(at, &word, sizeof(word));
-      return false;
-    }
-    const WordCodes& codes = kWordCodes[ZeroPattern(zeros)];
-    const uint32_t coded = word | codes.inner_codes;
-    __builtin_memcpy(at, &coded, sizeof(coded));
-    CloseAt(dst + codes.first_zero);
-    code_at = dst + codes.last_zero;
-    return true;
-  }
-
-  // One byte, when the open block cannot reach 254 data bytes before the input ends.
-  void ShortByte(uint8_t byte) {
-    if (byte == 0) {
-      CloseAt(dst++);
-    } else {
-      *dst++ = byte;
-    }
-  }
-
-  // Byte-at-a-time COBS for long zero-free runs (254-byte blocks).
-  void Bytes(const uint8_t* in, const uint8_t* end) {
-    while (in != end) {
-      const uint8_t byte = *in++;
-      if (byte == 0) {
-        *code_at = static_cast<uint8_t>(dst - code_at);
-        code_at = dst++;
-        continue;
-      }
-      *dst++ = byte;
-      if (dst - code_at == 0xFF) {  // a full block: 254 data bytes
-        *code_at = 0xFF;
-        if (in == end) return;  // a full block ends the input: no further code byte
-        code_at = dst++;
-      }
-    }
-    *code_at = static_cast<uint8_t>(dst - code_at);
-  }
-};
+  const WordCodes& codes = kWordCodes[ZeroPattern(zeros)];
+  const uint32_t coded = word | codes.inner_codes;
+  __builtin_memcpy(at, &coded, sizeof(coded));
+  cobs.CloseAt(cobs.dst + codes.first_zero);
+  cobs.code_at = cobs.dst + codes.last_zero;
+  return true;
+}
 
 // Where the word loop stopped; the layout is shared with the ARMv7E-M loop.
 struct FrameWords {
@@ -143,7 +102,7 @@ uint8_t* FastFrame(FrameWords& s, uint8_t* packet_end) {
     in += 4;
     crc = tables.Word(crc, word);
     // Past 250 the next word could overfill the block: finish byte by byte, which splits it.
-    if (!cobs.Word(word) && cobs.dst - cobs.code_at > 250) break;
+    if (!CobsWord(cobs, word) && cobs.dst - cobs.code_at > 250) break;
   }
   s = FrameWords{in, cobs.dst, cobs.code_at, crc};
   if (in != words_end || cobs.dst - cobs.code_at + kLongestTail >= 0xFF) return nullptr;
@@ -154,7 +113,7 @@ uint8_t* FastFrame(FrameWords& s, uint8_t* packet_end) {
   __builtin_memcpy(packet_end, &crc, kCrcSize);
   uint32_t word;
   __builtin_memcpy(&word, in, sizeof(word));
-  cobs.Word(word);
+  CobsWord(cobs, word);
   for (const uint8_t* p = in + 4; p != packet_end + kCrcSize; ++p) cobs.ShortByte(*p);
   *cobs.code_at = static_cast<uint8_t>(cobs.dst - cobs.code_at);
   *cobs.dst = kFrameDelimiter;

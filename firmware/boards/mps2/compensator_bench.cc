@@ -1,19 +1,12 @@
 // Compensator cost image for the MPS2 AN386 (Cortex-M4F) under QEMU: every method and size steps
 // through the same sweep of targets, each behind its own function so the instruction-count
 // plugin can attribute steps to methods (tests/bench/hysteresis.sh). Exits through semihosting.
-#include "board_shell.h"
 #include "palpa/core/compensator.h"
 #include "palpa/core/curve.h"
 #include "semihosting.h"
 
 namespace pc = palpa::core;
 namespace pp = palpa::protocol;
-
-namespace palpa::boards::mps2 {
-void WriteSafeCodes() {}  // no outputs in this image
-void OnSysTick() {}
-void OnUartRx() {}
-}  // namespace palpa::boards::mps2
 
 namespace {
 
