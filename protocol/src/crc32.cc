@@ -30,10 +30,11 @@ constinit const Crc32Tables kCrc32Tables = MakeTables();
 
 uint32_t Crc32Update(uint32_t crc, const uint8_t* data, size_t size) {
   uint32_t c = ~crc;
+  const Crc32Bases tables;
   while (size >= 4) {
     uint32_t word;
     __builtin_memcpy(&word, data, sizeof(word));  // one load; both targets are little-endian
-    c = Crc32Word(c, word);
+    c = tables.Word(c, word);
     data += 4;
     size -= 4;
   }

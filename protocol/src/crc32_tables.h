@@ -1,4 +1,4 @@
-// The CRC-32 slicing tables and one-word / one-byte steps, shared by the CRC and the frame encoder.
+// The CRC-32 slicing tables and their word and byte steps, shared by the CRC and the frame encoder.
 #pragma once
 
 #include <array>
@@ -15,15 +15,8 @@ using Crc32Tables = std::array<std::array<uint32_t, 256>, 4>;
 /// Hidden: one module's data, addressed PC-relative even in position-independent builds.
 extern const Crc32Tables kCrc32Tables __attribute__((visibility("hidden")));
 
-/// Advances the (inverted) CRC register over four bytes loaded as one little-endian word.
-inline uint32_t Crc32Word(uint32_t c, uint32_t word) {
-  c ^= word;
-  return kCrc32Tables[3][c & 0xFFu] ^ kCrc32Tables[2][(c >> 8) & 0xFFu] ^
-         kCrc32Tables[1][(c >> 16) & 0xFFu] ^ kCrc32Tables[0][c >> 24];
-}
-
-/// The four tables held in four registers, for a loop over many words: each lookup is then one
-/// load (a shared base would cost an extra address add for three of the four).
+/// The four tables held in four registers, for a loop over words: each lookup is then one load
+/// (a shared base would cost an extra address add for three of the four).
 struct Crc32Bases {
   const uint32_t* t0 = kCrc32Tables[0].data();
   const uint32_t* t1 = kCrc32Tables[1].data();
@@ -34,6 +27,7 @@ struct Crc32Bases {
     // Hides that the bases are one array apart, so the compiler keeps four registers.
     asm("" : "+r"(t1), "+r"(t2), "+r"(t3));
   }
+  /// Advances the (inverted) CRC register over four bytes loaded as one little-endian word.
   uint32_t Word(uint32_t c, uint32_t word) const {
     c ^= word;
     return t3[c & 0xFFu] ^ t2[(c >> 8) & 0xFFu] ^ t1[(c >> 16) & 0xFFu] ^ t0[c >> 24];

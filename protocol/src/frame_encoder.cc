@@ -77,6 +77,13 @@ struct FrameWords {
   uint32_t crc;  // inverted CRC register
 };
 
+// Continues the inverted CRC register over [rest, packet_end) and writes the CRC, little-endian,
+// in the spare bytes after the packet.
+void AppendCrc(uint32_t crc_register, const uint8_t* rest, uint8_t* packet_end) {
+  const uint32_t crc = Crc32Update(~crc_register, rest, static_cast<size_t>(packet_end - rest));
+  __builtin_memcpy(packet_end, &crc, kCrcSize);
+}
+
 // The open block may grow by up to seven bytes in the tail (three packet bytes and the CRC).
 constexpr ptrdiff_t kLongestTail = 3 + kCrcSize;
 
@@ -108,9 +115,7 @@ uint8_t* FastFrame(FrameWords& s, uint8_t* packet_end) {
   if (in != words_end || cobs.dst - cobs.code_at + kLongestTail >= 0xFF) return nullptr;
   // The last one to three packet bytes into the CRC, the CRC after the packet, then four to
   // seven bytes that cannot fill a block: one word and the rest.
-  for (const uint8_t* p = in; p != packet_end; ++p) crc = Crc32Byte(crc, *p);
-  crc = ~crc;
-  __builtin_memcpy(packet_end, &crc, kCrcSize);
+  AppendCrc(crc, in, packet_end);
   uint32_t word;
   __builtin_memcpy(&word, in, sizeof(word));
   CobsWord(cobs, word);
@@ -128,10 +133,7 @@ size_t EncodeFrameWordwise(uint8_t* packet, size_t packet_size, uint8_t* out) {
   FrameWords words{packet, out + 1, out, ~0u};
   if (const uint8_t* end = FastFrame(words, packet_end)) return static_cast<size_t>(end - out);
   // A long zero-free run: the rest of the packet and the CRC byte by byte, splitting full blocks.
-  uint32_t crc = words.crc;
-  for (const uint8_t* p = words.in; p != packet_end; ++p) crc = Crc32Byte(crc, *p);
-  crc = ~crc;
-  __builtin_memcpy(packet + packet_size, &crc, kCrcSize);
+  AppendCrc(words.crc, words.in, packet_end);
   CobsCursor cobs{words.code_at, words.dst};
   cobs.Bytes(words.in, packet_end + kCrcSize);
   *cobs.dst = kFrameDelimiter;
@@ -147,9 +149,7 @@ Result<size_t> EncodeFrameInPlace(uint8_t* packet, size_t packet_size, uint8_t* 
   if (out_capacity >= kMaxFrameSize || out_capacity > CobsMaxEncodedSize(packet_size + kCrcSize)) {
     return EncodeFrameWordwise(packet, packet_size, out);
   }
-  const uint32_t crc = Crc32(packet, packet_size);
-  for (size_t i = 0; i < kCrcSize; ++i)
-    packet[packet_size + i] = static_cast<uint8_t>(crc >> (8 * i));
+  AppendCrc(~0u, packet, packet + packet_size);
   if (out_capacity < 1) return Status::kOverflow;
   const size_t encoded = CobsEncode(packet, packet_size + kCrcSize, out, out_capacity - 1);
   if (encoded == 0) return Status::kOverflow;
