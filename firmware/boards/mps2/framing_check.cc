@@ -4,39 +4,21 @@
 #include "palpa/protocol/cobs.h"
 #include "palpa/protocol/crc32.h"
 #include "palpa/protocol/framing.h"
+#include "check_random.h"
 #include "semihosting.h"
 
 namespace pp = palpa::protocol;
 
 namespace {
 
-uint32_t g_random = 0x2545F491u;
+palpa::boards::mps2::XorShift32 g_random(0x2545F491u);
 
-uint32_t NextRandom() {  // xorshift32: deterministic, so a failure repeats
-  g_random ^= g_random << 13;
-  g_random ^= g_random >> 17;
-  g_random ^= g_random << 5;
-  return g_random;
-}
+uint32_t NextRandom() { return g_random.Next(); }
 
 uint8_t g_packet[pp::kMaxPacketSize + pp::kCrcSize];
 uint8_t g_copy[pp::kMaxPacketSize + pp::kCrcSize];
 uint8_t g_fast[pp::kMaxFrameSize + 16];
 uint8_t g_reference[pp::kMaxFrameSize];
-
-void PrintNumber(const char* label, uint32_t value) {
-  palpa::boards::mps2::SemihostPrint(label);
-  char text[12];
-  int n = 11;
-  text[n] = '\0';
-  text[--n] = ' ';
-  do {
-    text[--n] = static_cast<char>('0' + value % 10);
-    value /= 10;
-  } while (value != 0);
-  text[--n] = ' ';
-  palpa::boards::mps2::SemihostPrint(text + n);
-}
 
 // True when the fast path (spare room after the packet and in the output) equals the frame built
 // from the CRC and the byte-wise COBS encoder.
@@ -67,8 +49,8 @@ int main() {
       }
       ++frames;
       if (!FrameMatches(size)) {
-        PrintNumber("size", static_cast<uint32_t>(size));
-        PrintNumber("zero%", zero_percent);
+        palpa::boards::mps2::SemihostPrintNumber("size", static_cast<uint32_t>(size));
+        palpa::boards::mps2::SemihostPrintNumber("zero%", zero_percent);
         palpa::boards::mps2::SemihostPrint("framing check: mismatch\n");
         palpa::boards::mps2::SemihostExit(1);
       }
@@ -86,15 +68,15 @@ int main() {
         if (size < pp::kHeaderSize) continue;
         ++frames;
         if (!FrameMatches(size)) {
-          PrintNumber("run", static_cast<uint32_t>(run));
-          PrintNumber("start", static_cast<uint32_t>(start));
+          palpa::boards::mps2::SemihostPrintNumber("run", static_cast<uint32_t>(run));
+          palpa::boards::mps2::SemihostPrintNumber("start", static_cast<uint32_t>(start));
           palpa::boards::mps2::SemihostPrint("framing check: mismatch\n");
           palpa::boards::mps2::SemihostExit(1);
         }
       }
     }
   }
-  PrintNumber("framing check: frames equal", frames);
+  palpa::boards::mps2::SemihostPrintNumber("framing check: frames equal", frames);
   palpa::boards::mps2::SemihostPrint("\n");
   palpa::boards::mps2::SemihostExit(0);
 }

@@ -2,6 +2,8 @@
 #include "palpa/core/compensator.h"
 
 #include "palpa/core/curve.h"
+#include "play_lanes.h"
+#include "play_pairs.h"
 
 namespace palpa::core {
 namespace {
@@ -17,30 +19,32 @@ float OutputMapInverse(const PlayTable& t, float s) {
   return t.knot_in[k] + (s - t.knot_out[k]) * t.inverse_slope[k];
 }
 
-/// ½(|d + r| − |d − r|) = clamp(d, −r, r) for r ≥ 0: two absolute values instead of two
-/// compare-and-select pairs, because the Cortex-M4's FPU has no min or max.
-inline float HalfBand(float d, float r) { return __builtin_fabsf(d + r) - __builtin_fabsf(d - r); }
+// Where the inverse-domain sum starts is clamped to ±2³⁰ sum steps: the scales keep every
+// operator's share within 2²⁸ and every inverse threshold within 2²⁹, so a clamped start still
+// puts each inverse state beyond its threshold (as the true one is) and no sum leaves int32.
+constexpr float kStartLimit = 1073741824.0f;  // 2³⁰
+constexpr float kHalfUpperStep = 32768.0f;    // rounds the states' upper halves to nearest
+constexpr float kMaxAppliedSteps = 16777216.0f;  // 2²⁴: exact in float, far beyond any sensor
 
-/// Analytic PI inverse evaluated from the forward memory. One backward pass does both jobs:
-/// each play operator first follows the applied drive, then its inverse-domain state
-/// z'_i = W_i z_i + Σ_{j>i} w_j z_j follows the target — so no inverse memory is kept that
-/// could drift away from what the chamber actually saw. Clamped states are written as centre +
-/// half band, so the centres' share of the sum is the precomputed inverse_gain · v.
-float PlayStep(const PlayTable& t, float* z, float v, float applied) {
-  float later = -v;  // Σ_{j>i} w_j z_j − v: the inverse state's offset from the target
-  float drive = 0;
-  const PlayOperator* op = t.op + t.operators;
-  float* zi = z + t.operators;
-  while (op != t.op) {
-    --op;
-    --zi;
-    const float state = applied + 0.5f * HalfBand(*zi - applied, op->threshold);
-    *zi = state;
-    const float inverse_offset = op->cumulative * state + later;
-    later += op->weight * state;
-    drive += op->half_inverse_weight * HalfBand(inverse_offset, op->inverse_threshold);
-  }
-  return drive + t.inverse_gain * v;
+/// Analytic PI inverse evaluated from the forward memory, two operators per word, top pair
+/// first. Each forward operator first follows the applied drive (its memory is kept relative
+/// to the last applied drive, so that is one saturating add and a clamp); then its
+/// inverse-domain state z'_i − v = (W_n a − v) + W_i c_i + Σ_{j>i} w_j c_j follows the target
+/// (a clamp to ±r'_i) and adds w'_i times itself to the drive. No inverse memory is kept that
+/// could drift away from what the chamber actually saw.
+float PlayStep(const PlayTable& t, CompensatorState& s, float v, float applied) {
+  const float a = applied * t.per_drive_step + 0.5f;
+  const int32_t applied_steps = static_cast<int32_t>(a < kMaxAppliedSteps ? a : kMaxAppliedSteps);
+  // Beyond ±32767 steps every operator ends on its clamp anyway (|r| ≤ 16383 steps).
+  const int32_t moved = lanes::Saturate(s.applied_steps - applied_steps);
+  s.applied_steps = applied_steps;
+  const uint32_t shift = lanes::Pack(moved, moved);
+  float start = t.applied_gain * static_cast<float>(applied_steps) - v * t.per_sum_step;
+  start = start < -kStartLimit ? -kStartLimit : (start > kStartLimit ? kStartLimit : start);
+  const int32_t later = static_cast<int32_t>(start + kHalfUpperStep);
+  const int32_t drive =
+      PlayPairs(t.pair, s.play, static_cast<uint8_t>((t.operators + 1) / 2), shift, later);
+  return static_cast<float>(drive) * t.drive_gain + t.inverse_gain * v;
 }
 
 /// Which curve is active follows the applied drive: a move of more than the dead band against
@@ -78,7 +82,8 @@ void HomeCompensator(const Compensator& c, CompensatorState& s) {
   if (c.kind == CompensatorKind::kPrandtlIshlinskii || c.kind == CompensatorKind::kAsymmetricPi) {
     // Vented from any height: every operator rests on its upper clamp at u = 0, which is also
     // where one-sided drive always returns it (the chamber's memory is wiped at 0).
-    for (uint8_t i = 0; i < c.play.operators; ++i) s.z[i] = c.play.op[i].threshold;
+    for (uint8_t k = 0; k < (c.play.operators + 1) / 2; ++k) s.play[k] = c.play.pair[k].threshold;
+    s.applied_steps = 0;
   } else if (c.kind == CompensatorKind::kBranch) {  // on the rising curve from the bottom
     s.rising = true;
     s.extreme = 0;
@@ -94,10 +99,11 @@ CompensatorOutput StepCompensator(const Compensator& c, CompensatorState& s, flo
   if (c.kind == CompensatorKind::kBranch) {
     FollowBranch(c.branch, s, applied);
     drive = BranchDrive(c.branch, s, target);
-    outside = target > c.branch.output[c.branch.points - 1] || target < c.branch.output[0];  // its curves' ends
+    // Beyond its curves' ends.
+    outside = target > c.branch.output[c.branch.points - 1] || target < c.branch.output[0];
   } else {
     const float v = OutputMapInverse(c.play, target - c.play.offset);
-    drive = PlayStep(c.play, s.z, v, applied);
+    drive = PlayStep(c.play, s, v, applied);
   }
   CompensatorOutput out;
   out.saturated = outside;
@@ -114,12 +120,23 @@ CompensatorOutput StepCompensator(const Compensator& c, CompensatorState& s, flo
   return out;
 }
 
+float PlayState(const Compensator& c, const CompensatorState& s, uint8_t i) {
+  const uint32_t pair = s.play[i / 2];
+  const int32_t lane = i % 2 == 0 ? lanes::Low(pair) : lanes::High(pair);
+  return static_cast<float>(s.applied_steps + lane) * c.play.drive_step;
+}
+
 float PlayForward(const Compensator& c, const CompensatorState& s, float u) {
   const PlayTable& t = c.play;
-  float v = u / t.w0_inverse;
+  const float weight_unit = t.sum_step * t.per_drive_step;  // output units per Pa per weight step
+  float v = t.w0 * u;
   for (uint8_t i = 0; i < t.operators; ++i) {
-    const PlayOperator& op = t.op[i];
-    v += op.weight * Clamp(s.z[i], u - op.threshold, u + op.threshold);
+    const PlayPair& pair = t.pair[i / 2];
+    const bool low = i % 2 == 0;
+    const float r = static_cast<float>(low ? lanes::Low(pair.threshold)
+                                           : lanes::High(pair.threshold)) * t.drive_step;
+    const float w = static_cast<float>(low ? lanes::Low(pair.weight) : lanes::High(pair.weight));
+    v += w * weight_unit * Clamp(PlayState(c, s, i), u - r, u + r);
   }
   // S(v): back through the knots of S⁻¹.
   uint8_t k = t.dead_zones;

@@ -5,6 +5,8 @@
 //   branch: [band, dead_band, y_1..y_K, rising_1..rising_K, falling_1..falling_K]  K = 2..24
 #include "palpa/core/compensator.h"
 
+#include "play_lanes.h"
+
 namespace palpa::core {
 namespace {
 
@@ -100,6 +102,81 @@ const char* BranchError(const protocol::ConfigureFinger& f) {
   return nullptr;
 }
 
+int32_t Round(float v) { return static_cast<int32_t>(v + (v < 0 ? -0.5f : 0.5f)); }
+float Largest(float a, float b) { return a > b ? a : b; }
+float Magnitude(float v) { return v < 0 ? -v : v; }
+
+/// The integer operator tables of PlayTable and their scales, chosen per parameter set so that
+///  * thresholds take at most 14 bits (a drive change saturated at ±32767 steps still moves
+///    every operator onto its clamp, as the true change would);
+///  * every W_i and w_i fits int16;
+///  * Σ_j |w_j| r_j + max_i |W_i| r_i ≤ 2²⁸ sum steps and every r'_i ≤ 2²⁹: PlayStep's sums stay
+///    inside int32 from any start in ±2³⁰, and a clamped start leaves every state clamped;
+///  * every w'_i fits int16 and Σ |w'_i| r'_i fits the drive accumulator with room (2³⁰).
+void BuildPlayOperators(const float* r, const float* w, uint8_t n, PlayTable& t) {
+  constexpr float kTwo16 = 65536.0f;
+  float cumulative[kMaxPlayOperators];
+  float inverse_threshold[kMaxPlayOperators];
+  float inverse_weight[kMaxPlayOperators];
+  float before = t.w0;  // W_{i-1}
+  float weighted_thresholds = 0;
+  float largest_weight = 0;
+  float weighted_spread = 0;   // Σ |w_j| r_j
+  float widest = 0;            // max |W_i| r_i
+  float largest_inverse_threshold = 0;
+  t.inverse_gain = 1.0f / t.w0;
+  for (uint8_t i = 0; i < n; ++i) {
+    cumulative[i] = before + w[i];
+    weighted_thresholds += w[i] * r[i];
+    inverse_threshold[i] = cumulative[i] * r[i] - weighted_thresholds;
+    inverse_weight[i] = -w[i] / (cumulative[i] * before);
+    t.inverse_gain += inverse_weight[i];
+    largest_weight = Largest(largest_weight, Largest(cumulative[i], Magnitude(w[i])));
+    weighted_spread += Magnitude(w[i]) * r[i];
+    widest = Largest(widest, cumulative[i] * r[i]);
+    largest_inverse_threshold = Largest(largest_inverse_threshold, Magnitude(inverse_threshold[i]));
+    before = cumulative[i];
+  }
+  t.drive_step = Largest(r[n - 1] / 16383.0f, 0.01f);
+  t.per_drive_step = 1.0f / t.drive_step;
+  t.sum_step = Largest(Largest(largest_weight * t.drive_step / 32767.0f,
+                               (weighted_spread + widest) / 268435456.0f),
+                       largest_inverse_threshold / (kTwo16 * 8191.0f));
+  t.per_sum_step = 1.0f / t.sum_step;
+  const float weight_scale = t.drive_step * t.per_sum_step;  // sum steps per drive step
+  t.applied_gain = before * weight_scale;
+  int32_t state_bound[kMaxPlayOperators];
+  float largest_inverse_weight = 0;
+  float inverse_spread = 0;
+  for (uint8_t i = 0; i < n; ++i) {
+    state_bound[i] = Round(Magnitude(inverse_threshold[i]) * t.per_sum_step / kTwo16);
+    largest_inverse_weight = Largest(largest_inverse_weight, Magnitude(inverse_weight[i]));
+    inverse_spread += Magnitude(inverse_weight[i]) * static_cast<float>(state_bound[i]);
+  }
+  const float inverse_weight_step =
+      Largest(Largest(largest_inverse_weight / 32767.0f, inverse_spread / 1073741824.0f), 1e-30f);
+  t.drive_gain = inverse_weight_step * kTwo16 * t.sum_step;
+  for (uint8_t k = 0; k < (n + 1) / 2; ++k) {
+    int32_t lane[2][5] = {};  // r, W, w, r', w' of operators 2k and 2k+1 (zero: a padding one)
+    for (uint8_t j = 0; j < 2 && 2 * k + j < n; ++j) {
+      const uint8_t i = static_cast<uint8_t>(2 * k + j);
+      lane[j][0] = Round(r[i] * t.per_drive_step);
+      lane[j][1] = Round(cumulative[i] * weight_scale);
+      lane[j][2] = Round(w[i] * weight_scale);
+      lane[j][3] = state_bound[i];
+      lane[j][4] = Round(inverse_weight[i] / inverse_weight_step);
+    }
+    PlayPair& pair = t.pair[k];
+    pair.threshold = lanes::Pack(lane[0][0], lane[1][0]);
+    pair.negative_threshold = lanes::Pack(-lane[0][0], -lane[1][0]);
+    pair.cumulative = lanes::Pack(lane[0][1], lane[1][1]);
+    pair.weight = lanes::Pack(lane[0][2], lane[1][2]);
+    pair.inverse_threshold = lanes::Pack(lane[0][3], lane[1][3]);
+    pair.negative_inverse_threshold = lanes::Pack(-lane[0][3], -lane[1][3]);
+    pair.inverse_weight = lanes::Pack(lane[0][4], lane[1][4]);
+  }
+}
+
 Compensator MakePlay(const protocol::ConfigureFinger& f, Compensator c) {
   PlayLayout l;
   ReadPlayLayout(f, l);
@@ -110,22 +187,8 @@ Compensator MakePlay(const protocol::ConfigureFinger& f, Compensator c) {
   t.operators = l.n;
   t.dead_zones = l.m;
   t.offset = p[0];
-  t.w0_inverse = 1.0f / p[1];
-  t.inverse_gain = t.w0_inverse;
-  float before = p[1];  // W_{i-1}
-  float weighted_thresholds = 0;
-  for (uint8_t i = 0; i < l.n; ++i) {
-    PlayOperator& op = t.op[i];
-    op.threshold = r[i];
-    op.weight = w[i];
-    op.cumulative = before + w[i];
-    weighted_thresholds += w[i] * r[i];
-    op.inverse_threshold = op.cumulative * r[i] - weighted_thresholds;
-    const float inverse_weight = -w[i] / (op.cumulative * before);
-    op.half_inverse_weight = 0.5f * inverse_weight;
-    t.inverse_gain += inverse_weight;
-    before = op.cumulative;
-  }
+  t.w0 = p[1];
+  BuildPlayOperators(r, w, l.n, t);
   // S(v) = v + Σ g_k max(v − d_k, 0): knots at d_k; S⁻¹ slope above knot k is 1 / (1 + Σ_{j≤k}
   // g_j).
   const float* d = w + l.n;

@@ -1,0 +1,92 @@
+// Two 16-bit lanes in one word: the play operators' integer arithmetic, ARMv7E-M DSP or portable.
+//
+// The PI step clamps two play operators per instruction pair with the DSP extension's GE flags
+// (SSUB16/SADD16 then SEL), since the Cortex-M4's FPU has neither min nor max. The portable
+// versions compute the same bits, so the host, the simulator and the board agree exactly.
+#pragma once
+
+#include <cstdint>
+
+#if defined(__ARM_FEATURE_SIMD32) && __ARM_FEATURE_SIMD32
+#include <arm_acle.h>
+#define PALPA_PLAY_LANES_DSP 1
+#endif
+
+namespace palpa::core::lanes {
+
+inline int32_t Low(uint32_t v) { return static_cast<int16_t>(v & 0xFFFFu); }
+inline int32_t High(uint32_t v) { return static_cast<int16_t>(v >> 16); }
+inline uint32_t Pack(int32_t low, int32_t high) {
+  return (static_cast<uint32_t>(low) & 0xFFFFu) | (static_cast<uint32_t>(high) << 16);
+}
+
+/// v saturated to the int16 range (SSAT #16).
+inline int32_t Saturate(int32_t v) {
+#ifdef PALPA_PLAY_LANES_DSP
+  return __ssat(v, 16);
+#else
+  return v > 32767 ? 32767 : (v < -32768 ? -32768 : v);
+#endif
+}
+
+/// Both lanes of a + b, each saturated to int16 (QADD16).
+inline uint32_t SaturatingAdd(uint32_t a, uint32_t b) {
+#ifdef PALPA_PLAY_LANES_DSP
+  return static_cast<uint32_t>(__qadd16(static_cast<int16x2_t>(a), static_cast<int16x2_t>(b)));
+#else
+  auto sat = [](int32_t v) { return v > 32767 ? 32767 : (v < -32768 ? -32768 : v); };
+  return Pack(sat(Low(a) + Low(b)), sat(High(a) + High(b)));
+#endif
+}
+
+/// Each lane of v clamped to [−bound, bound]; `negative` holds −bound. bound ≥ 0.
+inline uint32_t Clamp(uint32_t v, uint32_t bound, uint32_t negative) {
+#ifdef PALPA_PLAY_LANES_DSP
+  // SSUB16 sets GE where v ≥ bound (exact, from the 17-bit difference): SEL takes the bound
+  // there. SADD16 then sets GE where v ≥ −bound: SEL keeps v there and takes −bound elsewhere.
+  (void)__ssub16(static_cast<int16x2_t>(v), static_cast<int16x2_t>(bound));
+  const uint32_t below = __sel(bound, v);
+  (void)__sadd16(static_cast<int16x2_t>(below), static_cast<int16x2_t>(bound));
+  return __sel(below, negative);
+#else
+  auto clamp = [](int32_t x, int32_t hi, int32_t lo) { return x >= hi ? hi : (x >= lo ? x : lo); };
+  return Pack(clamp(Low(v), Low(bound), Low(negative)),
+              clamp(High(v), High(bound), High(negative)));
+#endif
+}
+
+/// acc + low(a)·low(b), wrapping like SMLABB (the scales keep the true sums in range).
+inline int32_t MulAddLow(uint32_t a, uint32_t b, int32_t acc) {
+#ifdef PALPA_PLAY_LANES_DSP
+  return __smlabb(static_cast<int32_t>(a), static_cast<int32_t>(b), acc);
+#else
+  return static_cast<int32_t>(static_cast<uint32_t>(acc) + static_cast<uint32_t>(Low(a) * Low(b)));
+#endif
+}
+
+/// acc + high(a)·high(b) (SMLATT).
+inline int32_t MulAddHigh(uint32_t a, uint32_t b, int32_t acc) {
+#ifdef PALPA_PLAY_LANES_DSP
+  return __smlatt(static_cast<int32_t>(a), static_cast<int32_t>(b), acc);
+#else
+  return static_cast<int32_t>(static_cast<uint32_t>(acc) +
+                              static_cast<uint32_t>(High(a) * High(b)));
+#endif
+}
+
+/// acc + low(a)·low(b) + high(a)·high(b) (SMLAD).
+inline int32_t DualMulAdd(uint32_t a, uint32_t b, int32_t acc) {
+#ifdef PALPA_PLAY_LANES_DSP
+  return __smlad(static_cast<int16x2_t>(a), static_cast<int16x2_t>(b), acc);
+#else
+  return MulAddHigh(a, b, MulAddLow(a, b, acc));
+#endif
+}
+
+/// The upper halves of two words as one pair (PKHTB ..., ASR #16): each value divided by 2¹⁶,
+/// rounded down. `high` goes to the high lane.
+inline uint32_t UpperHalves(int32_t low, int32_t high) {
+  return (static_cast<uint32_t>(high) & 0xFFFF0000u) | (static_cast<uint32_t>(low) >> 16);
+}
+
+}  // namespace palpa::core::lanes
