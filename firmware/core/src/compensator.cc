@@ -19,9 +19,10 @@ float OutputMapInverse(const PlayTable& t, float s) {
   return t.knot_in[k] + (s - t.knot_out[k]) * t.inverse_slope[k];
 }
 
-// Where the inverse-domain sum starts is clamped to ±2³⁰ sum steps: the scales keep every
-// operator's share within 2²⁸ and every inverse threshold within 2²⁹, so a clamped start still
-// puts each inverse state beyond its threshold (as the true one is) and no sum leaves int32.
+// Where the inverse-domain sum starts is clamped to ±2³⁰ sum steps: the scales keep the
+// operators' shares and every inverse threshold within 2²⁹ (compensator_params.cc), so a
+// clamped start still puts each inverse state beyond its threshold (as the true one is) and no
+// sum leaves int32.
 constexpr float kStartLimit = 1073741824.0f;  // 2³⁰
 constexpr float kHalfUpperStep = 32768.0f;    // rounds the states' upper halves to nearest
 constexpr float kMaxAppliedSteps = 16777216.0f;  // 2²⁴: exact in float, far beyond any sensor

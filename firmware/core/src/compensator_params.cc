@@ -110,8 +110,9 @@ float Magnitude(float v) { return v < 0 ? -v : v; }
 ///  * thresholds take at most 14 bits (a drive change saturated at ±32767 steps still moves
 ///    every operator onto its clamp, as the true change would);
 ///  * every W_i and w_i fits int16;
-///  * Σ_j |w_j| r_j + max_i |W_i| r_i ≤ 2²⁸ sum steps and every r'_i ≤ 2²⁹: PlayStep's sums stay
-///    inside int32 from any start in ±2³⁰, and a clamped start leaves every state clamped;
+///  * Σ_j |w_j| r_j + max_i |W_i| r_i ≤ 2²⁹ sum steps, which bounds every r'_i too
+///    (r'_i = W_i r_i − Σ_{j≤i} w_j r_j): PlayStep's sums stay inside int32 (within 1.5 · 2³⁰)
+///    from any start in ±2³⁰, and a start clamped there still leaves every state on its clamp;
 ///  * every w'_i fits int16 and Σ |w'_i| r'_i fits the drive accumulator with room (2³⁰).
 void BuildPlayOperators(const float* r, const float* w, uint8_t n, PlayTable& t) {
   constexpr float kTwo16 = 65536.0f;
@@ -123,7 +124,6 @@ void BuildPlayOperators(const float* r, const float* w, uint8_t n, PlayTable& t)
   float largest_weight = 0;
   float weighted_spread = 0;   // Σ |w_j| r_j
   float widest = 0;            // max |W_i| r_i
-  float largest_inverse_threshold = 0;
   t.inverse_gain = 1.0f / t.w0;
   for (uint8_t i = 0; i < n; ++i) {
     cumulative[i] = before + w[i];
@@ -134,14 +134,12 @@ void BuildPlayOperators(const float* r, const float* w, uint8_t n, PlayTable& t)
     largest_weight = Largest(largest_weight, Largest(cumulative[i], Magnitude(w[i])));
     weighted_spread += Magnitude(w[i]) * r[i];
     widest = Largest(widest, cumulative[i] * r[i]);
-    largest_inverse_threshold = Largest(largest_inverse_threshold, Magnitude(inverse_threshold[i]));
     before = cumulative[i];
   }
   t.drive_step = Largest(r[n - 1] / 16383.0f, 0.01f);
   t.per_drive_step = 1.0f / t.drive_step;
-  t.sum_step = Largest(Largest(largest_weight * t.drive_step / 32767.0f,
-                               (weighted_spread + widest) / 268435456.0f),
-                       largest_inverse_threshold / (kTwo16 * 8191.0f));
+  t.sum_step = Largest(largest_weight * t.drive_step / 32767.0f,
+                       (weighted_spread + widest) / 536870912.0f);
   t.per_sum_step = 1.0f / t.sum_step;
   const float weight_scale = t.drive_step * t.per_sum_step;  // sum steps per drive step
   t.applied_gain = before * weight_scale;
