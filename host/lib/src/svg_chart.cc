@@ -18,6 +18,20 @@ std::string Num(double v) {
   return b;
 }
 
+/// Text as SVG character data: a legend like "gap <= 30 %" must not open a tag.
+std::string Escape(const std::string& text) {
+  std::string out;
+  for (char ch : text) {
+    switch (ch) {
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '&': out += "&amp;"; break;
+      default: out += ch;
+    }
+  }
+  return out;
+}
+
 std::string Label(double v) {
   char b[32];
   std::snprintf(b, sizeof(b), "%g", std::fabs(v) < 1e-12 ? 0.0 : v);
@@ -64,7 +78,7 @@ std::string RenderSvg(const Chart& c) {
   auto py = [&](double y) { return top + (1 - (y - y0) / (y1 - y0)) * ph; };
   std::string svg = "<svg xmlns='http://www.w3.org/2000/svg' width='" + Num(c.width) + "' height='" + Num(c.height) +
                     "' font-family='sans-serif' font-size='12'>\n<rect width='100%' height='100%' fill='white'/>\n";
-  svg += "<text x='" + Num(c.width / 2) + "' y='22' text-anchor='middle' font-size='14'>" + c.title + "</text>\n";
+  svg += "<text x='" + Num(c.width / 2) + "' y='22' text-anchor='middle' font-size='14'>" + Escape(c.title) + "</text>\n";
   svg += "<rect x='" + Num(left) + "' y='" + Num(top) + "' width='" + Num(pw) + "' height='" + Num(ph) +
          "' fill='none' stroke='#444'/>\n";
   // A log axis is labelled at 1, 2 and 5 of each decade (round numbers a reader can place).
@@ -89,25 +103,29 @@ std::string RenderSvg(const Chart& c) {
     svg += "<line x1='" + Num(left) + "' y1='" + Num(y) + "' x2='" + Num(left + pw) + "' y2='" + Num(y) + "' stroke='#eee'/>";
     svg += "<text x='" + Num(left - 6) + "' y='" + Num(y + 4) + "' text-anchor='end'>" + Label(t) + "</text>\n";
   }
-  svg += "<text x='" + Num(left + pw / 2) + "' y='" + Num(c.height - 10) + "' text-anchor='middle'>" + c.x_label + "</text>\n";
-  svg += "<text transform='translate(16," + Num(top + ph / 2) + ") rotate(-90)' text-anchor='middle'>" + c.y_label + "</text>\n";
+  svg += "<text x='" + Num(left + pw / 2) + "' y='" + Num(c.height - 10) + "' text-anchor='middle'>" + Escape(c.x_label) + "</text>\n";
+  svg += "<text transform='translate(16," + Num(top + ph / 2) + ") rotate(-90)' text-anchor='middle'>" + Escape(c.y_label) + "</text>\n";
   for (size_t i = 0; i < c.series.size(); ++i) {
     const Series& s = c.series[i];
     const std::string color = s.color.empty() ? kPalette[i % 8] : s.color;
+    auto polyline = [&](const char* width, bool dashed) {
+      svg += "<polyline fill='none' stroke='" + color + "' stroke-width='" + width + "'" +
+             (dashed ? std::string(" stroke-dasharray='6,4'") : std::string()) + " points='";
+      for (const auto& [x, y] : s.points) svg += Num(px(x)) + "," + Num(py(y)) + " ";
+      svg += "'/>\n";
+    };
     if (s.markers) {
+      if (s.joined) polyline("1", false);
       for (const auto& [x, y] : s.points) {
         svg += "<circle cx='" + Num(px(x)) + "' cy='" + Num(py(y)) + "' r='4' fill='" + color + "'/>";
       }
     } else {
-      svg += "<polyline fill='none' stroke='" + color + "' stroke-width='1.6'" +
-             (s.dashed ? std::string(" stroke-dasharray='6,4'") : std::string()) + " points='";
-      for (const auto& [x, y] : s.points) svg += Num(px(x)) + "," + Num(py(y)) + " ";
-      svg += "'/>\n";
+      polyline("1.6", s.dashed);
     }
     const double ly = top + 14 + 18 * static_cast<double>(i);
     svg += "<line x1='" + Num(left + pw + 12) + "' y1='" + Num(ly - 4) + "' x2='" + Num(left + pw + 34) + "' y2='" +
            Num(ly - 4) + "' stroke='" + color + "' stroke-width='3'/>";
-    svg += "<text x='" + Num(left + pw + 40) + "' y='" + Num(ly) + "'>" + s.name + "</text>\n";
+    svg += "<text x='" + Num(left + pw + 40) + "' y='" + Num(ly) + "'>" + Escape(s.name) + "</text>\n";
   }
   return svg + "</svg>\n";
 }

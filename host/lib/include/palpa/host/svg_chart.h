@@ -13,6 +13,7 @@ struct Series {
   std::string color;  ///< CSS colour; empty picks one
   bool dashed = false;
   bool markers = false;  ///< draw points only (scatter)
+  bool joined = false;   ///< with markers: also join the points in order (a family of sizes)
 };
 
 struct Chart {

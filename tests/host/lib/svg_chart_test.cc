@@ -1,0 +1,36 @@
+// SVG charts: text that holds markup characters is escaped, so the document stays well-formed.
+#include <cctype>
+#include <string>
+
+#include "CppUTest/TestHarness.h"
+#include "palpa/host/svg_chart.h"
+
+namespace ph = palpa::host;
+
+TEST_GROUP(SvgChart){};
+
+TEST(SvgChart, LegendsTitlesAndAxisLabelsWithMarkupCharactersAreEscaped) {
+  ph::Chart chart;
+  chart.title = "error < 5 % & cost > 0";
+  chart.x_label = "instructions <per step>";
+  chart.y_label = "gap & residual";
+  chart.series.push_back({"goal: gap <= 30 %", {{0, 1}, {1, 2}}, "", true, false});
+  const std::string svg = ph::RenderSvg(chart);
+  CHECK(svg.find("goal: gap &lt;= 30 %") != std::string::npos);
+  CHECK(svg.find("error &lt; 5 % &amp; cost &gt; 0") != std::string::npos);
+  CHECK(svg.find("instructions &lt;per step&gt;") != std::string::npos);
+  CHECK(svg.find("gap &amp; residual") != std::string::npos);
+  // Every '<' opens a tag or a declaration, every '&' an entity.
+  for (size_t i = 0; i < svg.size(); ++i) {
+    if (svg[i] == '<') {
+      const char next = i + 1 < svg.size() ? svg[i + 1] : '\0';
+      CHECK_TEXT(std::isalpha(static_cast<unsigned char>(next)) || next == '/' || next == '?' ||
+                     next == '!',
+                 svg.substr(i, 20).c_str());
+    }
+    if (svg[i] == '&') {
+      const size_t end = svg.find(';', i);
+      CHECK_TEXT(end != std::string::npos && end - i <= 5, svg.substr(i, 20).c_str());
+    }
+  }
+}
