@@ -11,7 +11,7 @@ QEMU=${QEMU:-qemu-system-arm}
 . tests/bench/qemu_spans.inc
 
 args=""
-for method in None Branch12 Pi4 Pi8 Pi16 Pi32 Api8 Api16; do
+for method in None Branch4 Branch8 Branch12 Branch16 Pi4 Pi8 Pi16 Pi32 Api4 Api8 Api16 Api32; do
   args="$args${args:+,}$(span "$method" "Step$method" "$IMAGE")"
 done
 log=$(mktemp)
@@ -20,8 +20,8 @@ trap 'rm -f "$log"' EXIT
   -icount shift=3,sleep=off -plugin "$PLUGIN,$args" -d plugin -D "$log" -kernel "$IMAGE"
 echo "== compensators on Cortex-M4F (QEMU mps2-an386, exact instructions per step, 2 000 steps each) =="
 awk '/^insn-count: span/ { printf "  %-9s worst/step %5s  mean/step %8s\n", $3, $9, $7 }' "$log"
-costs=$(awk '/^insn-count: span/ { name = tolower($3); sub(/^branch12$/, "branch(12)", name);
-  if (name ~ /^(pi|api)[0-9]+$/) { match(name, /[0-9]+/); name = substr(name, 1, RSTART - 1) "(" substr(name, RSTART) ")" }
+costs=$(awk '/^insn-count: span/ { name = tolower($3);
+  if (name ~ /^(branch|pi|api)[0-9]+$/) { match(name, /[0-9]+/); name = substr(name, 1, RSTART - 1) "(" substr(name, RSTART) ")" }
   printf " --cost %s=%s", name, $9 }' "$log")
 # shellcheck disable=SC2086
 [ -n "${PALPA_COSTS_ONLY:-}" ] && exit 0

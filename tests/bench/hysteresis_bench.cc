@@ -134,7 +134,10 @@ int main(int argc, char** argv) {
     }
     double injected = 0;
     for (const pt::Method& m : pt::AllMethods()) {
-      if (m.name == "pi(4)" || m.name == "pi(32)" || m.name == "api(16)") continue;
+      // One size per family (two for pi) keeps the h sweep readable; sizes are compared above.
+      if (m.name != "none" && m.name != "branch(12)" && m.name != "pi(8)" && m.name != "pi(16)" &&
+          m.name != "api(8)")
+        continue;
       const cal::HysteresisFit fit = pt::FitMethod(m, jid, identify_jam.drive_max());
       if (m.kind != pp::CompensatorKind::kNone && !fit.ok()) {
         std::printf("%5.2f %-11s fit refused: %s\n", h, m.name.c_str(), fit.error.c_str());
@@ -171,7 +174,8 @@ int main(int argc, char** argv) {
   chart.title = "Branch gap on a held-out pneumatic unit against Cortex-M4F cost";
   chart.x_label = "instructions per step (worst, exact count under QEMU)";
   chart.y_label = "major-loop branch gap, 10-90 % (um)";
-  // One series per family: pi and api are lines through their sizes (4 → 32 operators).
+  // One point per method and size; a family's sizes joined in order (4 → 32 operators, 4 → 16
+  // curve points).
   std::map<std::string, pb::Series> families;
   const std::map<std::string, std::string> colors = {
       {"none", "#c0392b"}, {"branch", "#7d3c98"}, {"pi", "#2471a3"}, {"api", "#229954"}};
@@ -179,19 +183,18 @@ int main(int argc, char** argv) {
     if (!cost.count(r.method.name)) continue;
     const std::string family = r.method.name.substr(0, r.method.name.find('('));
     pb::Series& series = families[family];
-    series.name = family == "pi" || family == "api" ? family + "(n), n = " : r.method.name;
-    if (family == "pi" || family == "api") series.name += "4..32";
+    series.name = family == "none"     ? r.method.name
+                  : family == "branch" ? "branch(K), K = 4..16"
+                                       : family + "(n), n = 4..32";
     series.color = colors.count(family) ? colors.at(family) : "";
-    series.markers = family == "none" || family == "branch";
+    series.markers = true;  // one point per method and size, a family's sizes joined
+    series.joined = family != "none";
     series.points.push_back({cost[r.method.name], r.gap.major_gap});
   }
-  for (auto& [family, series] : families) {
-    if (family == "api") series.name = "api(n), n = 8, 16";
-    chart.series.push_back(series);
-  }
+  for (auto& [family, series] : families) chart.series.push_back(series);
   chart.series.push_back({"goal: gap <= 30 % of none", {{150, 0.3 * uncompensated_gap}, {1000, 0.3 * uncompensated_gap}},
                           "#888", true, false});
-  chart.series.push_back({"goal: pi(16) <= 300 instructions", {{300, 0}, {300, uncompensated_gap}}, "#bbb", true, false});
+  chart.series.push_back({"goal: pi(16) <= 300 instr.", {{300, 0}, {300, uncompensated_gap}}, "#bbb", true, false});
   if (!pb::WriteFile(docs + "/hysteresis.svg", pb::RenderSvg(chart))) {
     std::fprintf(stderr, "cannot write %s/hysteresis.svg\n", docs.c_str());
     return 1;

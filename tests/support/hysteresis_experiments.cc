@@ -11,10 +11,19 @@ namespace cal = calibration;
 
 std::vector<Method> AllMethods() {
   using K = pp::CompensatorKind;
-  return {{"none", K::kNone, 0},           {"branch(12)", K::kBranch, 12},
-          {"pi(4)", K::kPrandtlIshlinskii, 4}, {"pi(8)", K::kPrandtlIshlinskii, 8},
-          {"pi(16)", K::kPrandtlIshlinskii, 16}, {"pi(32)", K::kPrandtlIshlinskii, 32},
-          {"api(8)", K::kAsymmetricPi, 8},  {"api(16)", K::kAsymmetricPi, 16}};
+  return {{"none", K::kNone, 0},
+          {"branch(4)", K::kBranch, 4},
+          {"branch(8)", K::kBranch, 8},
+          {"branch(12)", K::kBranch, 12},
+          {"branch(16)", K::kBranch, 16},
+          {"pi(4)", K::kPrandtlIshlinskii, 4},
+          {"pi(8)", K::kPrandtlIshlinskii, 8},
+          {"pi(16)", K::kPrandtlIshlinskii, 16},
+          {"pi(32)", K::kPrandtlIshlinskii, 32},
+          {"api(4)", K::kAsymmetricPi, 4},
+          {"api(8)", K::kAsymmetricPi, 8},
+          {"api(16)", K::kAsymmetricPi, 16},
+          {"api(32)", K::kAsymmetricPi, 32}};
 }
 
 Identified Identify(FingerRig& rig, const cal::SweepPlan& plan, int dwell_ms) {

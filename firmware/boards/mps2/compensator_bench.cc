@@ -62,13 +62,18 @@ __attribute__((noinline)) void Sweep(Run& r) {
   __attribute__((noinline)) float NAME(Run& r, float target) {                   \
     return pc::StepCompensator(r.compensator, r.state, target, r.applied).drive; \
   }
+PALPA_STEP(StepBranch4)
+PALPA_STEP(StepBranch8)
 PALPA_STEP(StepBranch12)
+PALPA_STEP(StepBranch16)
 PALPA_STEP(StepPi4)
 PALPA_STEP(StepPi8)
 PALPA_STEP(StepPi16)
 PALPA_STEP(StepPi32)
+PALPA_STEP(StepApi4)
 PALPA_STEP(StepApi8)
 PALPA_STEP(StepApi16)
+PALPA_STEP(StepApi32)
 #undef PALPA_STEP
 
 const float kInverseOutput[] = {0, 500, 1000, 1500, 2000, 2500, 3000, 3500, 4000, 4370};
@@ -89,13 +94,18 @@ int main() {
     void (*sweep)(Run&);
   };
   const Case cases[] = {{pp::CompensatorKind::kNone, 0, Sweep<StepNone>},
+                        {pp::CompensatorKind::kBranch, 4, Sweep<StepBranch4>},
+                        {pp::CompensatorKind::kBranch, 8, Sweep<StepBranch8>},
                         {pp::CompensatorKind::kBranch, 12, Sweep<StepBranch12>},
+                        {pp::CompensatorKind::kBranch, 16, Sweep<StepBranch16>},
                         {pp::CompensatorKind::kPrandtlIshlinskii, 4, Sweep<StepPi4>},
                         {pp::CompensatorKind::kPrandtlIshlinskii, 8, Sweep<StepPi8>},
                         {pp::CompensatorKind::kPrandtlIshlinskii, 16, Sweep<StepPi16>},
                         {pp::CompensatorKind::kPrandtlIshlinskii, 32, Sweep<StepPi32>},
+                        {pp::CompensatorKind::kAsymmetricPi, 4, Sweep<StepApi4>},
                         {pp::CompensatorKind::kAsymmetricPi, 8, Sweep<StepApi8>},
-                        {pp::CompensatorKind::kAsymmetricPi, 16, Sweep<StepApi16>}};
+                        {pp::CompensatorKind::kAsymmetricPi, 16, Sweep<StepApi16>},
+                        {pp::CompensatorKind::kAsymmetricPi, 32, Sweep<StepApi32>}};
   for (const Case& c : cases) {
     const pp::ConfigureFinger f = Params(c.kind, c.size);
     if (c.kind != pp::CompensatorKind::kNone && pc::CompensatorParamsError(f) != nullptr) {
