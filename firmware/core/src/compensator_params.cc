@@ -46,6 +46,90 @@ const char* ReadPlayLayout(const protocol::ConfigureFinger& f, PlayLayout& out) 
   return nullptr;
 }
 
+/// Nearest integer; 0 for what no int32 holds (NaN, infinities), so a parameter set that
+/// overflows is refused by BuildPlayOperators' result rather than converted undefined.
+int32_t Round(float v) {
+  if (!(v > -2.0e9f && v < 2.0e9f)) return 0;
+  return static_cast<int32_t>(v + (v < 0 ? -0.5f : 0.5f));
+}
+float Largest(float a, float b) { return a > b ? a : b; }
+float Magnitude(float v) { return v < 0 ? -v : v; }
+
+/// The integer operator tables of PlayTable and their scales, chosen per parameter set so that
+///  * thresholds take at most 14 bits (a drive change saturated at ±32767 steps still moves
+///    every operator onto its clamp, as the true change would);
+///  * every W_i and w_i fits int16;
+///  * Σ_j |w_j| r_j + max_i |W_i| r_i ≤ 2²⁹ sum steps, which bounds every r'_i too
+///    (r'_i = W_i r_i − Σ_{j≤i} w_j r_j): PlayStep's sums stay inside int32 (within 1.5 · 2³⁰)
+///    from any start in ±2³⁰, and a start clamped there still leaves every state on its clamp;
+///  * every w'_i fits int16 and Σ |w'_i| r'_i fits the drive accumulator with room (2³⁰).
+/// False when a scale or an inverse constant is not a finite float (weights so far apart that
+/// the inverse overflows): validation refuses such a set.
+bool BuildPlayOperators(const float* r, const float* w, uint8_t n, PlayTable& t) {
+  constexpr float kTwo16 = 65536.0f;
+  float cumulative[kMaxPlayOperators];
+  float inverse_threshold[kMaxPlayOperators];
+  float inverse_weight[kMaxPlayOperators];
+  float before = t.w0;  // W_{i-1}
+  float weighted_thresholds = 0;
+  float largest_weight = 0;
+  float weighted_spread = 0;   // Σ |w_j| r_j
+  float widest = 0;            // max |W_i| r_i
+  t.inverse_gain = 1.0f / t.w0;
+  bool finite = true;
+  for (uint8_t i = 0; i < n; ++i) {
+    cumulative[i] = before + w[i];
+    weighted_thresholds += w[i] * r[i];
+    inverse_threshold[i] = cumulative[i] * r[i] - weighted_thresholds;
+    inverse_weight[i] = -w[i] / (cumulative[i] * before);
+    t.inverse_gain += inverse_weight[i];
+    largest_weight = Largest(largest_weight, Largest(cumulative[i], Magnitude(w[i])));
+    weighted_spread += Magnitude(w[i]) * r[i];
+    widest = Largest(widest, cumulative[i] * r[i]);
+    finite = finite && Finite(inverse_threshold[i]) && Finite(inverse_weight[i]);
+    before = cumulative[i];
+  }
+  t.drive_step = Largest(r[n - 1] / 16383.0f, 0.01f);
+  t.per_drive_step = 1.0f / t.drive_step;
+  t.sum_step = Largest(largest_weight * t.drive_step / 32767.0f,
+                       (weighted_spread + widest) / 536870912.0f);
+  t.per_sum_step = 1.0f / t.sum_step;
+  const float weight_scale = t.drive_step * t.per_sum_step;  // sum steps per drive step
+  t.applied_gain = before * weight_scale;
+  int32_t state_bound[kMaxPlayOperators];
+  float largest_inverse_weight = 0;
+  float inverse_spread = 0;
+  for (uint8_t i = 0; i < n; ++i) {
+    state_bound[i] = Round(Magnitude(inverse_threshold[i]) * t.per_sum_step / kTwo16);
+    largest_inverse_weight = Largest(largest_inverse_weight, Magnitude(inverse_weight[i]));
+    inverse_spread += Magnitude(inverse_weight[i]) * static_cast<float>(state_bound[i]);
+  }
+  const float inverse_weight_step =
+      Largest(Largest(largest_inverse_weight / 32767.0f, inverse_spread / 1073741824.0f), 1e-30f);
+  t.drive_gain = inverse_weight_step * kTwo16 * t.sum_step;
+  for (uint8_t k = 0; k < (n + 1) / 2; ++k) {
+    int32_t lane[2][5] = {};  // r, W, w, r', w' of operators 2k and 2k+1 (zero: a padding one)
+    for (uint8_t j = 0; j < 2 && 2 * k + j < n; ++j) {
+      const uint8_t i = static_cast<uint8_t>(2 * k + j);
+      lane[j][0] = Round(r[i] * t.per_drive_step);
+      lane[j][1] = Round(cumulative[i] * weight_scale);
+      lane[j][2] = Round(w[i] * weight_scale);
+      lane[j][3] = state_bound[i];
+      lane[j][4] = Round(inverse_weight[i] / inverse_weight_step);
+    }
+    PlayPair& pair = t.pair[k];
+    pair.threshold = lanes::Pack(lane[0][0], lane[1][0]);
+    pair.negative_threshold = lanes::Pack(-lane[0][0], -lane[1][0]);
+    pair.cumulative = lanes::Pack(lane[0][1], lane[1][1]);
+    pair.weight = lanes::Pack(lane[0][2], lane[1][2]);
+    pair.inverse_threshold = lanes::Pack(lane[0][3], lane[1][3]);
+    pair.negative_inverse_threshold = lanes::Pack(-lane[0][3], -lane[1][3]);
+    pair.inverse_weight = lanes::Pack(lane[0][4], lane[1][4]);
+  }
+  return finite && Finite(t.inverse_gain) && Finite(t.applied_gain) && t.sum_step > 0 &&
+         Finite(t.per_sum_step) && t.drive_gain > 0 && Finite(t.drive_gain);
+}
+
 const char* PlayError(const protocol::ConfigureFinger& f) {
   PlayLayout l;
   if (const char* e = ReadPlayLayout(f, l)) return e;
@@ -61,6 +145,10 @@ const char* PlayError(const protocol::ConfigureFinger& f) {
     cumulative += w[i];
     if (!(cumulative > 0)) return "cumulative weight not positive: the model is not invertible";
   }
+  PlayTable scratch;  // the tables the board would build, only to see that they are finite
+  scratch.w0 = w0;
+  if (!BuildPlayOperators(r, w, l.n, scratch))
+    return "weights too far apart: the inverse overflows the board's arithmetic";
   const float* d = w + l.n;
   const float* g = d + l.m;
   float slope = 1;
@@ -102,79 +190,6 @@ const char* BranchError(const protocol::ConfigureFinger& f) {
   return nullptr;
 }
 
-int32_t Round(float v) { return static_cast<int32_t>(v + (v < 0 ? -0.5f : 0.5f)); }
-float Largest(float a, float b) { return a > b ? a : b; }
-float Magnitude(float v) { return v < 0 ? -v : v; }
-
-/// The integer operator tables of PlayTable and their scales, chosen per parameter set so that
-///  * thresholds take at most 14 bits (a drive change saturated at ±32767 steps still moves
-///    every operator onto its clamp, as the true change would);
-///  * every W_i and w_i fits int16;
-///  * Σ_j |w_j| r_j + max_i |W_i| r_i ≤ 2²⁹ sum steps, which bounds every r'_i too
-///    (r'_i = W_i r_i − Σ_{j≤i} w_j r_j): PlayStep's sums stay inside int32 (within 1.5 · 2³⁰)
-///    from any start in ±2³⁰, and a start clamped there still leaves every state on its clamp;
-///  * every w'_i fits int16 and Σ |w'_i| r'_i fits the drive accumulator with room (2³⁰).
-void BuildPlayOperators(const float* r, const float* w, uint8_t n, PlayTable& t) {
-  constexpr float kTwo16 = 65536.0f;
-  float cumulative[kMaxPlayOperators];
-  float inverse_threshold[kMaxPlayOperators];
-  float inverse_weight[kMaxPlayOperators];
-  float before = t.w0;  // W_{i-1}
-  float weighted_thresholds = 0;
-  float largest_weight = 0;
-  float weighted_spread = 0;   // Σ |w_j| r_j
-  float widest = 0;            // max |W_i| r_i
-  t.inverse_gain = 1.0f / t.w0;
-  for (uint8_t i = 0; i < n; ++i) {
-    cumulative[i] = before + w[i];
-    weighted_thresholds += w[i] * r[i];
-    inverse_threshold[i] = cumulative[i] * r[i] - weighted_thresholds;
-    inverse_weight[i] = -w[i] / (cumulative[i] * before);
-    t.inverse_gain += inverse_weight[i];
-    largest_weight = Largest(largest_weight, Largest(cumulative[i], Magnitude(w[i])));
-    weighted_spread += Magnitude(w[i]) * r[i];
-    widest = Largest(widest, cumulative[i] * r[i]);
-    before = cumulative[i];
-  }
-  t.drive_step = Largest(r[n - 1] / 16383.0f, 0.01f);
-  t.per_drive_step = 1.0f / t.drive_step;
-  t.sum_step = Largest(largest_weight * t.drive_step / 32767.0f,
-                       (weighted_spread + widest) / 536870912.0f);
-  t.per_sum_step = 1.0f / t.sum_step;
-  const float weight_scale = t.drive_step * t.per_sum_step;  // sum steps per drive step
-  t.applied_gain = before * weight_scale;
-  int32_t state_bound[kMaxPlayOperators];
-  float largest_inverse_weight = 0;
-  float inverse_spread = 0;
-  for (uint8_t i = 0; i < n; ++i) {
-    state_bound[i] = Round(Magnitude(inverse_threshold[i]) * t.per_sum_step / kTwo16);
-    largest_inverse_weight = Largest(largest_inverse_weight, Magnitude(inverse_weight[i]));
-    inverse_spread += Magnitude(inverse_weight[i]) * static_cast<float>(state_bound[i]);
-  }
-  const float inverse_weight_step =
-      Largest(Largest(largest_inverse_weight / 32767.0f, inverse_spread / 1073741824.0f), 1e-30f);
-  t.drive_gain = inverse_weight_step * kTwo16 * t.sum_step;
-  for (uint8_t k = 0; k < (n + 1) / 2; ++k) {
-    int32_t lane[2][5] = {};  // r, W, w, r', w' of operators 2k and 2k+1 (zero: a padding one)
-    for (uint8_t j = 0; j < 2 && 2 * k + j < n; ++j) {
-      const uint8_t i = static_cast<uint8_t>(2 * k + j);
-      lane[j][0] = Round(r[i] * t.per_drive_step);
-      lane[j][1] = Round(cumulative[i] * weight_scale);
-      lane[j][2] = Round(w[i] * weight_scale);
-      lane[j][3] = state_bound[i];
-      lane[j][4] = Round(inverse_weight[i] / inverse_weight_step);
-    }
-    PlayPair& pair = t.pair[k];
-    pair.threshold = lanes::Pack(lane[0][0], lane[1][0]);
-    pair.negative_threshold = lanes::Pack(-lane[0][0], -lane[1][0]);
-    pair.cumulative = lanes::Pack(lane[0][1], lane[1][1]);
-    pair.weight = lanes::Pack(lane[0][2], lane[1][2]);
-    pair.inverse_threshold = lanes::Pack(lane[0][3], lane[1][3]);
-    pair.negative_inverse_threshold = lanes::Pack(-lane[0][3], -lane[1][3]);
-    pair.inverse_weight = lanes::Pack(lane[0][4], lane[1][4]);
-  }
-}
-
 Compensator MakePlay(const protocol::ConfigureFinger& f, Compensator c) {
   PlayLayout l;
   ReadPlayLayout(f, l);
@@ -186,7 +201,7 @@ Compensator MakePlay(const protocol::ConfigureFinger& f, Compensator c) {
   t.dead_zones = l.m;
   t.offset = p[0];
   t.w0 = p[1];
-  BuildPlayOperators(r, w, l.n, t);
+  (void)BuildPlayOperators(r, w, l.n, t);  // validated by PlayError
   // S(v) = v + Σ g_k max(v − d_k, 0): knots at d_k; S⁻¹ slope above knot k is 1 / (1 + Σ_{j≤k}
   // g_j).
   const float* d = w + l.n;

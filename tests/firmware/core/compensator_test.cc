@@ -305,6 +305,7 @@ TEST(Compensator, ParametersThatCannotBeInvertedAreRefusedWithAReason) {
       {K::kPrandtlIshlinskii, {0, 0.01f, -5, 0.01f}},               // negative threshold
       {K::kPrandtlIshlinskii, {nan, 0.01f, 0, 0.01f}},
       {K::kPrandtlIshlinskii, {0, INFINITY, 0, 0.01f}},
+      {K::kPrandtlIshlinskii, {0, 1e-30f, 0, 1e30f}},  // scales overflow float
       {K::kAsymmetricPi, {2.5f, 0, 0.01f, 0, 100, 0.01f, 0.01f, 10, 1}},  // n not an integer
       {K::kAsymmetricPi, {1, 0, 0.01f, 0, 0.01f}},                        // no dead zone
       {K::kAsymmetricPi, {1, 0, 0.01f, 0, 0.01f, 10, -1}},                // slope 0
