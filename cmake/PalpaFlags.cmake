@@ -22,3 +22,14 @@ if(PALPA_SANITIZE)
                       -fno-omit-frame-pointer)
   add_link_options(-fsanitize=address,undefined)
 endif()
+
+# A hand-scheduled ARMv7E-M routine on the MCU: assembles `asm_source` into `target` and defines
+# `define` for `user_source`, the C++ file that calls it; the host build keeps the portable loop.
+# A macro, because enable_language must run in the directory's scope.
+macro(palpa_armv7em_routine target asm_source user_source define)
+  if(CMAKE_SYSTEM_PROCESSOR STREQUAL "arm")
+    enable_language(ASM)
+    target_sources(${target} PRIVATE ${asm_source})
+    set_source_files_properties(${user_source} PROPERTIES COMPILE_DEFINITIONS ${define}=1)
+  endif()
+endmacro()
