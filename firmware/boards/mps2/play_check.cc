@@ -3,6 +3,7 @@
 // saturation) and starts (up to the ±2³⁰ clamp). Exits through semihosting: 0 when every result
 // and every memory word matched, 1 with the failing case printed.
 #include "palpa/core/compensator.h"
+#include "play_lanes.h"
 #include "play_pairs.h"
 #include "check_random.h"
 #include "semihosting.h"
@@ -91,8 +92,7 @@ int main() {
           for (uint8_t k = 0; k < pairs; ++k) g_fast[k] = g_reference[k] = NextRandom();
         }
         const int32_t moved = RandomDriveChange();
-        const uint32_t shift =
-            (static_cast<uint32_t>(moved) & 0xFFFFu) | (static_cast<uint32_t>(moved) << 16);
+        const uint32_t shift = pc::lanes::Pack(moved, moved);
         const int32_t start = RandomStart();
         const int32_t fast =
             palpa_play_pairs_v7em(c.play.pair + pairs, g_fast + pairs, c.play.pair, shift, start);

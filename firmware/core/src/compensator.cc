@@ -122,9 +122,7 @@ CompensatorOutput StepCompensator(const Compensator& c, CompensatorState& s, flo
 }
 
 float PlayState(const Compensator& c, const CompensatorState& s, uint8_t i) {
-  const uint32_t pair = s.play[i / 2];
-  const int32_t lane = i % 2 == 0 ? lanes::Low(pair) : lanes::High(pair);
-  return static_cast<float>(s.applied_steps + lane) * c.play.drive_step;
+  return static_cast<float>(s.applied_steps + lanes::Lane(s.play[i / 2], i)) * c.play.drive_step;
 }
 
 float PlayForward(const Compensator& c, const CompensatorState& s, float u) {
@@ -133,11 +131,9 @@ float PlayForward(const Compensator& c, const CompensatorState& s, float u) {
   float v = t.w0 * u;
   for (uint8_t i = 0; i < t.operators; ++i) {
     const PlayPair& pair = t.pair[i / 2];
-    const bool low = i % 2 == 0;
-    const float r = static_cast<float>(low ? lanes::Low(pair.threshold)
-                                           : lanes::High(pair.threshold)) * t.drive_step;
-    const float w = static_cast<float>(low ? lanes::Low(pair.weight) : lanes::High(pair.weight));
-    v += w * weight_unit * Clamp(PlayState(c, s, i), u - r, u + r);
+    const float r = static_cast<float>(lanes::Lane(pair.threshold, i)) * t.drive_step;
+    const float w = static_cast<float>(lanes::Lane(pair.weight, i)) * weight_unit;
+    v += w * Clamp(PlayState(c, s, i), u - r, u + r);
   }
   // S(v): back through the knots of S⁻¹.
   uint8_t k = t.dead_zones;

@@ -19,6 +19,8 @@ inline int32_t High(uint32_t v) { return static_cast<int16_t>(v >> 16); }
 inline uint32_t Pack(int32_t low, int32_t high) {
   return (static_cast<uint32_t>(low) & 0xFFFFu) | (static_cast<uint32_t>(high) << 16);
 }
+/// Operator i's lane of a pair word (even i low, odd i high), as PlayPair lays them out.
+inline int32_t Lane(uint32_t v, uint8_t i) { return i % 2 == 0 ? Low(v) : High(v); }
 
 /// v saturated to the int16 range (SSAT #16).
 inline int32_t Saturate(int32_t v) {
@@ -34,8 +36,7 @@ inline uint32_t SaturatingAdd(uint32_t a, uint32_t b) {
 #ifdef PALPA_PLAY_LANES_DSP
   return static_cast<uint32_t>(__qadd16(static_cast<int16x2_t>(a), static_cast<int16x2_t>(b)));
 #else
-  auto sat = [](int32_t v) { return v > 32767 ? 32767 : (v < -32768 ? -32768 : v); };
-  return Pack(sat(Low(a) + Low(b)), sat(High(a) + High(b)));
+  return Pack(Saturate(Low(a) + Low(b)), Saturate(High(a) + High(b)));
 #endif
 }
 
