@@ -277,7 +277,18 @@ Outcome Device::SaveConfig() {
   return FromCommand(link_->Command(pp::SaveConfig{}), "save configuration");
 }
 Outcome Device::FactoryReset() {
-  return FromCommand(link_->Command(pp::FactoryReset{}), "factory reset");
+  Outcome o = FromCommand(link_->Command(pp::FactoryReset{}), "factory reset");
+  if (!o.ok()) return o;
+  // The factory configuration has its own host-silence timeout: heartbeats must follow it.
+  std::string error;
+  const auto board = ReadBoard(&error);
+  if (board.ok()) {
+    link_->SetHostTimeout(board.value.host_timeout_us);
+  } else {
+    o.notes.push_back("could not read back the host-silence timeout (" + error +
+                      "): heartbeats keep their period until the next session");
+  }
+  return o;
 }
 
 Outcome Device::ConfigureFinger(const pp::ConfigureFinger& finger) {

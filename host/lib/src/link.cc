@@ -128,6 +128,7 @@ uint32_t Link::SubmitPacket(uint8_t type, const uint8_t* body, size_t size, int 
                         std::chrono::milliseconds(timeout_ms < 0 ? options_.command_timeout_ms : timeout_ms);
   const uint32_t cookie = next_cookie_++;
   auto fail = [&](CommandResult r) {  // answered at once: Await returns it
+    host_timeout_.OnRefused(cookie);    // never sent: changed nothing
     pending_[cookie] = Pending{true, std::move(r)};
     return cookie;
   };
@@ -141,6 +142,12 @@ uint32_t Link::SubmitPacket(uint8_t type, const uint8_t* body, size_t size, int 
     return fail(CommandResult{admitted, 0, 0, {}, std::string("refused: ") + text});
   }
   pending_[cookie] = Pending{};
+  pp::ConfigureBoard board;
+  if (type == static_cast<uint8_t>(pp::MessageType::kConfigureBoard) &&
+      pp::DecodeBody(body, size, board) == Status::kOk) {
+    host_timeout_.OnSent(cookie, board.host_timeout_us);  // heartbeats fit it before it applies
+    changed_.notify_all();
+  }
   for (;;) {
     const auto seq = sender_.SubmitEncoded(type, body, size, cookie);
     if (seq.ok()) break;
@@ -168,6 +175,7 @@ CommandResult Link::Await(uint32_t ticket, int timeout_ms) {
   changed_.wait_until(lock, deadline, [&] { return pending_[ticket].done || stop_; });
   CommandResult result = pending_[ticket].done ? pending_[ticket].result
                                                 : CommandResult{Status::kTimeout, 0, 0, {}, "no answer from the board in time (the command may still be applied)"};
+  if (!pending_[ticket].done) host_timeout_.OnUnknown(ticket);
   pending_.erase(ticket);
   return result;
 }
@@ -232,6 +240,7 @@ void Link::OnBoardReset(const std::string& why) {  // mutex_ held
     if (it != pending_.end()) {
       it->second.done = true;
       it->second.result = CommandResult{Status::kOutcomeUnknown, 0, 0, {}, "the board reset while this command was in flight"};
+      host_timeout_.OnUnknown(o.cookie);
     }
     ++unknown;
   });
@@ -256,7 +265,7 @@ void Link::OnFrame(const pp::Frame& frame, double now) {  // mutex_ held
     if constexpr (std::is_same_v<M, pp::HelloReply>) {
       if (session_.OnHelloReply(m) == Status::kStale) return;
       hello_wanted_ = false;
-      ++hello_replies_;
+      host_timeout_.OnSession(m.host_timeout_us, m.time_scale);
       // The board answers within a few ticks: cap the back-off at 0.5 s so a command that lost
       // several retransmissions in a row still completes well inside the command timeout.
       sender_.Configure(pp::SenderConfig{pp::kMaxWindow, m.rx_buffer_bytes, 50000, 2000, 500000});
@@ -305,6 +314,8 @@ void Link::OnFrame(const pp::Frame& frame, double now) {  // mutex_ held
         if (it == pending_.end()) return;
         it->second.done = true;
         it->second.result = CommandResult{o.status, o.detail, 0, {}, {}};
+        if (o.status == Status::kOk) host_timeout_.OnApplied(o.cookie);
+        else host_timeout_.OnRefused(o.cookie);
         if (report && o.seq == h.seq) {
           it->second.result.reply_type = frame.header.type;
           it->second.result.reply_body.assign(frame.body, frame.body + frame.body_size);
@@ -362,12 +373,6 @@ void Link::DispatchLoop() {
 void Link::HeartbeatLoop() {
   std::unique_lock<std::mutex> lock(mutex_);
   while (!stop_) {
-    const pp::HelloReply& b = session_.board();
-    const double scale = b.time_scale > 0 ? b.time_scale : 1.0;
-    // At most a quarter of the board's host-silence timeout, in host time; before the first
-    // reply, a quarter of the default timeout (100 ms).
-    const double timeout_s = session_.open() ? static_cast<double>(b.host_timeout_us) / 1e6 / scale : 0.1;
-    const double period_s = std::max(0.001, timeout_s / 4);
     if (session_.open() || hello_sent_s_ >= 0) {
       ++counters_.heartbeats;
       const pp::Heartbeat hb{++heartbeat_generation_};
@@ -375,10 +380,18 @@ void Link::HeartbeatLoop() {
       SendUnsequenced(hb);
       lock.lock();
     }
-    // A new session can shorten the period (a board at a faster time scale): wake up for it.
-    const uint64_t replies = hello_replies_;
-    changed_.wait_for(lock, std::chrono::duration<double>(period_s), [&] { return stop_ || hello_replies_ != replies; });
+    // A quarter of the board's timeout, in host time (before the first reply, of the default).
+    // A new session or a shorter timeout in flight shortens the period: wake up for it.
+    const uint64_t changes = host_timeout_.changes();
+    changed_.wait_for(lock, std::chrono::duration<double>(host_timeout_.HeartbeatPeriodSeconds()),
+                      [&] { return stop_ || host_timeout_.changes() != changes; });
   }
+}
+
+void Link::SetHostTimeout(uint32_t host_timeout_us) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  host_timeout_.Set(host_timeout_us);
+  changed_.notify_all();
 }
 
 template <class M>

@@ -20,9 +20,9 @@ using palpa::testing::TestBoard;
 
 namespace {
 
-std::unique_ptr<ph::Link> OpenLink(std::unique_ptr<ph::Transport> t) {
+std::unique_ptr<ph::Link> OpenLink(std::unique_ptr<ph::Transport> t, ph::LinkOptions options = {}) {
   std::string error;
-  auto link = ph::Link::Open(std::move(t), ph::LinkOptions{}, &error);
+  auto link = ph::Link::Open(std::move(t), options, &error);
   CHECK_TEXT(link.ok(), error.c_str());
   return std::move(link.value);
 }
@@ -36,7 +36,14 @@ TEST(LinkFaults, ThousandCommandsExactlyOnceInOrderAtOnePercentLossAndBitFlips) 
   ph::FaultSpec faults;
   faults.drop = 0.01;
   faults.bit_flip = 0.001;
-  auto link = OpenLink(std::make_unique<ph::FaultTransport>(std::make_unique<BoardTransport>(board), faults, 5));
+  // At these rates about a third of all round trips fail (a 14-byte command and a 15-byte Ack),
+  // so now and then a command needs eight or more transmissions, half a second apart once the
+  // back-off is at its cap. This test is about exactly-once delivery, not latency: give each
+  // command 30 s instead of the default 3 s.
+  ph::LinkOptions patient;
+  patient.command_timeout_ms = 30000;
+  auto link = OpenLink(std::make_unique<ph::FaultTransport>(std::make_unique<BoardTransport>(board), faults, 5),
+                       patient);
   for (uint32_t id = 1; id <= 1000; ++id) {
     const ph::CommandResult r = link->Command(pp::ClearFault{id});
     LONGS_EQUAL_TEXT((int)pp::Status::kOk, (int)r.status, (std::to_string(id) + " " + r.message).c_str());
@@ -72,6 +79,20 @@ TEST(LinkFaults, BoardRestartReportsInFlightCommandsAsOutcomeUnknownAndReconnect
   CHECK(told);
   LONGS_EQUAL((int)pp::Status::kOk, (int)link->Command(pp::ClearFault{999}).status);  // a new session works
   CHECK(board.sessions >= 2);
+}
+
+TEST(LinkFaults, ABoardThatReportsNoHostTimeoutGetsHeartbeatsAtTheDefaultRate) {
+  TestBoard board(pp::kCatalogHash, 1024, 14);  // its HelloReply leaves host_timeout_us at 0
+  const double start = ph::SteadySeconds();
+  auto link = OpenLink(std::make_unique<BoardTransport>(board));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const uint64_t heartbeats = link->counters().heartbeats;
+  const double elapsed = ph::SteadySeconds() - start;
+  // A quarter of the default 100 ms: at most one per 25 ms (a slow machine only sends fewer).
+  // Read as "as fast as possible", 0 made the link send one every millisecond.
+  CHECK(heartbeats >= 1);
+  CHECK_TEXT(heartbeats <= elapsed / 0.025 + 2,
+             (std::to_string(heartbeats) + " heartbeats in " + std::to_string(elapsed) + " s").c_str());
 }
 
 TEST(LinkFaults, CatalogMismatchRefusesEverythingButTheBootstrapSet) {
@@ -200,4 +221,24 @@ TEST(LinkSim, OverARealPtyWithSerialSettings) {
   CHECK(device.value->EStop().ok());
   device.value.reset();
   LONGS_EQUAL(0, sim.Stop());
+}
+
+TEST(LinkSim, HeartbeatsFollowAShorterHostTimeoutSetInTheSession) {
+  // At a tenth of real time the board's 20 ms timeout is 200 ms of host time: heartbeats at a
+  // quarter of it leave 150 ms for scheduling, while the 250 ms period of the session's opening
+  // timeout (100 ms) would trip it. The test decides on the period, not on the machine's load.
+  std::string error;
+  auto sim = ph::LaunchSim("thesis-5finger", {"--speed", "0.1"}, nullptr, &error);
+  CHECK_TEXT(sim.ok(), error.c_str());
+  auto device = ph::Device::Attach(std::move(sim.value), {}, &error);
+  CHECK_TEXT(device.ok(), error.c_str());
+  pp::ConfigureBoard board{};
+  std::snprintf(board.config_name.data(), board.config_name.size(), "thesis-5finger");
+  board.host_timeout_us = 20000;
+  const ph::Outcome configured = device.value->ConfigureBoard(board);
+  CHECK_TEXT(configured.ok(), configured.message.c_str());
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  const auto diagnostics = device.value->Diagnostics(&error);
+  CHECK_TEXT(diagnostics.ok(), error.c_str());
+  STRCMP_EQUAL("none", ph::FaultNames(diagnostics.value.fault_bitmap).c_str());
 }

@@ -14,6 +14,7 @@
 #include <thread>
 #include <vector>
 
+#include "palpa/host/host_timeout.h"
 #include "palpa/host/transport.h"
 #include "palpa/protocol/codec.h"
 #include "palpa/protocol/reliable_sender.h"
@@ -82,6 +83,9 @@ class Link {
   /// "host catalog 0x… (protocol 1) vs board catalog 0x… (firmware a.b.c, protocol 1)".
   std::string Versions() const;
   std::string Describe() const { return transport_->Describe(); }
+  /// The board's host-silence timeout changed other than by a ConfigureBoard sent on this link
+  /// (which the link follows itself), e.g. after a factory reset: heartbeats go at a quarter of it.
+  void SetHostTimeout(uint32_t host_timeout_us);
 
   /// Sends a reliable command and waits for its Ack, Nack or report (`timeout_ms` < 0: the
   /// link's command timeout; an erase of flash gets a longer one).
@@ -168,7 +172,7 @@ class Link {
   uint32_t hello_nonce_ = 0;
   double hello_sent_s_ = -1;
   bool hello_wanted_ = true;
-  uint64_t hello_replies_ = 0;  ///< wakes the heartbeat loop to the new session's timeout
+  HostTimeoutTracker host_timeout_;  ///< its changes wake the heartbeat loop
   struct Pending {
     bool done = false;
     CommandResult result;
