@@ -4,6 +4,8 @@
 // are declared below (QEMU 7.2, plugin API version 1). Arguments, one per span:
 //   span=NAME:ENTRY:RET[:RET...]   hexadecimal addresses of the function's first instruction and
 //                                  of every instruction following a call to it
+//   exclude=NAME                   the span NAME is not part of the control tick: the plugin
+//                                  also reports "control", each tick minus the excluded spans
 // The span named "tick" is the frame: every other span also reports its sum per tick. Spans are
 // inclusive (callees and interrupts taken inside count). Counts are exact per instruction and,
 // under -icount, identical run after run. The report is printed at exit (-d plugin).
@@ -51,6 +53,7 @@ typedef struct {
   uint64_t max_call;
   uint64_t this_tick;  // sum inside the current tick
   uint64_t max_tick;
+  int excluded;  // not part of the control tick
 } Span;
 
 static Span spans[kMaxSpans];
@@ -58,6 +61,9 @@ static int span_count;
 static Span* tick_span;
 static uint64_t executed;  // every guest instruction, incremented inline
 static uint64_t ticks;
+static int exclusions;              // spans named by exclude=
+static uint64_t control_total;      // tick minus the excluded spans, summed over ticks
+static uint64_t control_max;
 
 static void OnEntry(unsigned int vcpu, void* userdata) {
   (void)vcpu;
@@ -76,6 +82,12 @@ static void OnReturn(unsigned int vcpu, void* userdata) {
   if (n > s->max_call) s->max_call = n;
   if (s == tick_span) {
     ticks++;
+    uint64_t control = n;
+    for (int i = 0; i < span_count; ++i) {
+      if (spans[i].excluded) control -= spans[i].this_tick;
+    }
+    control_total += control;
+    if (control > control_max) control_max = control;
     for (int i = 0; i < span_count; ++i) {
       Span* other = &spans[i];
       if (other->this_tick > other->max_tick) other->max_tick = other->this_tick;
@@ -124,6 +136,24 @@ static void OnExit(qemu_plugin_id_t id, void* userdata) {
              s == tick_span ? s->max_call : s->max_tick);
     qemu_plugin_outs(line);
   }
+  if (exclusions > 0 && ticks > 0) {
+    snprintf(line, sizeof(line), "insn-count: control mean_tick %.1f max_tick %" PRIu64 "\n",
+             (double)control_total / (double)ticks, control_max);
+    qemu_plugin_outs(line);
+  }
+}
+
+// Marks "exclude=NAME" (a span given before it); returns 0 on success.
+static int ParseExclude(const char* arg) {
+  if (strncmp(arg, "exclude=", 8) != 0) return -1;
+  for (int i = 0; i < span_count; ++i) {
+    if (strcmp(spans[i].name, arg + 8) == 0 && &spans[i] != tick_span) {
+      spans[i].excluded = 1;
+      exclusions++;
+      return 0;
+    }
+  }
+  return -1;
 }
 
 // Parses "span=NAME:ENTRY:RET[:RET...]"; returns 0 on success.
@@ -154,10 +184,10 @@ PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_t* in
                                       char** argv) {
   (void)info;
   for (int i = 0; i < argc; ++i) {
-    if (ParseSpan(argv[i]) != 0) {
+    if (ParseSpan(argv[i]) != 0 && ParseExclude(argv[i]) != 0) {
       fprintf(stderr,
               "qemu_insn_count: bad argument '%s' (want span=NAME:ENTRY:RET[:RET...], hex, at most "
-              "16 spans of 32 return sites)\n",
+              "16 spans of 32 return sites, or exclude=NAME of a span given before it)\n",
               argv[i]);
       return -1;
     }
