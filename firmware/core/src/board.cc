@@ -77,6 +77,7 @@ bool Board::Step() {
 
 void Board::ApplyLive(uint64_t now_us) {
   settings_ = MakeSupervisorSettings(live_.board);
+  supervisor_input_ = SupervisorInput{};
   for (uint8_t i = 0; i < kMaxLines; ++i) {
     line_owner_[i] = FingerOfLine(live_, i);
     if (i < live_.line_count) {
@@ -108,7 +109,7 @@ void Board::Hold() {
 
 void Board::Tick(uint64_t now_us) {
   pacer_.BeginTick(now_us);
-  SupervisorInput in;
+  SupervisorInput& in = supervisor_input_;
   ReadInputs(now_us, in);
   CheckConfigIntegrity(now_us);
   in.config_intact = config_intact_;
@@ -124,7 +125,7 @@ void Board::Tick(uint64_t now_us) {
   safe_ = supervisor_.latched != 0 || !released_ || updating;
   if (safe_ && !was_safe) Hold();
 
-  float setpoints[kMaxLines] = {};
+  float setpoints[kMaxLines];  // ComputeSetpoints writes every configured line's
   ComputeSetpoints(now_us, setpoints);
   for (uint8_t i = 0; i < live_.line_count; ++i) {
     LineInput line_in{setpoints[i], safe_, measured_valid_[i], measured_pa_[i]};
@@ -157,14 +158,8 @@ void Board::ReadInputs(uint64_t now_us, SupervisorInput& in) {
     if (o.has_sensor) {
       const auto counts = io_.adc->Read(i);
       // Readings outside the sensor's output span (open or shorted wire) are not pressures.
-      const uint32_t margin = (c.sensor_counts_max - c.sensor_counts_min) / 50;
-      const bool in_span = counts.ok() && counts.value + margin >= c.sensor_counts_min &&
-                           counts.value <= c.sensor_counts_max + margin;
-      if (in_span) {
-        const float scale = static_cast<float>(c.sensor_max_pa - c.sensor_min_pa) /
-                            static_cast<float>(c.sensor_counts_max - c.sensor_counts_min);
-        measured_pa_[i] = static_cast<float>(c.sensor_min_pa) +
-                          (static_cast<float>(counts.value) - static_cast<float>(c.sensor_counts_min)) * scale;
+      if (counts.ok() && counts.value >= p.sensor_counts_low && counts.value <= p.sensor_counts_high) {
+        measured_pa_[i] = p.sensor_min_pa + (static_cast<float>(counts.value) - p.sensor_counts_min) * p.sensor_pa_per_count;
         measured_valid_[i] = true;
       }
       raw_counts_[i] = counts.ok() ? counts.value : 0;

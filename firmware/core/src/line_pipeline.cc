@@ -28,6 +28,14 @@ LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us)
   const Ceiling ceiling = CeilingFor(line.kind);
   const float dt = static_cast<float>(tick_us) * 1e-6f;
   p.has_sensor = line.sensor == protocol::SensorKind::kAnalog;
+  // Per configuration, not per tick: the span check and the scale of the sensor reading.
+  const uint32_t margin = (line.sensor_counts_max - line.sensor_counts_min) / 50;
+  p.sensor_counts_low = line.sensor_counts_min > margin ? line.sensor_counts_min - margin : 0;
+  p.sensor_counts_high = line.sensor_counts_max + margin;
+  p.sensor_min_pa = static_cast<float>(line.sensor_min_pa);
+  p.sensor_counts_min = static_cast<float>(line.sensor_counts_min);
+  p.sensor_pa_per_count = static_cast<float>(line.sensor_max_pa - line.sensor_min_pa) /
+                          static_cast<float>(line.sensor_counts_max - line.sensor_counts_min);
   p.limit_min_pa = static_cast<float>(line.limit_min_pa > ceiling.min_pa ? line.limit_min_pa : ceiling.min_pa);
   p.limit_max_pa = static_cast<float>(line.limit_max_pa < ceiling.max_pa ? line.limit_max_pa : ceiling.max_pa);
   p.safe_pa = Clamp(static_cast<float>(line.safe_pa), p.limit_min_pa, p.limit_max_pa);

@@ -47,7 +47,9 @@ void LatchFault(SupervisorState& s, Fault fault, uint64_t now_us, int32_t detail
 uint32_t Supervise(const SupervisorSettings& settings, SupervisorState& s, const SupervisorInput& in) {
   const uint32_t before = s.latched;
   uint32_t active = 0;
-  int32_t detail[static_cast<int>(Fault::kCount)] = {};
+  // Written by the first raise of a fault and read only for raised faults: no per-tick zeroing
+  // (the C library's memset is a byte loop).
+  int32_t detail[static_cast<int>(Fault::kCount)];
   auto raise = [&](Fault f, int32_t d) {
     if ((active & FaultBit(f)) == 0) detail[static_cast<int>(f)] = d;
     active |= FaultBit(f);
@@ -104,7 +106,7 @@ uint32_t Supervise(const SupervisorSettings& settings, SupervisorState& s, const
   }
 
   s.active = active;
-  for (uint8_t f = 0; f < static_cast<uint8_t>(Fault::kCount); ++f) {
+  for (uint8_t f = 0; active != 0 && f < static_cast<uint8_t>(Fault::kCount); ++f) {
     if ((active & FaultBit(static_cast<Fault>(f))) != 0) LatchFault(s, static_cast<Fault>(f), in.now_us, detail[f]);
   }
   if (s.latched != 0) s.pump_on = false;

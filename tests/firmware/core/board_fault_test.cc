@@ -181,6 +181,18 @@ TEST(BoardFaults, BrokenSensorWireIsImplausible) {
   CHECK(h.board->latched_faults() & FaultBit(Fault::kImplausibleSensor));
 }
 
+TEST(BoardFaults, ReadingsWithinTwoPercentOfTheSensorSpanAreStillPressures) {
+  // thesis-5finger's sensors: counts 1638..14745, so the span check admits 1376 and not 1375.
+  h.adc.counts[2] = 1376;
+  h.Run(1, true);
+  LONGS_EQUAL(0, h.board->line_output(2).status & pp::line_status::kSensorFault);
+  LONGS_EQUAL(0, h.board->latched_faults() & FaultBit(Fault::kImplausibleSensor));
+  h.adc.counts[2] = 1375;
+  h.Run(1, true);
+  CHECK(h.board->line_output(2).status & pp::line_status::kSensorFault);
+  CHECK(h.board->latched_faults() & FaultBit(Fault::kImplausibleSensor));
+}
+
 TEST_GROUP(BoardBoot){};
 
 TEST(BoardBoot, WatchdogResetIsLatchedAndReported) {

@@ -202,3 +202,23 @@ TEST(LinePipeline, LimitsAreIntersectedWithTheHardCeiling) {
   pc::ResetLineState(p, s, 0);
   CHECK(Step(p, s, 90000).command_pa <= 20000);
 }
+
+TEST(LinePipeline, SensorSpanAndScaleArePreparedOncePerConfiguration) {
+  auto c = PressureLine();
+  c.sensor_min_pa = 0;
+  c.sensor_max_pa = 103421;
+  c.sensor_counts_min = 1638;
+  c.sensor_counts_max = 14745;
+  const pc::LineParams p = pc::MakeLineParams(c, 1000);
+  const uint32_t margin = (14745 - 1638) / 50;  // 2 % of the span: 262 counts
+  LONGS_EQUAL(1638 - margin, p.sensor_counts_low);
+  LONGS_EQUAL(14745 + margin, p.sensor_counts_high);
+  // The same arithmetic as the reading it replaced: min + (counts − counts_min) × span / counts.
+  const float scale = 103421.0f / static_cast<float>(14745 - 1638);
+  const float at_8000 = p.sensor_min_pa + (8000.0f - p.sensor_counts_min) * p.sensor_pa_per_count;
+  DOUBLES_EQUAL(0.0f + (8000.0f - 1638.0f) * scale, at_8000, 0);
+  // A margin larger than counts_min never wraps below zero.
+  c.sensor_counts_min = 100;
+  c.sensor_counts_max = 16000;
+  LONGS_EQUAL(0, pc::MakeLineParams(c, 1000).sensor_counts_low);
+}

@@ -117,6 +117,10 @@ class Board {
 
   TickPacer pacer_{kTickUs};
   SupervisorSettings settings_{};
+  /// Rewritten for every configured line each tick, so not rebuilt (zeroing it cost ≈ 900
+  /// instructions a tick with the C library's byte-wise memset); reset when the configuration
+  /// changes, so lines beyond the count stay unconfigured.
+  SupervisorInput supervisor_input_{};
   SupervisorState supervisor_{};
   bool released_ = false;  ///< new setpoints arrived since the last shutdown or clear
   bool safe_ = true;

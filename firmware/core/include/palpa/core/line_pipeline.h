@@ -14,6 +14,10 @@ inline constexpr uint8_t kMaxDeadTicks = 32;
 /// Per-line constants, derived once from a ConfigureLine when it is applied.
 struct LineParams {
   bool has_sensor = false;
+  /// ADC counts inside the sensor's output span (with a 2 % margin); outside is an open or
+  /// shorted wire, not a pressure. Counts convert as sensor_min_pa + (counts − counts_min) × scale.
+  uint32_t sensor_counts_low = 0, sensor_counts_high = 0;
+  float sensor_min_pa = 0, sensor_counts_min = 0, sensor_pa_per_count = 0;
   float limit_min_pa = 0, limit_max_pa = 0;  ///< already intersected with the hard ceiling
   float safe_pa = 0;
   float max_step_pa = 0;                     ///< slew per tick; 0 = none
