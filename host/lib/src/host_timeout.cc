@@ -4,15 +4,22 @@
 #include <algorithm>
 
 namespace palpa::host {
+namespace {
+
+uint32_t OrDefault(uint32_t host_timeout_us) {
+  return host_timeout_us == 0 ? kDefaultHostTimeoutUs : host_timeout_us;
+}
+
+}  // namespace
 
 double HeartbeatPeriodSeconds(uint32_t host_timeout_us, float time_scale) {
-  const double timeout_us = host_timeout_us == 0 ? kDefaultHostTimeoutUs : host_timeout_us;
+  const double timeout_us = OrDefault(host_timeout_us);
   const double scale = time_scale > 0 ? time_scale : 1.0;
   return std::max(0.001, timeout_us / 1e6 / scale / 4);
 }
 
 void HostTimeoutTracker::OnSession(uint32_t host_timeout_us, float time_scale) {
-  known_us_ = host_timeout_us == 0 ? kDefaultHostTimeoutUs : host_timeout_us;
+  known_us_ = OrDefault(host_timeout_us);
   time_scale_ = time_scale;
   in_flight_.clear();
   ++changes_;
@@ -44,7 +51,7 @@ void HostTimeoutTracker::OnUnknown(uint32_t cookie) {
 }
 
 void HostTimeoutTracker::Set(uint32_t host_timeout_us) {
-  known_us_ = host_timeout_us == 0 ? kDefaultHostTimeoutUs : host_timeout_us;
+  known_us_ = OrDefault(host_timeout_us);
   ++changes_;
 }
 

@@ -27,6 +27,15 @@ std::unique_ptr<ph::Link> OpenLink(std::unique_ptr<ph::Transport> t, ph::LinkOpt
   return std::move(link.value);
 }
 
+/// Configures the thesis-5finger board with a host-silence timeout of `host_timeout_us`.
+void ConfigureHostTimeout(ph::Device& device, uint32_t host_timeout_us) {
+  pp::ConfigureBoard board{};
+  std::snprintf(board.config_name.data(), board.config_name.size(), "thesis-5finger");
+  board.host_timeout_us = host_timeout_us;
+  const ph::Outcome configured = device.ConfigureBoard(board);
+  CHECK_TEXT(configured.ok(), configured.message.c_str());
+}
+
 }  // namespace
 
 TEST_GROUP(LinkFaults){};
@@ -124,11 +133,7 @@ TEST(LinkSim, StreamsConvergeToTheLatestValueUnderFaults) {
   CHECK_TEXT(device.ok(), error.c_str());
   // A 1 % byte loss drops about one heartbeat in seven; four in a row would trip the default
   // 100 ms host-silence timeout now and then. This test is about the stream, so give it 1 s.
-  pp::ConfigureBoard board{};
-  std::snprintf(board.config_name.data(), board.config_name.size(), "thesis-5finger");
-  board.host_timeout_us = 1000000;
-  const ph::Outcome configured = device.value->ConfigureBoard(board);
-  CHECK_TEXT(configured.ok(), configured.message.c_str());
+  ConfigureHostTimeout(*device.value, 1000000);
   for (int i = 1; i <= 30; ++i) device.value->SetLines({{0, static_cast<double>(i)}}, false);
   const ph::Outcome last = device.value->SetLines({{0, 42.0}}, true);
   CHECK_TEXT(last.ok(), last.message.c_str());
@@ -232,11 +237,7 @@ TEST(LinkSim, HeartbeatsFollowAShorterHostTimeoutSetInTheSession) {
   CHECK_TEXT(sim.ok(), error.c_str());
   auto device = ph::Device::Attach(std::move(sim.value), {}, &error);
   CHECK_TEXT(device.ok(), error.c_str());
-  pp::ConfigureBoard board{};
-  std::snprintf(board.config_name.data(), board.config_name.size(), "thesis-5finger");
-  board.host_timeout_us = 20000;
-  const ph::Outcome configured = device.value->ConfigureBoard(board);
-  CHECK_TEXT(configured.ok(), configured.message.c_str());
+  ConfigureHostTimeout(*device.value, 20000);
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));
   const auto diagnostics = device.value->Diagnostics(&error);
   CHECK_TEXT(diagnostics.ok(), error.c_str());

@@ -5,11 +5,13 @@
 #include <cstdint>
 #include <map>
 
+#include "palpa/protocol/messages_config.h"
+
 namespace palpa::host {
 
 /// The timeout a board reports 0 for (a board that does not say) is taken as the protocol's
 /// default, so a silent board gets heartbeats at the usual rate rather than as fast as possible.
-inline constexpr uint32_t kDefaultHostTimeoutUs = 100000;
+inline constexpr uint32_t kDefaultHostTimeoutUs = protocol::ConfigureBoard{}.host_timeout_us;
 
 /// A quarter of `host_timeout_us` (board time; 0: the default), in host seconds at `time_scale`
 /// board seconds per host second, and never below 1 ms.
