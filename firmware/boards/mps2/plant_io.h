@@ -42,21 +42,31 @@ class PlantIo final : public hal::AnalogOutput, public hal::AnalogInput {
  private:
   protocol::Status DoWrite(uint8_t channel, uint32_t counts) override {
     if (channel >= count_) return protocol::Status::kNotFound;
-    const protocol::ConfigureLine& c = config_[channel];
-    const float fraction = static_cast<float>(counts) / static_cast<float>((1u << c.dac_bits) - 1u);
-    command_[channel] = (c.kind == protocol::LineKind::kVacuum ? -1.0f : 1.0f) * fraction * params::kRegulatorFullScalePa;
+    SetRegulatorCommand(channel, counts);
     return protocol::Status::kOk;
   }
   hal::AnalogOutputSpec DoSpec(uint8_t) const override { return {}; }
   protocol::Result<uint32_t> DoRead(uint8_t channel) override {
     if (channel >= count_) return protocol::Status::kNotFound;
+    return SensorCounts(channel);
+  }
+  uint8_t DoBits() const override { return 14; }
+
+  // The plant's side of the DAC and the ADC: what a register write and a conversion result are on
+  // a board with real converters. Out of line so that the tick benchmark can count them apart
+  // (tests/bench/mps2.sh): they are simulation, not firmware.
+  [[gnu::noinline]] void SetRegulatorCommand(uint8_t channel, uint32_t counts) {
+    const protocol::ConfigureLine& c = config_[channel];
+    const float fraction = static_cast<float>(counts) / static_cast<float>((1u << c.dac_bits) - 1u);
+    command_[channel] = (c.kind == protocol::LineKind::kVacuum ? -1.0f : 1.0f) * fraction * params::kRegulatorFullScalePa;
+  }
+  [[gnu::noinline]] uint32_t SensorCounts(uint8_t channel) const {
     const protocol::ConfigureLine& c = config_[channel];
     const float pa = lines_[channel].outlet_pa();
     const float fraction = (pa - static_cast<float>(c.sensor_min_pa)) / static_cast<float>(c.sensor_max_pa - c.sensor_min_pa);
     const float counts = static_cast<float>(c.sensor_counts_min) + fraction * static_cast<float>(c.sensor_counts_max - c.sensor_counts_min);
     return static_cast<uint32_t>(counts < 0 ? 0.0f : counts + 0.5f);
   }
-  uint8_t DoBits() const override { return 14; }
 
   uint8_t count_ = 0;
   protocol::ConfigureLine config_[protocol::kMaxLines] = {};
