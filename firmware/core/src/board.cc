@@ -81,9 +81,18 @@ void Board::ApplyLive(uint64_t now_us) {
   for (uint8_t i = 0; i < kMaxLines; ++i) {
     line_owner_[i] = FingerOfLine(live_, i);
     if (i < live_.line_count) {
-      line_params_[i] = MakeLineParams(live_.lines[i], kTickUs);
-      ResetLineState(line_params_[i], line_state_[i], line_params_[i].safe_pa);
-      raw_setpoint_pa_[i] = line_params_[i].safe_pa;
+      const LineParams& p = line_params_[i] = MakeLineParams(live_.lines[i], kTickUs);
+      ResetLineState(p, line_state_[i], p.safe_pa);
+      raw_setpoint_pa_[i] = p.safe_pa;
+      // What the supervisor sees of a line that the configuration fixes, once per configuration;
+      // the rest follows each tick's step (open loop until the line has stepped).
+      LineObservation& o = supervisor_input_.lines[i];
+      o.configured = true;
+      o.has_sensor = p.has_sensor && io_.adc != nullptr;
+      o.limit_min_pa = p.limit_min_pa;
+      o.limit_max_pa = p.limit_max_pa;
+      o.reference_pa = line_state_[i].reference_pa;
+      o.setpoint_pa = line_state_[i].slewed_pa;
     }
   }
   for (uint8_t f = 0; f < live_.finger_count; ++f) {
@@ -125,17 +134,16 @@ void Board::Tick(uint64_t now_us) {
   safe_ = supervisor_.latched != 0 || !released_ || updating;
   if (safe_ && !was_safe) Hold();
 
-  float setpoints[kMaxLines];  // ComputeSetpoints writes every configured line's
-  ComputeSetpoints(now_us, setpoints);
+  // ComputeSetpoints writes every configured line's setpoint and the status its finger adds.
+  float setpoints[kMaxLines];
+  uint8_t finger_status[kMaxLines];
+  ComputeSetpoints(now_us, setpoints, finger_status);
   for (uint8_t i = 0; i < live_.line_count; ++i) {
-    LineInput line_in{setpoints[i], safe_, measured_valid_[i], measured_pa_[i]};
-    line_out_[i] = StepLine(line_params_[i], line_state_[i], line_in);
-    const uint8_t owner = line_owner_[i];
-    if (owner != kNoLine && finger_state_[owner].mode == protocol::FingerMode::kRaw) {
-      line_out_[i].status |= protocol::line_status::kRaw;
-    }
-    if (line_params_[i].has_sensor && !measured_valid_[i]) line_out_[i].status |= protocol::line_status::kSensorFault;
-    if (compensator_saturated_[i]) line_out_[i].status |= protocol::line_status::kSaturated;
+    const LineObservation& o = in.lines[i];
+    LineOutput& out = line_out_[i] = StepLine(line_params_[i], line_state_[i], {setpoints[i], safe_, o.sensor_valid, o.measured_pa});
+    out.status |= finger_status[i];
+    if (line_params_[i].has_sensor && !o.sensor_valid) out.status |= protocol::line_status::kSensorFault;
+    ObserveLineAfterStep(i);
   }
   WriteOutputs();
   SampleTelemetry(now_us, newly != 0);
@@ -149,50 +157,50 @@ void Board::ReadInputs(uint64_t now_us, SupervisorInput& in) {
   in.estop_pin = io_.estop != nullptr && io_.estop->Read();
   in.safe = safe_;
   for (uint8_t i = 0; i < live_.line_count; ++i) {
-    const protocol::ConfigureLine& c = live_.lines[i];
-    const LineParams& p = line_params_[i];
     LineObservation& o = in.lines[i];
-    o.configured = true;
-    o.has_sensor = p.has_sensor && io_.adc != nullptr;
-    measured_valid_[i] = false;
-    if (o.has_sensor) {
-      const auto counts = io_.adc->Read(i);
-      // Readings outside the sensor's output span (open or shorted wire) are not pressures.
-      if (counts.ok() && counts.value >= p.sensor_counts_low && counts.value <= p.sensor_counts_high) {
-        measured_pa_[i] = p.sensor_min_pa + (static_cast<float>(counts.value) - p.sensor_counts_min) * p.sensor_pa_per_count;
-        measured_valid_[i] = true;
-      }
-      raw_counts_[i] = counts.ok() ? counts.value : 0;
-    }
-    o.sensor_valid = measured_valid_[i];
-    o.raw_counts = raw_counts_[i];
-    o.measured_pa = measured_pa_[i];
-    o.reference_pa = line_state_[i].reference_pa;
-    o.setpoint_pa = line_state_[i].slewed_pa;
-    o.limit_min_pa = p.limit_min_pa;
-    o.limit_max_pa = p.limit_max_pa;
-    o.active = !safe_ && (line_out_[i].status & protocol::line_status::kOpenLoop) == 0;
-    o.vacuum_demand = c.kind == protocol::LineKind::kVacuum && line_out_[i].command_pa < -p.regulator_min_pa;
+    if (!o.has_sensor) continue;
+    const LineParams& p = line_params_[i];
+    const auto counts = io_.adc->Read(i);
+    // Readings outside the sensor's output span (open or shorted wire) are not pressures.
+    o.sensor_valid = counts.ok() && counts.value >= p.sensor_counts_low && counts.value <= p.sensor_counts_high;
+    if (o.sensor_valid) o.measured_pa = p.sensor_min_pa + (static_cast<float>(counts.value) - p.sensor_counts_min) * p.sensor_pa_per_count;
+    o.raw_counts = counts.ok() ? counts.value : 0;
   }
 }
 
-void Board::ComputeSetpoints(uint64_t now_us, float* setpoints) {
+void Board::ObserveLineAfterStep(uint8_t line) {
+  // The supervisor compares the next reading with where this tick left the line.
+  const LineOutput& out = line_out_[line];
+  const LineState& state = line_state_[line];
+  LineObservation& o = supervisor_input_.lines[line];
+  o.reference_pa = state.reference_pa;
+  o.setpoint_pa = state.slewed_pa;
+  o.closed_loop = (out.status & protocol::line_status::kOpenLoop) == 0;
+  o.vacuum_demand = out.command_pa < line_params_[line].pump_below_pa;
+}
+
+void Board::ComputeSetpoints(uint64_t now_us, float* setpoints, uint8_t* finger_status) {
   for (uint8_t i = 0; i < live_.line_count; ++i) {
     setpoints[i] = raw_setpoint_pa_[i];
-    compensator_saturated_[i] = false;
+    finger_status[i] = 0;
   }
-  if (safe_) return;
   const uint32_t dwell_us = static_cast<uint32_t>(live_.board.home_dwell_ms) * 1000;
   for (uint8_t f = 0; f < live_.finger_count; ++f) {
     FingerState& s = finger_state_[f];
     const FingerParams& p = finger_params_[f];
-    if (s.mode != protocol::FingerMode::kTarget) continue;
+    if (s.mode != protocol::FingerMode::kTarget) {  // raw: the host drives the lines directly
+      finger_status[p.line_a] = protocol::line_status::kRaw;
+      if (p.line_b != kNoLine) finger_status[p.line_b] = protocol::line_status::kRaw;
+      continue;
+    }
+    if (safe_) continue;
     const uint8_t driven = p.line_b != kNoLine ? p.line_b : p.line_a;
-    const float applied = measured_valid_[driven] ? measured_pa_[driven] : line_state_[driven].reference_pa;
+    const LineObservation& seen = supervisor_input_.lines[driven];
+    const float applied = seen.sensor_valid ? seen.measured_pa : line_state_[driven].reference_pa;
     const FingerOutput out = StepFinger(p, s, now_us, dwell_us, applied);
     setpoints[p.line_a] = out.setpoint_a;
     if (p.line_b != kNoLine) setpoints[p.line_b] = out.setpoint_b;
-    compensator_saturated_[driven] = out.saturated;
+    if (out.saturated) finger_status[driven] = protocol::line_status::kSaturated;
   }
 }
 

@@ -145,8 +145,9 @@ void Board::SampleTelemetry(uint64_t now_us, bool fault_report) {
     if (batch_.tick_count == 0) batch_.first_sample_us = now_us;
     for (uint8_t i = 0; i < live_.line_count; ++i) {
       const LineOutput& o = line_out_[i];
+      const LineObservation& seen = supervisor_input_.lines[i];
       batch_.samples[batch_.sample_count++] = protocol::LineSample{
-          static_cast<int32_t>(line_state_[i].slewed_pa), measured_valid_[i] ? ClampReading(measured_pa_[i]) : 0,
+          static_cast<int32_t>(line_state_[i].slewed_pa), seen.sensor_valid ? ClampReading(seen.measured_pa) : 0,
           static_cast<uint16_t>(o.counts), o.status};
     }
     ++batch_.tick_count;

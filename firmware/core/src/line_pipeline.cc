@@ -41,6 +41,7 @@ LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us)
   p.safe_pa = Clamp(static_cast<float>(line.safe_pa), p.limit_min_pa, p.limit_max_pa);
   p.max_step_pa = static_cast<float>(line.slew_pa_per_s) * dt;
   p.regulator_min_pa = static_cast<float>(line.regulator_min_pa);
+  p.pump_below_pa = line.kind == protocol::LineKind::kVacuum ? -p.regulator_min_pa : -3.40282347e38f;
   p.command_min_pa = static_cast<float>(line.command_min_pa);
   p.command_span_pa = static_cast<float>(line.command_max_pa - line.command_min_pa);
   p.max_counts = (1u << line.dac_bits) - 1u;

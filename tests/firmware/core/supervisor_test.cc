@@ -1,4 +1,5 @@
-// Supervisor: every fault path latches, ClearFault is refused while the cause persists.
+// Supervisor: every fault path latches, ClearFault is refused while the cause persists; fast
+// checks see every line every tick, slow monitors every line within kMaxLines ticks.
 #include "palpa/core/supervisor.h"
 
 #include "CppUTest/TestHarness.h"
@@ -9,6 +10,8 @@ using pp::Fault;
 using pp::FaultBit;
 
 namespace {
+
+constexpr uint64_t kTick = 1000;  // µs: the board calls the supervisor every tick
 
 struct Fixture {
   pc::SupervisorSettings settings;
@@ -22,13 +25,18 @@ struct Fixture {
     settings.tolerance_pa = 5000;
     in.session_open = true;
     pc::LineObservation& o = in.lines[0];
-    o.configured = o.has_sensor = o.sensor_valid = o.active = true;
+    o.configured = o.has_sensor = o.sensor_valid = o.closed_loop = true;
     o.limit_min_pa = 0;
     o.limit_max_pa = 100000;
   }
   uint32_t At(uint64_t now_us) {
     in.now_us = now_us;
     return pc::Supervise(settings, state, in);
+  }
+  /// One tick of a live session: the host's heartbeat has just arrived.
+  uint32_t Tick(uint64_t now_us) {
+    in.last_host_frame_us = now_us;
+    return At(now_us);
   }
   void Line(float setpoint, float reference, float measured, uint32_t counts) {
     pc::LineObservation& o = in.lines[0];
@@ -74,35 +82,48 @@ TEST(Supervisor, ReadingOutsideTheSensorSpanIsImplausibleAtOnce) {
   LONGS_EQUAL(FaultBit(Fault::kImplausibleSensor), f.At(1000));
 }
 
+TEST(Supervisor, OverLimitAndInvalidReadingsAreSeenOnEveryLineAtTheFirstTick) {
+  Fixture f;
+  for (uint8_t i = 1; i < pp::kMaxLines; ++i) f.in.lines[i] = f.in.lines[0];
+  f.in.lines[6].measured_pa = 105001;
+  LONGS_EQUAL(FaultBit(Fault::kOverLimit), f.At(1000));
+  f.in.lines[3].sensor_valid = false;
+  LONGS_EQUAL(FaultBit(Fault::kImplausibleSensor), f.At(2000));
+  pp::FaultRecord records[pp::kMaxFaultRecords];
+  LONGS_EQUAL(2, pc::FaultHistory(f.state, records));
+  LONGS_EQUAL(105001, records[0].detail);
+  LONGS_EQUAL(3, records[1].detail);
+}
+
 TEST(Supervisor, SensorAboveTheModelLongerThanTheWindowIsImplausible) {
   Fixture f;
   f.Line(20000, 20000, 40000, 100);
-  for (uint64_t t = 1000; t <= 3000000; t += 100000) {
-    f.in.last_host_frame_us = t;
+  uint64_t t = 1000;
+  for (; t <= 3001000; t += kTick) {  // the window, from the first visit of the line
+    f.Tick(t);
     f.in.lines[0].raw_counts = static_cast<uint32_t>(t);  // noise: not stuck
-    LONGS_EQUAL(0, f.At(t));
+    LONGS_EQUAL(0, f.state.latched);
   }
-  f.in.last_host_frame_us = 3100000;
-  LONGS_EQUAL(FaultBit(Fault::kImplausibleSensor), f.At(3100000));
+  // The slow monitors visit each line slot every kMaxLines ticks: tripped by the next visit.
+  while (f.state.latched == 0 && t <= 3001000 + pp::kMaxLines * kTick) f.Tick(t += kTick);
+  LONGS_EQUAL(FaultBit(Fault::kImplausibleSensor), f.state.latched);
 }
 
 TEST(Supervisor, ShortTransientsAreNotImplausible) {
   Fixture f;
-  for (uint64_t t = 0; t < 20000000; t += 100000) {
+  for (uint64_t t = 0; t < 20000000; t += kTick) {
     const bool transient = (t / 1000000) % 2 == 0;  // 1 s over, 1 s fine
     f.Line(20000, 20000, transient ? 40000 : 20000, static_cast<uint32_t>(t));
-    f.in.last_host_frame_us = t;
-    LONGS_EQUAL(0, f.At(t));
+    LONGS_EQUAL(0, f.Tick(t));
   }
 }
 
 TEST(Supervisor, StuckSensorWhileTheCommandMovesIsImplausible) {
   Fixture f;
-  for (uint64_t t = 0; t <= 3200000; t += 100000) {
+  for (uint64_t t = 0; t <= 3200000; t += kTick) {
     const float reference = static_cast<float>(t) / 100.0f;  // ramps 0 → 32 kPa
     f.Line(reference, reference, 0, 777);  // same counts all along, reading stays at 0
-    f.in.last_host_frame_us = t;
-    f.At(t);
+    f.Tick(t);
   }
   CHECK(f.state.latched & FaultBit(Fault::kImplausibleSensor));
 }
@@ -110,12 +131,33 @@ TEST(Supervisor, StuckSensorWhileTheCommandMovesIsImplausible) {
 TEST(Supervisor, LeakWhenTheChamberNeverReachesASettledSetpoint) {
   Fixture f;
   uint32_t newly = 0;
-  for (uint64_t t = 0; t <= 5200000; t += 100000) {
+  for (uint64_t t = 0; t <= 5200000; t += kTick) {
     f.Line(50000, 50000, 30000, static_cast<uint32_t>(t));
-    f.in.last_host_frame_us = t;
-    newly |= f.At(t);
+    newly |= f.Tick(t);
   }
   LONGS_EQUAL(FaultBit(Fault::kLeak), newly);
+}
+
+TEST(Supervisor, TheSlowMonitorsVisitEveryLineInTurn) {
+  Fixture f;
+  f.in.lines[7] = f.in.lines[0];
+  f.in.lines[0].configured = false;
+  pc::LineObservation& o = f.in.lines[7];  // short of its settled setpoint: a leak
+  o.setpoint_pa = o.reference_pa = 50000;
+  o.measured_pa = 30000;
+  uint64_t t = 0;
+  uint32_t newly = 0;
+  for (; newly == 0 && t <= 6000000; t += kTick) {
+    o.raw_counts = static_cast<uint32_t>(t);
+    newly = f.Tick(t);
+  }
+  LONGS_EQUAL(FaultBit(Fault::kLeak), newly);
+  // First visit at tick 7 (7 ms), tripped at the first visit past the 5 s timeout.
+  CHECK(t - kTick > 5007000);
+  CHECK(t - kTick <= 5007000 + pp::kMaxLines * kTick);
+  pp::FaultRecord records[pp::kMaxFaultRecords];
+  LONGS_EQUAL(1, pc::FaultHistory(f.state, records));
+  LONGS_EQUAL(7, records[0].detail);
 }
 
 TEST(Supervisor, EStopPinLatchesAndBlocksClearingWhileAsserted) {

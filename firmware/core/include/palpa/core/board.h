@@ -91,7 +91,8 @@ class Board {
   // Out of line so instruction counts can bracket a tick (tests/bench/qemu_insn_count.c).
   [[gnu::noinline]] void Tick(uint64_t now_us);
   void ReadInputs(uint64_t now_us, SupervisorInput& in);
-  void ComputeSetpoints(uint64_t now_us, float* setpoints);
+  void ComputeSetpoints(uint64_t now_us, float* setpoints, uint8_t* finger_status);
+  void ObserveLineAfterStep(uint8_t line);
   void WriteOutputs();
   void CheckConfigIntegrity(uint64_t now_us);
   [[gnu::noinline]] void SampleTelemetry(uint64_t now_us, bool fault_report);
@@ -131,12 +132,8 @@ class Board {
   std::array<LineState, protocol::kMaxLines> line_state_{};
   std::array<LineOutput, protocol::kMaxLines> line_out_{};
   std::array<float, protocol::kMaxLines> raw_setpoint_pa_{};
-  std::array<float, protocol::kMaxLines> measured_pa_{};
-  std::array<bool, protocol::kMaxLines> measured_valid_{};
-  std::array<uint32_t, protocol::kMaxLines> raw_counts_{};
   std::array<FingerParams, protocol::kMaxFingers> finger_params_{};
   std::array<FingerState, protocol::kMaxFingers> finger_state_{};
-  std::array<bool, protocol::kMaxLines> compensator_saturated_{};  ///< this tick, per driven line
   std::array<uint8_t, protocol::kMaxLines> line_owner_{};
 
   hal::PulsingEnable supply_pulse_;

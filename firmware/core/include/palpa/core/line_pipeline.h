@@ -22,6 +22,7 @@ struct LineParams {
   float safe_pa = 0;
   float max_step_pa = 0;                     ///< slew per tick; 0 = none
   float regulator_min_pa = 0;
+  float pump_below_pa = 0;  ///< commands below this need the vacuum pump (lowest float: never)
   float command_min_pa = 0, command_span_pa = 1;  ///< pressure at 0 % and span to 100 %
   float counts_low = 0, counts_high = 0;          ///< DAC codes at 0 % and 100 % of the signal
   uint32_t max_counts = 0;

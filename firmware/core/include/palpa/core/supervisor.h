@@ -24,7 +24,7 @@ SupervisorSettings MakeSupervisorSettings(const protocol::ConfigureBoard& board)
 /// What the tick saw on one line.
 struct LineObservation {
   bool configured = false;
-  bool active = false;        ///< commanding pressure (not safe, above the regulator minimum)
+  bool closed_loop = false;   ///< last tick commanded pressure with the trim on (outside safe)
   bool has_sensor = false;
   bool sensor_valid = false;  ///< conversion succeeded and the counts are inside the sensor's span
   uint32_t raw_counts = 0;
@@ -59,6 +59,7 @@ struct SupervisorState {
   uint32_t latched = 0;  ///< faults latched until ClearFault
   uint32_t active = 0;   ///< conditions present now
   std::array<LineMonitor, protocol::kMaxLines> lines{};
+  uint8_t slow_slot = 0;  ///< the line slot the slow monitors visit this tick
   bool pump_on = false;
   uint64_t pump_on_since = 0;
   std::array<protocol::FaultRecord, protocol::kMaxFaultRecords> history{};  ///< ring
