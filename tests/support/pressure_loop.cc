@@ -76,7 +76,8 @@ double SettledRipple(const LoopCase& c, int seconds) {
   const double band = c.valve_dead_band * kFullScale;
   const int ticks = seconds * 1000;
   for (int k = 0; k < ticks; ++k) {
-    const core::LineOutput out = core::StepLine(p, s, core::LineInput{50000, false, true, static_cast<float>(chamber)});
+    core::LineOutput out;
+    core::StepLine(p, s, core::LineInput{50000, false, true, static_cast<float>(chamber)}, out);
     const double command = 1.01 * out.command_pa + 300;  // the regulator's own static error
     if (command > held + band / 2) held = command - band / 2;
     if (command < held - band / 2) held = command + band / 2;

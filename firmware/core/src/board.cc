@@ -138,12 +138,20 @@ void Board::Tick(uint64_t now_us) {
   float setpoints[kMaxLines];
   uint8_t finger_status[kMaxLines];
   ComputeSetpoints(now_us, setpoints, finger_status);
-  for (uint8_t i = 0; i < live_.line_count; ++i) {
-    const LineObservation& o = in.lines[i];
-    LineOutput& out = line_out_[i] = StepLine(line_params_[i], line_state_[i], {setpoints[i], safe_, o.sensor_valid, o.measured_pa});
-    out.status |= finger_status[i];
-    if (line_params_[i].has_sensor && !o.sensor_valid) out.status |= protocol::line_status::kSensorFault;
-    ObserveLineAfterStep(i);
+  // Walked by pointer: at -Os the compiler re-derives every array's address from the index.
+  LineObservation* o = in.lines.data();
+  const LineParams* p = line_params_.data();
+  LineState* state = line_state_.data();
+  LineOutput* out = line_out_.data();
+  for (uint8_t i = 0; i < live_.line_count; ++i, ++o, ++p, ++state, ++out) {
+    StepLine(*p, *state, {setpoints[i], safe_, o->sensor_valid, o->measured_pa}, *out);
+    out->status |= finger_status[i];
+    if (p->has_sensor && !o->sensor_valid) out->status |= protocol::line_status::kSensorFault;
+    // The supervisor compares the next reading with where this tick left the line.
+    o->reference_pa = state->reference_pa;
+    o->setpoint_pa = state->slewed_pa;
+    o->closed_loop = (out->status & protocol::line_status::kOpenLoop) == 0;
+    o->vacuum_demand = out->command_pa < p->pump_below_pa;
   }
   WriteOutputs();
   SampleTelemetry(now_us, newly != 0);
@@ -166,17 +174,6 @@ void Board::ReadInputs(uint64_t now_us, SupervisorInput& in) {
     if (o.sensor_valid) o.measured_pa = p.sensor_min_pa + (static_cast<float>(counts.value) - p.sensor_counts_min) * p.sensor_pa_per_count;
     o.raw_counts = counts.ok() ? counts.value : 0;
   }
-}
-
-void Board::ObserveLineAfterStep(uint8_t line) {
-  // The supervisor compares the next reading with where this tick left the line.
-  const LineOutput& out = line_out_[line];
-  const LineState& state = line_state_[line];
-  LineObservation& o = supervisor_input_.lines[line];
-  o.reference_pa = state.reference_pa;
-  o.setpoint_pa = state.slewed_pa;
-  o.closed_loop = (out.status & protocol::line_status::kOpenLoop) == 0;
-  o.vacuum_demand = out.command_pa < line_params_[line].pump_below_pa;
 }
 
 void Board::ComputeSetpoints(uint64_t now_us, float* setpoints, uint8_t* finger_status) {
@@ -206,7 +203,7 @@ void Board::ComputeSetpoints(uint64_t now_us, float* setpoints, uint8_t* finger_
 
 void Board::WriteOutputs() {
   for (uint8_t i = 0; i < live_.line_count; ++i) {
-    if (safe_) line_out_[i].counts = CountsFor(line_params_[i], line_params_[i].safe_pa);
+    if (safe_) line_out_[i].counts = line_params_[i].safe_counts;
     io_.dac.Write(i, line_out_[i].counts);
   }
   // Critical for safety: valves and pump are held only while the board is not safe.

@@ -62,6 +62,8 @@ LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us)
     p.correction_rising[i] = static_cast<float>(line.correction[i].rising_pa);
     p.correction_falling[i] = static_cast<float>(line.correction[i].falling_pa);
   }
+  p.safe_counts = CountsFor(p, p.safe_pa);
+  p.zero_counts = CountsFor(p, 0);
   return p;
 }
 
@@ -81,15 +83,15 @@ uint32_t CountsFor(const LineParams& p, float command_pa) {
   return counts >= static_cast<float>(p.max_counts) ? p.max_counts : static_cast<uint32_t>(counts);
 }
 
-LineOutput StepLine(const LineParams& p, LineState& s, const LineInput& in) {
-  LineOutput out;
+void StepLine(const LineParams& p, LineState& s, const LineInput& in, LineOutput& out) {
   if (in.safe) {  // Critical for safety: the shutdown bypasses slew, trim and model.
     ResetLineState(p, s, p.safe_pa);
     out.command_pa = p.safe_pa;
-    out.counts = CountsFor(p, p.safe_pa);
+    out.counts = p.safe_counts;
     out.status = ls::kSafe | ls::kOpenLoop;
-    return out;
+    return;
   }
+  out.status = 0;
   // 1. Slew limit.
   const float target = Clamp(in.setpoint_pa, p.limit_min_pa, p.limit_max_pa);
   float step = target - s.slewed_pa;
@@ -105,16 +107,16 @@ LineOutput StepLine(const LineParams& p, LineState& s, const LineInput& in) {
   // 2. Regulator model (dead time + lag): the reference the trim compares the sensor with.
   const float delayed = s.delay[s.delay_index];
   s.delay[s.delay_index] = s.slewed_pa;
-  s.delay_index = static_cast<uint8_t>(p.dead_ticks == 0 ? 0 : (s.delay_index + 1) % p.dead_ticks);
+  s.delay_index = static_cast<uint8_t>(s.delay_index + 1 >= p.dead_ticks ? 0 : s.delay_index + 1);
   s.reference_pa += p.model_alpha * ((p.dead_ticks == 0 ? s.slewed_pa : delayed) - s.reference_pa);
 
   // 3. Below the regulator's minimum set pressure: command 0, integrator off.
   if (Abs(s.slewed_pa) < p.regulator_min_pa) {
     s.integrator_pa = 0;
     out.command_pa = 0;
-    out.counts = CountsFor(p, 0);
+    out.counts = p.zero_counts;
     out.status |= ls::kOpenLoop;
-    return out;
+    return;
   }
 
   // 4. Feed-forward through the static correction, plus the PI trim where a sensor exists.
@@ -142,7 +144,6 @@ LineOutput StepLine(const LineParams& p, LineState& s, const LineInput& in) {
     out.status |= ls::kSaturated;
   }
   out.counts = CountsFor(p, out.command_pa);
-  return out;
 }
 
 }  // namespace palpa::core

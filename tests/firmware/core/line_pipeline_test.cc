@@ -33,7 +33,9 @@ pp::ConfigureLine PressureLine() {
 
 pc::LineOutput Step(const pc::LineParams& p, pc::LineState& s, float setpoint, bool measured_valid = false,
                     float measured = 0, bool safe = false) {
-  return pc::StepLine(p, s, pc::LineInput{setpoint, safe, measured_valid, measured});
+  pc::LineOutput out;
+  pc::StepLine(p, s, pc::LineInput{setpoint, safe, measured_valid, measured}, out);
+  return out;
 }
 
 }  // namespace

@@ -92,7 +92,6 @@ class Board {
   [[gnu::noinline]] void Tick(uint64_t now_us);
   void ReadInputs(uint64_t now_us, SupervisorInput& in);
   void ComputeSetpoints(uint64_t now_us, float* setpoints, uint8_t* finger_status);
-  void ObserveLineAfterStep(uint8_t line);
   void WriteOutputs();
   void CheckConfigIntegrity(uint64_t now_us);
   [[gnu::noinline]] void SampleTelemetry(uint64_t now_us, bool fault_report);

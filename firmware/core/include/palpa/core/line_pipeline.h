@@ -26,6 +26,7 @@ struct LineParams {
   float command_min_pa = 0, command_span_pa = 1;  ///< pressure at 0 % and span to 100 %
   float counts_low = 0, counts_high = 0;          ///< DAC codes at 0 % and 100 % of the signal
   uint32_t max_counts = 0;
+  uint32_t safe_counts = 0, zero_counts = 0;      ///< DAC codes for safe_pa and for 0 Pa
   float kp = 0, ki_dt = 0;                   ///< ki already multiplied by the tick period
   float authority_pa = 0, dead_band_pa = 0;
   float model_alpha = 1;                     ///< regulator-model lag per tick
@@ -63,7 +64,8 @@ struct LineOutput {
   uint8_t status = 0;    ///< protocol::line_status bits
 };
 
-LineOutput StepLine(const LineParams& p, LineState& s, const LineInput& in);
+/// One tick of one line; writes every field of `out`.
+void StepLine(const LineParams& p, LineState& s, const LineInput& in, LineOutput& out);
 
 /// DAC code for a commanded pressure (clamped to the DAC's range).
 uint32_t CountsFor(const LineParams& p, float command_pa);
