@@ -182,22 +182,23 @@ void Board::ComputeSetpoints(uint64_t now_us, float* setpoints, uint8_t* finger_
     finger_status[i] = 0;
   }
   const uint32_t dwell_us = static_cast<uint32_t>(live_.board.home_dwell_ms) * 1000;
-  for (uint8_t f = 0; f < live_.finger_count; ++f) {
-    FingerState& s = finger_state_[f];
-    const FingerParams& p = finger_params_[f];
-    if (s.mode != protocol::FingerMode::kTarget) {  // raw: the host drives the lines directly
-      finger_status[p.line_a] = protocol::line_status::kRaw;
-      if (p.line_b != kNoLine) finger_status[p.line_b] = protocol::line_status::kRaw;
+  const FingerParams* p = finger_params_.data();
+  FingerState* s = finger_state_.data();
+  for (uint8_t f = 0; f < live_.finger_count; ++f, ++p, ++s) {
+    if (s->mode != protocol::FingerMode::kTarget) {  // raw: the host drives the lines directly
+      finger_status[p->line_a] = protocol::line_status::kRaw;
+      if (p->line_b != kNoLine) finger_status[p->line_b] = protocol::line_status::kRaw;
       continue;
     }
     if (safe_) continue;
-    const uint8_t driven = p.line_b != kNoLine ? p.line_b : p.line_a;
-    const LineObservation& seen = supervisor_input_.lines[driven];
-    const float applied = seen.sensor_valid ? seen.measured_pa : line_state_[driven].reference_pa;
-    const FingerOutput out = StepFinger(p, s, now_us, dwell_us, applied);
-    setpoints[p.line_a] = out.setpoint_a;
-    if (p.line_b != kNoLine) setpoints[p.line_b] = out.setpoint_b;
-    if (out.saturated) finger_status[driven] = protocol::line_status::kSaturated;
+    // The compensator's memory follows what the driven line applied: the reading, or where the
+    // regulator model has the pressure when there is no reading.
+    const LineObservation& seen = supervisor_input_.lines[p->driven_line];
+    const float applied = seen.sensor_valid ? seen.measured_pa : seen.reference_pa;
+    const FingerOutput out = StepFinger(*p, *s, now_us, dwell_us, applied);
+    setpoints[p->line_a] = out.setpoint_a;
+    if (p->line_b != kNoLine) setpoints[p->line_b] = out.setpoint_b;
+    if (out.saturated) finger_status[p->driven_line] = protocol::line_status::kSaturated;
   }
 }
 

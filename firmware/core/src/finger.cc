@@ -11,6 +11,7 @@ FingerParams MakeFingerParams(const protocol::ConfigureFinger& finger, float dri
   p.compensator = finger.compensator;
   p.line_a = finger.line_a;
   p.line_b = finger.line_b;
+  p.driven_line = finger.line_b != protocol::kNoLine ? finger.line_b : finger.line_a;
   p.bias_pa = static_cast<float>(finger.bias_pa);
   p.inverse_count = finger.inverse_count;
   for (uint8_t i = 0; i < finger.inverse_count; ++i) {

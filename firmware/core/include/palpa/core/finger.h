@@ -16,6 +16,7 @@ struct FingerParams {
   protocol::CompensatorKind compensator = protocol::CompensatorKind::kNone;
   uint8_t line_a = 0;
   uint8_t line_b = protocol::kNoLine;
+  uint8_t driven_line = 0;  ///< the line the target drives: line_b on a jamming finger, else line_a
   float bias_pa = 0;
   uint8_t inverse_count = 0;
   std::array<float, protocol::kMaxInversePoints> inverse_output{};
