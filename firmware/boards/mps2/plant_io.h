@@ -50,6 +50,9 @@ class PlantIo final : public hal::AnalogOutput, public hal::AnalogInput {
     if (channel >= count_) return protocol::Status::kNotFound;
     return SensorCounts(channel);
   }
+  void DoReadAll(uint32_t* counts, uint8_t count) override {
+    for (uint8_t i = 0; i < count; ++i) counts[i] = i < count_ ? SensorCounts(i) : kConversionFailed;
+  }
   uint8_t DoBits() const override { return 14; }
 
   // The plant's side of the DAC and the ADC: what a register write and a conversion result are on

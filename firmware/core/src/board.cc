@@ -164,15 +164,21 @@ void Board::ReadInputs(uint64_t now_us, SupervisorInput& in) {
   in.last_host_frame_us = last_host_frame_us_;
   in.estop_pin = io_.estop != nullptr && io_.estop->Read();
   in.safe = safe_;
-  for (uint8_t i = 0; i < live_.line_count; ++i) {
-    LineObservation& o = in.lines[i];
-    if (!o.has_sensor) continue;
-    const LineParams& p = line_params_[i];
-    const auto counts = io_.adc->Read(i);
+  if (io_.adc == nullptr) return;
+  uint32_t scan[kMaxLines];  // one scan of every configured line's channel
+  io_.adc->ReadAll(scan, live_.line_count);
+  LineObservation* o = in.lines.data();
+  const LineParams* p = line_params_.data();
+  for (uint8_t i = 0; i < live_.line_count; ++i, ++o, ++p) {
+    if (!o->has_sensor) continue;
+    const uint32_t counts = scan[i];
+    const bool converted = counts != hal::AnalogInput::kConversionFailed;
     // Readings outside the sensor's output span (open or shorted wire) are not pressures.
-    o.sensor_valid = counts.ok() && counts.value >= p.sensor_counts_low && counts.value <= p.sensor_counts_high;
-    if (o.sensor_valid) o.measured_pa = p.sensor_min_pa + (static_cast<float>(counts.value) - p.sensor_counts_min) * p.sensor_pa_per_count;
-    o.raw_counts = counts.ok() ? counts.value : 0;
+    o->sensor_valid = converted && counts >= p->sensor_counts_low && counts <= p->sensor_counts_high;
+    if (o->sensor_valid) {
+      o->measured_pa = p->sensor_min_pa + (static_cast<float>(counts) - p->sensor_counts_min) * p->sensor_pa_per_count;
+    }
+    o->raw_counts = converted ? counts : 0;
   }
 }
 

@@ -241,6 +241,13 @@ Result<uint32_t> ScanAdc::DoRead(uint8_t channel) {
   return static_cast<uint32_t>(samples_[channel]) << 2;
 }
 
+void ScanAdc::DoReadAll(uint32_t* counts, uint8_t count) {
+  const bool overrun = (kAdc1->SR & (1u << 5)) != 0;  // one status read for the whole scan
+  for (uint8_t i = 0; i < count; ++i) {
+    counts[i] = overrun || i >= kChannels ? kConversionFailed : static_cast<uint32_t>(samples_[i]) << 2;
+  }
+}
+
 void IndependentWatchdog::DoStart(uint32_t timeout_ms) {
   const uint32_t ms = timeout_ms < 1 ? 1 : (timeout_ms > 1000 ? 1000 : timeout_ms);
   kIwdg->KR = 0xCCCCu;  // start (also starts the LSI)

@@ -193,6 +193,30 @@ TEST(BoardFaults, ReadingsWithinTwoPercentOfTheSensorSpanAreStillPressures) {
   CHECK(h.board->latched_faults() & FaultBit(Fault::kImplausibleSensor));
 }
 
+TEST(BoardFaults, AFailedConversionIsNoPressure) {
+  h.Run(1, true);
+  LONGS_EQUAL(0, h.board->latched_faults());
+  h.adc.fail = true;  // the scan delivers nothing on any channel
+  h.Run(1, true);
+  CHECK(h.board->line_output(0).status & pp::line_status::kSensorFault);
+  CHECK(h.board->latched_faults() & FaultBit(Fault::kImplausibleSensor));
+  CHECK(AllLinesSafe(h));
+}
+
+TEST(BoardFaults, AScanReadsEachChannelOnceAndMarksFailedOnes) {
+  palpa::hal::fake::FakeAnalogInput adc;
+  adc.counts[0] = 1234;
+  adc.counts[1] = 0;
+  uint32_t scan[3] = {};
+  palpa::hal::AnalogInput& in = adc;
+  in.ReadAll(scan, 3);
+  LONGS_EQUAL(1234, scan[0]);
+  LONGS_EQUAL(0, scan[1]);
+  adc.fail = true;
+  in.ReadAll(scan, 3);
+  for (uint32_t c : scan) LONGS_EQUAL(palpa::hal::AnalogInput::kConversionFailed, c);
+}
+
 TEST_GROUP(BoardBoot){};
 
 TEST(BoardBoot, WatchdogResetIsLatchedAndReported) {

@@ -114,6 +114,7 @@ class ScanAdc final : public AnalogInput {
 
  private:
   Result<uint32_t> DoRead(uint8_t channel) override;
+  void DoReadAll(uint32_t* counts, uint8_t count) override;
   uint8_t DoBits() const override { return 14; }
   volatile uint16_t samples_[kChannels] = {};
 };
