@@ -47,7 +47,8 @@ LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us)
   p.limit_min_pa = static_cast<float>(line.limit_min_pa > ceiling.min_pa ? line.limit_min_pa : ceiling.min_pa);
   p.limit_max_pa = static_cast<float>(line.limit_max_pa < ceiling.max_pa ? line.limit_max_pa : ceiling.max_pa);
   p.safe_pa = Clamp(static_cast<float>(line.safe_pa), p.limit_min_pa, p.limit_max_pa);
-  p.max_step_pa = static_cast<float>(line.slew_pa_per_s) * dt;
+  // No slew limit is a step no setpoint change can exceed (one compare a tick instead of two).
+  p.max_step_pa = line.slew_pa_per_s > 0 ? static_cast<float>(line.slew_pa_per_s) * dt : 3.40282347e38f;
   p.regulator_min_pa = static_cast<float>(line.regulator_min_pa);
   p.pump_below_pa = line.kind == protocol::LineKind::kVacuum ? -p.regulator_min_pa : -3.40282347e38f;
   p.command_min_pa = static_cast<float>(line.command_min_pa);
@@ -99,14 +100,15 @@ void StepLine(const LineParams& p, LineState& s, const LineInput& in, LineOutput
   // 1. Slew limit.
   const float target = Clamp(in.setpoint_pa, p.limit_min_pa, p.limit_max_pa);
   float step = target - s.slewed_pa;
-  if (p.max_step_pa > 0 && Abs(step) > p.max_step_pa) {
+  if (Abs(step) > p.max_step_pa) {
     step = step > 0 ? p.max_step_pa : -p.max_step_pa;
     out.status |= ls::kSlewing;
   }
   const float previous = s.slewed_pa;
   s.slewed_pa += step;
-  if (Abs(s.slewed_pa) > Abs(previous)) s.rising = true;
-  if (Abs(s.slewed_pa) < Abs(previous)) s.rising = false;
+  const float grown = Abs(s.slewed_pa) - Abs(previous);  // kept while steady
+  if (grown > 0) s.rising = true;
+  if (grown < 0) s.rising = false;
 
   // 2. Regulator model (dead time + lag): the reference the trim compares the sensor with.
   const float delayed = s.delay[s.delay_index];

@@ -20,7 +20,7 @@ struct LineParams {
   float sensor_min_pa = 0, sensor_counts_min = 0, sensor_pa_per_count = 0;
   float limit_min_pa = 0, limit_max_pa = 0;  ///< already intersected with the hard ceiling
   float safe_pa = 0;
-  float max_step_pa = 0;                     ///< slew per tick; 0 = none
+  float max_step_pa = 0;                     ///< slew per tick; the largest float when none
   float regulator_min_pa = 0;
   float pump_below_pa = 0;  ///< commands below this need the vacuum pump (lowest float: never)
   float command_min_pa = 0, command_span_pa = 1;  ///< pressure at 0 % and span to 100 %
