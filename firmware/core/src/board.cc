@@ -209,10 +209,12 @@ void Board::ComputeSetpoints(uint64_t now_us, float* setpoints, uint8_t* finger_
 }
 
 void Board::WriteOutputs() {
+  uint8_t failed = kNoLine;  // the supervisor judges a failed write on the next tick
   for (uint8_t i = 0; i < live_.line_count; ++i) {
     if (safe_) line_out_[i].counts = line_params_[i].safe_counts;
-    io_.dac.Write(i, line_out_[i].counts);
+    if (io_.dac.Write(i, line_out_[i].counts) != protocol::Status::kOk && failed == kNoLine) failed = i;
   }
+  supervisor_input_.failed_output = failed;
   // Critical for safety: valves and pump are held only while the board is not safe.
   supply_pulse_.Tick(!safe_);
   dump_pulse_.Tick(!safe_);

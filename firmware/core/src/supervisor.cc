@@ -61,6 +61,9 @@ uint32_t Supervise(const SupervisorSettings& settings, SupervisorState& s, const
   }
   if (in.estop_pin) raise(Fault::kEStopPin, 0);
   if (!in.config_intact) raise(Fault::kConfigCrc, 0);
+  // The regulator keeps its last code: only the valves (they fall back when the board is safe)
+  // can take the pressure away.
+  if (in.failed_output != protocol::kNoLine) raise(Fault::kOutputWrite, in.failed_output);
 
   // Every tick, every line: a reading that is no pressure, or one beyond the limits.
   const float tol = settings.tolerance_pa;

@@ -203,6 +203,27 @@ TEST(BoardFaults, AFailedConversionIsNoPressure) {
   CHECK(AllLinesSafe(h));
 }
 
+TEST(BoardFaults, AFailedDacWriteLatchesAndTheValvesLetGo) {
+  CHECK(h.supply.changes > 0);  // pulsing: the supply valve is held open
+  h.dac.fail = true;            // the regulators keep their last codes
+  h.Run(2, true);
+  CHECK(h.board->latched_faults() & FaultBit(Fault::kOutputWrite));
+  CHECK(h.board->safe());
+  const uint32_t supply = h.supply.changes, dump = h.dump.changes;
+  h.Run(20, true);
+  LONGS_EQUAL(supply, h.supply.changes);  // no more pulses: both valves fall back
+  LONGS_EQUAL(dump, h.dump.changes);
+  CHECK_FALSE(h.pump.level);
+  h.Drain();
+  h.Send(pp::ClearFault{});
+  LONGS_EQUAL((int)pp::Status::kConditionPersists, (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kClearFault));
+  h.dac.fail = false;
+  h.Run(2, true);
+  CHECK(AllLinesSafe(h));  // the safe codes reach the regulators once writes work again
+  h.Send(pp::ClearFault{});
+  LONGS_EQUAL((int)pp::Status::kOk, (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kClearFault));
+}
+
 TEST(BoardFaults, AScanReadsEachChannelOnceAndMarksFailedOnes) {
   palpa::hal::fake::FakeAnalogInput adc;
   adc.counts[0] = 1234;

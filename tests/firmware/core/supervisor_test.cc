@@ -172,6 +172,19 @@ TEST(Supervisor, EStopPinLatchesAndBlocksClearingWhileAsserted) {
   LONGS_EQUAL((int)pp::Status::kOk, (int)pc::ClearFaults(f.state, FaultBit(Fault::kEStopPin)));
 }
 
+TEST(Supervisor, AFailedOutputWriteLatchesAndPersistsWhileWritesFail) {
+  Fixture f;
+  f.in.failed_output = 3;
+  LONGS_EQUAL(FaultBit(Fault::kOutputWrite), f.Tick(1000));
+  LONGS_EQUAL((int)pp::Status::kConditionPersists, (int)pc::ClearFaults(f.state, pp::kAllFaults));
+  f.in.failed_output = pp::kNoLine;
+  f.Tick(2000);
+  LONGS_EQUAL((int)pp::Status::kOk, (int)pc::ClearFaults(f.state, pp::kAllFaults));
+  pp::FaultRecord records[pp::kMaxFaultRecords];
+  LONGS_EQUAL(1, pc::FaultHistory(f.state, records));
+  LONGS_EQUAL(3, records[0].detail);
+}
+
 TEST(Supervisor, ConfigCrcFailureLatches) {
   Fixture f;
   f.in.config_intact = false;

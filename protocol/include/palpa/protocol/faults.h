@@ -15,12 +15,13 @@ enum class Fault : uint8_t {
   kEStopCommand = 6,       ///< EStop message
   kEStopPin = 7,           ///< E-stop input asserted
   kPumpRunTime = 8,        ///< vacuum pump ran longer than allowed
+  kOutputWrite = 9,        ///< a DAC code could not be written
   kCount
 };
 
 inline constexpr const char* const kFaultNames[] = {
     "host_silence", "over_limit",   "implausible_sensor", "config_crc",    "unexpected_reset",
-    "leak",         "estop_command", "estop_pin",         "pump_run_time"};
+    "leak",         "estop_command", "estop_pin",         "pump_run_time", "output_write"};
 static_assert(sizeof(kFaultNames) / sizeof(kFaultNames[0]) == static_cast<unsigned>(Fault::kCount));
 
 constexpr uint32_t FaultBit(Fault f) { return 1u << static_cast<uint8_t>(f); }

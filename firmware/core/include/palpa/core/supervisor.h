@@ -42,6 +42,7 @@ struct SupervisorInput {
   bool estop_pin = false;
   bool config_intact = true;  ///< the periodic CRC of the live configuration matched
   bool safe = false;          ///< outputs are in the safe state this tick
+  uint8_t failed_output = protocol::kNoLine;  ///< first DAC channel whose last write failed
   std::array<LineObservation, protocol::kMaxLines> lines{};
 };
 
