@@ -52,7 +52,8 @@ class BodyEncoder {
     if constexpr (std::is_same_v<T, float>) {
       PutUnsigned<4>(std::bit_cast<uint32_t>(value), name);
     } else {
-      PutUnsigned<sizeof(T)>(static_cast<uint64_t>(static_cast<std::make_unsigned_t<T>>(value)), name);
+      const auto bits = static_cast<std::make_unsigned_t<T>>(value);
+      PutUnsigned<sizeof(T)>(static_cast<uint64_t>(bits), name);
     }
   }
   void Flag(const char* name, const bool& value) { PutUnsigned<1>(value ? 1 : 0, name); }
@@ -161,7 +162,7 @@ class BodyDecoder {
     static_assert(kIsWireScalar<T>, "not a wire scalar");
     uint64_t raw = 0;
     const size_t start = pos_;
-    if (!GetUnsigned(raw, sizeof(T), name)) return;
+    if (!GetUnsigned<sizeof(T)>(raw, name)) return;
     T v;
     if constexpr (std::is_same_v<T, float>) {
       v = std::bit_cast<float>(static_cast<uint32_t>(raw));
@@ -175,7 +176,7 @@ class BodyDecoder {
   void Flag(const char* name, bool& value) {
     uint64_t raw = 0;
     const size_t start = pos_;
-    if (!GetUnsigned(raw, 1, name)) return;
+    if (!GetUnsigned<1>(raw, name)) return;
     if (raw > 1) return Fail(Status::kBadValue, name, start);
     value = raw == 1;
   }
@@ -183,7 +184,7 @@ class BodyDecoder {
   void Enum(const char* name, E& value) {
     uint64_t raw = 0;
     const size_t start = pos_;
-    if (!GetUnsigned(raw, sizeof(E), name)) return;
+    if (!GetUnsigned<sizeof(E)>(raw, name)) return;
     if (raw >= EnumCount<E>()) return Fail(Status::kBadValue, name, start);
     value = static_cast<E>(raw);
   }
@@ -191,7 +192,7 @@ class BodyDecoder {
   void Array(const char* name, std::array<T, N>& items, uint8_t& count) {
     uint64_t raw = 0;
     const size_t start = pos_;
-    if (!GetUnsigned(raw, 1, name)) return;
+    if (!GetUnsigned<1>(raw, name)) return;
     if (raw > N) return Fail(Status::kOutOfRange, name, start);
     count = static_cast<uint8_t>(raw);
     for (size_t i = 0; i < count && ok(); ++i) {
@@ -206,7 +207,7 @@ class BodyDecoder {
   void Bytes(const char* name, std::array<uint8_t, N>& data, uint8_t& size) {
     uint64_t raw = 0;
     const size_t start = pos_;
-    if (!GetUnsigned(raw, 1, name)) return;
+    if (!GetUnsigned<1>(raw, name)) return;
     if (raw > N) return Fail(Status::kOutOfRange, name, start);
     size = static_cast<uint8_t>(raw);
     GetBytes(data.data(), size, name);
@@ -237,14 +238,28 @@ class BodyDecoder {
   void Fail(Status status, const char* name, size_t at) {
     if (ok()) error_ = FieldError{status, name, static_cast<uint16_t>(at)};
   }
-  bool GetUnsigned(uint64_t& value, size_t bytes, const char* name) {
+  /// Little-endian, kBytes of them, assembled in 32-bit halves (as BodyEncoder::PutUnsigned).
+  template <size_t kBytes>
+  bool GetUnsigned(uint64_t& value, const char* name) {
+    static_assert(kBytes == 1 || kBytes == 2 || kBytes == 4 || kBytes == 8);
     if (!ok()) return false;
-    if (size_ - pos_ < bytes) {
+    if (size_ - pos_ < kBytes) {
       Fail(Status::kBadLength, name, pos_);
       return false;
     }
-    value = 0;
-    for (size_t i = 0; i < bytes; ++i) value |= static_cast<uint64_t>(in_[pos_++]) << (8 * i);
+    const uint8_t* in = in_ + pos_;
+    pos_ += kBytes;
+    uint32_t low = in[0];
+    if constexpr (kBytes >= 2) low |= static_cast<uint32_t>(in[1]) << 8;
+    if constexpr (kBytes >= 4) {
+      low |= static_cast<uint32_t>(in[2]) << 16 | static_cast<uint32_t>(in[3]) << 24;
+    }
+    value = low;
+    if constexpr (kBytes == 8) {
+      uint32_t high = 0;
+      for (size_t i = 0; i < 4; ++i) high |= static_cast<uint32_t>(in[4 + i]) << (8 * i);
+      value |= static_cast<uint64_t>(high) << 32;
+    }
     return true;
   }
   bool GetBytes(uint8_t* out, size_t n, const char* name) {
