@@ -10,8 +10,12 @@ namespace palpa::host {
 
 std::string FaultNames(uint32_t bitmap) {
   std::string text;
-  for (uint8_t f = 0; f < static_cast<uint8_t>(pp::Fault::kCount); ++f) {
-    if (bitmap & (1u << f)) text += std::string(text.empty() ? "" : ", ") + pp::kFaultNames[f];
+  for (uint8_t f = 0; f < 32; ++f) {
+    if ((bitmap & (1u << f)) == 0) continue;
+    // A newer board may latch a fault this host has no name for: shown, never dropped.
+    const std::string name = f < static_cast<uint8_t>(pp::Fault::kCount) ? pp::kFaultNames[f]
+                                                                          : "fault_" + std::to_string(f);
+    text += (text.empty() ? "" : ", ") + name;
   }
   return text.empty() ? "none" : text;
 }

@@ -10,6 +10,8 @@
 #include "mini_client.h"
 #include "palpa/host/device.h"
 #include "palpa/host/fault_transport.h"
+#include "palpa/host/link.h"
+#include "palpa/protocol/faults.h"
 
 #include "CppUTest/TestHarness.h"
 
@@ -37,6 +39,12 @@ void ConfigureHostTimeout(ph::Device& device, uint32_t host_timeout_us) {
 }
 
 }  // namespace
+
+/// The board's latched faults in words, for failure messages.
+std::string LatchedFaults(ph::Device& device) {
+  const auto diagnostics = device.Diagnostics();
+  return diagnostics.ok() ? "latched: " + ph::FaultNames(diagnostics.value.fault_bitmap) : "no diagnostics";
+}
 
 TEST_GROUP(LinkFaults){};
 
@@ -120,11 +128,20 @@ TEST(LinkFaults, CatalogMismatchRefusesEverythingButTheBootstrapSet) {
   CHECK(board.applied.empty());
 }
 
+TEST(LinkFaults, FaultNamesShowEveryLatchedBitIncludingOnesThisHostDoesNotKnow) {
+  STRCMP_EQUAL("none", ph::FaultNames(0).c_str());
+  const uint32_t known = pp::FaultBit(pp::Fault::kHostSilence) | pp::FaultBit(pp::Fault::kOutputWrite);
+  STRCMP_EQUAL("host_silence, output_write", ph::FaultNames(known).c_str());
+  STRCMP_EQUAL("leak, fault_31", ph::FaultNames(pp::FaultBit(pp::Fault::kLeak) | (1u << 31)).c_str());
+}
+
 TEST_GROUP(LinkSim){};
 
 TEST(LinkSim, StreamsConvergeToTheLatestValueUnderFaults) {
+  // At a quarter of real time: until the 1 s timeout below lands, the session runs on the
+  // opening 100 ms one, which a starved machine could otherwise trip (400 ms of host time here).
   std::string error;
-  auto sim = ph::OpenTransport("sim:thesis-5finger", &error);
+  auto sim = ph::LaunchSim("thesis-5finger", {"--speed", "0.25"}, nullptr, &error);
   CHECK_TEXT(sim.ok(), error.c_str());
   ph::FaultSpec faults;
   faults.drop = 0.01;
@@ -136,17 +153,22 @@ TEST(LinkSim, StreamsConvergeToTheLatestValueUnderFaults) {
   ConfigureHostTimeout(*device.value, 1000000);
   for (int i = 1; i <= 30; ++i) device.value->SetLines({{0, static_cast<double>(i)}}, false);
   const ph::Outcome last = device.value->SetLines({{0, 42.0}}, true);
-  CHECK_TEXT(last.ok(), last.message.c_str());
+  CHECK_TEXT(last.ok(), (last.message + " (" + LatchedFaults(*device.value) + ")").c_str());
   std::atomic<int32_t> seen{0};
   const int id = device.value->Subscribe([&](const ph::TelemetryFrame& f) { seen = f.telemetry.samples[0].setpoint_pa; });
-  for (int i = 0; i < 100 && seen.load() != 42000; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  for (int i = 0; i < 250 && seen.load() != 42000; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
   device.value->Unsubscribe(id);
   LONGS_EQUAL(42000, seen.load());
 }
 
 TEST(LinkSim, AStalledSubscriberStallsNeitherCommandsNorHeartbeats) {
+  // At a quarter of real time the board's 100 ms timeout is 400 ms of host time (scheduling
+  // margin on a loaded machine), and the second of stall below is still 250 ms of board time:
+  // heartbeats that stopped with the subscriber would trip it.
   std::string error;
-  auto device = ph::Device::Open("sim:thesis-5finger", {}, &error);
+  auto sim = ph::LaunchSim("thesis-5finger", {"--speed", "0.25"}, nullptr, &error);
+  CHECK_TEXT(sim.ok(), error.c_str());
+  auto device = ph::Device::Attach(std::move(sim.value), {}, &error);
   CHECK_TEXT(device.ok(), error.c_str());
   std::atomic<bool> blocked{false}, release{false};
   const int id = device.value->Subscribe([&](const ph::TelemetryFrame&) {
@@ -154,7 +176,7 @@ TEST(LinkSim, AStalledSubscriberStallsNeitherCommandsNorHeartbeats) {
     while (!release) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   });
   while (!blocked) std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  for (int i = 0; i < 10; ++i) {  // while the callback is stuck
+  for (int i = 0; i < 20; ++i) {  // while the callback is stuck
     CHECK(device.value->LoopStats().ok());
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
