@@ -34,7 +34,8 @@ struct LinkOptions {
 };
 
 /// A telemetry frame as received, with the host time it maps to.
-/// A latched-fault bitmap in words: "host_silence, leak", or "none".
+/// A latched-fault bitmap in words: "host_silence, leak", or "none"; a bit this build has no
+/// name for (a newer board) as "fault_N".
 std::string FaultNames(uint32_t bitmap);
 
 struct TelemetryFrame {
