@@ -33,11 +33,11 @@ struct LinkOptions {
   int stream_resend_ms = 50;          ///< resend a stream value not yet shown applied
 };
 
-/// A telemetry frame as received, with the host time it maps to.
 /// A latched-fault bitmap in words: "host_silence, leak", or "none"; a bit this build has no
 /// name for (a newer board) as "fault_N".
 std::string FaultNames(uint32_t bitmap);
 
+/// A telemetry frame as received, with the host time it maps to.
 struct TelemetryFrame {
   pp::Telemetry telemetry;
   double host_time_s = 0;  ///< host steady-clock time of the first sample
