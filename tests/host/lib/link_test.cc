@@ -38,6 +38,23 @@ void ConfigureHostTimeout(ph::Device& device, uint32_t host_timeout_us) {
   CHECK_TEXT(configured.ok(), configured.message.c_str());
 }
 
+/// palpa-sim with thesis-5finger running at `speed` times real time (slowed down, a test's
+/// timeouts in board time become longer in host time).
+std::unique_ptr<ph::Transport> LaunchSimAt(const char* speed) {
+  std::string error;
+  auto sim = ph::LaunchSim("thesis-5finger", {"--speed", speed}, nullptr, &error);
+  CHECK_TEXT(sim.ok(), error.c_str());
+  return std::move(sim.value);
+}
+
+/// A device on palpa-sim at `speed` times real time.
+std::unique_ptr<ph::Device> OpenSimAt(const char* speed) {
+  std::string error;
+  auto device = ph::Device::Attach(LaunchSimAt(speed), {}, &error);
+  CHECK_TEXT(device.ok(), error.c_str());
+  return std::move(device.value);
+}
+
 }  // namespace
 
 /// The board's latched faults in words, for failure messages.
@@ -141,12 +158,10 @@ TEST(LinkSim, StreamsConvergeToTheLatestValueUnderFaults) {
   // At a quarter of real time: until the 1 s timeout below lands, the session runs on the
   // opening 100 ms one, which a starved machine could otherwise trip (400 ms of host time here).
   std::string error;
-  auto sim = ph::LaunchSim("thesis-5finger", {"--speed", "0.25"}, nullptr, &error);
-  CHECK_TEXT(sim.ok(), error.c_str());
   ph::FaultSpec faults;
   faults.drop = 0.01;
   faults.bit_flip = 0.001;
-  auto device = ph::Device::Attach(std::make_unique<ph::FaultTransport>(std::move(sim.value), faults, 7), {}, &error);
+  auto device = ph::Device::Attach(std::make_unique<ph::FaultTransport>(LaunchSimAt("0.25"), faults, 7), {}, &error);
   CHECK_TEXT(device.ok(), error.c_str());
   // A 1 % byte loss drops about one heartbeat in seven; four in a row would trip the default
   // 100 ms host-silence timeout now and then. This test is about the stream, so give it 1 s.
@@ -165,27 +180,23 @@ TEST(LinkSim, AStalledSubscriberStallsNeitherCommandsNorHeartbeats) {
   // At a quarter of real time the board's 100 ms timeout is 400 ms of host time (scheduling
   // margin on a loaded machine), and the second of stall below is still 250 ms of board time:
   // heartbeats that stopped with the subscriber would trip it.
-  std::string error;
-  auto sim = ph::LaunchSim("thesis-5finger", {"--speed", "0.25"}, nullptr, &error);
-  CHECK_TEXT(sim.ok(), error.c_str());
-  auto device = ph::Device::Attach(std::move(sim.value), {}, &error);
-  CHECK_TEXT(device.ok(), error.c_str());
+  const auto device = OpenSimAt("0.25");
   std::atomic<bool> blocked{false}, release{false};
-  const int id = device.value->Subscribe([&](const ph::TelemetryFrame&) {
+  const int id = device->Subscribe([&](const ph::TelemetryFrame&) {
     blocked = true;
     while (!release) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   });
   while (!blocked) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   for (int i = 0; i < 20; ++i) {  // while the callback is stuck
-    CHECK(device.value->LoopStats().ok());
+    CHECK(device->LoopStats().ok());
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   CHECK(blocked.load());
-  const auto diagnostics = device.value->Diagnostics();
+  const auto diagnostics = device->Diagnostics();
   CHECK(diagnostics.ok());
   LONGS_EQUAL(0, diagnostics.value.fault_bitmap);  // heartbeats kept the board from going safe
   release = true;
-  device.value->Unsubscribe(id);
+  device->Unsubscribe(id);
 }
 
 TEST(LinkSim, DeviceConfiguresReadsBackAndRecords) {
@@ -254,14 +265,11 @@ TEST(LinkSim, HeartbeatsFollowAShorterHostTimeoutSetInTheSession) {
   // At a tenth of real time the board's 20 ms timeout is 200 ms of host time: heartbeats at a
   // quarter of it leave 150 ms for scheduling, while the 250 ms period of the session's opening
   // timeout (100 ms) would trip it. The test decides on the period, not on the machine's load.
-  std::string error;
-  auto sim = ph::LaunchSim("thesis-5finger", {"--speed", "0.1"}, nullptr, &error);
-  CHECK_TEXT(sim.ok(), error.c_str());
-  auto device = ph::Device::Attach(std::move(sim.value), {}, &error);
-  CHECK_TEXT(device.ok(), error.c_str());
-  ConfigureHostTimeout(*device.value, 20000);
+  const auto device = OpenSimAt("0.1");
+  ConfigureHostTimeout(*device, 20000);
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));
-  const auto diagnostics = device.value->Diagnostics(&error);
+  std::string error;
+  const auto diagnostics = device->Diagnostics(&error);
   CHECK_TEXT(diagnostics.ok(), error.c_str());
   STRCMP_EQUAL("none", ph::FaultNames(diagnostics.value.fault_bitmap).c_str());
 }
