@@ -2,6 +2,7 @@
 #include "palpa/core/compensator.h"
 
 #include "palpa/core/curve.h"
+#include "float_ops.h"
 #include "play_lanes.h"
 #include "play_pairs.h"
 
@@ -9,8 +10,6 @@ namespace palpa::core {
 namespace {
 
 using protocol::CompensatorKind;
-
-inline float Clamp(float v, float lo, float hi) { return v < lo ? lo : (v > hi ? hi : v); }
 
 /// S⁻¹ of the `api` output map (identity when there are no dead zones).
 float OutputMapInverse(const PlayTable& t, float s) {

@@ -4,15 +4,12 @@
 #include "palpa/core/ceilings.h"
 #include "palpa/core/curve.h"
 #include "palpa/protocol/enums.h"
+#include "float_ops.h"
 
 namespace palpa::core {
 namespace {
 
 namespace ls = protocol::line_status;
-
-float Clamp(float v, float lo, float hi) { return v < lo ? lo : (v > hi ? hi : v); }
-// One VABS on the FPU (a compare and a select otherwise); only ever compared, so -0 = +0.
-float Abs(float v) { return __builtin_fabsf(v); }
 
 /// DAC code for a commanded pressure; inlined into the step (a call per line per tick otherwise).
 [[gnu::always_inline]] inline uint32_t Counts(const LineParams& p, float command_pa) {
@@ -48,9 +45,9 @@ LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us)
   p.limit_max_pa = static_cast<float>(line.limit_max_pa < ceiling.max_pa ? line.limit_max_pa : ceiling.max_pa);
   p.safe_pa = Clamp(static_cast<float>(line.safe_pa), p.limit_min_pa, p.limit_max_pa);
   // No slew limit is a step no setpoint change can exceed (one compare a tick instead of two).
-  p.max_step_pa = line.slew_pa_per_s > 0 ? static_cast<float>(line.slew_pa_per_s) * dt : 3.40282347e38f;
+  p.max_step_pa = line.slew_pa_per_s > 0 ? static_cast<float>(line.slew_pa_per_s) * dt : kUnbounded;
   p.regulator_min_pa = static_cast<float>(line.regulator_min_pa);
-  p.pump_below_pa = line.kind == protocol::LineKind::kVacuum ? -p.regulator_min_pa : -3.40282347e38f;
+  p.pump_below_pa = line.kind == protocol::LineKind::kVacuum ? -p.regulator_min_pa : -kUnbounded;
   p.command_min_pa = static_cast<float>(line.command_min_pa);
   p.command_span_pa = static_cast<float>(line.command_max_pa - line.command_min_pa);
   p.max_counts = (1u << line.dac_bits) - 1u;

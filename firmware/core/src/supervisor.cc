@@ -1,15 +1,14 @@
 // Fault conditions: host silence, over-limit, implausible or stuck sensor, configuration CRC,
-// leak, E-stop pin, pump run time. Every one latches into the same bitmap.
+// leak, E-stop pin, pump run time, output write. Every one latches into the same bitmap.
 #include "palpa/core/supervisor.h"
+
+#include "float_ops.h"
 
 namespace palpa::core {
 namespace {
 
 using protocol::Fault;
 using protocol::FaultBit;
-
-// One VABS on the FPU (a compare and a select otherwise); only ever compared, so -0 = +0.
-float Abs(float v) { return __builtin_fabsf(v); }
 
 /// True once `condition` has held continuously for longer than `window`.
 bool HeldFor(bool condition, bool& timing, uint64_t& since, uint64_t now, uint64_t window) {
