@@ -143,7 +143,7 @@ int CmdDiag(Context& c, const std::vector<std::string>& args) {
     ordered_json history = ordered_json::array();
     for (uint8_t i = 0; i < diag.value.history_count; ++i) {
       const auto& h = diag.value.history[i];
-      history.push_back({{"time_us", h.time_us}, {"fault", pp::FaultName(static_cast<pp::Fault>(h.fault))}, {"detail", h.detail}});
+      history.push_back({{"time_us", h.time_us}, {"fault", host::FaultName(h.fault)}, {"detail", h.detail}});
     }
     const auto& s = stats.value;
     std::printf("%s\n", ordered_json{{"reset_cause", pp::kResetCauseNames[static_cast<int>(diag.value.reset_cause)]},
@@ -167,7 +167,7 @@ int CmdDiag(Context& c, const std::vector<std::string>& args) {
   for (uint8_t i = 0; i < diag.value.history_count; ++i) {
     const auto& h = diag.value.history[i];
     std::printf("  %10.3f s  %-20s detail %d\n", static_cast<double>(h.time_us) / 1e6,
-                pp::FaultName(static_cast<pp::Fault>(h.fault)), h.detail);
+                host::FaultName(h.fault).c_str(), h.detail);
   }
   const auto& s = stats.value;
   std::printf("loop            %llu ticks of %u us; worst %u us, mean %u us, jitter %u us, %u overruns\n",

@@ -145,11 +145,14 @@ TEST(LinkFaults, CatalogMismatchRefusesEverythingButTheBootstrapSet) {
   CHECK(board.applied.empty());
 }
 
-TEST(LinkFaults, FaultNamesShowEveryLatchedBitIncludingOnesThisHostDoesNotKnow) {
+TEST(LinkFaults, FaultNamesShowEveryFaultIncludingOnesThisHostDoesNotKnow) {
   STRCMP_EQUAL("none", ph::FaultNames(0).c_str());
   const uint32_t known = pp::FaultBit(pp::Fault::kHostSilence) | pp::FaultBit(pp::Fault::kOutputWrite);
   STRCMP_EQUAL("host_silence, output_write", ph::FaultNames(known).c_str());
   STRCMP_EQUAL("leak, fault_31", ph::FaultNames(pp::FaultBit(pp::Fault::kLeak) | (1u << 31)).c_str());
+  // The fault history names its entries the same way (a history entry carries the bit index).
+  STRCMP_EQUAL("output_write", ph::FaultName(static_cast<uint8_t>(pp::Fault::kOutputWrite)).c_str());
+  STRCMP_EQUAL("fault_10", ph::FaultName(static_cast<uint8_t>(pp::Fault::kCount)).c_str());
 }
 
 TEST_GROUP(LinkSim){};

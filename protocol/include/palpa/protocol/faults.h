@@ -27,10 +27,4 @@ static_assert(sizeof(kFaultNames) / sizeof(kFaultNames[0]) == static_cast<unsign
 constexpr uint32_t FaultBit(Fault f) { return 1u << static_cast<uint8_t>(f); }
 inline constexpr uint32_t kAllFaults = (1u << static_cast<uint8_t>(Fault::kCount)) - 1u;
 
-constexpr const char* FaultName(Fault f) {
-  return static_cast<unsigned>(f) < static_cast<unsigned>(Fault::kCount)
-             ? kFaultNames[static_cast<unsigned>(f)]
-             : "unknown";
-}
-
 }  // namespace palpa::protocol

@@ -33,6 +33,9 @@ struct LinkOptions {
   int stream_resend_ms = 50;          ///< resend a stream value not yet shown applied
 };
 
+/// One fault id in words: "leak"; an id this build has no name for (a newer board) as "fault_N".
+std::string FaultName(uint8_t fault);
+
 /// A latched-fault bitmap in words: "host_silence, leak", or "none"; a bit this build has no
 /// name for (a newer board) as "fault_N".
 std::string FaultNames(uint32_t bitmap);
