@@ -15,6 +15,9 @@ namespace {
 [[noreturn]] void SafeAndReset(palpa::protocol::ResetCause cause) {
   palpa::boards::stm32f4::ForceOutputsSafe();  // Critical for safety: before anything else
   g_reset_record.Set(cause);
+  // The record must reach RAM before the reset: the clobber keeps the compiler from dropping the
+  // stores (nothing it can see reads them again), the DSB drains the write buffer (as CMSIS does).
+  asm volatile("dsb" ::: "memory");
   *stm32f4::kScbAircr = (0x5FAu << 16) | (1u << 2);  // SYSRESETREQ
   for (;;) {
   }

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <type_traits>
 
+#include "../../boards/common/reset_record.h"
 #include "palpa/core/boot_state.h"
 #include "palpa/core/update_engine.h"
 #include "palpa/hal/mps2/code_flash.h"
@@ -12,6 +13,9 @@
 #include "palpa/hal/mps2/registers.h"
 #include "palpa/protocol/codec.h"
 #include "palpa/protocol/framing.h"
+
+// The application's reset record, at the address both linker scripts give it.
+extern palpa::boards::ResetRecord g_reset_record;
 
 namespace {
 
@@ -66,6 +70,8 @@ void Send(const M& m, uint8_t seq, uint8_t flags) {
 /// Recovery mode: Hello, EStop and the update set; everything else is not spoken here.
 [[noreturn]] void Recovery(core::UpdateEngine& engine, uint32_t floor) {
   constexpr uint32_t kBootNonce = 0x424F4F54u;  // "BOOT"
+  // Why the board is here: a fault handler's or a reboot's record, or power-on.
+  const pp::ResetCause cause = g_reset_record.Take();
   g_uart.Init();
   pp::OwningFrameDecoder decoder;
   bool reboot = false;
@@ -97,7 +103,7 @@ void Send(const M& m, uint8_t seq, uint8_t flags) {
               r.board_kind = kKind;
               r.protocol_version = pp::kProtocolVersion;
               r.catalog_hash = pp::kCatalogHash;
-              r.reset_cause = pp::ResetCause::kUnknown;
+              r.reset_cause = cause;
               r.time_scale = 1.0f;
               r.rx_buffer_bytes = mps2::Uart::kRxSize;
               r.active_slot = static_cast<uint8_t>(1 - engine.inactive_slot());
@@ -136,6 +142,7 @@ void Send(const M& m, uint8_t seq, uint8_t flags) {
     g_uart.PumpTx();
     if (reboot) {
       for (int k = 0; k < 100000; ++k) g_uart.PumpTx();
+      g_reset_record.Set(pp::ResetCause::kUpdate);  // the image it boots says why it started
       mps2::SystemReset();
     }
   }

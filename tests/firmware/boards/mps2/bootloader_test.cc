@@ -1,7 +1,7 @@
 // The bootloader on the Cortex-M4F under QEMU: an application image (made by the build step,
 // make_image.py) boots through it — checked and jumped to — and answers Hello; a corrupted one
 // leaves the board in recovery mode; and from recovery `palpa flash` writes a release, the board
-// boots it in trial, and the host confirms it.
+// boots it in trial (reporting the update as its reset cause), and the host confirms it.
 #include <unistd.h>
 
 #include <fstream>
@@ -101,12 +101,16 @@ TEST(QemuBootloader, FromRecoveryAFlashedReleaseBootsInTrialAndIsConfirmed) {
   CHECK(qemu.Start(PALPA_QEMU, {"-kernel", kBoot}));
   auto link = Connect(qemu);
   STRCMP_EQUAL("recovery", link->board().config_name.data());
+  CHECK(link->board().reset_cause == pp::ResetCause::kPowerOn);  // nothing recorded before
   const ph::FlashReport r = ph::FlashPackage(*link, *package, {});
   CHECK_TEXT(r.status == pp::Status::kOk, r.message.c_str());
   const pp::HelloReply after = link->board();
   STRCMP_EQUAL("thesis-5finger", after.config_name.data());
   LONGS_EQUAL(r.slot, after.active_slot);
   LONGS_EQUAL(1, after.firmware_minor);
+  // The bootloader left the application's reset record before its reboot: the release says why
+  // it started, as after an update through the application.
+  LONGS_EQUAL((int)pp::ResetCause::kUpdate, (int)after.reset_cause);
   pp::SlotsReport slots{};
   CHECK(link->Command(pp::SlotsQuery{}).Reply(slots));
   CHECK(slots.slots[r.slot].state == pp::SlotState::kConfirmed);

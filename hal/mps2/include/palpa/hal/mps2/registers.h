@@ -61,6 +61,9 @@ inline constexpr uint32_t kUart0RxIrq = 0;
 
 /// Requests a system reset (AIRCR.SYSRESETREQ); never returns.
 [[noreturn]] inline void SystemReset() {
+  // Every store before this (a reset record) must reach RAM first: the clobber keeps the compiler
+  // from dropping or sinking it past the reset, the DSB drains the write buffer (as CMSIS does).
+  asm volatile("dsb" ::: "memory");
   *kScbAircr = (0x5FAu << 16) | (1u << 2);
   for (;;) {
   }
