@@ -1,6 +1,8 @@
 // CMSDK UART, SysTick and CMSDK watchdog drivers for the MPS2 AN386.
 #include "palpa/hal/mps2/drivers.h"
 
+#include <atomic>
+
 #include "palpa/hal/mps2/registers.h"
 
 namespace palpa::hal::mps2 {
@@ -21,13 +23,16 @@ void Uart::OnRxInterrupt() {
       continue;
     }
     rx_[rx_head_] = byte;
+    std::atomic_signal_fence(std::memory_order_release);  // the byte is in before the head moves
     rx_head_ = next;
   }
 }
 
 size_t Uart::DoRead(uint8_t* out, size_t capacity) {
+  const uint32_t head = rx_head_;
+  std::atomic_signal_fence(std::memory_order_acquire);  // bytes read after the head
   size_t n = 0;
-  while (n < capacity && rx_tail_ != rx_head_) {
+  while (n < capacity && rx_tail_ != head) {
     out[n++] = rx_[rx_tail_];
     rx_tail_ = (rx_tail_ + 1) % kRxSize;
   }

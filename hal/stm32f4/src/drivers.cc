@@ -1,6 +1,8 @@
 // STM32F4 register-level drivers (RM0090; AD5724R data sheet Rev. E for the DAC frames).
 #include "palpa/hal/stm32f4/drivers.h"
 
+#include <atomic>
+
 namespace palpa::hal::stm32f4 {
 namespace {
 
@@ -114,6 +116,7 @@ size_t DmaUart::DoRead(uint8_t* out, size_t capacity) {
   // The DMA's write position is kRxSize - NDTR. A host that overruns the ring loses bytes; the
   // frame CRC catches it and the reliable channel resends (flow control keeps that rare).
   const uint32_t head = (kRxSize - kDma2->S[2].NDTR) % kRxSize;
+  std::atomic_signal_fence(std::memory_order_acquire);  // bytes read after the count
   size_t n = 0;
   while (n < capacity && rx_tail_ != head) {
     out[n++] = rx_[rx_tail_];
@@ -153,6 +156,7 @@ void DmaUart::PumpTx() {
   tx.M0AR = reinterpret_cast<uint32_t>(&tx_[tx_tail_]);
   tx.NDTR = chunk;
   tx_in_flight_ = chunk;
+  asm volatile("dmb" ::: "memory");  // the queued bytes are in RAM before the DMA reads them
   tx.CR = DmaChannel(4) | kDmaMemInc | kDmaMemToPeriph | kDmaEnable;
 }
 
