@@ -1,5 +1,6 @@
 // The bootloader on the Cortex-M4F under QEMU: an application image (made by the build step,
-// make_image.py) boots through it — checked and jumped to — and answers Hello; a corrupted one
+// make_image.py) boots through it — checked and jumped to — and answers Hello, and after a reboot
+// it asked for, says why it started; a corrupted one
 // leaves the board in recovery mode; and from recovery `palpa flash` writes a release, the board
 // boots it in trial (reporting the update as its reset cause), and the host confirms it.
 #include <unistd.h>
@@ -63,6 +64,26 @@ TEST(QemuBootloader, AnImageInEitherSlotBootsThroughTheBootloaderAndAnswers) {
     LONGS_EQUAL(slot, hello.active_slot);  // the application runs where the bootloader put it
     CHECK(link->catalog_matches());
   }
+}
+
+TEST(QemuBootloader, ARebootAskedOfTheApplicationComesBackSayingWhy) {
+  CHECK_TEXT(ImagesBuilt(), "the mps2 preset's images are missing");
+  QemuProcess qemu;
+  CHECK(qemu.Start(PALPA_QEMU, {"-kernel", kBoot, "-device",
+                                "loader,file=" + SlotImage(0) + ",addr=0x8000,force-raw=on"}));
+  auto link = Connect(qemu);
+  CHECK(link->board().reset_cause == pp::ResetCause::kPowerOn);
+  const uint32_t nonce = link->board().boot_nonce;
+  LONGS_EQUAL((int)pp::Status::kOk, (int)link->Command(pp::UpdateReboot{}).status);
+  // The application records the cause, resets into the bootloader, which boots it again.
+  for (int i = 0; i < 500 && !(link->session_open() && link->board().boot_nonce != nonce); ++i) {
+    usleep(10000);
+  }
+  CHECK_TEXT(link->board().boot_nonce != nonce, "no new session after the reboot");
+  LONGS_EQUAL((int)pp::ResetCause::kUpdate, (int)link->board().reset_cause);
+  pp::Diagnostics diagnostics{};
+  CHECK(link->Command(pp::GetDiagnostics{}).Reply(diagnostics));
+  LONGS_EQUAL(2, diagnostics.boot_count);  // counted across the reset, not started again
 }
 
 TEST(QemuBootloader, ACorruptedImageLeavesTheBoardInRecoveryMode) {
