@@ -1,8 +1,8 @@
 // The bootloader on the Cortex-M4F under QEMU: an application image (made by the build step,
 // make_image.py) boots through it — checked and jumped to — and answers Hello, and after a reboot
-// it asked for, says why it started; a corrupted one
-// leaves the board in recovery mode; and from recovery `palpa flash` writes a release, the board
-// boots it in trial (reporting the update as its reset cause), and the host confirms it.
+// it asked for says why it started; a corrupted one leaves the board in recovery mode; and from
+// recovery `palpa flash` writes a release, the board boots it in trial (reporting the update as
+// its reset cause), and the host confirms it.
 #include <unistd.h>
 
 #include <fstream>
