@@ -41,13 +41,15 @@ core::BootDecision UpdateWorld::Reboot() {
   return last_boot;
 }
 
-UpdateOutcome RunUpdate(UpdateWorld& w, const host::UpdatePackage& release, bool confirm) {
+UpdateOutcome RunUpdate(UpdateWorld& w, const host::UpdatePackage& release, bool confirm,
+                        hal::Watchdog* watchdog, hal::Flash* engine_flash) {
   UpdateOutcome out;
   auto failed = [&](const char* step) {
     out.failed_step = step;
     return out;
   };
-  core::UpdateEngine engine(&w.flash, w.layout, w.kind, w.running);
+  hal::Flash* flash = engine_flash != nullptr ? engine_flash : &w.flash;
+  core::UpdateEngine engine(flash, w.layout, w.kind, w.running, watchdog);
   const uint8_t slot = engine.inactive_slot();
   const std::vector<uint8_t>& image = release.slot_image[slot];
   const auto size = static_cast<uint32_t>(image.size());
@@ -73,7 +75,7 @@ UpdateOutcome RunUpdate(UpdateWorld& w, const host::UpdatePackage& release, bool
     out.completed = true;
     return out;
   }
-  core::UpdateEngine running(&w.flash, w.layout, w.kind, w.running);
+  core::UpdateEngine running(flash, w.layout, w.kind, w.running, watchdog);
   if (running.Confirm({w.running}, &detail) != pp::Status::kOk) return failed("confirm");
   out.completed = true;
   return out;

@@ -15,14 +15,17 @@ constexpr uint32_t kRecordMagic = 0x54534250;  // "PBST"
 /// A slot of flash read as an image.
 class SlotSource final : public protocol::ImageSource {
  public:
-  SlotSource(hal::Flash& flash, uint32_t base) : flash_(flash), base_(base) {}
+  SlotSource(hal::Flash& flash, uint32_t base, hal::Watchdog* watchdog)
+      : flash_(flash), base_(base), watchdog_(watchdog) {}
   bool Read(uint32_t offset, uint8_t* out, size_t size) override {
+    if (watchdog_ != nullptr) watchdog_->Kick();  // the hash reads a block at a time
     return flash_.Read(base_ + offset, out, size) == Status::kOk;
   }
 
  private:
   hal::Flash& flash_;
   uint32_t base_;
+  hal::Watchdog* watchdog_;
 };
 
 bool Bootable(const SlotImage& s, uint32_t floor) {
@@ -119,9 +122,9 @@ Status BootStore::Save(BootState state) {
 }
 
 SlotImage InspectSlot(hal::Flash& flash, const FlashLayout& layout, uint8_t slot,
-                      protocol::BoardKind kind) {
+                      protocol::BoardKind kind, hal::Watchdog* watchdog) {
   SlotImage s;
-  SlotSource source(flash, layout.slot_offset[slot]);
+  SlotSource source(flash, layout.slot_offset[slot], watchdog);
   s.valid = protocol::VerifyImage(source, layout.slot_size, &s.info, &s.error) == Status::kOk;
   if (s.valid && (s.info.board_kind != kind || s.info.slot != slot ||
                   s.info.load_address != layout.xip_base + layout.slot_offset[slot])) {

@@ -133,9 +133,7 @@ Status UpdateEngine::Activate(const protocol::UpdateActivate& m, uint32_t* detai
     *detail = written_;
     return Status::kUnavailable;  // not all written
   }
-  Kick();  // a whole image's hash follows
-  const SlotImage image = InspectSlot(*flash_, layout_, m.slot, kind_);
-  Kick();
+  const SlotImage image = InspectSlot(*flash_, layout_, m.slot, kind_, watchdog_);
   if (!image.valid || image.info.total_size != m.image_size) {
     *detail = static_cast<uint32_t>(image.error);
     return Status::kImageInvalid;
@@ -161,7 +159,7 @@ Status UpdateEngine::Confirm(const protocol::UpdateConfirm& m, uint32_t* detail)
     return Status::kOk;  // already the good image (a repeated confirm)
   if (state.trial != running_ || state.trial_state != TrialState::kBooting)
     return Status::kWrongMode;
-  const SlotImage image = InspectSlot(*flash_, layout_, running_, kind_);
+  const SlotImage image = InspectSlot(*flash_, layout_, running_, kind_, watchdog_);
   if (!image.valid) return Status::kImageInvalid;
   state.confirmed = running_;
   state.trial = kNoSlot;
@@ -179,8 +177,7 @@ protocol::SlotsReport UpdateEngine::Slots() {
   for (uint8_t slot = 0; slot < 2; ++slot) {
     protocol::SlotInfo& info = r.slots[slot];
     if (flash_ == nullptr) continue;
-    Kick();  // each slot's check hashes its image
-    const SlotImage image = InspectSlot(*flash_, layout_, slot, kind_);
+    const SlotImage image = InspectSlot(*flash_, layout_, slot, kind_, watchdog_);
     if (!image.valid) {
       info.state = image.error == protocol::ImageError::kBadMagic ? protocol::SlotState::kEmpty
                                                                   : protocol::SlotState::kInvalid;

@@ -8,6 +8,7 @@
 
 #include "palpa/core/flash_layout.h"
 #include "palpa/hal/flash.h"
+#include "palpa/hal/watchdog.h"
 #include "palpa/protocol/image.h"
 
 namespace palpa::core {
@@ -58,9 +59,10 @@ struct SlotImage {
   protocol::ImageError error = protocol::ImageError::kBadMagic;
 };
 
-/// Verifies the image in `slot` of `flash` (for `kind`).
+/// Verifies the image in `slot` of `flash` (for `kind`). Hashing a whole slot outlasts a
+/// watchdog period on a slow core, so `watchdog` (may be nullptr) is kicked for every block read.
 SlotImage InspectSlot(hal::Flash& flash, const FlashLayout& layout, uint8_t slot,
-                      protocol::BoardKind kind);
+                      protocol::BoardKind kind, hal::Watchdog* watchdog = nullptr);
 
 enum class BootReason : uint8_t {
   kConfirmed,  ///< the good image

@@ -17,8 +17,8 @@ namespace palpa::core {
 class UpdateEngine {
  public:
   /// `running` is the slot executing now (kNoSlot in recovery mode: both slots are writable).
-  /// `watchdog` (may be nullptr) is kicked between sectors of an erase and around every flash
-  /// operation: a long erase is work, not a hung loop. The lines are safe throughout (update mode).
+  /// `watchdog` (may be nullptr) is kicked between sectors of an erase, around every flash
+  /// operation and for every block an image check hashes: long work, not a hung loop. The lines are safe throughout (update mode).
   UpdateEngine(hal::Flash* flash, const FlashLayout& layout, protocol::BoardKind kind,
                uint8_t running, hal::Watchdog* watchdog = nullptr);
 
