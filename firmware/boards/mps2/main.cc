@@ -226,7 +226,7 @@ int main() {
     }
     g_uart.PumpTx();
     if (g_board->reboot_requested()) {  // UpdateReboot: its Ack out first, then the bootloader
-      for (int i = 0; i < 100000; ++i) g_uart.PumpTx();
+      g_uart.DrainTx();  // within the watchdog's period: it was kicked after the last tick
       g_reset_record.Set(palpa::protocol::ResetCause::kUpdate);
       palpa::hal::mps2::SystemReset();
     }

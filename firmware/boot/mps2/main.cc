@@ -141,7 +141,7 @@ void Send(const M& m, uint8_t seq, uint8_t flags) {
     }
     g_uart.PumpTx();
     if (reboot) {
-      for (int k = 0; k < 100000; ++k) g_uart.PumpTx();
+      g_uart.DrainTx();
       g_reset_record.Set(pp::ResetCause::kUpdate);  // the image it boots says why it started
       mps2::SystemReset();
     }

@@ -58,6 +58,13 @@ void Uart::PumpTx() {
   }
 }
 
+void Uart::DrainTx() {
+  while (tx_tail_ != tx_head_ || (kUart0->STATE & kUartStateTxFull)) PumpTx();
+  // The CMSDK UART has no "shifter empty" flag: wait out one character (6.4 µs at BAUDDIV 16)
+  // with margin, a register read being a few cycles.
+  for (int i = 0; i < 256; ++i) (void)kUart0->STATE;
+}
+
 void SysTickClock::Init() {
   kSysTick->RVR = kSysClockHz / 1000u - 1u;
   kSysTick->CVR = 0;

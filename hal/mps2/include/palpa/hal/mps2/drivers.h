@@ -20,6 +20,9 @@ class Uart final : public ByteLink {
   void OnRxInterrupt();
   /// Moves queued bytes into the transmitter while it has room; call from the main loop.
   void PumpTx();
+  /// Sends everything queued, then lets the last character leave the shifter: before a reset.
+  /// Bounded by the line rate (a full ring is 13 ms at 1.56 Mbaud), not by a guess.
+  void DrainTx();
   uint32_t rx_overruns() const { return rx_overruns_; }
   /// Puts bytes into the receive ring as if they had arrived (the benchmark image's host).
   void Inject(const uint8_t* data, size_t size) {
