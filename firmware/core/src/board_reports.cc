@@ -127,7 +127,7 @@ protocol::Status BoardReports::ConfigReport(Board& b, const protocol::GetConfig&
   r.boot_nonce = b.session_.boot_nonce();
   r.section = request.section;
   r.index = request.index;
-  r.config_crc = ConfigCrc(b.live_);
+  r.config_crc = b.config_crc_;
   r.total_bytes = static_cast<uint16_t>(size.value);
   r.offset = request.offset;
   const size_t left = size.value - request.offset;

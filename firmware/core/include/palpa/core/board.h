@@ -138,6 +138,9 @@ class Board {
   hal::PulsingEnable supply_pulse_;
   hal::PulsingEnable dump_pulse_;
 
+  /// CRC of the live configuration's wire form (GetConfig reports it), once per configuration:
+  /// computing it takes ≈ 15 000 instructions, too many to repeat for every chunk a host reads.
+  uint32_t config_crc_ = 0;
   // Integrity of the live configuration: a CRC over its memory, recomputed a slice per tick.
   uint32_t config_memory_crc_ = 0;
   uint32_t check_crc_ = 0;
