@@ -18,7 +18,8 @@ class UpdateEngine {
  public:
   /// `running` is the slot executing now (kNoSlot in recovery mode: both slots are writable).
   /// `watchdog` (may be nullptr) is kicked between sectors of an erase, around every flash
-  /// operation and for every block an image check hashes: long work, not a hung loop. The lines are safe throughout (update mode).
+  /// operation and for every block an image check hashes: long work, not a hung loop. The lines
+  /// are safe throughout (update mode).
   UpdateEngine(hal::Flash* flash, const FlashLayout& layout, protocol::BoardKind kind,
                uint8_t running, hal::Watchdog* watchdog = nullptr);
 
