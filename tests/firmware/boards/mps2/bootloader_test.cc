@@ -41,6 +41,14 @@ std::unique_ptr<ph::Link> Connect(const QemuProcess& qemu) {
   return std::move(link.value);
 }
 
+/// The release as the build step made it (Python); the host's parser must accept it.
+ph::UpdatePackage BuildStepRelease() {
+  std::string error;
+  auto package = ph::ReadPackage(Read(std::string(PALPA_BOOT_DIR) + "/palpa-mps2.palpa"), &error);
+  CHECK_TEXT(package.has_value(), error.c_str());
+  return *package;
+}
+
 bool ImagesBuilt() {
   return access(kBoot.c_str(), R_OK) == 0 && access(SlotImage(1).c_str(), R_OK) == 0;
 }
@@ -113,17 +121,13 @@ TEST(QemuBootloader, ACorruptedImageLeavesTheBoardInRecoveryMode) {
 
 TEST(QemuBootloader, FromRecoveryAFlashedReleaseBootsInTrialAndIsConfirmed) {
   CHECK_TEXT(ImagesBuilt(), "the mps2 preset's images are missing");
-  // The release as the build step made it (Python); the host's parser must accept it.
-  std::string error;
-  const auto package =
-      ph::ReadPackage(Read(std::string(PALPA_BOOT_DIR) + "/palpa-mps2.palpa"), &error);
-  CHECK_TEXT(package.has_value(), error.c_str());
+  const ph::UpdatePackage package = BuildStepRelease();
   QemuProcess qemu;  // the bootloader alone: both slots empty
   CHECK(qemu.Start(PALPA_QEMU, {"-kernel", kBoot}));
   auto link = Connect(qemu);
   STRCMP_EQUAL("recovery", link->board().config_name.data());
   CHECK(link->board().reset_cause == pp::ResetCause::kPowerOn);  // nothing recorded before
-  const ph::FlashReport r = ph::FlashPackage(*link, *package, {});
+  const ph::FlashReport r = ph::FlashPackage(*link, package, {});
   CHECK_TEXT(r.status == pp::Status::kOk, r.message.c_str());
   const pp::HelloReply after = link->board();
   STRCMP_EQUAL("thesis-5finger", after.config_name.data());
@@ -139,10 +143,7 @@ TEST(QemuBootloader, FromRecoveryAFlashedReleaseBootsInTrialAndIsConfirmed) {
 
 TEST(QemuBootloader, ThroughTheApplicationAReleaseIsFlashedBootedAndConfirmed) {
   CHECK_TEXT(ImagesBuilt(), "the mps2 preset's images are missing");
-  std::string error;
-  const auto package =
-      ph::ReadPackage(Read(std::string(PALPA_BOOT_DIR) + "/palpa-mps2.palpa"), &error);
-  CHECK_TEXT(package.has_value(), error.c_str());
+  const ph::UpdatePackage package = BuildStepRelease();
   // Time paced by instructions (32 ns each, about the MPS2's 25 MHz): the application's 30 ms
   // watchdog measures the firmware's own work, as on the board, not how the host schedules QEMU.
   QemuProcess qemu;
@@ -150,7 +151,7 @@ TEST(QemuBootloader, ThroughTheApplicationAReleaseIsFlashedBootedAndConfirmed) {
                                 "loader,file=" + SlotImage(0) + ",addr=0x8000,force-raw=on"}));
   auto link = Connect(qemu);
   STRCMP_EQUAL("thesis-5finger", link->board().config_name.data());
-  const ph::FlashReport r = ph::FlashPackage(*link, *package, {});
+  const ph::FlashReport r = ph::FlashPackage(*link, package, {});
   CHECK_TEXT(r.status == pp::Status::kOk, r.message.c_str());
   LONGS_EQUAL(1, r.slot);  // the slot the application was not running from
   const pp::HelloReply after = link->board();
