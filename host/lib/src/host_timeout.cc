@@ -3,6 +3,9 @@
 
 #include <algorithm>
 
+#include "palpa/protocol/codec.h"
+#include "palpa/protocol/crc32.h"
+
 namespace palpa::host {
 namespace {
 
@@ -63,6 +66,35 @@ uint32_t HostTimeoutTracker::EffectiveTimeoutUs() const {
 
 double HostTimeoutTracker::HeartbeatPeriodSeconds() const {
   return host::HeartbeatPeriodSeconds(EffectiveTimeoutUs(), time_scale_);
+}
+
+void StagedHostTimeout::OnBegin(const protocol::StagedBegin& begin) {
+  blob_.assign(begin.total_bytes, 0);
+}
+
+void StagedHostTimeout::OnPart(const protocol::StagedPart& part) {
+  if (part.offset >= blob_.size()) return;  // the board refuses it too
+  const size_t size = std::min<size_t>(part.data_size, blob_.size() - part.offset);
+  std::copy(part.data.begin(), part.data.begin() + size, blob_.begin() + part.offset);
+}
+
+std::optional<uint32_t> StagedHostTimeout::OnCommit(const protocol::StagedCommit& commit) const {
+  if (commit.total_bytes != blob_.size() ||
+      commit.crc32 != protocol::Crc32(blob_.data(), blob_.size())) {
+    return std::nullopt;
+  }
+  // Records as the board reads them: 16-bit length, type, body.
+  for (size_t at = 0; blob_.size() - at >= 3;) {
+    const size_t length = blob_[at] | static_cast<size_t>(blob_[at + 1]) << 8;
+    if (blob_.size() - at - 3 < length) break;
+    protocol::ConfigureBoard board;
+    if (blob_[at + 2] == static_cast<uint8_t>(protocol::MessageType::kConfigureBoard) &&
+        protocol::DecodeBody(blob_.data() + at + 3, length, board) == protocol::Status::kOk) {
+      return board.host_timeout_us;
+    }
+    at += 3 + length;
+  }
+  return std::nullopt;
 }
 
 }  // namespace palpa::host

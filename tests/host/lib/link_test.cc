@@ -1,6 +1,7 @@
 // The link against a test board behind a fault-injecting transport, and against palpa-sim:
 // exactly-once commands under loss and corruption, board restarts, streams, slow subscribers,
 // catalog mismatch.
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -11,6 +12,7 @@
 #include "palpa/host/device.h"
 #include "palpa/host/fault_transport.h"
 #include "palpa/host/link.h"
+#include "palpa/protocol/crc32.h"
 #include "palpa/protocol/faults.h"
 
 #include "CppUTest/TestHarness.h"
@@ -272,6 +274,37 @@ TEST(LinkSim, HeartbeatsFollowAShorterHostTimeoutSetInTheSession) {
   ConfigureHostTimeout(*device, 20000);
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));
   std::string error;
+  const auto diagnostics = device->Diagnostics(&error);
+  CHECK_TEXT(diagnostics.ok(), error.c_str());
+  STRCMP_EQUAL("none", ph::FaultNames(diagnostics.value.fault_bitmap).c_str());
+}
+
+TEST(LinkSim, HeartbeatsFollowAShorterHostTimeoutInAStagedConfiguration) {
+  // As above, with the board record inside a staged blob (palpa config set/load): the link reads
+  // the timeout from what it staged when the commit goes out.
+  const auto device = OpenSimAt("0.1");
+  std::string error;
+  auto board = device->ReadBoard(&error);
+  CHECK_TEXT(board.ok(), error.c_str());
+  board.value.host_timeout_us = 20000;
+  uint8_t blob[3 + 256];
+  const auto size = pp::EncodeBody(board.value, blob + 3, sizeof(blob) - 3);
+  CHECK(size.ok());
+  blob[0] = static_cast<uint8_t>(size.value);
+  blob[1] = static_cast<uint8_t>(size.value >> 8);
+  blob[2] = static_cast<uint8_t>(pp::MessageType::kConfigureBoard);
+  const uint16_t total = static_cast<uint16_t>(size.value + 3);
+  ph::Link& link = device->link();
+  LONGS_EQUAL(pp::Status::kOk, link.Command(pp::StagedBegin{total}).status);
+  for (uint16_t at = 0; at < total; at += pp::kMaxStagedChunk) {
+    pp::StagedPart part{};
+    part.offset = at;
+    part.data_size = static_cast<uint8_t>(std::min<size_t>(pp::kMaxStagedChunk, total - at));
+    std::copy(blob + at, blob + at + part.data_size, part.data.begin());
+    LONGS_EQUAL(pp::Status::kOk, link.Command(part).status);
+  }
+  LONGS_EQUAL(pp::Status::kOk, link.Command(pp::StagedCommit{total, pp::Crc32(blob, total)}).status);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
   const auto diagnostics = device->Diagnostics(&error);
   CHECK_TEXT(diagnostics.ok(), error.c_str());
   STRCMP_EQUAL("none", ph::FaultNames(diagnostics.value.fault_bitmap).c_str());

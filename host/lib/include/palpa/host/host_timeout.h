@@ -4,7 +4,10 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
+#include <vector>
 
+#include "palpa/protocol/messages_admin.h"
 #include "palpa/protocol/messages_config.h"
 
 namespace palpa::host {
@@ -46,6 +49,21 @@ class HostTimeoutTracker {
   float time_scale_ = 1.0f;
   std::map<uint32_t, uint32_t> in_flight_;  ///< cookie → timeout it carries
   uint64_t changes_ = 0;
+};
+
+/// What the host has staged on the board (StagedBegin, StagedPart), so that a StagedCommit whose
+/// blob holds a board record counts as a ConfigureBoard for the tracker above: a staged
+/// configuration that shortens the timeout gets heartbeats to match before it applies.
+class StagedHostTimeout {
+ public:
+  void OnBegin(const protocol::StagedBegin& begin);
+  void OnPart(const protocol::StagedPart& part);
+  /// The timeout the committed blob sets, if it holds a board record; none when it holds none or
+  /// the commit does not match what was staged (the board refuses such a commit).
+  std::optional<uint32_t> OnCommit(const protocol::StagedCommit& commit) const;
+
+ private:
+  std::vector<uint8_t> blob_;
 };
 
 }  // namespace palpa::host

@@ -87,8 +87,9 @@ class Link {
   /// "host catalog 0x… (protocol 1) vs board catalog 0x… (firmware a.b.c, protocol 1)".
   std::string Versions() const;
   std::string Describe() const { return transport_->Describe(); }
-  /// The board's host-silence timeout changed other than by a ConfigureBoard sent on this link
-  /// (which the link follows itself), e.g. after a factory reset: heartbeats go at a quarter of it.
+  /// The board's host-silence timeout changed other than by a ConfigureBoard or a staged board
+  /// record sent on this link (which the link follows itself), e.g. after a factory reset:
+  /// heartbeats go at a quarter of it.
   void SetHostTimeout(uint32_t host_timeout_us);
 
   /// Sends a reliable command and waits for its Ack, Nack or report (`timeout_ms` < 0: the
@@ -157,6 +158,8 @@ class Link {
   void HeartbeatLoop();
   void DispatchLoop();
   void OnFrame(const pp::Frame& frame, double now_s);
+  /// A ConfigureBoard, or a StagedCommit of a blob with a board record, queued as `cookie`.
+  void FollowHostTimeout(uint32_t cookie, uint8_t type, const uint8_t* body, size_t size);
   void OnTelemetry(const pp::Telemetry& t, double now_s);
   void OnBoardReset(const std::string& why);
   void SendHello();
@@ -177,6 +180,7 @@ class Link {
   double hello_sent_s_ = -1;
   bool hello_wanted_ = true;
   HostTimeoutTracker host_timeout_;  ///< its changes wake the heartbeat loop
+  StagedHostTimeout staged_;         ///< what is staged, for a board record in it
   struct Pending {
     bool done = false;
     CommandResult result;
