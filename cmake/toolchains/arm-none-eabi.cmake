@@ -16,4 +16,6 @@ set(PALPA_CPU_FLAGS "-mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16"
 set(CMAKE_C_FLAGS_INIT "${PALPA_CPU_FLAGS} -ffunction-sections -fdata-sections")
 set(CMAKE_ASM_FLAGS_INIT "${PALPA_CPU_FLAGS}")
 set(CMAKE_CXX_FLAGS_INIT "${PALPA_CPU_FLAGS} -ffunction-sections -fdata-sections -fno-exceptions -fno-rtti -fno-threadsafe-statics -fno-use-cxa-atexit -Wdouble-promotion -fsingle-precision-constant")
-set(CMAKE_EXE_LINKER_FLAGS_INIT "${PALPA_CPU_FLAGS} -nostartfiles -Wl,--gc-sections --specs=picolibc.specs")
+# picolibc's speed-optimised build: its memcpy/memset move words, the size-optimised ones bytes
+# (a configuration change copies ≈ 6 KB several times: 2.5 times the instructions), for 480 B.
+set(CMAKE_EXE_LINKER_FLAGS_INIT "${PALPA_CPU_FLAGS} -nostartfiles -Wl,--gc-sections --specs=picolibc.specs --picolibc-buildtype=release")
