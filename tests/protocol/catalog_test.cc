@@ -61,6 +61,25 @@ TEST(CatalogHash, BootstrapMessagesDoNotCount) {
                        pp::ComputeCatalogHash(BootstrapVariant{}));
 }
 
+TEST(CatalogHash, RenumberedOrAddedFaultOrStatusBitsGiveADifferentHash) {
+  // A later build that puts a new fault before output_write: bit 9 means something else.
+  constexpr const char* kInserted[] = {"host_silence", "over_limit",   "implausible_sensor",
+                                       "config_crc",   "unexpected_reset", "leak",
+                                       "estop_command", "estop_pin",   "pump_run_time",
+                                       "overheat",     "output_write"};
+  constexpr uint32_t base = pp::ComputeCatalogHash(BaseCatalog{});
+  CHECK(base != pp::ComputeCatalogHash(BaseCatalog{}, pp::BitNames{kInserted, 11}));
+  CHECK(base != pp::ComputeCatalogHash(BaseCatalog{}, pp::BitNames{kInserted, 9}));  // one fewer
+  // Two status bits swapped.
+  constexpr const char* kSwapped[] = {"safe", "trim_clamped", "slewing", "saturated",
+                                      "open_loop", "raw", "sensor_fault"};
+  CHECK(base != pp::ComputeCatalogHash(BaseCatalog{}, pp::kFaultBitNames, pp::BitNames{kSwapped, 7}));
+  // The same names from another array: the same hash.
+  constexpr const char* kSame[] = {"safe", "slewing", "trim_clamped", "saturated",
+                                   "open_loop", "raw", "sensor_fault"};
+  UNSIGNED_LONGS_EQUAL(base, pp::ComputeCatalogHash(BaseCatalog{}, pp::kFaultBitNames, pp::BitNames{kSame, 7}));
+}
+
 TEST(CatalogHash, IsAComputedConstant) {
   UNSIGNED_LONGS_EQUAL(pp::kCatalogHash, pp::ComputeCatalogHash(pp::Catalog{}));
   CHECK(pp::kCatalogHash != pp::ComputeCatalogHash(pp::MessageList<>{}));

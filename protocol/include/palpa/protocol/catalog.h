@@ -7,6 +7,7 @@
 #include <limits>
 #include <type_traits>
 
+#include "palpa/protocol/faults.h"
 #include "palpa/protocol/field_codec.h"
 #include "palpa/protocol/messages_admin.h"
 #include "palpa/protocol/messages_bootstrap.h"
@@ -120,13 +121,28 @@ class CatalogHasher {
   uint32_t hash_ = 2166136261u;
 };
 
-/// Hash of every non-bootstrap message of `list`. Two builds interoperate beyond the bootstrap
-/// set only when their hashes match.
+/// Names of the bits in order, bit 0 first.
+struct BitNames {
+  const char* const* names;
+  size_t count;
+};
+inline constexpr BitNames kFaultBitNames{kFaultNames, sizeof(kFaultNames) / sizeof(kFaultNames[0])};
+inline constexpr BitNames kLineStatusBitNames{
+    kLineStatusNames, sizeof(kLineStatusNames) / sizeof(kLineStatusNames[0])};
+
+/// Hash of every non-bootstrap message of `list`, and of the names of the fault and line-status
+/// bits those messages carry (a renumbered bit changes what a field means). Two builds
+/// interoperate beyond the bootstrap set only when their hashes match.
 template <class List>
-constexpr uint32_t ComputeCatalogHash(List list) {
+constexpr uint32_t ComputeCatalogHash(List list, BitNames faults = kFaultBitNames,
+                                      BitNames line_status = kLineStatusBitNames) {
   CatalogHasher h;
   h.Str("palpa-catalog");
   h.Num(kMaxBodySize);
+  for (const BitNames& bits : {faults, line_status}) {
+    h.Num(bits.count);
+    for (size_t i = 0; i < bits.count; ++i) h.Str(bits.names[i]);
+  }
   ForEachMessage(list, [&h]<class M>() {
     if (IsBootstrap(static_cast<uint8_t>(M::kInfo.type))) return;
     h.Num(static_cast<uint8_t>(M::kInfo.type));

@@ -74,4 +74,10 @@ inline constexpr uint8_t kRaw = 1u << 5;         ///< finger in raw mode
 inline constexpr uint8_t kSensorFault = 1u << 6; ///< implausible reading
 }  // namespace line_status
 
+/// The line status bits' names, bit 0 first: hashed into the catalog (they give the bits meaning).
+inline constexpr const char* const kLineStatusNames[] = {
+    "safe", "slewing", "trim_clamped", "saturated", "open_loop", "raw", "sensor_fault"};
+static_assert(sizeof(kLineStatusNames) / sizeof(kLineStatusNames[0]) == 7 &&
+              line_status::kSensorFault == 1u << 6);
+
 }  // namespace palpa::protocol
