@@ -109,7 +109,7 @@ Outcome Device::ApplyCalibration(uint8_t finger, const CalibrationFile& c) {
     if (!append(l))
       return Outcome{Status::kBadValue, "apply calibration: the line record cannot be encoded", {}};
   }
-  Outcome o = Staged(records.data(), records.size());
+  Outcome o = ConfigureStaged(records.data(), records.size());
   if (!o.ok()) {
     o.message = "apply calibration: " + o.message;
     return o;
@@ -300,10 +300,16 @@ Outcome Device::ConfigureFinger(const pp::ConfigureFinger& finger) {
   body[0] = static_cast<uint8_t>(size.value);
   body[1] = static_cast<uint8_t>(size.value >> 8);
   body[2] = static_cast<uint8_t>(pp::MessageType::kConfigureFinger);
-  return Staged(body, size.value + 3);
+  return ConfigureStaged(body, size.value + 3);
 }
 
-Outcome Device::Staged(const uint8_t* records, size_t size) {
+Outcome Device::ConfigureStaged(const uint8_t* records, size_t size) {
+  if (size == 0 || size > pp::kMaxStagedBytes) {
+    return Outcome{Status::kBadLength,
+                   "staged configuration: " + std::to_string(size) + " bytes (1 to " +
+                       std::to_string(pp::kMaxStagedBytes) + " fit the board's staging buffer)",
+                   {}};
+  }
   Outcome o =
       FromCommand(link_->Command(pp::StagedBegin{static_cast<uint16_t>(size)}), "staged begin");
   for (size_t at = 0; o.ok() && at < size; at += pp::kMaxStagedChunk) {

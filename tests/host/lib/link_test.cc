@@ -1,18 +1,17 @@
 // The link against a test board behind a fault-injecting transport, and against palpa-sim:
 // exactly-once commands under loss and corruption, board restarts, streams, slow subscribers,
 // catalog mismatch.
-#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <thread>
+#include <vector>
 
 #include "board_transport.h"
 #include "mini_client.h"
 #include "palpa/host/device.h"
 #include "palpa/host/fault_transport.h"
 #include "palpa/host/link.h"
-#include "palpa/protocol/crc32.h"
 #include "palpa/protocol/faults.h"
 
 #include "CppUTest/TestHarness.h"
@@ -293,17 +292,14 @@ TEST(LinkSim, HeartbeatsFollowAShorterHostTimeoutInAStagedConfiguration) {
   blob[0] = static_cast<uint8_t>(size.value);
   blob[1] = static_cast<uint8_t>(size.value >> 8);
   blob[2] = static_cast<uint8_t>(pp::MessageType::kConfigureBoard);
-  const uint16_t total = static_cast<uint16_t>(size.value + 3);
-  ph::Link& link = device->link();
-  LONGS_EQUAL(pp::Status::kOk, link.Command(pp::StagedBegin{total}).status);
-  for (uint16_t at = 0; at < total; at += pp::kMaxStagedChunk) {
-    pp::StagedPart part{};
-    part.offset = at;
-    part.data_size = static_cast<uint8_t>(std::min<size_t>(pp::kMaxStagedChunk, total - at));
-    std::copy(blob + at, blob + at + part.data_size, part.data.begin());
-    LONGS_EQUAL(pp::Status::kOk, link.Command(part).status);
-  }
-  LONGS_EQUAL(pp::Status::kOk, link.Command(pp::StagedCommit{total, pp::Crc32(blob, total)}).status);
+  // Sizes the board's staging buffer cannot hold are refused before anything is sent.
+  LONGS_EQUAL(pp::Status::kBadLength, device->ConfigureStaged(blob, 0).status);
+  const std::vector<uint8_t> oversized(pp::kMaxStagedBytes + 1u);
+  const ph::Outcome refused = device->ConfigureStaged(oversized.data(), oversized.size());
+  LONGS_EQUAL(pp::Status::kBadLength, refused.status);
+  CHECK(refused.message.find("staging buffer") != std::string::npos);
+  const ph::Outcome staged = device->ConfigureStaged(blob, size.value + 3);
+  CHECK_TEXT(staged.ok(), staged.message.c_str());
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));
   const auto diagnostics = device->Diagnostics(&error);
   CHECK_TEXT(diagnostics.ok(), error.c_str());

@@ -63,6 +63,9 @@ class Device {
   /// Sent staged when it does not fit one packet (large compensators).
   Outcome ConfigureFinger(const pp::ConfigureFinger& finger);
   Outcome ConfigureBoard(const pp::ConfigureBoard& board);
+  /// Configure* records (each a 16-bit length, the type, the body: core::EncodeConfigBlob's
+  /// format) uploaded staged; the board validates them together and applies all or none.
+  Outcome ConfigureStaged(const uint8_t* records, size_t size);
   Outcome SaveConfig();
   Outcome FactoryReset();
   Result<pp::ConfigureLine> ReadLine(uint8_t line, std::string* error = nullptr);
@@ -103,7 +106,6 @@ class Device {
   Outcome EnsureMode(uint8_t finger, pp::FingerMode mode);
   template <class M>
   Result<M> ReadSection(pp::ConfigSection section, uint8_t index, std::string* error);
-  Outcome Staged(const uint8_t* records, size_t size);
   static Outcome FromCommand(const CommandResult& r, const char* what);
 
   std::unique_ptr<Link> link_;
