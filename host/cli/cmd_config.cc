@@ -6,7 +6,6 @@
 #include "cli.h"
 #include "palpa/core/board_config.h"
 #include "palpa/host/json_fields.h"
-#include "palpa/protocol/crc32.h"
 
 namespace palpa::cli {
 namespace {
@@ -108,23 +107,8 @@ int Upload(Context& c, host::Device& d, const core::BoardConfig& config) {
     std::fprintf(stderr, "palpa config: the configuration is too large for one staged upload (%zu bytes)\n", size.value);
     return kExitUsage;
   }
-  auto& link = d.link();
-  auto step = [&](host::CommandResult r, const char* what) {
-    if (r.status == pp::Status::kOk) return true;
-    std::fprintf(stderr, "palpa config: %s: %s %s (detail %u)\n", what, pp::StatusName(r.status), r.message.c_str(), r.detail);
-    return false;
-  };
-  if (!step(link.Command(pp::StagedBegin{static_cast<uint16_t>(size.value)}), "staged begin")) return kExitFailed;
-  for (size_t at = 0; at < size.value; at += pp::kMaxStagedChunk) {
-    pp::StagedPart part{};
-    part.offset = static_cast<uint16_t>(at);
-    part.data_size = static_cast<uint8_t>(std::min<size_t>(pp::kMaxStagedChunk, size.value - at));
-    std::copy(blob.begin() + static_cast<long>(at), blob.begin() + static_cast<long>(at + part.data_size), part.data.begin());
-    if (!step(link.Command(part), "staged part")) return kExitFailed;
-  }
-  if (!step(link.Command(pp::StagedCommit{static_cast<uint16_t>(size.value), pp::Crc32(blob.data(), size.value)}), "apply")) {
-    return kExitFailed;
-  }
+  const host::Outcome applied = d.ConfigureStaged(blob.data(), size.value);
+  if (!applied.ok()) return Report(c, applied, "config");
   if (!c.json) std::printf("applied (not yet saved: 'palpa config save' keeps it across resets)\n");
   return kExitOk;
 }

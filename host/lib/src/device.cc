@@ -321,9 +321,18 @@ Outcome Device::ConfigureStaged(const uint8_t* records, size_t size) {
     o = FromCommand(link_->Command(part), "staged part");
   }
   if (!o.ok()) return o;
-  return FromCommand(
-      link_->Command(pp::StagedCommit{static_cast<uint16_t>(size), pp::Crc32(records, size)}),
-      "staged commit");
+  const CommandResult r =
+      link_->Command(pp::StagedCommit{static_cast<uint16_t>(size), pp::Crc32(records, size)});
+  o = FromCommand(r, "staged commit");
+  // A record the board refused comes back as its section and index (ConfigError::detail()).
+  const bool record_refused = r.status == Status::kBadLength || r.status == Status::kOutOfRange ||
+                              r.status == Status::kBadValue || r.status == Status::kUnsupported;
+  const uint32_t section = r.detail >> 8;
+  if (record_refused && section < static_cast<uint32_t>(pp::ConfigSection::kCount)) {
+    o.message += " (" + std::string(pp::EnumNames(pp::ConfigSection{})[section]) + " " +
+                 std::to_string((r.detail & 0xFFu) + 1) + ")";
+  }
+  return o;
 }
 
 template <class M>

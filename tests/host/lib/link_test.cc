@@ -56,6 +56,19 @@ std::unique_ptr<ph::Device> OpenSimAt(const char* speed) {
   return std::move(device.value);
 }
 
+/// One Configure* record as a staged blob holds it: 16-bit length, type, body.
+template <class M>
+std::vector<uint8_t> StagedRecord(const M& message) {
+  std::vector<uint8_t> record(3 + 512);
+  const auto size = pp::EncodeBody(message, record.data() + 3, record.size() - 3);
+  CHECK(size.ok());
+  record[0] = static_cast<uint8_t>(size.value);
+  record[1] = static_cast<uint8_t>(size.value >> 8);
+  record[2] = static_cast<uint8_t>(M::kInfo.type);
+  record.resize(3 + size.value);
+  return record;
+}
+
 }  // namespace
 
 /// The board's latched faults in words, for failure messages.
@@ -286,22 +299,34 @@ TEST(LinkSim, HeartbeatsFollowAShorterHostTimeoutInAStagedConfiguration) {
   auto board = device->ReadBoard(&error);
   CHECK_TEXT(board.ok(), error.c_str());
   board.value.host_timeout_us = 20000;
-  uint8_t blob[3 + 256];
-  const auto size = pp::EncodeBody(board.value, blob + 3, sizeof(blob) - 3);
-  CHECK(size.ok());
-  blob[0] = static_cast<uint8_t>(size.value);
-  blob[1] = static_cast<uint8_t>(size.value >> 8);
-  blob[2] = static_cast<uint8_t>(pp::MessageType::kConfigureBoard);
+  const std::vector<uint8_t> blob = StagedRecord(board.value);
   // Sizes the board's staging buffer cannot hold are refused before anything is sent.
-  LONGS_EQUAL(pp::Status::kBadLength, device->ConfigureStaged(blob, 0).status);
+  LONGS_EQUAL(pp::Status::kBadLength, device->ConfigureStaged(blob.data(), 0).status);
   const std::vector<uint8_t> oversized(pp::kMaxStagedBytes + 1u);
   const ph::Outcome refused = device->ConfigureStaged(oversized.data(), oversized.size());
   LONGS_EQUAL(pp::Status::kBadLength, refused.status);
   CHECK(refused.message.find("staging buffer") != std::string::npos);
-  const ph::Outcome staged = device->ConfigureStaged(blob, size.value + 3);
+  const ph::Outcome staged = device->ConfigureStaged(blob.data(), blob.size());
   CHECK_TEXT(staged.ok(), staged.message.c_str());
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));
   const auto diagnostics = device->Diagnostics(&error);
   CHECK_TEXT(diagnostics.ok(), error.c_str());
   STRCMP_EQUAL("none", ph::FaultNames(diagnostics.value.fault_bitmap).c_str());
+}
+
+TEST(LinkSim, AStagedConfigurationTheBoardRefusesNamesTheRecordAndChangesNothing) {
+  const auto device = OpenSimAt("1");
+  std::string error;
+  auto line = device->ReadLine(3, &error);  // a bias line: its ceiling is below 30 kPa
+  CHECK_TEXT(line.ok(), error.c_str());
+  const int32_t limit_before = line.value.limit_max_pa;
+  line.value.limit_max_pa = 30000;
+  const std::vector<uint8_t> blob = StagedRecord(line.value);
+  const ph::Outcome refused = device->ConfigureStaged(blob.data(), blob.size());
+  CHECK_FALSE(refused.ok());
+  CHECK_TEXT(refused.message.find("staged commit") != std::string::npos, refused.message.c_str());
+  CHECK_TEXT(refused.message.find("(line 4)") != std::string::npos, refused.message.c_str());
+  const auto after = device->ReadLine(3, &error);
+  CHECK_TEXT(after.ok(), error.c_str());
+  LONGS_EQUAL(limit_before, after.value.limit_max_pa);
 }
