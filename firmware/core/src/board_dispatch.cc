@@ -96,7 +96,10 @@ Outcome BoardDispatch::Handle(const protocol::Frame& frame, uint64_t now_us) {
 }
 
 Outcome BoardDispatch::Apply(const protocol::Hello& m, const protocol::Header& h) {
-  if (b_.session_.OnHello(m)) b_.Hold();  // a new host inherits no actuation from an old one
+  if (b_.session_.OnHello(m)) {  // a new host inherits no actuation, and no update, from an old one
+    b_.Hold();
+    if (b_.io_.update != nullptr) b_.io_.update->LeaveUpdateMode();
+  }
   b_.last_host_frame_us_ = now_us_;
   BoardReports::HelloReply(b_, m.host_nonce, h.seq);
   return {Status::kOk, 0, true};

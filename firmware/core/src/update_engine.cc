@@ -43,7 +43,7 @@ Status UpdateEngine::Enter(const protocol::UpdateEnter& m, uint32_t* detail) {
     *detail = layout_.slot_size;
     return Status::kOutOfRange;
   }
-  if (!update_mode_ || m.image_size != image_size_) {  // re-entering with the same image resumes
+  if (m.image_size != image_size_) {  // entering again with the same image size resumes
     written_ = 0;
     erased_ = 0;
     hash_.Reset();

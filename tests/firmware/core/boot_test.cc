@@ -198,6 +198,36 @@ TEST(FirmwareUpdate, AWriteResumesFromTheOffsetTheBoardReports) {
   CHECK(w.Reboot().reason == core::BootReason::kTrial);
 }
 
+TEST(FirmwareUpdate, AnUpdateLeftByANewSessionStopsHoldingTheBoardAndResumesWhenEnteredAgain) {
+  pt::UpdateWorld w(6);
+  const std::vector<uint8_t> image = pt::MakeRelease(1, 1, 2, 10 * 1024, 6).slot_image[1];
+  core::UpdateEngine engine(&w.flash, w.layout, w.kind, w.running);
+  const auto size = static_cast<uint32_t>(image.size());
+  uint32_t detail = 0;
+  LONGS_EQUAL((int)pp::Status::kOk, (int)engine.Enter({1, size}, &detail));
+  LONGS_EQUAL((int)pp::Status::kOk, (int)engine.Erase({1, 0, 16 * 1024}, &detail));
+  pp::UpdateWrite first;
+  first.slot = 1;
+  first.data_size = 200;
+  std::copy(image.begin(), image.begin() + 200, first.data.begin());
+  LONGS_EQUAL((int)pp::Status::kOk, (int)engine.Write(first, &detail));
+  // The host is gone; another opens a session: the board is no longer held in update mode.
+  engine.LeaveUpdateMode();
+  CHECK_FALSE(engine.in_update_mode());
+  CHECK_FALSE(engine.Query(1).in_update_mode);
+  LONGS_EQUAL((int)pp::Status::kWrongMode, (int)engine.Write(first, &detail));
+  LONGS_EQUAL((int)pp::Status::kWrongMode,
+              (int)engine.Activate({1, size, pp::Sha256Of(image.data(), size)}, &detail));
+  LONGS_EQUAL(200, engine.Query(1).written_bytes);  // what is written stays...
+  LONGS_EQUAL((int)pp::Status::kOk, (int)engine.Enter({1, size}, &detail));
+  CHECK(engine.in_update_mode());
+  LONGS_EQUAL(200, engine.Query(1).written_bytes);  // ...and the same image goes on from it
+  CHECK(engine.Query(1).written_sha256 == pp::Sha256Of(image.data(), 200));
+  engine.LeaveUpdateMode();
+  LONGS_EQUAL((int)pp::Status::kOk, (int)engine.Enter({1, size - 4}, &detail));
+  LONGS_EQUAL(0, engine.Query(1).written_bytes);  // another image starts from nothing
+}
+
 TEST(FirmwareUpdate, WrongKindCorruptedOlderAndRunningSlotImagesAreRefused) {
   pt::UpdateWorld w(4);
   CHECK(pt::RunUpdate(w, pt::MakeRelease(1, 1, 5, 8 * 1024, 6)).completed);  // floor now 5

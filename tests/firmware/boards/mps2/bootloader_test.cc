@@ -2,7 +2,8 @@
 // make_image.py) boots through it — checked and jumped to — and answers Hello, and after a reboot
 // it asked for says why it started; a corrupted one leaves the board in recovery mode; and from
 // recovery `palpa flash` writes a release, the board boots it in trial (reporting the update as
-// its reset cause), and the host confirms it.
+// its reset cause), and the host confirms it; an update its host abandoned holds the board only
+// until the next session.
 #include <unistd.h>
 
 #include <fstream>
@@ -10,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "palpa/host/device.h"
 #include "palpa/host/flasher.h"
 #include "palpa/host/link.h"
 #include "qemu_process.h"
@@ -161,4 +163,47 @@ TEST(QemuBootloader, ThroughTheApplicationAReleaseIsFlashedBootedAndConfirmed) {
   CHECK(link->Command(pp::SlotsQuery{}).Reply(slots));
   CHECK(slots.slots[1].state == pp::SlotState::kConfirmed);
   CHECK(slots.slots[0].state == pp::SlotState::kValid);
+}
+
+TEST(QemuBootloader, AnUpdateItsHostAbandonedEndsWithTheNextSessionAndCanResume) {
+  CHECK_TEXT(ImagesBuilt(), "the mps2 preset's images are missing");
+  const ph::UpdatePackage package = BuildStepRelease();
+  const std::vector<uint8_t>& image = package.slot_image[1];
+  const auto size = static_cast<uint32_t>(image.size());
+  QemuProcess qemu;
+  CHECK(qemu.Start(PALPA_QEMU, {"-icount", "shift=5,sleep=off", "-kernel", kBoot, "-device",
+                                "loader,file=" + SlotImage(0) + ",addr=0x8000,force-raw=on"}));
+  std::string error;
+  {  // A host starts an update, writes its first chunk and goes away.
+    auto device = ph::Device::Open(qemu.address(), {}, &error);
+    CHECK_TEXT(device.ok(), error.c_str());
+    ph::Link& link = device.value->link();
+    LONGS_EQUAL((int)pp::Status::kOk, (int)link.Command(pp::UpdateEnter{1, size}).status);
+    LONGS_EQUAL((int)pp::Status::kOk, (int)link.Command(pp::UpdateErase{1, 0, size}, 60000).status);
+    pp::UpdateWrite first;
+    first.slot = 1;
+    first.data_size = 200;
+    std::copy(image.begin(), image.begin() + 200, first.data.begin());
+    LONGS_EQUAL((int)pp::Status::kOk, (int)link.Command(first).status);
+    LONGS_EQUAL((int)pp::Status::kBusy, (int)device.value->SetLines({{0, 20.0}}).status);
+  }
+  // The next host's session is not held by it: once it clears the host-silence fault the
+  // abandoned update left, its setpoints are taken.
+  auto device = ph::Device::Open(qemu.address(), {}, &error);
+  CHECK_TEXT(device.ok(), error.c_str());
+  ph::Link& link = device.value->link();
+  pp::UpdateStatus status{};
+  CHECK(link.Command(pp::UpdateQuery{1}).Reply(status));
+  CHECK_FALSE(status.in_update_mode);
+  LONGS_EQUAL(200, status.written_bytes);
+  const ph::Outcome cleared = device.value->ClearFault();
+  CHECK_TEXT(cleared.ok(), cleared.message.c_str());
+  const ph::Outcome set = device.value->SetLines({{0, 20.0}});
+  CHECK_TEXT(set.ok(), set.message.c_str());
+  // And an update of the same image goes on from what was written.
+  LONGS_EQUAL((int)pp::Status::kOk, (int)link.Command(pp::UpdateEnter{1, size}).status);
+  CHECK(link.Command(pp::UpdateQuery{1}).Reply(status));
+  CHECK(status.in_update_mode);
+  LONGS_EQUAL(200, status.written_bytes);
+  CHECK(status.written_sha256 == pp::Sha256Of(image.data(), 200));
 }

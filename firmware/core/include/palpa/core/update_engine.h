@@ -24,6 +24,10 @@ class UpdateEngine {
                uint8_t running, hal::Watchdog* watchdog = nullptr);
 
   bool in_update_mode() const { return update_mode_; }
+  /// A new session: an update its host abandoned no longer holds the board (lines safe, output
+  /// commands refused) until a reset. What is written stays: an Enter with the same image size
+  /// resumes it, as a host that lost its link does.
+  void LeaveUpdateMode() { update_mode_ = false; }
 
   /// Each returns kOk, or why not; *detail carries an index or, for a write at the wrong offset,
   /// the resume point.
