@@ -44,6 +44,7 @@ Outcome BoardDispatch::Apply(const protocol::ConfigureBoard& m, const protocol::
 Outcome BoardDispatch::Apply(const protocol::StagedBegin& m, const protocol::Header&) {
   b_.staged_expected_ = m.total_bytes;
   b_.staged_received_ = 0;
+  b_.staged_crc_ = 0;
   return {};
 }
 
@@ -53,6 +54,7 @@ Outcome BoardDispatch::Apply(const protocol::StagedPart& m, const protocol::Head
   if (m.offset != b_.staged_received_) return {Status::kOutOfRange, b_.staged_received_};
   if (m.data_size > b_.staged_expected_ - b_.staged_received_) return {Status::kOutOfRange, b_.staged_received_};
   std::memcpy(b_.staged_.data() + m.offset, m.data.data(), m.data_size);
+  b_.staged_crc_ = protocol::Crc32Update(b_.staged_crc_, m.data.data(), m.data_size);
   b_.staged_received_ = static_cast<uint16_t>(b_.staged_received_ + m.data_size);
   return {};
 }
@@ -63,7 +65,7 @@ Outcome BoardDispatch::Apply(const protocol::StagedCommit& m, const protocol::He
                         m.total_bytes == received;
   b_.staged_expected_ = b_.staged_received_ = 0;  // one commit per begin, whatever happens
   if (!complete) return {Status::kStagedIncomplete, received};
-  if (protocol::Crc32(b_.staged_.data(), received) != m.crc32) return {Status::kCrcError, 0};
+  if (b_.staged_crc_ != m.crc32) return {Status::kCrcError, 0};
   std::memcpy(&b_.candidate_, &b_.live_, sizeof(b_.candidate_));
   ConfigError error;
   const Status status = ApplyConfigBlob(b_.staged_.data(), received, b_.candidate_, &error);

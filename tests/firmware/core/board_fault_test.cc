@@ -331,18 +331,25 @@ TEST(BoardConfiguration, StagedConfigurationAppliesAllOrNothing) {
   std::vector<uint8_t> blob(pc::kMaxConfigBlob);
   auto n = pc::EncodeConfigBlob(wanted, blob.data(), blob.size());
   blob.resize(n.value);
-  auto upload = [&](const std::vector<uint8_t>& bytes) {
+  // `crc_flip` corrupts the commit's CRC; `parts` < all abandons the upload before its commit.
+  auto upload = [&](const std::vector<uint8_t>& bytes, uint32_t crc_flip = 0, size_t parts = SIZE_MAX) {
     h.Send(pp::StagedBegin{static_cast<uint16_t>(bytes.size())});
-    for (size_t at = 0; at < bytes.size(); at += pp::kMaxStagedChunk) {
+    for (size_t at = 0; at < bytes.size() && parts > 0; at += pp::kMaxStagedChunk, --parts) {
       pp::StagedPart part{};
       part.offset = static_cast<uint16_t>(at);
       part.data_size = static_cast<uint8_t>(std::min<size_t>(pp::kMaxStagedChunk, bytes.size() - at));
       std::copy(bytes.begin() + at, bytes.begin() + at + part.data_size, part.data.begin());
       h.Send(part);
     }
-    h.Send(pp::StagedCommit{static_cast<uint16_t>(bytes.size()), pp::Crc32(bytes.data(), bytes.size())});
+    if (parts == 0) return pp::Status::kOk;
+    h.Send(pp::StagedCommit{static_cast<uint16_t>(bytes.size()),
+                            pp::Crc32(bytes.data(), bytes.size()) ^ crc_flip});
     return BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kStagedCommit);
   };
+  // A commit whose CRC is not that of the parts received: refused, nothing applied.
+  LONGS_EQUAL((int)pp::Status::kCrcError, (int)upload(blob, 1u << 7));
+  LONGS_EQUAL(200000, h.board->config().lines[0].slew_pa_per_s);
+  upload(blob, 0, 2);  // begun and left after two parts: the next begin starts afresh
   // A blob whose last finger is invalid: none of it is applied.
   pc::BoardConfig broken = wanted;
   broken.fingers[4].bias_pa = 90000;

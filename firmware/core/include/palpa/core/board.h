@@ -156,6 +156,7 @@ class Board {
   std::array<uint8_t, protocol::kMaxStagedBytes> staged_{};
   uint16_t staged_expected_ = 0;
   uint16_t staged_received_ = 0;
+  uint32_t staged_crc_ = 0;  ///< of the bytes received, part by part: the commit only compares
 };
 
 }  // namespace palpa::core
