@@ -83,18 +83,19 @@ std::optional<uint32_t> StagedHostTimeout::OnCommit(const protocol::StagedCommit
       commit.crc32 != protocol::Crc32(blob_.data(), blob_.size())) {
     return std::nullopt;
   }
-  // Records as the board reads them: 16-bit length, type, body.
+  // Records as the board reads them: 16-bit length, type, body; the last board record wins.
+  std::optional<uint32_t> carried;
   for (size_t at = 0; blob_.size() - at >= 3;) {
     const size_t length = blob_[at] | static_cast<size_t>(blob_[at + 1]) << 8;
     if (blob_.size() - at - 3 < length) break;
     protocol::ConfigureBoard board;
     if (blob_[at + 2] == static_cast<uint8_t>(protocol::MessageType::kConfigureBoard) &&
         protocol::DecodeBody(blob_.data() + at + 3, length, board) == protocol::Status::kOk) {
-      return board.host_timeout_us;
+      carried = board.host_timeout_us;
     }
     at += 3 + length;
   }
-  return std::nullopt;
+  return carried;
 }
 
 }  // namespace palpa::host

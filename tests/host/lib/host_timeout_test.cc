@@ -130,14 +130,16 @@ TEST_GROUP(StagedHostTimeout) {
   std::vector<uint8_t> blob;
 };
 
-TEST(StagedHostTimeout, ABoardRecordAnywhereInTheBlobCarriesItsTimeout) {
+TEST(StagedHostTimeout, TheBlobsLastBoardRecordAnywhereInItCarriesItsTimeout) {
   for (uint8_t i = 0; i < 4; ++i) {  // line records first: the board record is found past them
     pp::ConfigureLine line{};
     line.line = i;
     AppendRecord(blob, line);
   }
   pp::ConfigureBoard board{};
-  board.host_timeout_us = 20000;
+  board.host_timeout_us = 50000;
+  AppendRecord(blob, board);
+  board.host_timeout_us = 20000;  // a second board record: the board applies them in order
   AppendRecord(blob, board);
   CHECK(blob.size() > pp::kMaxStagedChunk);  // more than one part
   const auto carried = StageAndCommit(staged, blob, pp::Crc32(blob.data(), blob.size()));
