@@ -131,7 +131,7 @@ void Board::Tick(uint64_t now_us) {
   }
   const uint32_t newly = Supervise(settings_, supervisor_, in);
   const bool was_safe = safe_;
-  // Update mode keeps every line safe from Enter until the reboot (DESIGN §9).
+  // Update mode keeps every line safe from Enter until the reboot or the next session (DESIGN §9).
   const bool updating =
       identity_.recovery || (io_.update != nullptr && io_.update->in_update_mode());
   safe_ = supervisor_.latched != 0 || !released_ || updating;
