@@ -68,17 +68,48 @@ double HostTimeoutTracker::HeartbeatPeriodSeconds() const {
   return host::HeartbeatPeriodSeconds(EffectiveTimeoutUs(), time_scale_);
 }
 
-void StagedHostTimeout::OnBegin(const protocol::StagedBegin& begin) {
+std::optional<uint32_t> CarriedHostTimeout::Carried(uint8_t type, const uint8_t* body,
+                                                   size_t size) {
+  using protocol::MessageType;
+  using protocol::Status;
+  switch (static_cast<MessageType>(type)) {
+    case MessageType::kConfigureBoard: {
+      protocol::ConfigureBoard board;
+      if (protocol::DecodeBody(body, size, board) == Status::kOk) return board.host_timeout_us;
+      break;
+    }
+    case MessageType::kStagedBegin: {
+      protocol::StagedBegin begin;
+      if (protocol::DecodeBody(body, size, begin) == Status::kOk) OnBegin(begin);
+      break;
+    }
+    case MessageType::kStagedPart: {
+      protocol::StagedPart part;
+      if (protocol::DecodeBody(body, size, part) == Status::kOk) OnPart(part);
+      break;
+    }
+    case MessageType::kStagedCommit: {
+      protocol::StagedCommit commit;
+      if (protocol::DecodeBody(body, size, commit) == Status::kOk) return OnCommit(commit);
+      break;
+    }
+    default:
+      break;
+  }
+  return std::nullopt;
+}
+
+void CarriedHostTimeout::OnBegin(const protocol::StagedBegin& begin) {
   blob_.assign(begin.total_bytes, 0);
 }
 
-void StagedHostTimeout::OnPart(const protocol::StagedPart& part) {
+void CarriedHostTimeout::OnPart(const protocol::StagedPart& part) {
   if (part.offset >= blob_.size()) return;  // the board refuses it too
   const size_t size = std::min<size_t>(part.data_size, blob_.size() - part.offset);
   std::copy(part.data.begin(), part.data.begin() + size, blob_.begin() + part.offset);
 }
 
-std::optional<uint32_t> StagedHostTimeout::OnCommit(const protocol::StagedCommit& commit) const {
+std::optional<uint32_t> CarriedHostTimeout::OnCommit(const protocol::StagedCommit& commit) const {
   if (commit.total_bytes != blob_.size() ||
       commit.crc32 != protocol::Crc32(blob_.data(), blob_.size())) {
     return std::nullopt;

@@ -148,7 +148,11 @@ uint32_t Link::SubmitPacket(uint8_t type, const uint8_t* body, size_t size, int 
     return fail(CommandResult{admitted, 0, 0, {}, std::string("refused: ") + text});
   }
   pending_[cookie] = Pending{};
-  FollowHostTimeout(cookie, type, body, size);
+  // Heartbeats fit a new timeout before it applies, whether it comes alone or in a staged blob.
+  if (const auto carried = carried_.Carried(type, body, size)) {
+    host_timeout_.OnSent(cookie, *carried);
+    changed_.notify_all();
+  }
   for (;;) {
     const auto seq = sender_.SubmitEncoded(type, body, size, cookie);
     if (seq.ok()) break;
@@ -160,38 +164,6 @@ uint32_t Link::SubmitPacket(uint8_t type, const uint8_t* body, size_t size, int 
   }
   sender_.Transmit(Micros(SteadySeconds()), [this](const uint8_t* f, size_t n) { WriteFrame(f, n); });
   return cookie;
-}
-
-void Link::FollowHostTimeout(uint32_t cookie, uint8_t type, const uint8_t* body, size_t size) {
-  // Heartbeats fit a new timeout before it applies, whether it comes alone or in a staged blob.
-  std::optional<uint32_t> carried;
-  switch (static_cast<pp::MessageType>(type)) {
-    case pp::MessageType::kConfigureBoard: {
-      pp::ConfigureBoard board;
-      if (pp::DecodeBody(body, size, board) == Status::kOk) carried = board.host_timeout_us;
-      break;
-    }
-    case pp::MessageType::kStagedBegin: {
-      pp::StagedBegin begin;
-      if (pp::DecodeBody(body, size, begin) == Status::kOk) staged_.OnBegin(begin);
-      break;
-    }
-    case pp::MessageType::kStagedPart: {
-      pp::StagedPart part;
-      if (pp::DecodeBody(body, size, part) == Status::kOk) staged_.OnPart(part);
-      break;
-    }
-    case pp::MessageType::kStagedCommit: {
-      pp::StagedCommit commit;
-      if (pp::DecodeBody(body, size, commit) == Status::kOk) carried = staged_.OnCommit(commit);
-      break;
-    }
-    default:
-      break;
-  }
-  if (!carried) return;
-  host_timeout_.OnSent(cookie, *carried);
-  changed_.notify_all();
 }
 
 uint32_t Link::FailedTicket(CommandResult result) {

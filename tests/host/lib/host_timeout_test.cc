@@ -108,29 +108,53 @@ void AppendRecord(std::vector<uint8_t>& blob, const M& message) {
   blob.insert(blob.end(), body, body + size.value);
 }
 
-/// Stages `blob` in chunks, as a host would, and returns what the commit carries.
-std::optional<uint32_t> StageAndCommit(ph::StagedHostTimeout& staged,
-                                       const std::vector<uint8_t>& blob, uint32_t crc) {
-  staged.OnBegin(pp::StagedBegin{static_cast<uint16_t>(blob.size())});
+/// What `carried` reads from `message` queued as a command (its encoded body, as the link has it).
+template <class M>
+std::optional<uint32_t> Queue(ph::CarriedHostTimeout& carried, const M& message) {
+  uint8_t body[pp::kMaxBodySize];
+  const auto size = pp::EncodeBody(message, body, sizeof(body));
+  CHECK(size.ok());
+  return carried.Carried(static_cast<uint8_t>(M::kInfo.type), body, size.value);
+}
+
+/// Stages `blob` in chunks, as a host would; nothing is carried until the commit.
+void Stage(ph::CarriedHostTimeout& carried, const std::vector<uint8_t>& blob) {
+  CHECK_FALSE(Queue(carried, pp::StagedBegin{static_cast<uint16_t>(blob.size())}).has_value());
   for (size_t at = 0; at < blob.size(); at += pp::kMaxStagedChunk) {
     pp::StagedPart part{};
     part.offset = static_cast<uint16_t>(at);
     part.data_size = static_cast<uint8_t>(std::min<size_t>(pp::kMaxStagedChunk, blob.size() - at));
     std::copy(blob.begin() + static_cast<long>(at),
               blob.begin() + static_cast<long>(at + part.data_size), part.data.begin());
-    staged.OnPart(part);
+    CHECK_FALSE(Queue(carried, part).has_value());
   }
-  return staged.OnCommit(pp::StagedCommit{static_cast<uint16_t>(blob.size()), crc});
 }
+
+std::optional<uint32_t> Commit(ph::CarriedHostTimeout& carried, size_t size, uint32_t crc) {
+  return Queue(carried, pp::StagedCommit{static_cast<uint16_t>(size), crc});
+}
+
+uint32_t CrcOf(const std::vector<uint8_t>& blob) { return pp::Crc32(blob.data(), blob.size()); }
 
 }  // namespace
 
-TEST_GROUP(StagedHostTimeout) {
-  ph::StagedHostTimeout staged;
+TEST_GROUP(CarriedHostTimeout) {
+  ph::CarriedHostTimeout carried;
   std::vector<uint8_t> blob;
 };
 
-TEST(StagedHostTimeout, TheBlobsLastBoardRecordAnywhereInItCarriesItsTimeout) {
+TEST(CarriedHostTimeout, AConfigureBoardCarriesItsTimeoutAndOtherCommandsNone) {
+  pp::ConfigureBoard board{};
+  board.host_timeout_us = 30000;
+  const auto timeout = Queue(carried, board);
+  CHECK(timeout.has_value());
+  LONGS_EQUAL(30000, *timeout);
+  CHECK_FALSE(Queue(carried, pp::ClearFault{0xFFFFFFFFu}).has_value());
+  CHECK_FALSE(carried.Carried(static_cast<uint8_t>(pp::MessageType::kConfigureBoard), nullptr, 0)
+                  .has_value());  // a body that does not decode
+}
+
+TEST(CarriedHostTimeout, TheBlobsLastBoardRecordAnywhereInItCarriesItsTimeout) {
   for (uint8_t i = 0; i < 4; ++i) {  // line records first: the board record is found past them
     pp::ConfigureLine line{};
     line.line = i;
@@ -142,38 +166,43 @@ TEST(StagedHostTimeout, TheBlobsLastBoardRecordAnywhereInItCarriesItsTimeout) {
   board.host_timeout_us = 20000;  // a second board record: the board applies them in order
   AppendRecord(blob, board);
   CHECK(blob.size() > pp::kMaxStagedChunk);  // more than one part
-  const auto carried = StageAndCommit(staged, blob, pp::Crc32(blob.data(), blob.size()));
-  CHECK(carried.has_value());
-  LONGS_EQUAL(20000, *carried);
+  Stage(carried, blob);
+  const auto timeout = Commit(carried, blob.size(), CrcOf(blob));
+  CHECK(timeout.has_value());
+  LONGS_EQUAL(20000, *timeout);
 }
 
-TEST(StagedHostTimeout, ABlobWithoutABoardRecordCarriesNone) {
+TEST(CarriedHostTimeout, ABlobWithoutABoardRecordCarriesNone) {
   pp::ConfigureFinger finger{};
   AppendRecord(blob, finger);
-  CHECK_FALSE(StageAndCommit(staged, blob, pp::Crc32(blob.data(), blob.size())).has_value());
+  Stage(carried, blob);
+  CHECK_FALSE(Commit(carried, blob.size(), CrcOf(blob)).has_value());
 }
 
-TEST(StagedHostTimeout, ACommitThatDoesNotMatchWhatWasStagedCarriesNone) {
+TEST(CarriedHostTimeout, ACommitThatDoesNotMatchWhatWasStagedCarriesNone) {
   pp::ConfigureBoard board{};
   board.host_timeout_us = 20000;
   AppendRecord(blob, board);
-  const uint32_t crc = pp::Crc32(blob.data(), blob.size());
-  CHECK_FALSE(StageAndCommit(staged, blob, crc ^ 1u).has_value());  // the board refuses it
-  staged.OnBegin(pp::StagedBegin{static_cast<uint16_t>(blob.size())});  // begun again, no parts
-  const auto size = static_cast<uint16_t>(blob.size());
-  CHECK_FALSE(staged.OnCommit(pp::StagedCommit{size, crc}).has_value());
-  CHECK_FALSE(staged.OnCommit(pp::StagedCommit{static_cast<uint16_t>(size + 1), crc}).has_value());
+  Stage(carried, blob);
+  CHECK_FALSE(Commit(carried, blob.size(), CrcOf(blob) ^ 1u).has_value());  // the board refuses it
+  CHECK_FALSE(Commit(carried, blob.size() + 1, CrcOf(blob)).has_value());
+  Queue(carried, pp::StagedBegin{static_cast<uint16_t>(blob.size())});  // begun again, no parts
+  CHECK_FALSE(Commit(carried, blob.size(), CrcOf(blob)).has_value());
 }
 
-TEST(StagedHostTimeout, AStrayPartOrATruncatedRecordIsIgnored) {
+TEST(CarriedHostTimeout, APartPastTheEndChangesNothingAndATruncatedRecordCarriesNone) {
   pp::ConfigureBoard board{};
   board.host_timeout_us = 20000;
   AppendRecord(blob, board);
-  blob.resize(blob.size() - 1);  // the record claims more than the blob holds
-  staged.OnBegin(pp::StagedBegin{static_cast<uint16_t>(blob.size())});
+  Stage(carried, blob);
   pp::StagedPart beyond{};
   beyond.offset = static_cast<uint16_t>(blob.size());
   beyond.data_size = 4;
-  staged.OnPart(beyond);  // past the end: nothing written
-  CHECK_FALSE(StageAndCommit(staged, blob, pp::Crc32(blob.data(), blob.size())).has_value());
+  Queue(carried, beyond);  // past the end: nothing written (the board refuses it too)
+  const auto timeout = Commit(carried, blob.size(), CrcOf(blob));
+  CHECK(timeout.has_value());
+  LONGS_EQUAL(20000, *timeout);
+  blob.resize(blob.size() - 1);  // the record claims more than the blob holds
+  Stage(carried, blob);
+  CHECK_FALSE(Commit(carried, blob.size(), CrcOf(blob)).has_value());
 }

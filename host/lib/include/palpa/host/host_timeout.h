@@ -51,18 +51,21 @@ class HostTimeoutTracker {
   uint64_t changes_ = 0;
 };
 
-/// What the host has staged on the board (StagedBegin, StagedPart), so that a StagedCommit whose
-/// blob holds a board record counts as a ConfigureBoard for the tracker above: a staged
-/// configuration that shortens the timeout gets heartbeats to match before it applies.
-class StagedHostTimeout {
+/// The host-silence timeout the host's commands carry, for the tracker above: a ConfigureBoard's,
+/// and a staged configuration's board record's when its StagedCommit goes out (what is staged is
+/// mirrored here), so a staged change that shortens the timeout gets heartbeats to match first.
+class CarriedHostTimeout {
  public:
+  /// Every reliable command the host queues (type and body): the timeout it carries, if any.
+  std::optional<uint32_t> Carried(uint8_t type, const uint8_t* body, size_t size);
+
+ private:
   void OnBegin(const protocol::StagedBegin& begin);
   void OnPart(const protocol::StagedPart& part);
   /// The timeout the committed blob sets, if it holds a board record; none when it holds none or
   /// the commit does not match what was staged (the board refuses such a commit).
   std::optional<uint32_t> OnCommit(const protocol::StagedCommit& commit) const;
 
- private:
   std::vector<uint8_t> blob_;
 };
 

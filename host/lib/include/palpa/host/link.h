@@ -158,8 +158,6 @@ class Link {
   void HeartbeatLoop();
   void DispatchLoop();
   void OnFrame(const pp::Frame& frame, double now_s);
-  /// A ConfigureBoard, or a StagedCommit of a blob with a board record, queued as `cookie`.
-  void FollowHostTimeout(uint32_t cookie, uint8_t type, const uint8_t* body, size_t size);
   void OnTelemetry(const pp::Telemetry& t, double now_s);
   void OnBoardReset(const std::string& why);
   void SendHello();
@@ -180,7 +178,7 @@ class Link {
   double hello_sent_s_ = -1;
   bool hello_wanted_ = true;
   HostTimeoutTracker host_timeout_;  ///< its changes wake the heartbeat loop
-  StagedHostTimeout staged_;         ///< what is staged, for a board record in it
+  CarriedHostTimeout carried_;       ///< the timeout commands carry, staged ones included
   struct Pending {
     bool done = false;
     CommandResult result;
