@@ -141,6 +141,13 @@ uint32_t CrcOf(const std::vector<uint8_t>& blob) { return pp::Crc32(blob.data(),
 TEST_GROUP(CarriedHostTimeout) {
   ph::CarriedHostTimeout carried;
   std::vector<uint8_t> blob;
+  /// A blob of one board record with a 20 ms timeout, staged.
+  void StageABoardRecord() {
+    pp::ConfigureBoard board{};
+    board.host_timeout_us = 20000;
+    AppendRecord(blob, board);
+    Stage(carried, blob);
+  }
 };
 
 TEST(CarriedHostTimeout, AConfigureBoardCarriesItsTimeoutAndOtherCommandsNone) {
@@ -180,10 +187,7 @@ TEST(CarriedHostTimeout, ABlobWithoutABoardRecordCarriesNone) {
 }
 
 TEST(CarriedHostTimeout, ACommitThatDoesNotMatchWhatWasStagedCarriesNone) {
-  pp::ConfigureBoard board{};
-  board.host_timeout_us = 20000;
-  AppendRecord(blob, board);
-  Stage(carried, blob);
+  StageABoardRecord();
   CHECK_FALSE(Commit(carried, blob.size(), CrcOf(blob) ^ 1u).has_value());  // the board refuses it
   CHECK_FALSE(Commit(carried, blob.size() + 1, CrcOf(blob)).has_value());
   Queue(carried, pp::StagedBegin{static_cast<uint16_t>(blob.size())});  // begun again, no parts
@@ -191,10 +195,7 @@ TEST(CarriedHostTimeout, ACommitThatDoesNotMatchWhatWasStagedCarriesNone) {
 }
 
 TEST(CarriedHostTimeout, APartPastTheEndChangesNothingAndATruncatedRecordCarriesNone) {
-  pp::ConfigureBoard board{};
-  board.host_timeout_us = 20000;
-  AppendRecord(blob, board);
-  Stage(carried, blob);
+  StageABoardRecord();
   pp::StagedPart beyond{};
   beyond.offset = static_cast<uint16_t>(blob.size());
   beyond.data_size = 4;
