@@ -80,6 +80,15 @@ bool Board::Step() {
 void Board::ApplyLive(uint64_t now_us) {
   settings_ = MakeSupervisorSettings(live_.board);
   supervisor_input_ = SupervisorInput{};
+  // Critical for safety: a channel the new configuration no longer has (a FactoryReset after a
+  // host added a line) would keep commanding what its old line last asked for, since only
+  // configured lines are written. It gets its old line's safe code, once: nothing writes it after.
+  for (uint8_t i = live_.line_count; i < driven_lines_; ++i) {
+    if (io_.dac.Write(i, line_params_[i].safe_counts) != protocol::Status::kOk) {
+      LatchFault(supervisor_, Fault::kOutputWrite, now_us, i);
+    }
+  }
+  driven_lines_ = live_.line_count;
   for (uint8_t i = 0; i < kMaxLines; ++i) {
     line_owner_[i] = FingerOfLine(live_, i);
     if (i < live_.line_count) {

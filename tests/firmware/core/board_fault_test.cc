@@ -363,3 +363,28 @@ TEST(BoardConfiguration, StagedConfigurationAppliesAllOrNothing) {
   LONGS_EQUAL(70000, h.board->config().lines[1].slew_pa_per_s);
   CHECK_FALSE(h.board->config_is_default());
 }
+
+TEST(BoardConfiguration, AChannelTheConfigurationDropsIsLeftAtItsSafeCode) {
+  // The host adds an eighth line and drives it; a FactoryReset brings back the seven-line layout.
+  pp::ConfigureLine extra = h.board->config().lines[0];
+  extra.line = 7;
+  extra.safe_pa = 0;
+  h.Send(extra);
+  LONGS_EQUAL((int)pp::Status::kOk, (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kConfigureLine));
+  for (int i = 0; i < 50; ++i) {
+    h.Run(1, i % 20 == 0);
+    h.FollowModel();
+  }
+  h.Send(pp::ClearFault{});  // the new line's sensor read nothing before it was configured
+  h.Send(pp::SetLineSetpoints{1, 1, {{{7, 40000}}}});
+  for (int i = 0; i < 500; ++i) {
+    h.Run(1, i % 20 == 0);
+    h.FollowModel();
+  }
+  CHECK(h.dac.counts[7] > 1500);  // ≈ 40 kPa on a 12-bit 0..100 kPa output
+  h.Send(pp::FactoryReset{});
+  LONGS_EQUAL(7, h.board->config().line_count);
+  LONGS_EQUAL(0, h.dac.counts[7]);  // at once, not on a tick that no longer writes it
+  h.Run(100, true);
+  LONGS_EQUAL(0, h.dac.counts[7]);
+}

@@ -134,6 +134,7 @@ class Board {
   std::array<FingerParams, protocol::kMaxFingers> finger_params_{};
   std::array<FingerState, protocol::kMaxFingers> finger_state_{};
   std::array<uint8_t, protocol::kMaxLines> line_owner_{};
+  uint8_t driven_lines_ = 0;  ///< DAC channels the live configuration's lines write each tick
 
   hal::PulsingEnable supply_pulse_;
   hal::PulsingEnable dump_pulse_;
