@@ -81,14 +81,13 @@ void Board::ApplyLive(uint64_t now_us) {
   settings_ = MakeSupervisorSettings(live_.board);
   supervisor_input_ = SupervisorInput{};
   // Critical for safety: a channel the new configuration no longer has (a FactoryReset after a
-  // host added a line) would keep commanding what its old line last asked for, since only
-  // configured lines are written. It gets its old line's safe code, once: nothing writes it after.
-  for (uint8_t i = live_.line_count; i < driven_lines_; ++i) {
-    if (io_.dac.Write(i, line_params_[i].safe_counts) != protocol::Status::kOk) {
-      LatchFault(supervisor_, Fault::kOutputWrite, now_us, i);
-    }
-  }
+  // host added a line) would keep commanding what its old line last asked for, since the tick
+  // writes configured lines only. It is parked at its old line's safe code, retried each tick
+  // until the write succeeds; nothing writes it after that.
+  for (uint8_t i = live_.line_count; i < driven_lines_; ++i) unparked_channels_ |= 1u << i;
+  unparked_channels_ &= ~((1u << live_.line_count) - 1u);  // configured again: the tick writes it
   driven_lines_ = live_.line_count;
+  ParkDroppedChannels();
   for (uint8_t i = 0; i < kMaxLines; ++i) {
     line_owner_[i] = FingerOfLine(live_, i);
     if (i < live_.line_count) {
@@ -226,11 +225,28 @@ void Board::WriteOutputs() {
     if (safe_) line_out_[i].counts = line_params_[i].safe_counts;
     if (io_.dac.Write(i, line_out_[i].counts) != protocol::Status::kOk && failed == kNoLine) failed = i;
   }
+  if (unparked_channels_ != 0) {
+    const uint8_t channel = ParkDroppedChannels();
+    if (failed == kNoLine) failed = channel;
+  }
   supervisor_input_.failed_output = failed;
   // Critical for safety: valves and pump are held only while the board is not safe.
   supply_pulse_.Tick(!safe_);
   dump_pulse_.Tick(!safe_);
   io_.pump_enable.Set(!safe_ && supervisor_.pump_on);
+}
+
+uint8_t Board::ParkDroppedChannels() {
+  uint8_t failed = kNoLine;
+  for (uint8_t i = 0; i < kMaxLines; ++i) {
+    if ((unparked_channels_ & (1u << i)) == 0) continue;
+    if (io_.dac.Write(i, line_params_[i].safe_counts) == protocol::Status::kOk) {
+      unparked_channels_ &= ~(1u << i);
+    } else if (failed == kNoLine) {
+      failed = i;
+    }
+  }
+  return failed;
 }
 
 void Board::CheckConfigIntegrity(uint64_t now_us) {

@@ -381,10 +381,28 @@ TEST(BoardConfiguration, AChannelTheConfigurationDropsIsLeftAtItsSafeCode) {
     h.Run(1, i % 20 == 0);
     h.FollowModel();
   }
-  CHECK(h.dac.counts[7] > 1500);  // ≈ 40 kPa on a 12-bit 0..100 kPa output
+  const uint32_t driven = h.dac.counts[7];
+  CHECK(driven > 1500);  // ≈ 40 kPa on a 12-bit 0..100 kPa output
+  // While the DAC's bus fails the write is retried every tick, and output_write says why.
+  h.dac.fail = true;
   h.Send(pp::FactoryReset{});
   LONGS_EQUAL(7, h.board->config().line_count);
-  LONGS_EQUAL(0, h.dac.counts[7]);  // at once, not on a tick that no longer writes it
+  h.Run(5, true);
+  LONGS_EQUAL(driven, h.dac.counts[7]);
+  CHECK(h.board->latched_faults() & FaultBit(Fault::kOutputWrite));
+  h.dac.fail = false;
+  h.Run(1, true);
+  LONGS_EQUAL(0, h.dac.counts[7]);
   h.Run(100, true);
   LONGS_EQUAL(0, h.dac.counts[7]);
+}
+
+TEST(BoardConfiguration, AChannelTheConfigurationDropsIsParkedAtOnce) {
+  pp::ConfigureLine extra = h.board->config().lines[0];
+  extra.line = 7;
+  extra.safe_pa = 20000;  // a code no tick of the old configuration would leave behind by chance
+  h.Send(extra);
+  h.Send(pp::FactoryReset{});
+  LONGS_EQUAL(7, h.board->config().line_count);
+  DOUBLES_EQUAL(20000.0 / 100000 * 4095, h.dac.counts[7], 1);  // before any tick runs
 }

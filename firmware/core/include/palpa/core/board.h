@@ -93,6 +93,9 @@ class Board {
   void ReadInputs(uint64_t now_us, SupervisorInput& in);
   void ComputeSetpoints(uint64_t now_us, float* setpoints, uint8_t* finger_status);
   void WriteOutputs();
+  /// Writes their old line's safe code to the channels a configuration dropped that have not
+  /// taken it yet; returns the first whose write failed, or kNoLine.
+  uint8_t ParkDroppedChannels();
   void CheckConfigIntegrity(uint64_t now_us);
   [[gnu::noinline]] void SampleTelemetry(uint64_t now_us, bool fault_report);
   [[gnu::noinline]] void Poll(uint64_t now_us);
@@ -135,6 +138,7 @@ class Board {
   std::array<FingerState, protocol::kMaxFingers> finger_state_{};
   std::array<uint8_t, protocol::kMaxLines> line_owner_{};
   uint8_t driven_lines_ = 0;  ///< DAC channels the live configuration's lines write each tick
+  uint32_t unparked_channels_ = 0;  ///< dropped channels whose safe code is not written yet
 
   hal::PulsingEnable supply_pulse_;
   hal::PulsingEnable dump_pulse_;
