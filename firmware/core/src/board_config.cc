@@ -59,6 +59,14 @@ Status ValidateLine(const protocol::ConfigureLine& line, ConfigError* error) {
   if (!Within(line.safe_pa, line.limit_min_pa, line.limit_max_pa)) {
     return Fail(error, ConfigSection::kLine, i, "safe value outside the limits");
   }
+  // Below the regulator's minimum the line commands 0 Pa (line_pipeline.cc): limits that leave
+  // 0 Pa out must not reach below that minimum, or the line would command outside them.
+  const bool zero_within = line.limit_min_pa <= 0 && line.limit_max_pa >= 0;
+  const int32_t nearest_zero = line.limit_min_pa > 0 ? line.limit_min_pa : -line.limit_max_pa;
+  if (!zero_within && nearest_zero < line.regulator_min_pa) {
+    return Fail(error, ConfigSection::kLine, i,
+                "limits leave 0 Pa out but reach below the regulator's minimum, where the line commands 0 Pa");
+  }
   if (line.command_min_pa == line.command_max_pa) {
     return Fail(error, ConfigSection::kLine, i, "command range is empty", Status::kBadValue);
   }

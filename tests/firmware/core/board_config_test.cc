@@ -81,6 +81,24 @@ TEST(ConfigValidation, SafeValueMustBeWithinTheLimits) {
   CHECK(Validate(c) == pp::Status::kOutOfRange);  // safe 0 Pa is now outside
 }
 
+TEST(ConfigValidation, LimitsThatLeaveZeroOutMustClearTheRegulatorMinimum) {
+  // Below regulator_min_pa (1 kPa) a line commands 0 Pa: limits from 129 Pa up would be left.
+  auto c = Thesis5();
+  c.lines[0].limit_min_pa = 129;
+  c.lines[0].safe_pa = 185;
+  pc::ConfigError e;
+  CHECK(Validate(c, &e) == pp::Status::kOutOfRange);
+  STRCMP_CONTAINS("regulator's minimum", e.reason);
+  c.lines[0].limit_min_pa = 1000;  // from the minimum up: 0 Pa is never commanded
+  c.lines[0].safe_pa = 1000;
+  CHECK(Validate(c) == pp::Status::kOk);
+  pp::ConfigureLine vacuum = Thesis5().lines[5];  // the same for a vacuum line, mirrored
+  vacuum.limit_max_pa = vacuum.safe_pa = -500;
+  CHECK(pc::ValidateLine(vacuum, &e) == pp::Status::kOutOfRange);
+  vacuum.limit_max_pa = vacuum.safe_pa = -1000;
+  CHECK(pc::ValidateLine(vacuum, &e) == pp::Status::kOk);
+}
+
 TEST(ConfigValidation, TrimGainsStayBelowTheCrossover) {
   auto c = Thesis5();
   c.lines[0].trim_ki_per_s = 7.0f;
