@@ -23,6 +23,14 @@ if(PALPA_SANITIZE)
   add_link_options(-fsanitize=address,undefined)
 endif()
 
+# The fuzz preset instruments every library for libFuzzer's coverage and the sanitizers, so a
+# fuzz target is guided through the code it drives, not only through its own file; the targets
+# themselves link -fsanitize=fuzzer.
+if(PALPA_FUZZ)
+  add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all)
+  add_link_options(-fsanitize=address,undefined)
+endif()
+
 # A hand-scheduled ARMv7E-M routine on the MCU: assembles `asm_source` into `target` and defines
 # `define` for `user_source`, the C++ file that calls it; the host build keeps the portable loop.
 # A macro, because enable_language must run in the directory's scope.

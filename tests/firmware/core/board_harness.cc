@@ -58,8 +58,11 @@ pp::Status BoardHarness::AnswerFor(const std::vector<BoardFrame>& frames, pp::Me
 void BoardHarness::SetMeasured(uint8_t line, float pa) {
   const pp::ConfigureLine& c = board->config().lines[line];
   const float fraction = (pa - static_cast<float>(c.sensor_min_pa)) / static_cast<float>(c.sensor_max_pa - c.sensor_min_pa);
-  adc.counts[line] = static_cast<uint32_t>(static_cast<float>(c.sensor_counts_min) +
-                                           fraction * static_cast<float>(c.sensor_counts_max - c.sensor_counts_min) + 0.5f);
+  const float counts = static_cast<float>(c.sensor_counts_min) +
+                       fraction * static_cast<float>(c.sensor_counts_max - c.sensor_counts_min) + 0.5f;
+  // An ADC saturates at its ends (a pressure far beyond the sensor's span, or none: NaN).
+  const float full_scale = static_cast<float>((1u << c.adc_bits) - 1u);
+  adc.counts[line] = counts >= 0 ? static_cast<uint32_t>(counts < full_scale ? counts : full_scale) : 0;
 }
 
 float BoardHarness::CommandedPa(uint8_t line) const { return board->line_output(line).command_pa; }

@@ -1,0 +1,81 @@
+#!/usr/bin/python3
+"""Writes seed scripts for board_fuzz: sessions that configure compensators and run targets.
+
+The opcodes and their arguments are those of fuzz_board.cc's Operate; libFuzzer mutates these
+into the scripts it explores, which reach the compensators far sooner than from empty inputs.
+"""
+import os
+import sys
+
+THESIS_5FINGER, FULL_8 = 2, 3  # index in the compiled-in configurations
+
+
+def connect(seq=0):
+    return [0, seq]
+
+
+def ticks(ms, plant=0x81):  # plant 0x81: follows the regulator model, heartbeats on
+    out = []
+    while ms > 0:
+        out += [1, plant, min(ms, 100) - 1]
+        ms -= 100
+    return out
+
+
+def target(finger, value):
+    return [5, finger, 0, value & 0xFF, value >> 8]
+
+
+def clear():
+    return [8, 1]
+
+
+def play(finger, api, operators):
+    """A PI or API compensator: small offset, w0 ≈ 0.01, thresholds every 4 kPa, weights ≈ 1e-3."""
+    out = [7, finger, 2 if api else 1, operators - 1]
+    out += [4, 0]  # offset: 1e-2
+    out += [4, 64]  # w0: 2e-2
+    out += [10] * operators  # thresholds: climbing by 4 kPa
+    out += [3, 32] * operators  # weights: 1.5e-3
+    if api:
+        out += [1, 50, 2, 3, 4]  # two dead zones
+    return out
+
+
+def branch(finger, points):
+    out = [7, finger, 0, points - 1, 5, 0, 5]  # band 100, dead band 100 Pa
+    out += [25] * points + [10] * points + [9] * points
+    return out
+
+
+def session(config, *steps):
+    out = [config] + connect()
+    for step in steps:
+        out += step
+    return bytes(out)
+
+
+def main():
+    corpus = sys.argv[1]
+    os.makedirs(corpus, exist_ok=True)
+    seeds = {
+        "pi16": session(THESIS_5FINGER, play(0, False, 16), clear(), target(0, 1200), ticks(400),
+                        target(0, 300), ticks(300), target(0, 0), ticks(200)),
+        "api8": session(THESIS_5FINGER, play(1, True, 8), clear(), target(1, 900), ticks(300),
+                        target(1, 100), ticks(300)),
+        "branch_jamming": session(THESIS_5FINGER, branch(3, 6), clear(), target(3, 500),
+                                  ticks(300), target(3, 50), ticks(300)),
+        "edited_record": session(FULL_8, [4, 3, 2, 8, 0, 0x40, 12, 0, 0x01, 1], ticks(100), target(0, 800),
+                                 ticks(200)),
+        "silence_and_estop": session(THESIS_5FINGER, target(0, 800), ticks(100),
+                                     [6, 3, 0x10, 0x27], ticks(100), [6, 1, 1, 0], ticks(50),
+                                     clear(), ticks(50)),
+    }
+    for name, data in seeds.items():
+        with open(os.path.join(corpus, name), "wb") as f:
+            f.write(data)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
