@@ -130,6 +130,23 @@ TEST(BootState, RecordsAlternateSectorsAndATornOneIsIgnored) {
   LONGS_EQUAL(602, core::BootStore(&flash, core::kDefaultLayout).Load().rollback_floor);
 }
 
+TEST(BootState, NewestReadsFlashOnceAndFollowsSaves) {
+  palpa::hal::fake::SimulatedNorFlash flash(core::kDefaultLayout.total,
+                                            core::kDefaultLayout.sector_size, 4);
+  core::BootState s;
+  s.rollback_floor = 3;
+  LONGS_EQUAL((int)pp::Status::kOk, (int)core::BootStore(&flash, core::kDefaultLayout).Save(s));
+  core::BootStore store(&flash, core::kDefaultLayout);
+  LONGS_EQUAL(3, store.Newest().rollback_floor);  // the first call loads
+  s.rollback_floor = 5;
+  LONGS_EQUAL((int)pp::Status::kOk, (int)store.Save(s));
+  LONGS_EQUAL(5, store.Newest().rollback_floor);  // a save is followed
+  // Flash changed behind the store's back (only a new boot does that): no longer read.
+  for (uint32_t offset : core::kDefaultLayout.state_offset) flash.Erase(offset);
+  LONGS_EQUAL(5, store.Newest().rollback_floor);
+  LONGS_EQUAL(0, store.Load().rollback_floor);
+}
+
 TEST_GROUP(FirmwareUpdate){};
 
 TEST(FirmwareUpdate, AFullUpdateBootsTheNewImageConfirmed) {

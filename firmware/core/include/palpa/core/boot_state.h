@@ -38,6 +38,10 @@ class BootStore {
 
   /// The newest valid record of either sector (a default state when there is none).
   BootState Load();
+  /// The same without reading flash again once loaded: Save keeps it, and nothing else writes
+  /// the state while an image runs (a Hello asks for the rollback floor; a scan of both sectors
+  /// is 512 record reads).
+  BootState Newest() { return loaded_ ? newest_ : Load(); }
   /// Appends `state` with the next sequence number: into the sector holding the newest record
   /// while it has room, else into the other one after erasing it.
   protocol::Status Save(BootState state);

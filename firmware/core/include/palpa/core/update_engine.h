@@ -41,7 +41,7 @@ class UpdateEngine {
 
   /// The slot an update may write: the one not running (nor holding the confirmed image).
   uint8_t inactive_slot() const { return inactive_; }
-  uint32_t rollback_floor() { return store_.Load().rollback_floor; }
+  uint32_t rollback_floor() { return store_.Newest().rollback_floor; }
 
  private:
   protocol::Status Writable(uint8_t slot) const;
