@@ -1,6 +1,8 @@
 // NOR flash model with torn programs and erases.
 #include "palpa/hal/fake/simulated_nor_flash.h"
 
+#include <cstring>
+
 namespace palpa::hal::fake {
 
 SimulatedNorFlash::SimulatedNorFlash(uint32_t size, uint32_t sector_size, uint32_t seed)
@@ -49,7 +51,7 @@ Status SimulatedNorFlash::DoProgram(uint32_t offset, const uint8_t* data, size_t
 Status SimulatedNorFlash::DoRead(uint32_t offset, uint8_t* out, size_t size) {
   if (!powered_) return Status::kIoError;
   if (offset > memory_.size() || size > memory_.size() - offset) return Status::kOutOfRange;
-  for (size_t i = 0; i < size; ++i) out[i] = memory_[offset + i];
+  std::memcpy(out, memory_.data() + offset, size);
   return Status::kOk;
 }
 

@@ -27,7 +27,16 @@ def target(finger, value):
 
 
 def clear():
-    return [8, 1]
+    return [9, 1]
+
+
+def update(chunks):
+    """Enter, erase and write slot 1 (the inactive one), then activate what was written."""
+    out = [8, 0x14, 0x00, 0x01]  # enter: 256 * 64 bytes
+    out += [8, 0x10, 0, 0, 64, 0]  # erase 16 KiB from 0
+    for k in range(chunks):
+        out += [8, 0x11, 199] + [(k * 7 + i) & 0xFF for i in range(200)]
+    return out + [8, 0x12]
 
 
 def play(finger, api, operators):
@@ -67,6 +76,7 @@ def main():
                                   ticks(300), target(3, 50), ticks(300)),
         "edited_record": session(FULL_8, [4, 3, 2, 8, 0, 0x40, 12, 0, 0x01, 1], ticks(100), target(0, 800),
                                  ticks(200)),
+        "update": session(THESIS_5FINGER, target(0, 800), ticks(100), update(3), ticks(50)),
         "silence_and_estop": session(THESIS_5FINGER, target(0, 800), ticks(100),
                                      [6, 3, 0x10, 0x27], ticks(100), [6, 1, 1, 0], ticks(50),
                                      clear(), ticks(50)),

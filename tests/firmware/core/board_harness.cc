@@ -4,10 +4,10 @@
 namespace palpa::testing {
 
 BoardHarness::BoardHarness(const char* config_name, pp::ResetCause reset_cause,
-                           fake::SimulatedNorFlash* shared_flash)
+                           fake::SimulatedNorFlash* shared_flash, pc::UpdateEngine* update)
     : flash(shared_flash != nullptr ? shared_flash : &own_flash) {
   const pc::BoardConfig* config = pc::FindBoardConfig(config_name);
-  pc::BoardIo io{clock, dac, &adc, supply, dump, pump, &estop, link, flash, 0};
+  pc::BoardIo io{clock, dac, &adc, supply, dump, pump, &estop, link, flash, 0, update};
   pc::BoardIdentity id;
   id.boot_nonce = 0xB0075EED;
   id.reset_cause = reset_cause;

@@ -8,6 +8,7 @@
 
 #include "palpa/core/board.h"
 #include "palpa/core/board_configs.h"
+#include "palpa/core/update_engine.h"
 #include "palpa/hal/fake/fakes.h"
 #include "palpa/hal/fake/simulated_nor_flash.h"
 #include "palpa/protocol/codec.h"
@@ -22,9 +23,11 @@ namespace fake = palpa::hal::fake;
 using BoardFrame = ReceivedFrame;
 
 struct BoardHarness {
+  /// `update`: the engine that takes firmware updates over the link (none: they are refused).
   explicit BoardHarness(const char* config_name = "thesis-5finger",
                         pp::ResetCause reset_cause = pp::ResetCause::kPowerOn,
-                        fake::SimulatedNorFlash* shared_flash = nullptr);
+                        fake::SimulatedNorFlash* shared_flash = nullptr,
+                        pc::UpdateEngine* update = nullptr);
 
   fake::FakeClock clock;
   fake::FakeAnalogOutput dac;
