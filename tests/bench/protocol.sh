@@ -20,15 +20,7 @@ echo "  $(( (b - a) / 2000 )) instructions per frame (header+body encode, CRC-32
 
 echo "== protocol: fuzzing (libFuzzer, 2 000 000 executions) =="
 corpus=build/fuzz/tests/protocol/fuzz_corpus
-mkdir -p "$corpus" build/fuzz/findings
+mkdir -p "$corpus"
 /usr/bin/python3 tests/protocol/fuzz_seeds.py tests/protocol/golden_frames.json "$corpus"
-if "$FUZZ" -runs=2000000 -seed=2 -max_len=1024 -artifact_prefix=build/fuzz/findings/ "$corpus" \
-    > build/fuzz/fuzz_bench.log 2>&1; then
-  status=0
-else
-  status=1
-fi
-grep -E '^Done' build/fuzz/fuzz_bench.log | sed 's/^/  /'
-grep -E 'DONE|cov:' build/fuzz/fuzz_bench.log | tail -1 | sed 's/^/  /'
-echo "  findings: $(ls build/fuzz/findings | wc -l) (artifacts in build/fuzz/findings)"
-exit $status
+. tests/bench/fuzz_run.inc
+fuzz_run protocol "$FUZZ" 2000000 "$corpus" -max_len=1024
