@@ -1,0 +1,222 @@
+// libFuzzer target: the files the host library reads — calibration files and update packages.
+//
+// Whatever the bytes, a parser must return a result or an error that says what is wrong (never
+// throw, crash or invoke undefined behaviour), and what it accepts must survive a round trip:
+// a calibration serialises, parses back and serialises to the same text; a package writes and
+// reads back to the same images. Input byte 0 picks the mode:
+//   0  raw text as a calibration file;
+//   1  a valid calibration file with one JSON value replaced (any field, any type or magnitude);
+//   2  a valid calibration file with bytes overwritten or cut short;
+//   3  raw bytes as an update package;
+//   4  a valid update package with bytes overwritten or cut short.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "palpa/host/calibration_file.h"
+#include "palpa/host/firmware_image.h"
+
+namespace ph = palpa::host;
+namespace pp = palpa::protocol;
+using nlohmann::json;
+
+namespace {
+
+class Bytes {
+ public:
+  Bytes(const uint8_t* data, size_t size) : data_(data), size_(size) {}
+  bool empty() const { return at_ >= size_; }
+  uint8_t Byte() { return at_ < size_ ? data_[at_++] : 0; }
+  uint64_t Wide() {
+    uint64_t v = 0;
+    for (int i = 0; i < 8; ++i) v |= static_cast<uint64_t>(Byte()) << (8 * i);
+    return v;
+  }
+  std::string Rest() {
+    std::string s(reinterpret_cast<const char*>(data_ + at_), size_ - at_);
+    at_ = size_;
+    return s;
+  }
+
+ private:
+  const uint8_t* data_;
+  size_t size_;
+  size_t at_ = 0;
+};
+
+[[noreturn]] void Fail(const char* what, const std::string& detail) {
+  std::fprintf(stderr, "host files fuzz: %s: %s\n", what, detail.c_str());
+  std::abort();
+}
+
+/// A calibration as the calibrate command writes one, with every optional part present.
+ph::CalibrationFile ValidCalibration() {
+  ph::CalibrationFile c;
+  c.actuator_serial = "PN-1";
+  c.kind = pp::FingerKind::kPneumatic;
+  c.board_id = 1;
+  c.date = "2026-11-22T12:00:00Z";
+  c.rig = "sim";
+  c.repeats = 2;
+  c.raw_data = "PN-1.csv";
+  c.curve = {{0, 0}, {10, 0.3}, {30, 1.2}, {60, 2.6}, {100, 4.2}};
+  c.rising_fit = ph::LineFit{0.0428, -0.25, 0.97};
+  c.falling_fit = ph::LineFit{0.0475, -0.05, 0.98};
+  c.static_inverse = {{0, 0}, {300, 10000}, {1200, 30000}, {2600, 60000}, {4200, 100000}};
+  c.regulator_corrections.push_back(
+      ph::RegulatorCorrection{0, {{0, 0, 0}, {50000, 50600, 49500}, {90000, 90800, 89700}}});
+  c.compensator = pp::CompensatorKind::kPrandtlIshlinskii;
+  c.compensator_params = {-200, 0.03f, 0, 25000, 0.01f, 0.005f};
+  c.quality.residual_rms = 12;
+  c.quality.residual_max = 40;
+  c.quality.points = 120;
+  c.quality.protocol = "adaptive";
+  c.quality.checks = {{"noise", 0.0016, 0.0051, true, "force noise 1.6 mN"}};
+  return c;
+}
+
+const std::string& ValidCalibrationText() {
+  static const std::string text = [] {
+    std::string error;
+    const auto s = ph::SerializeCalibration(ValidCalibration(), &error);
+    if (!s) Fail("the reference calibration does not serialise", error);
+    return *s;
+  }();
+  return text;
+}
+
+/// Parse, and check what comes back: an error with a reason, or a calibration that round-trips.
+void CheckCalibration(const std::string& text) {
+  std::string error;
+  const auto parsed = ph::ParseCalibration(text, &error);
+  if (!parsed) {
+    if (error.empty()) Fail("a refused calibration came without a reason", text.substr(0, 200));
+    return;
+  }
+  const auto written = ph::SerializeCalibration(*parsed, &error);
+  if (!written) Fail("an accepted calibration does not serialise", error);
+  const auto again = ph::ParseCalibration(*written, &error);
+  if (!again) Fail("a serialised calibration does not parse back", error);
+  const auto rewritten = ph::SerializeCalibration(*again, &error);
+  if (!rewritten || *rewritten != *written) Fail("a calibration changes in a round trip", *written);
+}
+
+/// Any JSON value: integers and floats of every magnitude, strings, null, booleans, containers.
+json AnyValue(Bytes& in) {
+  const uint8_t kind = in.Byte();
+  static const double kEdges[] = {0.0,    -0.0,   1e-300, 1e-45,  3.5e38, -3.5e38, 1e300,
+                                  -1e300, 2147483647.0, 2147483648.0, -2147483649.0,
+                                  4294967296.0, 9.3e18, -9.3e18, 0.5, -1.0};
+  switch (kind % 9) {
+    case 0: return static_cast<int64_t>(in.Wide());
+    case 1: return in.Wide();  // unsigned 64-bit
+    case 2: {
+      const uint64_t bits = in.Wide();
+      double d;
+      std::memcpy(&d, &bits, sizeof(d));
+      return std::isfinite(d) ? json(d) : json(nullptr);  // JSON has no NaN or infinity
+    }
+    case 3: return kEdges[in.Byte() % (sizeof(kEdges) / sizeof(kEdges[0]))];
+    case 4: {
+      std::string s;
+      for (uint8_t n = in.Byte() % 16; n > 0; --n) s.push_back(static_cast<char>(in.Byte()));
+      return s;
+    }
+    case 5: return nullptr;
+    case 6: return (kind & 0x80) != 0;
+    case 7: return json::array();
+    default: return json::object();
+  }
+}
+
+void CheckPackage(const std::vector<uint8_t>& bytes) {
+  std::string error;
+  const auto package = ph::ReadPackage(bytes, &error);
+  if (!package) {
+    if (error.empty()) Fail("a refused package came without a reason", std::to_string(bytes.size()));
+    return;
+  }
+  const auto again = ph::ReadPackage(ph::WritePackage(*package), &error);
+  if (!again) Fail("an accepted package does not read back once written", error);
+  if (again->slot_image != package->slot_image) Fail("a package changes in a round trip", "");
+}
+
+const std::vector<uint8_t>& ValidPackage() {
+  static const std::vector<uint8_t> bytes = [] {
+    ph::UpdatePackage p;
+    for (uint8_t slot = 0; slot < 2; ++slot) {
+      ph::ImageSpec spec;
+      spec.body.assign(600, static_cast<uint8_t>(0x5A + slot));
+      spec.slot = slot;
+      spec.version_minor = 3;
+      spec.rollback_counter = 2;
+      spec.board_kind = pp::BoardKind::kSim;
+      p.slot_image[slot] = ph::BuildImage(spec);
+    }
+    return ph::WritePackage(p);
+  }();
+  return bytes;
+}
+
+/// Overwrites a few bytes at chosen places and may cut the end off.
+template <class Container>
+void Damage(Bytes& in, Container& c) {
+  for (uint8_t n = in.Byte() % 8; n > 0 && !c.empty(); --n) {
+    const size_t at = (in.Byte() | in.Byte() << 8 | in.Byte() << 16) % c.size();
+    c[at] = static_cast<typename Container::value_type>(in.Byte());
+  }
+  const uint8_t cut = in.Byte();
+  if (cut < 32 && !c.empty()) c.resize(c.size() * cut / 32);
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  Bytes in(data, size);
+  switch (in.Byte() % 5) {
+    case 0:
+      CheckCalibration(in.Rest());
+      break;
+    case 1: {  // one leaf of the file (by its JSON pointer) replaced, or removed
+      json j = json::parse(ValidCalibrationText());
+      const json flat = j.flatten();
+      auto leaf = flat.begin();
+      std::advance(leaf, (in.Byte() | in.Byte() << 8) % flat.size());
+      const json::json_pointer where(leaf.key());
+      if (in.Byte() % 8 == 0) {
+        json& parent = j[where.parent_pointer()];
+        if (parent.is_object()) parent.erase(where.back());
+        if (parent.is_array()) parent.erase(std::stoul(where.back()));
+      } else {
+        j[where] = AnyValue(in);
+      }
+      // Invalid UTF-8 in a string value becomes U+FFFD (raw bytes reach the parser in mode 0).
+      CheckCalibration(j.dump(-1, ' ', false, json::error_handler_t::replace));
+      break;
+    }
+    case 2: {
+      std::string text = ValidCalibrationText();
+      Damage(in, text);
+      CheckCalibration(text);
+      break;
+    }
+    case 3: {
+      const std::string rest = in.Rest();
+      CheckPackage(std::vector<uint8_t>(rest.begin(), rest.end()));
+      break;
+    }
+    default: {
+      std::vector<uint8_t> bytes = ValidPackage();
+      Damage(in, bytes);
+      CheckPackage(bytes);
+      break;
+    }
+  }
+  return 0;
+}
