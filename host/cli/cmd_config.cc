@@ -5,6 +5,7 @@
 
 #include "cli.h"
 #include "palpa/core/board_config.h"
+#include "palpa/host/config_json.h"
 #include "palpa/host/json_fields.h"
 
 namespace palpa::cli {
@@ -32,65 +33,6 @@ bool ReadAll(host::Device& d, core::BoardConfig& config, std::string* error) {
     config.fingers[f] = finger.value;
   }
   return true;
-}
-
-json ToJson(const core::BoardConfig& c) {
-  json j;
-  j["board"] = host::MessageToJson(c.board);
-  j["lines"] = json::array();
-  for (uint8_t i = 0; i < c.line_count; ++i) j["lines"].push_back(host::MessageToJson(c.lines[i]));
-  j["fingers"] = json::array();
-  for (uint8_t f = 0; f < c.finger_count; ++f) j["fingers"].push_back(host::MessageToJson(c.fingers[f]));
-  return j;
-}
-
-/// Applies a (partial) JSON configuration onto `config`. Throws with the field's path.
-void ApplyJson(const json& j, core::BoardConfig& config) {
-  if (!j.is_object()) throw std::runtime_error("expected an object with board, lines, fingers");
-  for (const auto& [key, value] : j.items()) {
-    if (key != "board" && key != "lines" && key != "fingers") throw std::runtime_error("unknown section '" + key + "'");
-  }
-  auto merge = [](json base, const json& patch, const std::string& where) {
-    if (!patch.is_object()) throw std::runtime_error(where + ": expected an object");
-    for (const auto& [k, v] : patch.items()) {
-      if (!base.contains(k)) throw std::runtime_error(where + ": unknown field '" + k + "'");
-      base[k] = v;
-    }
-    return base;
-  };
-  if (j.contains("board")) {
-    try {
-      config.board = host::MessageFromJson<pp::ConfigureBoard>(merge(host::MessageToJson(config.board), j["board"], "board"));
-    } catch (const std::exception& e) {
-      throw std::runtime_error(std::string("board: ") + e.what());
-    }
-  }
-  for (const char* section : {"lines", "fingers"}) {
-    if (!j.contains(section)) continue;
-    if (!j[section].is_array()) throw std::runtime_error(std::string(section) + ": expected an array");
-    for (size_t n = 0; n < j[section].size(); ++n) {
-      const json& entry = j[section][n];
-      const std::string where = std::string(section) + "[" + std::to_string(n) + "]";
-      const char* index_key = section[0] == 'l' ? "line" : "finger";
-      if (!entry.is_object() || !entry.contains(index_key) || !entry[index_key].is_number_unsigned()) {
-        throw std::runtime_error(where + ": needs \"" + index_key + "\" (0-based, as on the wire)");
-      }
-      const size_t index = entry[index_key].get<size_t>();
-      try {
-        if (section[0] == 'l') {
-          if (index > config.line_count || index >= pp::kMaxLines) throw std::runtime_error("line " + std::to_string(index) + " does not exist");
-          config.lines[index] = host::MessageFromJson<pp::ConfigureLine>(merge(host::MessageToJson(config.lines[index]), entry, where));
-          if (index == config.line_count) ++config.line_count;
-        } else {
-          if (index > config.finger_count || index >= pp::kMaxFingers) throw std::runtime_error("finger " + std::to_string(index) + " does not exist");
-          config.fingers[index] = host::MessageFromJson<pp::ConfigureFinger>(merge(host::MessageToJson(config.fingers[index]), entry, where));
-          if (index == config.finger_count) ++config.finger_count;
-        }
-      } catch (const std::exception& e) {
-        throw std::runtime_error(where + ": " + e.what());
-      }
-    }
-  }
 }
 
 /// Validates like the board would, then sends everything staged so it applies at once.
@@ -189,7 +131,7 @@ int CmdConfig(Context& c, const std::vector<std::string>& args) {
     return kExitFailed;
   }
   if (what == "show") {
-    std::printf("%s\n", ToJson(config).dump(c.json ? -1 : 2).c_str());
+    std::printf("%s\n", host::ConfigToJson(config).dump(c.json ? -1 : 2).c_str());
     return kExitOk;
   }
   if (what == "set") {
@@ -199,7 +141,7 @@ int CmdConfig(Context& c, const std::vector<std::string>& args) {
     }
   }
   try {
-    ApplyJson(file, config);
+    host::ApplyConfigJson(file, config);
   } catch (const std::exception& e) {
     return Usage("config", std::string(what == "load" ? rest[0] + ": " : "") + e.what() + " (nothing was sent)");
   }

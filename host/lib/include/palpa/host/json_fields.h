@@ -2,7 +2,10 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <limits>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -73,8 +76,20 @@ class JsonReader {
   }
 
   template <typename T>
-  void Field(const char* name, T& v, pp::Bound<T> = {}, pp::Bound<T> = {}) {
+  void Field(const char* name, T& v) {
+    Field(name, v, std::numeric_limits<T>::lowest(), std::numeric_limits<T>::max());
+  }
+  /// The field's wire range applies here too, so a value the codec would refuse is refused with
+  /// its name now (and code that trusts decoded ranges, like validation, never sees it).
+  template <typename T>
+  void Field(const char* name, T& v, pp::Bound<T> lo, pp::Bound<T> hi) {
     ReadNumber(name, At(name), v);
+    if constexpr (std::is_same_v<T, float>) {
+      if (!std::isfinite(v)) Fail(name, "not a finite float");
+    }
+    if (!(v >= lo && v <= hi)) {
+      Fail(name, ToText(v) + " is outside " + ToText(lo) + " … " + ToText(hi));
+    }
   }
   void Flag(const char* name, bool& v) {
     const json& j = At(name);
@@ -174,6 +189,16 @@ class JsonReader {
       Fail(name, e.what());
     }
     return {};
+  }
+  template <typename T>
+  static std::string ToText(T v) {
+    if constexpr (std::is_same_v<T, float>) {
+      char text[32];
+      std::snprintf(text, sizeof(text), "%g", static_cast<double>(v));
+      return text;
+    } else {
+      return std::to_string(v);
+    }
   }
   [[noreturn]] static void Fail(const std::string& name, const std::string& what) {
     throw std::runtime_error("field '" + name + "': " + what);
