@@ -20,7 +20,9 @@ json ConfigToJson(const core::BoardConfig& c) {
   return j;
 }
 
-void ApplyConfigJson(const json& j, core::BoardConfig& config) {
+namespace {
+
+void ApplyInPlace(const json& j, core::BoardConfig& config) {
   if (!j.is_object()) throw std::runtime_error("expected an object with board, lines, fingers");
   for (const auto& [key, value] : j.items()) {
     if (key != "board" && key != "lines" && key != "fingers")
@@ -74,6 +76,14 @@ void ApplyConfigJson(const json& j, core::BoardConfig& config) {
       }
     }
   }
+}
+
+}  // namespace
+
+void ApplyConfigJson(const json& patch, core::BoardConfig& config) {
+  core::BoardConfig changed = config;  // all or nothing: a later field may still be refused
+  ApplyInPlace(patch, changed);
+  config = changed;
 }
 
 }  // namespace palpa::host

@@ -61,6 +61,16 @@ TEST(ConfigJson, ValuesTheWireWouldRefuseAreRefusedWithTheirPath) {
   STRCMP_EQUAL("", RefusalOf(R"({"lines": [{"line": 1, "trim_kp": 0.2}]})").c_str());
 }
 
+TEST(ConfigJson, ARefusedFileChangesNothing) {
+  pc::BoardConfig config = *pc::FindBoardConfig("thesis-5finger");
+  const json before = ph::ConfigToJson(config);
+  // The first line's change is fine; the second entry is refused: neither may be applied.
+  const json patch = json::parse(
+      R"({"lines": [{"line": 0, "slew_pa_per_s": 1000}, {"line": 1, "adc_bits": 99}]})");
+  CHECK_THROWS(std::runtime_error, ph::ApplyConfigJson(patch, config));
+  CHECK(ph::ConfigToJson(config) == before);
+}
+
 TEST(ConfigJson, UnknownSectionsAndFieldsAreRefused) {
   CHECK(Contains(RefusalOf(R"({"wires": []})"), "unknown section 'wires'"));
   CHECK(Contains(RefusalOf(R"({"lines": [{"line": 0, "slew": 1}]})"), "unknown field 'slew'"));

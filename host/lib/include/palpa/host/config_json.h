@@ -12,8 +12,8 @@ nlohmann::json ConfigToJson(const core::BoardConfig& config);
 
 /// Applies a (partial) configuration onto `config`: sections and fields present replace those of
 /// `config`, a line or finger one past the last adds it. Throws std::runtime_error naming the
-/// field's path ("lines[2]: field 'trim_kp': expected a number"); `config` may then be half
-/// changed, so callers apply to a copy (no range or cross checks here: ValidateConfig does those).
+/// field's path ("lines[2]: field 'trim_kp': expected a number") and then leaves `config` as it
+/// was. Each field is held to its wire range; cross checks are ValidateConfig's.
 void ApplyConfigJson(const nlohmann::json& patch, core::BoardConfig& config);
 
 }  // namespace palpa::host
