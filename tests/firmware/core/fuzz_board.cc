@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "board_harness.h"
+#include "fuzz_input.h"
 #include "palpa/core/board_configs.h"
 #include "palpa/core/ceilings.h"
 #include "palpa/protocol/crc32.h"
@@ -30,18 +31,7 @@ using palpa::testing::BoardHarness;
 
 namespace {
 
-class Script {
- public:
-  Script(const uint8_t* data, size_t size) : data_(data), size_(size) {}
-  bool done() const { return at_ >= size_; }
-  uint8_t Byte() { return at_ < size_ ? data_[at_++] : 0; }
-  uint16_t Word() { return static_cast<uint16_t>(Byte() | Byte() << 8); }
-
- private:
-  const uint8_t* data_;
-  size_t size_;
-  size_t at_ = 0;
-};
+using Script = palpa::testing::FuzzInput;
 
 [[noreturn]] void Fail(const char* what, unsigned line) {
   std::fprintf(stderr, "board fuzz: %s (line or channel %u)\n", what, line);

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "fuzz_input.h"
 #include "palpa/core/compensator.h"
 
 namespace pc = palpa::core;
@@ -14,36 +15,18 @@ namespace pp = palpa::protocol;
 
 namespace {
 
-class Bytes {
- public:
-  Bytes(const uint8_t* data, size_t size) : data_(data), size_(size) {}
-  bool empty() const { return at_ >= size_; }
-  uint8_t Byte() { return at_ < size_ ? data_[at_++] : 0; }
-  float Raw() {
-    uint32_t bits = 0;
-    for (int i = 0; i < 4; ++i) bits |= static_cast<uint32_t>(Byte()) << (8 * i);
-    float v;
-    std::memcpy(&v, &bits, sizeof(v));
-    return v;
-  }
-  /// Sign, a decade from 1e-8 to 1e6 and a mantissa: every scale a parameter might take.
-  float Spread() {
-    const uint8_t sign_and_decade = Byte();
-    const float mantissa = 1.0f + static_cast<float>(Byte()) / 32.0f;
-    const float value = mantissa * std::pow(10.0f, static_cast<float>(sign_and_decade % 15) - 8);
-    return (sign_and_decade & 0x80) != 0 ? -value : value;
-  }
-
- private:
-  const uint8_t* data_;
-  size_t size_;
-  size_t at_ = 0;
-};
+/// Sign, a decade from 1e-8 to 1e6 and a mantissa: every scale a parameter might take.
+float Spread(palpa::testing::FuzzInput& in) {
+  const uint8_t sign_and_decade = in.Byte();
+  const float mantissa = 1.0f + static_cast<float>(in.Byte()) / 32.0f;
+  const float value = mantissa * std::pow(10.0f, static_cast<float>(sign_and_decade % 15) - 8);
+  return (sign_and_decade & 0x80) != 0 ? -value : value;
+}
 
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  Bytes in(data, size);
+  palpa::testing::FuzzInput in(data, size);
   const uint8_t mode = in.Byte();
   const pp::CompensatorKind kinds[] = {pp::CompensatorKind::kNone, pp::CompensatorKind::kBranch,
                                        pp::CompensatorKind::kPrandtlIshlinskii,
@@ -56,12 +39,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   for (uint8_t i = 0; i < f.param_count; ++i) {
     // In spread mode every third value climbs, so increasing thresholds and curves occur often.
     if (raw) {
-      f.params[i] = in.Raw();
+      f.params[i] = in.FloatBits();
     } else if (i % 3 == 2) {
-      threshold += std::fabs(in.Spread()) * 1000.0f;
+      threshold += std::fabs(Spread(in)) * 1000.0f;
       f.params[i] = threshold;
     } else {
-      f.params[i] = in.Spread();
+      f.params[i] = Spread(in);
     }
   }
   if (f.compensator == pp::CompensatorKind::kAsymmetricPi && f.param_count > 0 && !raw) {
@@ -77,8 +60,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   pc::CompensatorState s;
   pc::HomeCompensator(c, s);
   float applied = 0;
-  while (!in.empty()) {
-    const float target = raw ? in.Raw() : std::fabs(in.Spread());
+  while (!in.done()) {
+    const float target = raw ? in.FloatBits() : std::fabs(Spread(in));
     if (!(target > 0) || !std::isfinite(target)) continue;  // the board maps 0 to 0 Pa itself
     const pc::CompensatorOutput out = pc::StepCompensator(c, s, target, applied);
     if (!std::isfinite(out.drive) || out.drive < 0 || out.drive > limit) std::abort();

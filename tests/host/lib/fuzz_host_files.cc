@@ -22,6 +22,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "example_calibration.h"
+#include "fuzz_input.h"
 #include "palpa/core/board_configs.h"
 #include "palpa/host/calibration_file.h"
 #include "palpa/host/config_json.h"
@@ -34,63 +36,17 @@ using nlohmann::json;
 
 namespace {
 
-class Bytes {
- public:
-  Bytes(const uint8_t* data, size_t size) : data_(data), size_(size) {}
-  bool empty() const { return at_ >= size_; }
-  uint8_t Byte() { return at_ < size_ ? data_[at_++] : 0; }
-  uint64_t Wide() {
-    uint64_t v = 0;
-    for (int i = 0; i < 8; ++i) v |= static_cast<uint64_t>(Byte()) << (8 * i);
-    return v;
-  }
-  std::string Rest() {
-    std::string s(reinterpret_cast<const char*>(data_ + at_), size_ - at_);
-    at_ = size_;
-    return s;
-  }
-
- private:
-  const uint8_t* data_;
-  size_t size_;
-  size_t at_ = 0;
-};
+using Bytes = palpa::testing::FuzzInput;
 
 [[noreturn]] void Fail(const char* what, const std::string& detail) {
   std::fprintf(stderr, "host files fuzz: %s: %s\n", what, detail.c_str());
   std::abort();
 }
 
-/// A calibration as the calibrate command writes one, with every optional part present.
-ph::CalibrationFile ValidCalibration() {
-  ph::CalibrationFile c;
-  c.actuator_serial = "PN-1";
-  c.kind = pp::FingerKind::kPneumatic;
-  c.board_id = 1;
-  c.date = "2026-11-22T12:00:00Z";
-  c.rig = "sim";
-  c.repeats = 2;
-  c.raw_data = "PN-1.csv";
-  c.curve = {{0, 0}, {10, 0.3}, {30, 1.2}, {60, 2.6}, {100, 4.2}};
-  c.rising_fit = ph::LineFit{0.0428, -0.25, 0.97};
-  c.falling_fit = ph::LineFit{0.0475, -0.05, 0.98};
-  c.static_inverse = {{0, 0}, {300, 10000}, {1200, 30000}, {2600, 60000}, {4200, 100000}};
-  c.regulator_corrections.push_back(
-      ph::RegulatorCorrection{0, {{0, 0, 0}, {50000, 50600, 49500}, {90000, 90800, 89700}}});
-  c.compensator = pp::CompensatorKind::kPrandtlIshlinskii;
-  c.compensator_params = {-200, 0.03f, 0, 25000, 0.01f, 0.005f};
-  c.quality.residual_rms = 12;
-  c.quality.residual_max = 40;
-  c.quality.points = 120;
-  c.quality.protocol = "adaptive";
-  c.quality.checks = {{"noise", 0.0016, 0.0051, true, "force noise 1.6 mN"}};
-  return c;
-}
-
 const std::string& ValidCalibrationText() {
   static const std::string text = [] {
     std::string error;
-    const auto s = ph::SerializeCalibration(ValidCalibration(), &error);
+    const auto s = ph::SerializeCalibration(palpa::testing::ExampleCalibration(), &error);
     if (!s) Fail("the reference calibration does not serialise", error);
     return *s;
   }();
@@ -121,11 +77,11 @@ json AnyValue(Bytes& in) {
       2147483647.0, 2147483648.0, -2147483649.0, 4294967296.0, 9.3e18, -9.3e18, 0.5,   -1.0};
   switch (kind % 9) {
     case 0:
-      return static_cast<int64_t>(in.Wide());
+      return static_cast<int64_t>(in.Word64());
     case 1:
-      return in.Wide();  // unsigned 64-bit
+      return in.Word64();  // unsigned 64-bit
     case 2: {
-      const uint64_t bits = in.Wide();
+      const uint64_t bits = in.Word64();
       double d;
       std::memcpy(&d, &bits, sizeof(d));
       return std::isfinite(d) ? json(d) : json(nullptr);  // JSON has no NaN or infinity
