@@ -1,8 +1,12 @@
 // Firmware update against the simulated NOR flash: images checked byte for byte, boot-state
 // records that survive torn writes, a full update, resume, refusals, revert of an unconfirmed
 // trial, recovery, and a hundred power cuts after each of which a valid image boots.
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <map>
 #include <random>
 #include <string>
@@ -64,14 +68,17 @@ TEST(FirmwareImage, Sha256MatchesTheSystemsSha256sum) {
   for (size_t size : {0ul, 55ul, 56ul, 64ul, 1000ul, 65537ul}) {
     std::vector<uint8_t> data(size);
     for (uint8_t& b : data) b = static_cast<uint8_t>(rng());
-    const std::string path = "/tmp/palpa-sha-" + std::to_string(size);
-    FILE* f = std::fopen(path.c_str(), "wb");
-    if (!data.empty()) std::fwrite(data.data(), 1, data.size(), f);
-    std::fclose(f);
+    // A file of its own: two test runs at once must not hash each other's data.
+    std::string path = (std::filesystem::temp_directory_path() / "palpa-sha-XXXXXX").string();
+    const int fd = mkstemp(path.data());
+    CHECK(fd >= 0);
+    CHECK(data.empty() || write(fd, data.data(), data.size()) == static_cast<ssize_t>(data.size()));
+    close(fd);
     FILE* p = popen(("sha256sum " + path).c_str(), "r");
     char expected[65] = {};
     CHECK(std::fread(expected, 1, 64, p) == 64);
     pclose(p);
+    std::filesystem::remove(path);
     const pp::Sha256Digest d = pp::Sha256Of(data.data(), data.size());
     char got[65] = {};
     for (int i = 0; i < 32; ++i) std::snprintf(got + 2 * i, 3, "%02x", d[static_cast<size_t>(i)]);
