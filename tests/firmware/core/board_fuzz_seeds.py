@@ -30,13 +30,27 @@ def clear():
     return [9, 1]
 
 
+def update_op(kind, slot=1, flag=0):
+    """Opcode 8 and its first byte: kind % 6 (0 enter, 1 erase, 2 write, 3 activate, 4 confirm,
+    5 whole image), the slot in bit 4, a flag in bit 7."""
+    what = next(b for b in range(256) if b % 6 == kind and (b >> 4) & 1 == slot and b >> 7 == flag)
+    return [8, what]
+
+
 def update(chunks):
     """Enter, erase and write slot 1 (the inactive one), then activate what was written."""
-    out = [8, 0x14, 0x00, 0x01]  # enter: 256 * 64 bytes
-    out += [8, 0x10, 0, 0, 64, 0]  # erase 16 KiB from 0
+    out = update_op(0) + [0x00, 0x01]  # enter: 256 * 64 bytes
+    out += update_op(1) + [0, 0, 64, 0]  # erase 16 KiB from 0
     for k in range(chunks):
-        out += [8, 0x11, 199] + [(k * 7 + i) & 0xFF for i in range(200)]
-    return out + [8, 0x12]
+        out += update_op(2) + [199] + [(k * 7 + i) & 0xFF for i in range(200)]
+    return out + update_op(3)
+
+
+def whole_image(body_size, rollback_counter):
+    """A well-formed image for slot 1 (enter, erase, writes), then activate it."""
+    out = update_op(5) + [0, body_size, 2, 0, rollback_counter]  # flags 0, version 2.0
+    out += [(i * 13) & 0xFF for i in range(body_size)]
+    return out + update_op(3)
 
 
 def play(finger, api, operators):
@@ -77,6 +91,9 @@ def main():
         "edited_record": session(FULL_8, [4, 3, 2, 8, 0, 0x40, 12, 0, 0x01, 1], ticks(100), target(0, 800),
                                  ticks(200)),
         "update": session(THESIS_5FINGER, target(0, 800), ticks(100), update(3), ticks(50)),
+        "valid_image": session(THESIS_5FINGER, target(0, 800), ticks(100), whole_image(200, 3),
+                               ticks(50), update_op(4, slot=0), ticks(20)),
+        "rolled_back_image": session(THESIS_5FINGER, whole_image(100, 1), ticks(20)),
         "silence_and_estop": session(THESIS_5FINGER, target(0, 800), ticks(100),
                                      [6, 3, 0x10, 0x27], ticks(100), [6, 1, 1, 0], ticks(50),
                                      clear(), ticks(50)),

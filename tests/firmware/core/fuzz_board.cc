@@ -8,8 +8,9 @@
 //  * a channel a configuration dropped holds the safe code of the line it last had;
 //  * a refused configuration message changes nothing of the live configuration;
 //  * every commanded pressure is finite;
-//  * while an update is under way every line holds its safe code, and no update message ever
-//    changes the bootloader or the running image's slot.
+//  * while an update is under way every line holds its safe code, no update message ever
+//    changes the bootloader or the running image's slot, and an activated slot holds a valid
+//    image the rollback floor allows (board_fuzz_update.cc).
 // Each operation is an opcode byte followed by its arguments (missing bytes read as 0).
 #include <algorithm>
 #include <cmath>
@@ -18,12 +19,12 @@
 #include <cstring>
 #include <vector>
 
+#include "board_fuzz_update.h"
 #include "board_harness.h"
 #include "fuzz_input.h"
 #include "palpa/core/board_configs.h"
 #include "palpa/core/ceilings.h"
 #include "palpa/protocol/crc32.h"
-#include "palpa/protocol/sha256.h"
 
 namespace pp = palpa::protocol;
 namespace pc = palpa::core;
@@ -33,10 +34,7 @@ namespace {
 
 using Script = palpa::testing::FuzzInput;
 
-[[noreturn]] void Fail(const char* what, unsigned line) {
-  std::fprintf(stderr, "board fuzz: %s (line or channel %u)\n", what, line);
-  std::abort();
-}
+constexpr auto Fail = palpa::testing::BoardFuzzFail;
 
 /// Pressure a DAC code commands on a line: the line's scaling, inverted independently.
 float PressureOfCounts(const pp::ConfigureLine& c, uint32_t counts) {
@@ -64,40 +62,15 @@ bool IsConfigurationChange(uint8_t type) {
 /// PALPA_BOARD_FUZZ_TRACE set: each answer and each run of ticks is printed (to read a finding).
 const bool kTrace = std::getenv("PALPA_BOARD_FUZZ_TRACE") != nullptr;
 
-/// The board's image flash (the simulated board's layout) with a bootloader and a running image
-/// in slot 0, and the update engine that writes it.
-struct ImageFlash {
-  static constexpr const pc::FlashLayout& kLayout = pc::kDefaultLayout;
-  static constexpr uint32_t kProtectedEnd = kLayout.slot_offset[0] + kLayout.slot_size;
-  palpa::hal::fake::SimulatedNorFlash flash{kLayout.total, kLayout.sector_size};
-  pc::UpdateEngine engine{&flash, kLayout, pp::BoardKind::kSim, 0};
-  std::vector<uint8_t> protected_bytes;
-
-  ImageFlash() {
-    // A few programmed bytes in every sector (a whole image costs more than the rest of an
-    // input): an erase or a write anywhere in the protected range changes some byte of it.
-    for (uint32_t sector = 0; sector < kProtectedEnd; sector += kLayout.sector_size) {
-      for (uint32_t k = 0; k < 16; ++k) {
-        const uint8_t mark = static_cast<uint8_t>(k * 37u + sector / kLayout.sector_size);
-        flash.Program(sector + k * 509u % kLayout.sector_size, &mark, 1);
-      }
-    }
-    protected_bytes.assign(flash.contents().begin(), flash.contents().begin() + kProtectedEnd);
-  }
-  bool ProtectedIntact() const {
-    return std::memcmp(flash.contents().data(), protected_bytes.data(), kProtectedEnd) == 0;
-  }
-};
-
 struct Fuzzer {
-  ImageFlash image;  // before the board, which keeps a pointer to its engine
+  palpa::testing::UpdateFuzzer update;  // before the board, which keeps a pointer to its engine
   BoardHarness h;
   /// The last configuration each DAC channel had, for the dropped-channel check.
   std::array<pp::ConfigureLine, palpa::hal::fake::kChannels> last_line{};
   std::array<bool, palpa::hal::fake::kChannels> ever_configured{};
 
   explicit Fuzzer(const char* config_name)
-      : h(config_name, pp::ResetCause::kPowerOn, nullptr, &image.engine) {
+      : h(config_name, pp::ResetCause::kPowerOn, nullptr, &update.engine()) {
     Remember();
   }
 
@@ -132,7 +105,7 @@ struct Fuzzer {
           pa > static_cast<float>(ceiling.max_pa) + lsb)
         Fail("DAC code outside the hard ceiling", i);
     }
-    if (image.engine.in_update_mode()) {  // the outputs are safe before anything is erased
+    if (update.engine().in_update_mode()) {  // the outputs are safe before anything is erased
       for (uint8_t i = 0; i < ran_with.line_count; ++i) {
         const pp::ConfigureLine& c = ran_with.lines[i];
         if (std::fabs(PressureOfCounts(c, h.dac.counts[i]) - static_cast<float>(c.safe_pa)) >
@@ -297,50 +270,6 @@ struct Fuzzer {
       SendReliable(static_cast<uint8_t>(pp::MessageType::kConfigureFinger), body, n.value);
   }
 
-  /// One update message with fuzzed fields: enter, erase, write (often where the last write
-  /// ended), activate (with the SHA-256 of what the slot holds, so verification goes on to the
-  /// image itself) or confirm. Afterwards the bootloader and the running slot must be intact.
-  void SendUpdate(Script& s) {
-    uint8_t body[pp::kMaxBodySize];
-    pp::Result<size_t> encoded = pp::Status::kUnavailable;
-    const uint8_t what = s.Byte();
-    const uint8_t slot = (what >> 4) % 2;
-    pp::MessageType type = pp::MessageType::kUpdateEnter;
-    if (what % 5 == 0) {
-      encoded = pp::EncodeBody(pp::UpdateEnter{slot, s.Word() * 64u}, body, sizeof(body));
-    } else if (what % 5 == 1) {
-      type = pp::MessageType::kUpdateErase;
-      pp::UpdateErase m{slot, s.Word() * 256u, s.Word() * 256u};
-      encoded = pp::EncodeBody(m, body, sizeof(body));
-    } else if (what % 5 == 2) {
-      type = pp::MessageType::kUpdateWrite;
-      pp::UpdateWrite m{};
-      m.slot = slot;
-      m.offset = (what & 0x80) != 0 ? s.Word() * 4u : next_write_;
-      m.data_size = static_cast<uint8_t>(1 + s.Byte() % pp::kMaxUpdateChunk);
-      for (uint8_t i = 0; i < m.data_size; ++i) m.data[i] = s.Byte();
-      next_write_ = m.offset + m.data_size;
-      encoded = pp::EncodeBody(m, body, sizeof(body));
-    } else if (what % 5 == 3) {
-      type = pp::MessageType::kUpdateActivate;
-      pp::UpdateActivate m{};
-      m.slot = slot;
-      m.image_size = (what & 0x80) != 0 ? s.Word() * 4u : next_write_;
-      const uint32_t at = ImageFlash::kLayout.slot_offset[slot];
-      if (m.image_size <= 16 * 1024)  // hashing a whole slot would cost more than the input
-        m.image_sha256 = pp::Sha256Of(image.flash.contents().data() + at, m.image_size);
-      encoded = pp::EncodeBody(m, body, sizeof(body));
-    } else {
-      type = pp::MessageType::kUpdateConfirm;
-      encoded = pp::EncodeBody(pp::UpdateConfirm{slot}, body, sizeof(body));
-    }
-    if (encoded.ok()) SendReliable(static_cast<uint8_t>(type), body, encoded.value);
-    if (!image.ProtectedIntact())
-      Fail("an update message changed the bootloader or the running slot", slot);
-  }
-
-  uint32_t next_write_ = 0;  ///< where the last update write ended
-
   void Operate(Script& s) {
     switch (s.Byte() % 10) {
       case 0:  // a new session
@@ -403,7 +332,9 @@ struct Fuzzer {
         SendCompensator(s);
         break;
       case 8:
-        SendUpdate(s);
+        update.Send(s, [this](uint8_t type, const uint8_t* body, size_t size) {
+          SendReliable(type, body, size);
+        });
         break;
       default:  // clear faults, or go back to the factory configuration
         h.Send(pp::ClearFault{});
