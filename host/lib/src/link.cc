@@ -1,4 +1,5 @@
-// The link: reader, heartbeat and dispatcher threads around protocol/'s state machines.
+// The link: commands, streams and the heartbeat and dispatcher threads around protocol/'s state
+// machines; what the reader thread does with the board's frames is in link_receive.cc.
 #include "palpa/host/link.h"
 
 #include <chrono>
@@ -28,8 +29,6 @@ double SteadySeconds() {
 
 namespace {
 
-uint64_t Micros(double s) { return static_cast<uint64_t>(s * 1e6); }
-
 uint32_t RandomNonce() {
   static std::mt19937 rng(std::random_device{}());
   return static_cast<uint32_t>(rng()) | 1u;
@@ -50,13 +49,15 @@ Result<std::unique_ptr<Link>> Link::Open(std::unique_ptr<Transport> transport, L
   link->heartbeat_ = std::thread(&Link::HeartbeatLoop, link.get());
   {
     std::unique_lock<std::mutex> lock(link->mutex_);
-    const auto deadline = std::chrono::steady_clock::now() +
-                          std::chrono::milliseconds(options.hello_timeout_ms * options.hello_attempts);
+    const auto deadline =
+        std::chrono::steady_clock::now() +
+        std::chrono::milliseconds(options.hello_timeout_ms * options.hello_attempts);
     link->changed_.wait_until(lock, deadline, [&] { return link->session_.open() || link->stop_; });
     if (!link->session_.open()) {
       if (error != nullptr) {
         *error = link->transport_->Describe() + ": no answer to Hello (" +
-                 std::to_string(options.hello_attempts) + " tries); is it a palpa board, and is it powered?";
+                 std::to_string(options.hello_attempts) +
+                 " tries); is it a palpa board, and is it powered?";
       }
       return Status::kTimeout;
     }
@@ -130,11 +131,12 @@ CommandResult Link::CommandPacket(uint8_t type, const uint8_t* body, size_t size
 
 uint32_t Link::SubmitPacket(uint8_t type, const uint8_t* body, size_t size, int timeout_ms) {
   std::unique_lock<std::mutex> lock(mutex_);
-  const auto deadline = std::chrono::steady_clock::now() +
-                        std::chrono::milliseconds(timeout_ms < 0 ? options_.command_timeout_ms : timeout_ms);
+  const auto deadline =
+      std::chrono::steady_clock::now() +
+      std::chrono::milliseconds(timeout_ms < 0 ? options_.command_timeout_ms : timeout_ms);
   const uint32_t cookie = next_cookie_++;
   auto fail = [&](CommandResult r) {  // answered at once: Await returns it
-    host_timeout_.OnRefused(cookie);    // never sent: changed nothing
+    host_timeout_.OnRefused(cookie);  // never sent: changed nothing
     pending_[cookie] = Pending{true, std::move(r)};
     return cookie;
   };
@@ -156,13 +158,16 @@ uint32_t Link::SubmitPacket(uint8_t type, const uint8_t* body, size_t size, int 
   for (;;) {
     const auto seq = sender_.SubmitEncoded(type, body, size, cookie);
     if (seq.ok()) break;
-    if (seq.status != Status::kWindowFull) return fail(CommandResult{seq.status, 0, 0, {}, "cannot queue the command"});
+    if (seq.status != Status::kWindowFull)
+      return fail(CommandResult{seq.status, 0, 0, {}, "cannot queue the command"});
     // Until answers make room (by count and by bytes in flight: the board's receive buffer).
     if (!changed_.wait_until(lock, deadline, [&] { return sender_.HasRoomFor(size) || stop_; })) {
-      return fail(CommandResult{Status::kWindowFull, 0, 0, {}, "the board does not take more commands"});
+      return fail(
+          CommandResult{Status::kWindowFull, 0, 0, {}, "the board does not take more commands"});
     }
   }
-  sender_.Transmit(Micros(SteadySeconds()), [this](const uint8_t* f, size_t n) { WriteFrame(f, n); });
+  sender_.Transmit(Micros(SteadySeconds()),
+                   [this](const uint8_t* f, size_t n) { WriteFrame(f, n); });
   return cookie;
 }
 
@@ -175,190 +180,21 @@ uint32_t Link::FailedTicket(CommandResult result) {
 
 CommandResult Link::Await(uint32_t ticket, int timeout_ms) {
   std::unique_lock<std::mutex> lock(mutex_);
-  const auto deadline = std::chrono::steady_clock::now() +
-                        std::chrono::milliseconds(timeout_ms < 0 ? options_.command_timeout_ms : timeout_ms);
+  const auto deadline =
+      std::chrono::steady_clock::now() +
+      std::chrono::milliseconds(timeout_ms < 0 ? options_.command_timeout_ms : timeout_ms);
   changed_.wait_until(lock, deadline, [&] { return pending_[ticket].done || stop_; });
-  CommandResult result = pending_[ticket].done ? pending_[ticket].result
-                                                : CommandResult{Status::kTimeout, 0, 0, {}, "no answer from the board in time (the command may still be applied)"};
+  CommandResult result =
+      pending_[ticket].done
+          ? pending_[ticket].result
+          : CommandResult{Status::kTimeout,
+                          0,
+                          0,
+                          {},
+                          "no answer from the board in time (the command may still be applied)"};
   if (!pending_[ticket].done) host_timeout_.OnUnknown(ticket);
   pending_.erase(ticket);
   return result;
-}
-
-void Link::ReaderLoop() {
-  pp::OwningFrameDecoder decoder;
-  uint8_t buffer[4096];
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    SendHello();
-  }
-  while (true) {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (stop_) return;
-    }
-    const auto n = transport_->Read(buffer, sizeof(buffer), 5);
-    const double now = SteadySeconds();
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (!n.ok()) {
-      if (n.status == Status::kDisconnected) {
-        events_.push_back("the link to " + transport_->Describe() + " closed");
-        OnBoardReset("link lost");
-        hello_wanted_ = false;
-        stop_ = true;
-        changed_.notify_all();
-        queue_changed_.notify_all();
-        return;
-      }
-      continue;
-    }
-    for (size_t i = 0; i < n.value; ++i) {
-      const auto event = decoder.Process(buffer[i]);
-      if (event == pp::FrameDecoder::Event::kFrame) OnFrame(decoder.frame(), now);
-      if (event == pp::FrameDecoder::Event::kError) ++counters_.framing_errors;
-    }
-    Service(now);
-  }
-}
-
-void Link::Service(double now) {  // mutex_ held
-  if (!session_.open()) {
-    SendHello();
-    return;
-  }
-  sender_.Transmit(Micros(now), [this](const uint8_t* f, size_t n) { WriteFrame(f, n); });
-  counters_.retransmissions = sender_.counters().retransmissions;
-  for (Stream* s : {&setpoints_, &targets_}) {
-    const bool applied = s->applied == s->generation || pp::GenerationNewer(s->applied, s->generation);
-    if (s->active && !applied && s->refused_generation != s->generation &&
-        now - s->sent_s >= options_.stream_resend_ms / 1000.0) {
-      WriteFrame(s->frame.data(), s->frame.size());
-      s->sent_s = now;
-    }
-  }
-}
-
-void Link::OnBoardReset(const std::string& why) {  // mutex_ held
-  size_t unknown = 0;
-  sender_.AbandonAll([&](const pp::CommandOutcome& o) {
-    auto it = pending_.find(o.cookie);
-    if (it != pending_.end()) {
-      it->second.done = true;
-      it->second.result = CommandResult{Status::kOutcomeUnknown, 0, 0, {}, "the board reset while this command was in flight"};
-      host_timeout_.OnUnknown(o.cookie);
-    }
-    ++unknown;
-  });
-  counters_.outcome_unknown += unknown;
-  if (session_.open()) {
-    ++counters_.board_resets;
-    events_.push_back(why + ": " + std::to_string(unknown) + " command(s) in flight have an unknown outcome");
-  }
-  session_.Close();
-  // Streams are not replayed into a new session: the application decides what to actuate.
-  setpoints_.active = targets_.active = false;
-  hello_sent_s_ = -1;
-  hello_wanted_ = options_.reconnect;
-  changed_.notify_all();
-}
-
-void Link::OnFrame(const pp::Frame& frame, double now) {  // mutex_ held
-  ++counters_.frames;
-  if ((frame.header.flags & pp::flags::kFromBoard) == 0) return;  // an echo of our own frame
-  pp::DispatchFrame(frame, [&](const auto& m, const pp::Header& h) {
-    using M = std::decay_t<decltype(m)>;
-    if constexpr (std::is_same_v<M, pp::HelloReply>) {
-      if (session_.OnHelloReply(m) == Status::kStale) return;
-      hello_wanted_ = false;
-      host_timeout_.OnSession(m.host_timeout_us, m.time_scale);
-      // The board answers within a few ticks: cap the back-off at 0.5 s so a command that lost
-      // several retransmissions in a row still completes well inside the command timeout.
-      sender_.Configure(pp::SenderConfig{pp::kMaxWindow, m.rx_buffer_bytes, 50000, 2000, 500000});
-      if (!session_.catalog_matches()) {
-        char text[200];
-        session_.DescribeVersions(text, sizeof(text));
-        events_.push_back(std::string("catalog mismatch, only flashing is possible: ") + text);
-      }
-      changed_.notify_all();
-    } else if constexpr (requires { m.boot_nonce; }) {
-      if (!session_.open()) return;
-      if (session_.CheckBootNonce(m.boot_nonce) == pp::HostSession::BootCheck::kReset) {
-        OnBoardReset("the board restarted");
-        return;
-      }
-      if constexpr (std::is_same_v<M, pp::Telemetry>) {
-        OnTelemetry(m, now);
-        return;
-      }
-      if constexpr (std::is_same_v<M, pp::Ack>) {
-        if (m.acked_type == static_cast<uint8_t>(pp::MessageType::kEStop)) estop_acked_ = true;
-      }
-      if constexpr (std::is_same_v<M, pp::Nack>) {
-        if ((h.flags & pp::flags::kReliable) == 0) {  // a refused stream message
-          Stream* s = m.refused_type == static_cast<uint8_t>(pp::MessageType::kSetLineSetpoints) ? &setpoints_
-                      : m.refused_type == static_cast<uint8_t>(pp::MessageType::kSetFingerTargets) ? &targets_
-                                                                                                    : nullptr;
-          if (s != nullptr) {
-            s->refused = m.status;
-            s->refused_generation = s->generation;
-            changed_.notify_all();
-          }
-          return;
-        }
-      }
-      if ((h.flags & pp::flags::kReliable) == 0) return;
-      Status status = Status::kOk;
-      uint32_t detail = 0;
-      if constexpr (std::is_same_v<M, pp::Nack>) {
-        status = m.status;
-        detail = m.detail;
-      }
-      const bool report = !std::is_same_v<M, pp::Ack> && !std::is_same_v<M, pp::Nack>;
-      sender_.OnAnswer(h.seq, status, detail, Micros(now), [&](const pp::CommandOutcome& o) {
-        auto it = pending_.find(o.cookie);
-        if (it == pending_.end()) return;
-        it->second.done = true;
-        it->second.result = CommandResult{o.status, o.detail, 0, {}, {}};
-        if (o.status == Status::kOk) host_timeout_.OnApplied(o.cookie);
-        else host_timeout_.OnRefused(o.cookie);
-        if (report && o.seq == h.seq) {
-          it->second.result.reply_type = frame.header.type;
-          it->second.result.reply_body.assign(frame.body, frame.body + frame.body_size);
-        }
-      });
-      changed_.notify_all();
-    }
-  });
-}
-
-void Link::OnTelemetry(const pp::Telemetry& t, double now) {  // mutex_ held
-  ++counters_.telemetry_frames;
-  const uint64_t span = static_cast<uint64_t>(t.tick_count) * t.sample_interval_us;
-  if (expected_next_sample_us_ != 0 && t.first_sample_us > expected_next_sample_us_ && span > 0) {
-    counters_.telemetry_lost += (t.first_sample_us - expected_next_sample_us_ + span / 2) / span;
-  }
-  expected_next_sample_us_ = t.first_sample_us + span;
-  // Clock mapping: the smallest host-minus-board offset seen is the least delayed frame.
-  const double scale = session_.board().time_scale;
-  const double board_end_s = static_cast<double>(t.first_sample_us + (t.tick_count ? span - t.sample_interval_us : 0)) / 1e6 / scale;
-  const double offset = now - board_end_s;
-  if (offset < window_min_offset_s_) window_min_offset_s_ = offset;
-  if (now - offset_window_start_s_ > 10.0 || min_offset_s_ > 1e299) {  // follow slow drift
-    min_offset_s_ = window_min_offset_s_;
-    window_min_offset_s_ = 1e300;
-    offset_window_start_s_ = now;
-  }
-  if (offset < min_offset_s_) min_offset_s_ = offset;
-  setpoints_.applied = t.setpoint_generation;
-  targets_.applied = t.target_generation;
-  changed_.notify_all();
-  if (subscribers_.empty()) return;
-  if (queue_.size() >= options_.subscriber_queue) {
-    queue_.pop_front();
-    ++counters_.subscriber_dropped;
-  }
-  queue_.push_back(TelemetryFrame{t, min_offset_s_ + static_cast<double>(t.first_sample_us) / 1e6 / scale});
-  queue_changed_.notify_one();
 }
 
 void Link::DispatchLoop() {
@@ -370,7 +206,8 @@ void Link::DispatchLoop() {
     queue_.pop_front();
     auto subscribers = subscribers_;
     lock.unlock();
-    for (auto& [id, callback] : subscribers) callback(frame);  // outside the lock: may take its time
+    for (auto& [id, callback] : subscribers)
+      callback(frame);  // outside the lock: may take its time
     lock.lock();
   }
 }
@@ -443,8 +280,12 @@ Status Link::WaitApplied(bool setpoints, uint32_t generation, int timeout_ms) {
   return result;
 }
 
-Status Link::WaitSetpointsApplied(uint32_t generation, int timeout_ms) { return WaitApplied(true, generation, timeout_ms); }
-Status Link::WaitTargetsApplied(uint32_t generation, int timeout_ms) { return WaitApplied(false, generation, timeout_ms); }
+Status Link::WaitSetpointsApplied(uint32_t generation, int timeout_ms) {
+  return WaitApplied(true, generation, timeout_ms);
+}
+Status Link::WaitTargetsApplied(uint32_t generation, int timeout_ms) {
+  return WaitApplied(false, generation, timeout_ms);
+}
 
 Status Link::EStop() {
   {
@@ -454,7 +295,9 @@ Status Link::EStop() {
   for (int attempt = 0; attempt < 25; ++attempt) {
     SendUnsequenced(pp::EStop{});
     std::unique_lock<std::mutex> lock(mutex_);
-    if (changed_.wait_for(lock, std::chrono::milliseconds(20), [&] { return estop_acked_ || stop_; }) && estop_acked_) {
+    if (changed_.wait_for(lock, std::chrono::milliseconds(20),
+                          [&] { return estop_acked_ || stop_; }) &&
+        estop_acked_) {
       return Status::kOk;
     }
   }

@@ -154,6 +154,7 @@ class Link {
   CommandResult CommandPacket(uint8_t type, const uint8_t* body, size_t size, int timeout_ms);
   uint32_t SubmitPacket(uint8_t type, const uint8_t* body, size_t size, int timeout_ms);
   uint32_t FailedTicket(CommandResult result);  ///< a ticket already answered with `result`
+  static uint64_t Micros(double seconds) { return static_cast<uint64_t>(seconds * 1e6); }
   void ReaderLoop();
   void HeartbeatLoop();
   void DispatchLoop();

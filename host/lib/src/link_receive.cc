@@ -1,0 +1,193 @@
+// The link's reader thread: frames from the board into the session, the sender's answers, stream
+// acknowledgements and telemetry; a board reset or a lost link abandons what was in flight.
+#include "palpa/host/link.h"
+
+namespace palpa::host {
+
+void Link::ReaderLoop() {
+  pp::OwningFrameDecoder decoder;
+  uint8_t buffer[4096];
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    SendHello();
+  }
+  while (true) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (stop_) return;
+    }
+    const auto n = transport_->Read(buffer, sizeof(buffer), 5);
+    const double now = SteadySeconds();
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!n.ok()) {
+      if (n.status == Status::kDisconnected) {
+        events_.push_back("the link to " + transport_->Describe() + " closed");
+        OnBoardReset("link lost");
+        hello_wanted_ = false;
+        stop_ = true;
+        changed_.notify_all();
+        queue_changed_.notify_all();
+        return;
+      }
+      continue;
+    }
+    for (size_t i = 0; i < n.value; ++i) {
+      const auto event = decoder.Process(buffer[i]);
+      if (event == pp::FrameDecoder::Event::kFrame) OnFrame(decoder.frame(), now);
+      if (event == pp::FrameDecoder::Event::kError) ++counters_.framing_errors;
+    }
+    Service(now);
+  }
+}
+
+void Link::Service(double now) {  // mutex_ held
+  if (!session_.open()) {
+    SendHello();
+    return;
+  }
+  sender_.Transmit(Micros(now), [this](const uint8_t* f, size_t n) { WriteFrame(f, n); });
+  counters_.retransmissions = sender_.counters().retransmissions;
+  for (Stream* s : {&setpoints_, &targets_}) {
+    const bool applied =
+        s->applied == s->generation || pp::GenerationNewer(s->applied, s->generation);
+    if (s->active && !applied && s->refused_generation != s->generation &&
+        now - s->sent_s >= options_.stream_resend_ms / 1000.0) {
+      WriteFrame(s->frame.data(), s->frame.size());
+      s->sent_s = now;
+    }
+  }
+}
+
+void Link::OnBoardReset(const std::string& why) {  // mutex_ held
+  size_t unknown = 0;
+  sender_.AbandonAll([&](const pp::CommandOutcome& o) {
+    auto it = pending_.find(o.cookie);
+    if (it != pending_.end()) {
+      it->second.done = true;
+      it->second.result = CommandResult{
+          Status::kOutcomeUnknown, 0, 0, {}, "the board reset while this command was in flight"};
+      host_timeout_.OnUnknown(o.cookie);
+    }
+    ++unknown;
+  });
+  counters_.outcome_unknown += unknown;
+  if (session_.open()) {
+    ++counters_.board_resets;
+    events_.push_back(why + ": " + std::to_string(unknown) +
+                      " command(s) in flight have an unknown outcome");
+  }
+  session_.Close();
+  // Streams are not replayed into a new session: the application decides what to actuate.
+  setpoints_.active = targets_.active = false;
+  hello_sent_s_ = -1;
+  hello_wanted_ = options_.reconnect;
+  changed_.notify_all();
+}
+
+void Link::OnFrame(const pp::Frame& frame, double now) {  // mutex_ held
+  ++counters_.frames;
+  if ((frame.header.flags & pp::flags::kFromBoard) == 0) return;  // an echo of our own frame
+  pp::DispatchFrame(frame, [&](const auto& m, const pp::Header& h) {
+    using M = std::decay_t<decltype(m)>;
+    if constexpr (std::is_same_v<M, pp::HelloReply>) {
+      if (session_.OnHelloReply(m) == Status::kStale) return;
+      hello_wanted_ = false;
+      host_timeout_.OnSession(m.host_timeout_us, m.time_scale);
+      // The board answers within a few ticks: cap the back-off at 0.5 s so a command that lost
+      // several retransmissions in a row still completes well inside the command timeout.
+      sender_.Configure(pp::SenderConfig{pp::kMaxWindow, m.rx_buffer_bytes, 50000, 2000, 500000});
+      if (!session_.catalog_matches()) {
+        char text[200];
+        session_.DescribeVersions(text, sizeof(text));
+        events_.push_back(std::string("catalog mismatch, only flashing is possible: ") + text);
+      }
+      changed_.notify_all();
+    } else if constexpr (requires { m.boot_nonce; }) {
+      if (!session_.open()) return;
+      if (session_.CheckBootNonce(m.boot_nonce) == pp::HostSession::BootCheck::kReset) {
+        OnBoardReset("the board restarted");
+        return;
+      }
+      if constexpr (std::is_same_v<M, pp::Telemetry>) {
+        OnTelemetry(m, now);
+        return;
+      }
+      if constexpr (std::is_same_v<M, pp::Ack>) {
+        if (m.acked_type == static_cast<uint8_t>(pp::MessageType::kEStop)) estop_acked_ = true;
+      }
+      if constexpr (std::is_same_v<M, pp::Nack>) {
+        if ((h.flags & pp::flags::kReliable) == 0) {  // a refused stream message
+          Stream* s = m.refused_type == static_cast<uint8_t>(pp::MessageType::kSetLineSetpoints)
+                          ? &setpoints_
+                      : m.refused_type == static_cast<uint8_t>(pp::MessageType::kSetFingerTargets)
+                          ? &targets_
+                          : nullptr;
+          if (s != nullptr) {
+            s->refused = m.status;
+            s->refused_generation = s->generation;
+            changed_.notify_all();
+          }
+          return;
+        }
+      }
+      if ((h.flags & pp::flags::kReliable) == 0) return;
+      Status status = Status::kOk;
+      uint32_t detail = 0;
+      if constexpr (std::is_same_v<M, pp::Nack>) {
+        status = m.status;
+        detail = m.detail;
+      }
+      const bool report = !std::is_same_v<M, pp::Ack> && !std::is_same_v<M, pp::Nack>;
+      sender_.OnAnswer(h.seq, status, detail, Micros(now), [&](const pp::CommandOutcome& o) {
+        auto it = pending_.find(o.cookie);
+        if (it == pending_.end()) return;
+        it->second.done = true;
+        it->second.result = CommandResult{o.status, o.detail, 0, {}, {}};
+        if (o.status == Status::kOk)
+          host_timeout_.OnApplied(o.cookie);
+        else
+          host_timeout_.OnRefused(o.cookie);
+        if (report && o.seq == h.seq) {
+          it->second.result.reply_type = frame.header.type;
+          it->second.result.reply_body.assign(frame.body, frame.body + frame.body_size);
+        }
+      });
+      changed_.notify_all();
+    }
+  });
+}
+
+void Link::OnTelemetry(const pp::Telemetry& t, double now) {  // mutex_ held
+  ++counters_.telemetry_frames;
+  const uint64_t span = static_cast<uint64_t>(t.tick_count) * t.sample_interval_us;
+  if (expected_next_sample_us_ != 0 && t.first_sample_us > expected_next_sample_us_ && span > 0) {
+    counters_.telemetry_lost += (t.first_sample_us - expected_next_sample_us_ + span / 2) / span;
+  }
+  expected_next_sample_us_ = t.first_sample_us + span;
+  // Clock mapping: the smallest host-minus-board offset seen is the least delayed frame.
+  const double scale = session_.board().time_scale;
+  const double board_end_s =
+      static_cast<double>(t.first_sample_us + (t.tick_count ? span - t.sample_interval_us : 0)) /
+      1e6 / scale;
+  const double offset = now - board_end_s;
+  if (offset < window_min_offset_s_) window_min_offset_s_ = offset;
+  if (now - offset_window_start_s_ > 10.0 || min_offset_s_ > 1e299) {  // follow slow drift
+    min_offset_s_ = window_min_offset_s_;
+    window_min_offset_s_ = 1e300;
+    offset_window_start_s_ = now;
+  }
+  if (offset < min_offset_s_) min_offset_s_ = offset;
+  setpoints_.applied = t.setpoint_generation;
+  targets_.applied = t.target_generation;
+  changed_.notify_all();
+  if (subscribers_.empty()) return;
+  if (queue_.size() >= options_.subscriber_queue) {
+    queue_.pop_front();
+    ++counters_.subscriber_dropped;
+  }
+  queue_.push_back(
+      TelemetryFrame{t, min_offset_s_ + static_cast<double>(t.first_sample_us) / 1e6 / scale});
+  queue_changed_.notify_one();
+}
+
+}  // namespace palpa::host
