@@ -1,10 +1,11 @@
 // Calibration documents from JSON, section by section, with the failing field named.
+#include "calibration_json.h"
+
 #include <cmath>
 #include <regex>
 #include <string>
 #include <vector>
 
-#include "calibration_json.h"
 #include "palpa/core/compensator.h"
 #include "palpa/host/json_check.h"
 #include "palpa/protocol/messages_stream.h"
@@ -113,8 +114,8 @@ void ReadStaticInverse(Obj& o, CalibrationFile& c, bool jamming) {
     Obj p(list[i], o.Item("static_inverse", i), {"output", "setpoint_pa"});
     pp::InversePoint q;
     q.output = static_cast<int32_t>(p.Integer("output", 0, pp::kMaxFingerTarget));
-    q.setpoint_pa = static_cast<int32_t>(p.Integer(
-        "setpoint_pa", jamming ? pp::kMinPressurePa : 0, jamming ? 0 : pp::kMaxPressurePa));
+    q.setpoint_pa = static_cast<int32_t>(p.Integer("setpoint_pa", jamming ? pp::kMinPressurePa : 0,
+                                                   jamming ? 0 : pp::kMaxPressurePa));
     outputs.push_back(q.output);
     setpoints.push_back(q.setpoint_pa);
     c.static_inverse.push_back(q);
