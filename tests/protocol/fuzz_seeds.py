@@ -2,6 +2,7 @@
 """Writes libFuzzer seed inputs from the golden frames: each as a stream and as a bare packet."""
 import json
 import os
+import shutil
 import sys
 
 
@@ -19,7 +20,10 @@ def cobs_decode(data):
 
 def main():
     golden, corpus = sys.argv[1], sys.argv[2]
-    os.makedirs(corpus, exist_ok=True)
+    # Emptied first: every run starts from these seeds alone, in a clean tree or a used one, so
+    # its figures and findings do not depend on what earlier runs added to the corpus.
+    shutil.rmtree(corpus, ignore_errors=True)
+    os.makedirs(corpus)
     for frame in json.load(open(golden)):
         wire = bytes.fromhex(frame["hex"])
         packet = cobs_decode(wire[:-1])[:-4]

@@ -5,6 +5,7 @@ The opcodes and their arguments are those of fuzz_board.cc's Operate; libFuzzer 
 into the scripts it explores, which reach the compensators far sooner than from empty inputs.
 """
 import os
+import shutil
 import sys
 
 THESIS_5FINGER, FULL_8 = 2, 3  # index in the compiled-in configurations
@@ -80,7 +81,10 @@ def session(config, *steps):
 
 def main():
     corpus = sys.argv[1]
-    os.makedirs(corpus, exist_ok=True)
+    # Emptied first: every run starts from these seeds alone, in a clean tree or a used one, so
+    # its figures and findings do not depend on what earlier runs added to the corpus.
+    shutil.rmtree(corpus, ignore_errors=True)
+    os.makedirs(corpus)
     seeds = {
         "pi16": session(THESIS_5FINGER, play(0, False, 16), clear(), target(0, 1200), ticks(400),
                         target(0, 300), ticks(300), target(0, 0), ticks(200)),
