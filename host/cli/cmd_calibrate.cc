@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +20,7 @@
 #include "palpa/calibration/rig_file.h"
 #include "palpa/calibration/calibration_protocol.h"
 #include "palpa/host/calibration_file.h"
+#include "palpa/host/file_write.h"
 #include "palpa/host/svg_chart.h"
 #include "palpa/host/transport.h"
 
@@ -62,16 +64,6 @@ void ProgressBar(const cal::Progress& p, std::chrono::steady_clock::time_point s
                           : "--",
                p.step.c_str());
   std::fflush(stderr);
-}
-
-bool WriteText(const std::string& path, const std::string& text) {
-  const std::string temporary = path + ".part";
-  {
-    std::ofstream out(temporary);
-    out << text;
-    if (!out) return false;
-  }
-  return std::rename(temporary.c_str(), path.c_str()) == 0;
 }
 
 }  // namespace
@@ -128,10 +120,13 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
   if (a.rig.empty() || a.finger < 0 || a.out.empty()) {
     return Usage("calibrate", "needs --rig FILE|sim, --finger N and --out DIR");
   }
-  mkdir(a.out.c_str(), 0755);
+  // The directory is made only once everything is checked: a refused command leaves nothing.
   struct stat st {};
-  if (stat(a.out.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
+  const bool out_exists = stat(a.out.c_str(), &st) == 0;
+  if (out_exists && !S_ISDIR(st.st_mode))
     return Usage("calibrate", "--out " + a.out + ": not a directory");
+  if (!out_exists && a.resume)
+    return Usage("calibrate", "--resume: --out " + a.out + " does not exist (no journal to resume)");
 
   // The rig and the board: palpa-sim serving both, or a rig file and --device.
   std::string error;
@@ -197,6 +192,11 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
   cal::ScaledTime time(device->info().time_scale);
   cal::Rig rig{*devices->stage,     *devices->force,  board, time,
                description->limits, description->name, description->force_noise_n};
+  if (!out_exists && mkdir(a.out.c_str(), 0755) != 0) {
+    std::fprintf(stderr, "palpa calibrate: cannot create --out %s: %s\n", a.out.c_str(),
+                 std::strerror(errno));
+    return kExitFailed;
+  }
   const std::string base = a.out + "/" + serial;
   cal::Journal journal;
   if (a.resume) {
@@ -210,7 +210,11 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
     }
   }
   journal.save = [&base](const cal::Journal& j) {
-    WriteText(base + ".journal.json", j.state.dump());
+    std::string why;
+    if (!host::WriteFileWhole(base + ".journal.json", j.state.dump(), &why)) {
+      std::fprintf(stderr, "\npalpa calibrate: journal not saved (%s): a stopped run cannot resume\n",
+                   why.c_str());
+    }
   };
   // The actuator's last calibration, for the detector that notices it changed.
   std::optional<host::CalibrationFile> previous;
@@ -246,8 +250,9 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
   }
   std::string csv;
   for (const std::string& row : run.csv) csv += row + "\n";
-  if (!WriteText(base + ".csv", csv) || !host::SaveCalibration(run.file, base + ".json", &error) ||
-      !WriteText(base + ".html", cal::RenderReport(run))) {
+  if (!host::WriteFileWhole(base + ".csv", csv, &error) ||
+      !host::SaveCalibration(run.file, base + ".json", &error) ||
+      !host::WriteFileWhole(base + ".html", cal::RenderReport(run), &error)) {
     std::fprintf(stderr, "palpa calibrate: cannot write the results in %s: %s\n", a.out.c_str(),
                  error.c_str());
     return kExitFailed;

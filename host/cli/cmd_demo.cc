@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <mutex>
 #include <thread>
 
@@ -17,6 +18,7 @@
 
 #include "cli.h"
 #include "demo_stimuli.h"
+#include "palpa/host/file_write.h"
 #include "palpa/host/svg_chart.h"
 
 namespace palpa::cli {
@@ -105,13 +107,21 @@ int CmdDemo(Context& c, const std::vector<std::string>& args) {
   std::string out = "palpa-demo.svg";
   double speed = 4;
   for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--out" && i + 1 < args.size()) {
+    const bool has_value = i + 1 < args.size();
+    if (args[i] == "--out") {
+      if (!has_value) return Usage("demo", "--out needs a file name for the chart");
       out = args[++i];
-    } else if (args[i] == "--speed" && i + 1 < args.size()) {
-      if (!ParseNumber(args[++i], speed) || speed < 0.1 || speed > 20) return Usage("demo", "--speed needs a number from 0.1 to 20");
+    } else if (args[i] == "--speed") {
+      if (!has_value || !ParseNumber(args[++i], speed) || speed < 0.1 || speed > 20) return Usage("demo", "--speed needs a number from 0.1 to 20");
     } else {
       return Usage("demo", "unexpected argument '" + args[i] + "'");
     }
+  }
+  // Checked before the run, not after it: the chart is written at the end.
+  const std::filesystem::path chart_dir = std::filesystem::path(out).parent_path();
+  const std::string dir = chart_dir.empty() ? "." : chart_dir.string();
+  if (!std::filesystem::is_directory(dir) || access(dir.c_str(), W_OK) != 0) {
+    return Usage("demo", "--out " + out + ": " + dir + " is not a directory this user can write to");
   }
   char speed_text[16];
   std::snprintf(speed_text, sizeof(speed_text), "%g", speed);
@@ -211,8 +221,8 @@ int CmdDemo(Context& c, const std::vector<std::string>& args) {
   }
   chart.width = 1100;
   d.EStop();
-  if (!host::WriteFile(out, host::RenderSvg(chart))) {
-    std::fprintf(stderr, "palpa demo: cannot write %s\n", out.c_str());
+  if (!host::WriteFileWhole(out, host::RenderSvg(chart), &error)) {
+    std::fprintf(stderr, "palpa demo: %s\n", error.c_str());
     return kExitFailed;
   }
   std::printf("\nlargest difference between a target and the true output: %.1f %% — the nominal static inverse\n"

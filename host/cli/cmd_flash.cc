@@ -12,6 +12,7 @@
 #include "palpa/core/flash_layout.h"
 #include "palpa/hal/linux/gpio_output.h"
 #include "palpa/host/boot_pins.h"
+#include "palpa/host/file_write.h"
 #include "palpa/host/flasher.h"
 
 namespace palpa::cli {
@@ -24,17 +25,6 @@ bool ReadBytes(const std::string& path, std::vector<uint8_t>* out) {
   if (!in) return false;
   out->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   return true;
-}
-
-bool WriteBytes(const std::string& path, const std::vector<uint8_t>& bytes) {
-  const std::string part = path + ".part";
-  {
-    std::ofstream out(part, std::ios::binary);
-    out.write(reinterpret_cast<const char*>(bytes.data()),
-              static_cast<std::streamsize>(bytes.size()));
-    if (!out) return false;
-  }
-  return std::rename(part.c_str(), path.c_str()) == 0;
 }
 
 void Progress(const host::FlashProgress& p) {
@@ -206,8 +196,11 @@ int CmdPackage(Context&, const std::vector<std::string>& args) {
     spec.load_address = layout.xip_base + layout.slot_offset[slot];
     package.slot_image[slot] = host::BuildImage(spec);
   }
-  if (!WriteBytes(out, host::WritePackage(package))) {
-    std::fprintf(stderr, "palpa package: cannot write %s\n", out.c_str());
+  const std::vector<uint8_t> bytes = host::WritePackage(package);
+  std::string error;
+  if (!host::WriteFileWhole(out, {reinterpret_cast<const char*>(bytes.data()), bytes.size()},
+                            &error)) {
+    std::fprintf(stderr, "palpa package: %s\n", error.c_str());
     return kExitFailed;
   }
   std::printf("%s: %s %s, counter %u, slot images of %zu and %zu bytes\n", out.c_str(),

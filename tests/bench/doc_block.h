@@ -6,6 +6,7 @@
 #include <sstream>
 #include <string>
 
+#include "palpa/host/file_write.h"
 #include "palpa/host/svg_chart.h"
 
 namespace palpa::bench {
@@ -23,7 +24,7 @@ inline bool ReplaceBlock(const std::string& path, const std::string& name,
   const size_t b = s.find(begin), e = s.find(end);
   if (b == std::string::npos || e == std::string::npos || e < b) return false;
   s = s.substr(0, b + begin.size()) + "\n" + block + s.substr(e);
-  return host::WriteFile(path, s);
+  return host::WriteFileWhole(path, s);
 }
 
 }  // namespace palpa::bench

@@ -15,6 +15,7 @@
 
 #include "doc_block.h"
 #include "hysteresis_experiments.h"
+#include "palpa/host/file_write.h"
 #include "palpa/host/svg_chart.h"
 
 namespace pt = palpa::testing;
@@ -195,7 +196,7 @@ int main(int argc, char** argv) {
   chart.series.push_back({"goal: gap <= 30 % of none", {{150, 0.3 * uncompensated_gap}, {1000, 0.3 * uncompensated_gap}},
                           "#888", true, false});
   chart.series.push_back({"goal: pi(16) <= 300 instr.", {{300, 0}, {300, uncompensated_gap}}, "#bbb", true, false});
-  if (!pb::WriteFile(docs + "/hysteresis.svg", pb::RenderSvg(chart))) {
+  if (!pb::WriteFileWhole(docs + "/hysteresis.svg", pb::RenderSvg(chart))) {
     std::fprintf(stderr, "cannot write %s/hysteresis.svg\n", docs.c_str());
     return 1;
   }

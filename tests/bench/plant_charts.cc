@@ -7,6 +7,7 @@
 
 #include "palpa/core/board_configs.h"
 #include "palpa/hal/sim/plant.h"
+#include "palpa/host/file_write.h"
 #include "palpa/host/svg_chart.h"
 
 namespace ps = palpa::sim;
@@ -117,9 +118,9 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::string dir = argv[1];
-  bool ok = pb::WriteFile(dir + "/plant_table_5_4.svg", pb::RenderSvg(MajorLoop()));
-  ok &= pb::WriteFile(dir + "/plant_fig_5_36.svg", pb::RenderSvg(Stiffness()));
-  ok &= pb::WriteFile(dir + "/plant_press_loops.svg", pb::RenderSvg(PressLoops()));
+  bool ok = pb::WriteFileWhole(dir + "/plant_table_5_4.svg", pb::RenderSvg(MajorLoop()));
+  ok &= pb::WriteFileWhole(dir + "/plant_fig_5_36.svg", pb::RenderSvg(Stiffness()));
+  ok &= pb::WriteFileWhole(dir + "/plant_press_loops.svg", pb::RenderSvg(PressLoops()));
   std::printf("charts: %s/plant_table_5_4.svg plant_fig_5_36.svg plant_press_loops.svg\n", dir.c_str());
   return ok ? 0 : 1;
 }

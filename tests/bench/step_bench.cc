@@ -11,6 +11,7 @@
 #include "palpa/hal/fake/fakes.h"
 #include "palpa/protocol/codec.h"
 #include "sim_board.h"
+#include "palpa/host/file_write.h"
 #include "palpa/host/svg_chart.h"
 
 namespace ps = palpa::sim;
@@ -182,7 +183,7 @@ int main(int argc, char** argv) {
   std::printf("goals: PI steady-state error vs the sensor <= 0.1 kPa; vs the true pressure <= sensor accuracy\n"
               "(0.26 kPa) + half the dead band (0.05 kPa); feed-forward alone shows the regulator's ~1 kPa.\n");
   if (argc > 1) {
-    if (!pb::WriteFile(argv[1], pb::RenderSvg(chart))) return 1;
+    if (!pb::WriteFileWhole(argv[1], pb::RenderSvg(chart))) return 1;
     std::printf("chart: %s\n", argv[1]);
   }
   return 0;

@@ -1,19 +1,14 @@
 // Calibration files: writing the JSON schema, loading (checks in calibration_read.cc), atomic save.
 #include "palpa/host/calibration_file.h"
 
-#include <fcntl.h>
 #include <unistd.h>
 
-#include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <set>
-#include <sstream>
-#include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
 #include "calibration_json.h"
+#include "palpa/host/file_write.h"
 #include "palpa/host/json_check.h"
 #include "palpa/protocol/messages_stream.h"
 
@@ -144,22 +139,7 @@ std::optional<std::string> SerializeCalibration(const CalibrationFile& c, std::s
 
 bool SaveCalibration(const CalibrationFile& c, const std::string& path, std::string* error) {
   const auto text = SerializeCalibration(c, error);
-  if (!text) return false;
-  const std::string temporary = path + ".tmp" + std::to_string(getpid());
-  const int fd = open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (fd < 0) {
-    if (error != nullptr) *error = temporary + ": cannot be created";
-    return false;
-  }
-  bool ok = write(fd, text->data(), text->size()) == static_cast<ssize_t>(text->size());
-  ok = fsync(fd) == 0 && ok;
-  ok = close(fd) == 0 && ok;
-  if (!ok || rename(temporary.c_str(), path.c_str()) != 0) {
-    unlink(temporary.c_str());
-    if (error != nullptr) *error = path + ": write failed";
-    return false;
-  }
-  return true;
+  return text && WriteFileWhole(path, *text, error);
 }
 
 std::string DefaultCalibrationDir() {

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <limits>
 
 namespace palpa::host {
@@ -128,12 +127,6 @@ std::string RenderSvg(const Chart& c) {
     svg += "<text x='" + Num(left + pw + 40) + "' y='" + Num(ly) + "'>" + Escape(s.name) + "</text>\n";
   }
   return svg + "</svg>\n";
-}
-
-bool WriteFile(const std::string& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-  return out.good();
 }
 
 }  // namespace palpa::host

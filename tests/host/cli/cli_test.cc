@@ -34,6 +34,11 @@ Run Palpa(const std::string& args) {
 
 bool Has(const Run& r, const std::string& text) { return r.output.find(text) != std::string::npos; }
 
+/// A file name of this test process's own: two test runs at once must not share files.
+std::string OwnTempPath(const std::string& name) {
+  return "/tmp/palpa-cli-" + std::to_string(getpid()) + "-" + name;
+}
+
 }  // namespace
 
 TEST_GROUP(CliUsage){};
@@ -76,8 +81,18 @@ TEST(CliUsage, MalformedCommandLinesNameTheArgumentAndSendNothing) {
   CHECK(Has(r, "unknown command 'frobnicate'"));
   r = Palpa("--device");
   LONGS_EQUAL(2, r.code);
-  std::ofstream("/tmp/palpa-cli-bad.json") << "{\"board\": {\"host_timeout_us\": 1e3.5}";
-  r = Palpa(nowhere + "config load /tmp/palpa-cli-bad.json");
+  // The demo's chart is written at its end: a place it cannot be written is refused first.
+  r = Palpa("demo --out /nonexistent-dir/chart.svg");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "/nonexistent-dir is not a directory"));
+  CHECK_FALSE(Has(r, "starting a simulated"));
+  r = Palpa("demo --out");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "--out needs a file name"));
+  const std::string bad = OwnTempPath("bad.json");
+  std::ofstream(bad) << "{\"board\": {\"host_timeout_us\": 1e3.5}";
+  r = Palpa(nowhere + "config load " + bad);
+  std::remove(bad.c_str());
   LONGS_EQUAL(2, r.code);
   CHECK(Has(r, "not valid JSON"));
 }
@@ -147,11 +162,12 @@ TEST(CliBoard, MonitorRecordEstopClear) {
   LONGS_EQUAL(0, r.code);
   const std::string first = r.output.substr(0, r.output.find('\n'));
   CHECK(nlohmann::json::parse(first)["lines"].size() == 7);
-  r = Palpa(device + "record /tmp/palpa-cli-record.csv --duration 0.5");
+  const std::string recording = OwnTempPath("record.csv");
+  r = Palpa(device + "record " + recording + " --duration 0.5");
   LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
-  std::ifstream csv("/tmp/palpa-cli-record.csv");
   std::string header;
-  std::getline(csv, header);
+  std::getline(std::ifstream(recording), header);
+  std::remove(recording.c_str());
   CHECK(header.rfind("# {", 0) == 0);
   LONGS_EQUAL(0, Palpa(device + "estop").code);
   r = Palpa(device + "--json diag");
@@ -169,17 +185,22 @@ TEST(CliCalibrate, BadArgumentsAreNamedBeforeAnythingStarts) {
   r = Palpa(nowhere + "calibrate --rig sim --finger 9 --out /tmp");
   LONGS_EQUAL(2, r.code);
   CHECK(Has(r, "--finger 9"));
-  r = Palpa(nowhere + "calibrate --rig sim --finger 1 --out /tmp");
+  // A refused command creates nothing, not even its output directory.
+  const std::string never = OwnTempPath("never");
+  r = Palpa(nowhere + "calibrate --rig sim --finger 1 --out " + never);
   LONGS_EQUAL(2, r.code);
   CHECK(Has(r, "--rig sim goes with a simulated device"));
-  std::ofstream("/tmp/palpa-cli-rig.json")
-      << "{\"name\": \"lab\", \"stage\": {\"driver\": \"modbus\"}}";
-  r = Palpa(nowhere + "calibrate --rig /tmp/palpa-cli-rig.json --finger 1 --out /tmp");
+  CHECK(access(never.c_str(), F_OK) != 0);
+  const std::string rig = OwnTempPath("rig.json");
+  std::ofstream(rig) << "{\"name\": \"lab\", \"stage\": {\"driver\": \"modbus\"}}";
+  r = Palpa(nowhere + "calibrate --rig " + rig + " --finger 1 --out /tmp");
+  std::remove(rig.c_str());
   LONGS_EQUAL(2, r.code);
   CHECK(Has(r, "stage.address: missing"));
-  r = Palpa("calibrate --rig sim --finger 1 --out /tmp/palpa-cli-none --resume");
+  r = Palpa("calibrate --rig sim --finger 1 --out " + never + " --resume");
   LONGS_EQUAL(2, r.code);
   CHECK(Has(r, "no journal"));
+  CHECK(access(never.c_str(), F_OK) != 0);
   r = Palpa(nowhere + "calibrate --rig sim --finger 4 --out /tmp --protocol fast");
   LONGS_EQUAL(2, r.code);
   CHECK(Has(r, "--protocol fast: expected thesis or adaptive"));

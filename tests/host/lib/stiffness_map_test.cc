@@ -1,6 +1,11 @@
 // Levels, 0..1, N/mm, mm and kPa mapped per finger kind; refusals name what is wrong.
 #include "palpa/host/stiffness_map.h"
 
+#include <unistd.h>
+
+#include <cstdio>
+#include <string>
+
 #include "CppUTest/TestHarness.h"
 
 namespace ph = palpa::host;
@@ -69,9 +74,12 @@ TEST(StiffnessMap, LevelFilesAreValidated) {
   std::string error;
   CHECK_FALSE(ph::LevelTables::Load("/nonexistent.json", t, &error));
   CHECK(error.find("cannot open") != std::string::npos);
-  FILE* f = fopen("/tmp/palpa-levels-test.json", "w");
+  const std::string path = "/tmp/palpa-levels-test-" + std::to_string(getpid()) + ".json";
+  FILE* f = fopen(path.c_str(), "w");
   fputs("{\"pneumatic\": {\"levels_kpa\": [0, 150]}, \"jamming\": {\"bias_kpa\": 20, \"levels_kpa\": [0]}}", f);
   fclose(f);
-  CHECK_FALSE(ph::LevelTables::Load("/tmp/palpa-levels-test.json", t, &error));
+  const bool loaded = ph::LevelTables::Load(path, t, &error);
+  std::remove(path.c_str());
+  CHECK_FALSE(loaded);
   CHECK(error.find("150") != std::string::npos);
 }

@@ -26,7 +26,4 @@ struct Chart {
 /// Renders the chart as a standalone SVG document.
 std::string RenderSvg(const Chart& chart);
 
-/// Writes text to a file; false on failure.
-bool WriteFile(const std::string& path, const std::string& text);
-
 }  // namespace palpa::host
