@@ -18,10 +18,13 @@ float Gaussian(float x, float center, float sigma) {
 
 /// The pneumatic film's density: narrow loops near the diagonal whose weight grows with the
 /// mean of alpha and beta — a shape no sum of play operators (which see only alpha - beta) makes.
-float PneumaticDensity(float alpha, float beta) {
-  return p::kPneumaticDensityAmplitudeMm *
-         Gaussian(alpha - beta, p::kPneumaticDensityWidthCenterKpa, p::kPneumaticDensityWidthSigmaKpa) *
-         Gaussian(0.5f * (alpha + beta), p::kPneumaticDensityMeanCenterKpa, p::kPneumaticDensityMeanSigmaKpa);
+/// A unit's growth adds weight towards the top of the range and its width widens the loops.
+float PneumaticDensity(const PneumaticUnit& unit, float alpha, float beta) {
+  const float mean = 0.5f * (alpha + beta);
+  return p::kPneumaticDensityAmplitudeMm * (1.0f + unit.growth * mean / 100.0f) *
+         Gaussian(alpha - beta, p::kPneumaticDensityWidthCenterKpa,
+                  p::kPneumaticDensityWidthSigmaKpa * unit.width) *
+         Gaussian(mean, p::kPneumaticDensityMeanCenterKpa, p::kPneumaticDensityMeanSigmaKpa);
 }
 
 /// Granule packing memory: wide loops centred mid-range.
@@ -31,10 +34,12 @@ float HistoryDensity(float alpha, float beta) {
 
 }  // namespace
 
-PneumaticActuator::PneumaticActuator(float unit_gain, Effects effects)
-    : unit_gain_(unit_gain),
+PneumaticActuator::PneumaticActuator(PneumaticUnit unit, Effects effects)
+    : unit_gain_(unit.gain),
       effects_(effects),
-      loop_(std::make_shared<PreisachModel>(static_cast<int>(p::kPneumaticPreisachCells), 100.0f, PneumaticDensity)) {}
+      loop_(std::make_shared<PreisachModel>(
+          static_cast<int>(p::kPneumaticPreisachCells), 100.0f,
+          [unit](float alpha, float beta) { return PneumaticDensity(unit, alpha, beta); })) {}
 
 void PneumaticActuator::Reset() {
   loop_->Reset();

@@ -62,19 +62,32 @@ Plant::Plant(const protocol::ConfigureLine* lines, uint8_t line_count, const pro
     line.counts = line.sensor->Read(0, 0);
     lines_.push_back(std::move(line));
   }
-  // Actuator units: unit 0 is the nominal actuator; others differ by the thesis's spread.
+  // Actuator units: unit 0 is the nominal actuator; others differ by the thesis's spread — a
+  // jamming chamber by its size (a gain, §5.4.1), a pneumatic film in gain, growth and width.
+  // The shape comes from a stream of its own, so each unit's gains are what they always were.
   std::mt19937 unit_rng(options.unit * 7919u + 3u);
+  std::mt19937 shape_rng(options.unit * 104729u + 11u);
   std::normal_distribution<float> spread(1.0f, p::kPneumaticUnitSpread);
+  std::normal_distribution<float> growth(0.0f, p::kPneumaticUnitGrowthSpread);
+  std::normal_distribution<float> width(1.0f, p::kPneumaticUnitWidthSpread);
   for (uint8_t f = 0; f < finger_count; ++f) {
     Finger finger;
     finger.config = fingers[f];
-    const float gain = options.unit == 0 ? 1.0f : spread(unit_rng);
+    const bool nominal = options.unit == 0;
+    const float gain = nominal ? 1.0f : spread(unit_rng);
+    PneumaticUnit pneumatic;
+    if (!nominal) {
+      // The same draw, scaled to the part of the spread that is a plain gain.
+      pneumatic.gain = 1.0f + (gain - 1.0f) * p::kPneumaticUnitGainSpread / p::kPneumaticUnitSpread;
+      pneumatic.growth = growth(shape_rng);
+      pneumatic.width = width(shape_rng);
+    }
     const Effects effects = options.level >= 2 ? options.effects : Effects{};
     if (fingers[f].kind == protocol::FingerKind::kJamming) {
       finger.jamming = std::make_unique<JammingActuator>(gain, effects);
       finger.jamming->Reset();
     } else {
-      finger.pneumatic = std::make_unique<PneumaticActuator>(gain, effects);
+      finger.pneumatic = std::make_unique<PneumaticActuator>(pneumatic, effects);
     }
     fingers_.push_back(std::move(finger));
   }

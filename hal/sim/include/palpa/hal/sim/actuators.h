@@ -15,12 +15,21 @@ struct Effects {
   float history = -1;  ///< jamming history effect as a fraction of the stiffness range; <0: default
 };
 
+/// How one pneumatic unit differs from the nominal one (all 1 or 0 for the nominal unit). Units
+/// differ mostly in the mid-to-high deflection range (thesis §5.5.1), so besides a plain gain the
+/// loop grows differently with pressure and has its own width: no gain maps one onto another.
+struct PneumaticUnit {
+  float gain = 1;    ///< the whole deformation
+  float growth = 0;  ///< extra loop density at the top of the range, fading to 0 at the bottom
+  float width = 1;   ///< the loop's width (alpha − beta spread of its density)
+};
+
 /// Pneumatic fingertip: deformation (mm) of the film over the cavity against chamber pressure.
 /// A non-Prandtl-Ishlinskii Preisach loop plus a reversible part, with creep and rate
-/// dependence when enabled; one unit's gain drawn with the thesis's spread.
+/// dependence when enabled; one unit drawn with the thesis's spread.
 class PneumaticActuator {
  public:
-  PneumaticActuator(float unit_gain, Effects effects);
+  PneumaticActuator(PneumaticUnit unit, Effects effects);
   void Reset();
   /// Advances by dt with the chamber pressure (Pa); returns the deformation in mm.
   float Step(float chamber_pa, float dt_s);
