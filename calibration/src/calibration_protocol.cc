@@ -78,14 +78,14 @@ ProtocolOptions QuickProtocol() {
 }
 
 RigStatus RunCalibration(Rig& rig, uint8_t finger, const ProtocolOptions& o, const RunInfo& info,
-                            Journal& journal, const std::function<void(const Progress&)>& progress,
-                            CalibrationRun* out) {
+                         Journal& journal, const std::function<void(const Progress&)>& progress,
+                         CalibrationRun* out) {
   const bool jamming = rig.board.jamming(finger);
   json& st = journal.state;
   const std::vector<double> drives =
       SweepDrives(jamming ? o.jamming_sweep : o.pneumatic_sweep);  // Pa
   const bool adaptive = o.map_protocol == MapProtocol::kAdaptive;
-  const int grid_points = !jamming  ? 0
+  const int grid_points = !jamming   ? 0
                           : adaptive ? o.adaptive.max_cycles
                                      : static_cast<int>(o.biases_kpa.size() * o.vacuums_kpa.size());
   const double started = rig.time.Now(), earlier = st.value("rig_time_s", 0.0);
@@ -161,9 +161,9 @@ RigStatus RunCalibration(Rig& rig, uint8_t finger, const ProtocolOptions& o, con
     if (!adaptive) out->map_estimate = EstimateMap(out->map, o.adaptive.box);  // adaptive: its own
     grid = SummariseConditions(out->map);
     for (const host::GridPoint& g : grid) {
-      out->csv.push_back(Csv({g.bias_kpa, g.vacuum_kpa, g.stiffness_mean, g.stiffness_spread,
-                              g.loop_area_mean},
-                             "grid"));
+      out->csv.push_back(
+          Csv({g.bias_kpa, g.vacuum_kpa, g.stiffness_mean, g.stiffness_spread, g.loop_area_mean},
+              "grid"));
     }
     bias = adaptive ? RecommendBiasFromMap(out->map, o.adaptive.box) : RecommendBias(grid);
   }

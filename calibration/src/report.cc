@@ -118,11 +118,12 @@ std::string LoopsChart(const CalibrationRun& run) {
   for (size_t i = offset; i < run.map.size() && c.series.size() < 12; ++i) {
     if (!shown.insert({run.map[i].bias_kpa, run.map[i].vacuum_kpa}).second) continue;
     const PressCycle& p = run.presses[i - offset];
-    Series s{"bias " + Fixed(run.map[i].bias_kpa, 0) + ", vacuum " + Fixed(run.map[i].vacuum_kpa, 0),
-             {},
-             "",
-             false,
-             false};
+    Series s{
+        "bias " + Fixed(run.map[i].bias_kpa, 0) + ", vacuum " + Fixed(run.map[i].vacuum_kpa, 0),
+        {},
+        "",
+        false,
+        false};
     for (const auto& q : p.loading) s.points.push_back(q);
     for (const auto& q : p.unloading) s.points.push_back(q);
     c.series.push_back(s);

@@ -12,9 +12,9 @@ namespace palpa::cli {
 /// Exit codes (docs/cli.md).
 enum Exit : int {
   kExitOk = 0,
-  kExitFailed = 1,    ///< the board refused, or did not answer
-  kExitUsage = 2,     ///< a malformed command line: nothing was sent
-  kExitConnect = 3,   ///< the device could not be opened
+  kExitFailed = 1,   ///< the board refused, or did not answer
+  kExitUsage = 2,    ///< a malformed command line: nothing was sent
+  kExitConnect = 3,  ///< the device could not be opened
 };
 
 struct Context {
@@ -47,9 +47,11 @@ int CmdPackage(Context& c, const std::vector<std::string>& args);
 
 /// One finger request from "N=VALUE": L2 (level), 0.5 (0..1), 1.2mm, 0.9N/mm, -10kPa. Fingers are
 /// numbered from 1 on the command line. Returns false with a message naming the argument.
-bool ParseFingerArgument(const std::string& arg, uint8_t finger_count, host::FingerRequest& out, std::string* error);
+bool ParseFingerArgument(const std::string& arg, uint8_t finger_count, host::FingerRequest& out,
+                         std::string* error);
 /// "L=VALUE" with VALUE in kPa (a "kPa" suffix is allowed); lines numbered from 1.
-bool ParseLineArgument(const std::string& arg, uint8_t line_count, std::pair<uint8_t, double>& out, std::string* error);
+bool ParseLineArgument(const std::string& arg, uint8_t line_count, std::pair<uint8_t, double>& out,
+                       std::string* error);
 /// A number with a unit suffix, e.g. "--duration 5" (seconds). False when not a finite number.
 bool ParseNumber(const std::string& text, double& out);
 

@@ -16,11 +16,12 @@ bool ParseNumber(const std::string& text, double& out) {
 namespace {
 
 bool EndsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-bool SplitIndex(const std::string& arg, const char* what, uint8_t count, uint8_t& index, std::string& value,
-                std::string* error) {
+bool SplitIndex(const std::string& arg, const char* what, uint8_t count, uint8_t& index,
+                std::string& value, std::string* error) {
   const size_t eq = arg.find('=');
   if (eq == std::string::npos || eq == 0) {
     *error = "'" + arg + "': expected " + what + "=VALUE, e.g. 1=L2";
@@ -42,7 +43,8 @@ bool SplitIndex(const std::string& arg, const char* what, uint8_t count, uint8_t
 
 }  // namespace
 
-bool ParseFingerArgument(const std::string& arg, uint8_t finger_count, host::FingerRequest& out, std::string* error) {
+bool ParseFingerArgument(const std::string& arg, uint8_t finger_count, host::FingerRequest& out,
+                         std::string* error) {
   std::string value;
   if (!SplitIndex(arg, "finger", finger_count, out.finger, value, error)) return false;
   struct Suffix {
@@ -75,14 +77,17 @@ bool ParseFingerArgument(const std::string& arg, uint8_t finger_count, host::Fin
     return false;
   }
   if (n < 0 || n > 1) {
-    *error = "'" + arg + "': a plain number is a normalised stiffness from 0 to 1 (add a unit for anything else)";
+    *error =
+        "'" + arg +
+        "': a plain number is a normalised stiffness from 0 to 1 (add a unit for anything else)";
     return false;
   }
   out.request = host::Request{host::TargetKind::kNormalized, n};
   return true;
 }
 
-bool ParseLineArgument(const std::string& arg, uint8_t line_count, std::pair<uint8_t, double>& out, std::string* error) {
+bool ParseLineArgument(const std::string& arg, uint8_t line_count, std::pair<uint8_t, double>& out,
+                       std::string* error) {
   std::string value;
   if (!SplitIndex(arg, "line", line_count, out.first, value, error)) return false;
   if (EndsWith(value, "kPa")) value = value.substr(0, value.size() - 3);

@@ -21,7 +21,8 @@ std::vector<std::string> SerialPorts() {
   if (DIR* dev = opendir("/dev")) {
     while (dirent* e = readdir(dev)) {
       const std::string name = e->d_name;
-      if (name.rfind("ttyACM", 0) == 0 || name.rfind("ttyUSB", 0) == 0) ports.push_back("serial:/dev/" + name);
+      if (name.rfind("ttyACM", 0) == 0 || name.rfind("ttyUSB", 0) == 0)
+        ports.push_back("serial:/dev/" + name);
     }
     closedir(dev);
   }
@@ -34,7 +35,8 @@ std::vector<std::string> HidDevices() {
   hid_device_info* list = hid_enumerate(host::kUsbVendorId, host::kUsbProductId);
   for (hid_device_info* d = list; d != nullptr; d = d->next) {
     std::string serial;
-    for (const wchar_t* w = d->serial_number; w != nullptr && *w != L'\0'; ++w) serial.push_back(static_cast<char>(*w));
+    for (const wchar_t* w = d->serial_number; w != nullptr && *w != L'\0'; ++w)
+      serial.push_back(static_cast<char>(*w));
     found.push_back("hid:1209:0001" + (serial.empty() ? std::string() : ":" + serial));
   }
   hid_free_enumeration(list);
@@ -50,7 +52,8 @@ std::vector<std::string> UsbDevices() {
   const ssize_t n = libusb_get_device_list(context, &list);
   for (ssize_t i = 0; i < n; ++i) {
     libusb_device_descriptor d{};
-    if (libusb_get_device_descriptor(list[i], &d) == 0 && d.idVendor == host::kUsbVendorId && d.idProduct == host::kUsbProductId) {
+    if (libusb_get_device_descriptor(list[i], &d) == 0 && d.idVendor == host::kUsbVendorId &&
+        d.idProduct == host::kUsbProductId) {
       found.push_back("usb:1209:0001");
     }
   }
@@ -65,7 +68,8 @@ int CmdList(Context& c, const std::vector<std::string>& args) {
   if (!args.empty()) return Usage("list", "takes no arguments");
   const auto serial = SerialPorts(), hid = HidDevices(), usb = UsbDevices();
   if (c.json) {
-    std::printf("%s\n", ordered_json{{"serial", serial}, {"hid", hid}, {"usb", usb}}.dump().c_str());
+    std::printf("%s\n",
+                ordered_json{{"serial", serial}, {"hid", hid}, {"usb", usb}}.dump().c_str());
     return kExitOk;
   }
   std::printf("serial ports: %s\n", serial.empty() ? "none" : "");
@@ -83,46 +87,65 @@ int CmdInfo(Context& c, const std::vector<std::string>& args) {
   host::Device* d = c.Device();
   if (d == nullptr) return kExitConnect;
   const pp::HelloReply b = d->info();
-  const std::string firmware = std::to_string(b.firmware_major) + "." + std::to_string(b.firmware_minor) + "." +
+  const std::string firmware = std::to_string(b.firmware_major) + "." +
+                               std::to_string(b.firmware_minor) + "." +
                                std::to_string(b.firmware_patch);
   if (c.json) {
     ordered_json j;
     j["device"] = d->link().Describe();
-    j["board"] = {{"kind", pp::kBoardKindNames[static_cast<int>(b.board_kind)]}, {"id", b.board_id},
-                  {"firmware", firmware}, {"protocol", b.protocol_version}, {"catalog_hash", b.catalog_hash},
-                  {"catalog_matches", d->link().catalog_matches()}, {"plant_simulated", b.plant_simulated},
-                  {"time_scale", b.time_scale}, {"reset_cause", pp::kResetCauseNames[static_cast<int>(b.reset_cause)]},
-                  {"config_is_default", b.config_is_default}, {"configuration", std::string(b.config_name.data())},
-                  {"active_slot", b.active_slot}, {"rollback_counter", b.rollback_counter},
-                  {"host_timeout_us", b.host_timeout_us}, {"faults", b.fault_bitmap}};
+    j["board"] = {{"kind", pp::kBoardKindNames[static_cast<int>(b.board_kind)]},
+                  {"id", b.board_id},
+                  {"firmware", firmware},
+                  {"protocol", b.protocol_version},
+                  {"catalog_hash", b.catalog_hash},
+                  {"catalog_matches", d->link().catalog_matches()},
+                  {"plant_simulated", b.plant_simulated},
+                  {"time_scale", b.time_scale},
+                  {"reset_cause", pp::kResetCauseNames[static_cast<int>(b.reset_cause)]},
+                  {"config_is_default", b.config_is_default},
+                  {"configuration", std::string(b.config_name.data())},
+                  {"active_slot", b.active_slot},
+                  {"rollback_counter", b.rollback_counter},
+                  {"host_timeout_us", b.host_timeout_us},
+                  {"faults", b.fault_bitmap}};
     ordered_json fingers = ordered_json::array();
     for (uint8_t f = 0; f < b.finger_count; ++f) {
-      fingers.push_back({{"finger", f + 1}, {"kind", pp::kFingerKindNames[static_cast<int>(b.fingers[f].kind)]},
-                         {"line_a", b.fingers[f].line_a + 1},
-                         {"line_b", b.fingers[f].line_b == pp::kNoLine ? 0 : b.fingers[f].line_b + 1}});
+      fingers.push_back(
+          {{"finger", f + 1},
+           {"kind", pp::kFingerKindNames[static_cast<int>(b.fingers[f].kind)]},
+           {"line_a", b.fingers[f].line_a + 1},
+           {"line_b", b.fingers[f].line_b == pp::kNoLine ? 0 : b.fingers[f].line_b + 1}});
     }
     j["fingers"] = fingers;
     std::printf("%s\n", j.dump().c_str());
     return kExitOk;
   }
   std::printf("device        %s\n", d->link().Describe().c_str());
-  std::printf("board         %s, id %u%s\n", pp::kBoardKindNames[static_cast<int>(b.board_kind)], b.board_id,
-              b.plant_simulated ? " (simulated plant)" : "");
-  std::printf("firmware      %s, protocol %u, catalog 0x%08x%s\n", firmware.c_str(), b.protocol_version, b.catalog_hash,
+  std::printf("board         %s, id %u%s\n", pp::kBoardKindNames[static_cast<int>(b.board_kind)],
+              b.board_id, b.plant_simulated ? " (simulated plant)" : "");
+  std::printf("firmware      %s, protocol %u, catalog 0x%08x%s\n", firmware.c_str(),
+              b.protocol_version, b.catalog_hash,
               d->link().catalog_matches() ? "" : " (differs from this host's)");
   std::printf("image slot    %u, anti-rollback counter %u\n", b.active_slot, b.rollback_counter);
-  std::printf("configuration %s%s\n", b.config_name.data(), b.config_is_default ? " (factory default)" : " (saved)");
-  std::printf("reset cause   %s; faults: %s\n", pp::kResetCauseNames[static_cast<int>(b.reset_cause)], host::FaultNames(b.fault_bitmap).c_str());
+  std::printf("configuration %s%s\n", b.config_name.data(),
+              b.config_is_default ? " (factory default)" : " (saved)");
+  std::printf("reset cause   %s; faults: %s\n",
+              pp::kResetCauseNames[static_cast<int>(b.reset_cause)],
+              host::FaultNames(b.fault_bitmap).c_str());
   if (b.time_scale != 1.0f) std::printf("time scale    %gx\n", static_cast<double>(b.time_scale));
   for (uint8_t i = 0; i < b.line_count; ++i) {
-    std::printf("line %u        %-8s %7.1f … %6.1f kPa%s\n", i + 1, pp::kLineKindNames[static_cast<int>(b.lines[i].kind)],
-                b.lines[i].limit_min_pa / 1000.0, b.lines[i].limit_max_pa / 1000.0, b.lines[i].has_sensor ? ", sensor" : "");
+    std::printf("line %u        %-8s %7.1f … %6.1f kPa%s\n", i + 1,
+                pp::kLineKindNames[static_cast<int>(b.lines[i].kind)],
+                b.lines[i].limit_min_pa / 1000.0, b.lines[i].limit_max_pa / 1000.0,
+                b.lines[i].has_sensor ? ", sensor" : "");
   }
   for (uint8_t f = 0; f < b.finger_count; ++f) {
     const bool jamming = b.fingers[f].kind == pp::FingerKind::kJamming;
-    std::printf("finger %u      %-9s line %u%s  (%s)\n", f + 1, jamming ? "jamming" : "pneumatic", b.fingers[f].line_a + 1,
-                jamming ? (" + vacuum line " + std::to_string(b.fingers[f].line_b + 1)).c_str() : "",
-                jamming ? "N/mm, levels, 0..1, kPa" : "mm, levels, 0..1, kPa");
+    std::printf(
+        "finger %u      %-9s line %u%s  (%s)\n", f + 1, jamming ? "jamming" : "pneumatic",
+        b.fingers[f].line_a + 1,
+        jamming ? (" + vacuum line " + std::to_string(b.fingers[f].line_b + 1)).c_str() : "",
+        jamming ? "N/mm, levels, 0..1, kPa" : "mm, levels, 0..1, kPa");
   }
   return kExitOk;
 }
@@ -143,25 +166,39 @@ int CmdDiag(Context& c, const std::vector<std::string>& args) {
     ordered_json history = ordered_json::array();
     for (uint8_t i = 0; i < diag.value.history_count; ++i) {
       const auto& h = diag.value.history[i];
-      history.push_back({{"time_us", h.time_us}, {"fault", host::FaultName(h.fault)}, {"detail", h.detail}});
+      history.push_back(
+          {{"time_us", h.time_us}, {"fault", host::FaultName(h.fault)}, {"detail", h.detail}});
     }
     const auto& s = stats.value;
-    std::printf("%s\n", ordered_json{{"reset_cause", pp::kResetCauseNames[static_cast<int>(diag.value.reset_cause)]},
-                                     {"boot_count", diag.value.boot_count}, {"faults_latched", diag.value.fault_bitmap},
-                                     {"faults_active", diag.value.active_conditions}, {"uptime_us", diag.value.uptime_us},
-                                     {"history", history},
-                                     {"loop", {{"ticks", s.ticks}, {"period_us", s.period_us}, {"jitter_max_us", s.jitter_max_us},
-                                               {"worst_tick_us", s.worst_tick_us}, {"mean_tick_us", s.mean_tick_us},
-                                               {"overruns", s.overruns}, {"telemetry_dropped", s.telemetry_dropped},
-                                               {"rx_frames", s.rx_frames}, {"rx_errors", s.rx_errors}}},
-                                     {"link", {{"retransmissions", link.retransmissions}, {"telemetry_lost", link.telemetry_lost},
-                                               {"board_resets", link.board_resets}}}}
-                                .dump()
-                                .c_str());
+    std::printf("%s\n",
+                ordered_json{
+                    {"reset_cause", pp::kResetCauseNames[static_cast<int>(diag.value.reset_cause)]},
+                    {"boot_count", diag.value.boot_count},
+                    {"faults_latched", diag.value.fault_bitmap},
+                    {"faults_active", diag.value.active_conditions},
+                    {"uptime_us", diag.value.uptime_us},
+                    {"history", history},
+                    {"loop",
+                     {{"ticks", s.ticks},
+                      {"period_us", s.period_us},
+                      {"jitter_max_us", s.jitter_max_us},
+                      {"worst_tick_us", s.worst_tick_us},
+                      {"mean_tick_us", s.mean_tick_us},
+                      {"overruns", s.overruns},
+                      {"telemetry_dropped", s.telemetry_dropped},
+                      {"rx_frames", s.rx_frames},
+                      {"rx_errors", s.rx_errors}}},
+                    {"link",
+                     {{"retransmissions", link.retransmissions},
+                      {"telemetry_lost", link.telemetry_lost},
+                      {"board_resets", link.board_resets}}}}
+                    .dump()
+                    .c_str());
     return kExitOk;
   }
-  std::printf("reset cause     %s (boot %u), up %.1f s\n", pp::kResetCauseNames[static_cast<int>(diag.value.reset_cause)],
-              diag.value.boot_count, static_cast<double>(diag.value.uptime_us) / 1e6);
+  std::printf("reset cause     %s (boot %u), up %.1f s\n",
+              pp::kResetCauseNames[static_cast<int>(diag.value.reset_cause)], diag.value.boot_count,
+              static_cast<double>(diag.value.uptime_us) / 1e6);
   std::printf("faults latched  %s\n", host::FaultNames(diag.value.fault_bitmap).c_str());
   std::printf("faults active   %s\n", host::FaultNames(diag.value.active_conditions).c_str());
   for (uint8_t i = 0; i < diag.value.history_count; ++i) {
@@ -170,10 +207,15 @@ int CmdDiag(Context& c, const std::vector<std::string>& args) {
                 host::FaultName(h.fault).c_str(), h.detail);
   }
   const auto& s = stats.value;
-  std::printf("loop            %llu ticks of %u us; worst %u us, mean %u us, jitter %u us, %u overruns\n",
-              static_cast<unsigned long long>(s.ticks), s.period_us, s.worst_tick_us, s.mean_tick_us, s.jitter_max_us, s.overruns);
-  std::printf("link            board: %u frames in, %u errors, %u telemetry frames dropped; host: %llu retransmissions\n",
-              s.rx_frames, s.rx_errors, s.telemetry_dropped, static_cast<unsigned long long>(link.retransmissions));
+  std::printf(
+      "loop            %llu ticks of %u us; worst %u us, mean %u us, jitter %u us, %u overruns\n",
+      static_cast<unsigned long long>(s.ticks), s.period_us, s.worst_tick_us, s.mean_tick_us,
+      s.jitter_max_us, s.overruns);
+  std::printf(
+      "link            board: %u frames in, %u errors, %u telemetry frames dropped; host: %llu "
+      "retransmissions\n",
+      s.rx_frames, s.rx_errors, s.telemetry_dropped,
+      static_cast<unsigned long long>(link.retransmissions));
   return kExitOk;
 }
 
@@ -182,7 +224,8 @@ int CmdEStop(Context& c, const std::vector<std::string>& args) {
   host::Device* d = c.Device();
   if (d == nullptr) return kExitConnect;
   const int rc = Report(c, d->EStop(), "estop");
-  if (rc == kExitOk && !c.json) std::printf("EStop acknowledged: every line is safe until 'palpa clear' and new setpoints\n");
+  if (rc == kExitOk && !c.json)
+    std::printf("EStop acknowledged: every line is safe until 'palpa clear' and new setpoints\n");
   return rc;
 }
 
@@ -191,7 +234,8 @@ int CmdClear(Context& c, const std::vector<std::string>& args) {
   host::Device* d = c.Device();
   if (d == nullptr) return kExitConnect;
   const int rc = Report(c, d->ClearFault(), "clear");
-  if (rc == kExitOk && !c.json) std::printf("faults cleared; outputs stay safe until new setpoints arrive\n");
+  if (rc == kExitOk && !c.json)
+    std::printf("faults cleared; outputs stay safe until new setpoints arrive\n");
   return rc;
 }
 

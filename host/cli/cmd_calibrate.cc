@@ -15,10 +15,10 @@
 #include <sstream>
 
 #include "cli.h"
+#include "palpa/calibration/calibration_protocol.h"
 #include "palpa/calibration/device_rig.h"
 #include "palpa/calibration/report.h"
 #include "palpa/calibration/rig_file.h"
-#include "palpa/calibration/calibration_protocol.h"
 #include "palpa/host/calibration_file.h"
 #include "palpa/host/file_write.h"
 #include "palpa/host/svg_chart.h"
@@ -126,7 +126,8 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
   if (out_exists && !S_ISDIR(st.st_mode))
     return Usage("calibrate", "--out " + a.out + ": not a directory");
   if (!out_exists && a.resume)
-    return Usage("calibrate", "--resume: --out " + a.out + " does not exist (no journal to resume)");
+    return Usage("calibrate",
+                 "--resume: --out " + a.out + " does not exist (no journal to resume)");
 
   // The rig and the board: palpa-sim serving both, or a rig file and --device.
   std::string error;
@@ -190,8 +191,8 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
 
   cal::DeviceBoardPort board(*device);
   cal::ScaledTime time(device->info().time_scale);
-  cal::Rig rig{*devices->stage,     *devices->force,  board, time,
-               description->limits, description->name, description->force_noise_n};
+  cal::Rig rig{*devices->stage,   *devices->force,           board, time, description->limits,
+               description->name, description->force_noise_n};
   if (!out_exists && mkdir(a.out.c_str(), 0755) != 0) {
     std::fprintf(stderr, "palpa calibrate: cannot create --out %s: %s\n", a.out.c_str(),
                  std::strerror(errno));
@@ -212,7 +213,8 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
   journal.save = [&base](const cal::Journal& j) {
     std::string why;
     if (!host::WriteFileWhole(base + ".journal.json", j.state.dump(), &why)) {
-      std::fprintf(stderr, "\npalpa calibrate: journal not saved (%s): a stopped run cannot resume\n",
+      std::fprintf(stderr,
+                   "\npalpa calibrate: journal not saved (%s): a stopped run cannot resume\n",
                    why.c_str());
     }
   };
@@ -227,7 +229,8 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
                                     previous->actuator_serial + ", not " + serial);
     }
   }
-  const cal::RunInfo info{serial, device->info().board_id, UtcNow(), description->name,
+  const cal::RunInfo info{serial,          device->info().board_id,
+                          UtcNow(),        description->name,
                           serial + ".csv", previous ? &*previous : nullptr};
   cal::CalibrationRun run;
   const auto start = std::chrono::steady_clock::now();
@@ -273,12 +276,15 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
                 100 * *run.file.quality.map_error);
   }
   for (const host::QualityCheck& k : run.file.quality.checks) {
-    std::printf("  check %-10s %s  %s\n", k.name.c_str(), k.passed ? "pass" : "FAIL", k.detail.c_str());
+    std::printf("  check %-10s %s  %s\n", k.name.c_str(), k.passed ? "pass" : "FAIL",
+                k.detail.c_str());
   }
   for (const std::string& flag : run.file.quality.flags) {
-    const bool from_check = std::any_of(
-        run.file.quality.checks.begin(), run.file.quality.checks.end(),
-        [&](const host::QualityCheck& k) { return !k.passed && flag.rfind(k.name + ": ", 0) == 0; });
+    const bool from_check =
+        std::any_of(run.file.quality.checks.begin(), run.file.quality.checks.end(),
+                    [&](const host::QualityCheck& k) {
+                      return !k.passed && flag.rfind(k.name + ": ", 0) == 0;
+                    });
     if (!from_check) std::printf("  note: %s\n", flag.c_str());
   }
   std::printf(

@@ -39,14 +39,17 @@ bool ReadAll(host::Device& d, core::BoardConfig& config, std::string* error) {
 int Upload(Context& c, host::Device& d, const core::BoardConfig& config) {
   core::ConfigError error;
   if (core::ValidateConfig(config, &error) != pp::Status::kOk) {
-    std::fprintf(stderr, "palpa config: the configuration is not valid: %s %u: %s (nothing was sent)\n",
-                 pp::kConfigSectionNames[static_cast<int>(error.section)], error.index + 1u, error.reason);
+    std::fprintf(
+        stderr, "palpa config: the configuration is not valid: %s %u: %s (nothing was sent)\n",
+        pp::kConfigSectionNames[static_cast<int>(error.section)], error.index + 1u, error.reason);
     return kExitUsage;
   }
   std::vector<uint8_t> blob(core::kMaxConfigBlob);
   const auto size = core::EncodeConfigBlob(config, blob.data(), blob.size());
   if (!size.ok() || size.value > pp::kMaxStagedBytes) {
-    std::fprintf(stderr, "palpa config: the configuration is too large for one staged upload (%zu bytes)\n", size.value);
+    std::fprintf(stderr,
+                 "palpa config: the configuration is too large for one staged upload (%zu bytes)\n",
+                 size.value);
     return kExitUsage;
   }
   const host::Outcome applied = d.ConfigureStaged(blob.data(), size.value);
@@ -56,17 +59,23 @@ int Upload(Context& c, host::Device& d, const core::BoardConfig& config) {
 }
 
 /// "board.FIELD=V", "lineN.FIELD=V", "fingerN.FIELD=V" (N from 1) as a JSON patch.
-bool PatchFromArgument(const std::string& arg, const core::BoardConfig& config, json& patch, std::string* error) {
+bool PatchFromArgument(const std::string& arg, const core::BoardConfig& config, json& patch,
+                       std::string* error) {
   const size_t eq = arg.find('='), dot = arg.find('.');
   if (eq == std::string::npos || dot == std::string::npos || dot > eq) {
-    *error = "'" + arg + "': expected SECTION.FIELD=VALUE, e.g. board.host_timeout_us=200000 or line2.slew_pa_per_s=100000";
+    *error = "'" + arg +
+             "': expected SECTION.FIELD=VALUE, e.g. board.host_timeout_us=200000 or "
+             "line2.slew_pa_per_s=100000";
     return false;
   }
-  const std::string section = arg.substr(0, dot), field = arg.substr(dot + 1, eq - dot - 1), text = arg.substr(eq + 1);
+  const std::string section = arg.substr(0, dot), field = arg.substr(dot + 1, eq - dot - 1),
+                    text = arg.substr(eq + 1);
   json value;
   double number = 0;
   if (ParseNumber(text, number)) {
-    value = number == static_cast<double>(static_cast<int64_t>(number)) ? json(static_cast<int64_t>(number)) : json(number);
+    value = number == static_cast<double>(static_cast<int64_t>(number))
+                ? json(static_cast<int64_t>(number))
+                : json(number);
   } else if (text == "true" || text == "false") {
     value = text == "true";
   } else {
@@ -74,7 +83,8 @@ bool PatchFromArgument(const std::string& arg, const core::BoardConfig& config, 
   }
   auto index_of = [&](const std::string& prefix, uint8_t count, size_t& index) {
     double n = 0;
-    if (!ParseNumber(section.substr(prefix.size()), n) || n < 1 || n > count || n != static_cast<int>(n)) {
+    if (!ParseNumber(section.substr(prefix.size()), n) || n < 1 || n > count ||
+        n != static_cast<int>(n)) {
       *error = "'" + arg + "': " + prefix + " must be numbered 1 to " + std::to_string(count);
       return false;
     }
@@ -118,7 +128,8 @@ int CmdConfig(Context& c, const std::vector<std::string>& args) {
   } else if (what == "show" || what == "save" || what == "factory-reset") {
     if (!rest.empty()) return Usage("config", what + " takes no arguments");
   } else {
-    return Usage("config", "unknown subcommand '" + what + "' (expected show, set, load, save, factory-reset)");
+    return Usage("config", "unknown subcommand '" + what +
+                               "' (expected show, set, load, save, factory-reset)");
   }
   host::Device* d = c.Device();
   if (d == nullptr) return kExitConnect;
@@ -143,7 +154,8 @@ int CmdConfig(Context& c, const std::vector<std::string>& args) {
   try {
     host::ApplyConfigJson(file, config);
   } catch (const std::exception& e) {
-    return Usage("config", std::string(what == "load" ? rest[0] + ": " : "") + e.what() + " (nothing was sent)");
+    return Usage("config", std::string(what == "load" ? rest[0] + ": " : "") + e.what() +
+                               " (nothing was sent)");
   }
   return Upload(c, *d, config);
 }

@@ -80,7 +80,8 @@ class TruthReader {
         if (j.is_discarded()) continue;
         Sample s{j["board_time_us"].get<double>() / 1e6, {}};
         for (const auto& f : j["fingers"]) {
-          s.outputs.push_back(f.contains("deformation_mm") ? f["deformation_mm"].get<double>() : f["stiffness_n_per_mm"].get<double>());
+          s.outputs.push_back(f.contains("deformation_mm") ? f["deformation_mm"].get<double>()
+                                                           : f["stiffness_n_per_mm"].get<double>());
         }
         std::lock_guard<std::mutex> lock(mutex_);
         samples_.push_back(s);
@@ -112,7 +113,8 @@ int CmdDemo(Context& c, const std::vector<std::string>& args) {
       if (!has_value) return Usage("demo", "--out needs a file name for the chart");
       out = args[++i];
     } else if (args[i] == "--speed") {
-      if (!has_value || !ParseNumber(args[++i], speed) || speed < 0.1 || speed > 20) return Usage("demo", "--speed needs a number from 0.1 to 20");
+      if (!has_value || !ParseNumber(args[++i], speed) || speed < 0.1 || speed > 20)
+        return Usage("demo", "--speed needs a number from 0.1 to 20");
     } else {
       return Usage("demo", "unexpected argument '" + args[i] + "'");
     }
@@ -121,15 +123,20 @@ int CmdDemo(Context& c, const std::vector<std::string>& args) {
   const std::filesystem::path chart_dir = std::filesystem::path(out).parent_path();
   const std::string dir = chart_dir.empty() ? "." : chart_dir.string();
   if (!std::filesystem::is_directory(dir) || access(dir.c_str(), W_OK) != 0) {
-    return Usage("demo", "--out " + out + ": " + dir + " is not a directory this user can write to");
+    return Usage("demo",
+                 "--out " + out + ": " + dir + " is not a directory this user can write to");
   }
   char speed_text[16];
   std::snprintf(speed_text, sizeof(speed_text), "%g", speed);
-  std::printf("palpa demo: starting a simulated thesis-5finger board (plant level 3: regulators with static errors,\n"
-              "hysteretic fingers, real sensors), running %sx faster than real time\n", speed_text);
+  std::printf(
+      "palpa demo: starting a simulated thesis-5finger board (plant level 3: regulators with "
+      "static errors,\n"
+      "hysteretic fingers, real sensors), running %sx faster than real time\n",
+      speed_text);
   std::string truth_address, error;
-  auto transport = host::LaunchSim("thesis-5finger", {"--plant", "3", "--speed", speed_text, "--truth-every-ms", "10"},
-                                   &truth_address, &error);
+  auto transport = host::LaunchSim(
+      "thesis-5finger", {"--plant", "3", "--speed", speed_text, "--truth-every-ms", "10"},
+      &truth_address, &error);
   if (!transport.ok()) {
     std::fprintf(stderr, "palpa demo: %s\n", error.c_str());
     return kExitConnect;
@@ -142,7 +149,8 @@ int CmdDemo(Context& c, const std::vector<std::string>& args) {
   host::Device& d = *device.value;
   TruthReader truth;
   if (!truth.Connect(truth_address)) {
-    std::fprintf(stderr, "palpa demo: cannot read the simulator's truth channel at %s\n", truth_address.c_str());
+    std::fprintf(stderr, "palpa demo: cannot read the simulator's truth channel at %s\n",
+                 truth_address.c_str());
     return kExitConnect;
   }
   const pp::HelloReply board = d.info();
@@ -155,10 +163,15 @@ int CmdDemo(Context& c, const std::vector<std::string>& args) {
   std::vector<Step> steps;
   for (const auto& combo : TumourCombinations(3, 3)) steps.push_back({combo, false});
   for (const auto& combo : TumourCombinations(2, 3)) steps.push_back({combo, true});
-  std::printf("stimuli: %zu three-finger pneumatic combinations of 0/10/30 kPa, %zu two-finger jamming combinations\n"
-              "of 0/-10/-100 kPa at 20 kPa bias (a tumour: one finger or two adjacent fingers stiffer than the rest)\n\n",
-              steps.size() - 9, size_t{9});
-  std::printf("  step  fingers      target                         achieved (true)                settled   latency\n");
+  std::printf(
+      "stimuli: %zu three-finger pneumatic combinations of 0/10/30 kPa, %zu two-finger jamming "
+      "combinations\n"
+      "of 0/-10/-100 kPa at 20 kPa bias (a tumour: one finger or two adjacent fingers stiffer than "
+      "the rest)\n\n",
+      steps.size() - 9, size_t{9});
+  std::printf(
+      "  step  fingers      target                         achieved (true)                settled  "
+      " latency\n");
   host::Chart chart;
   chart.title = "palpa demo: thesis stimuli on a simulated thesis-5finger board (true outputs)";
   chart.x_label = "board time (s)";
@@ -172,14 +185,16 @@ int CmdDemo(Context& c, const std::vector<std::string>& args) {
     for (size_t i = 0; i < s.levels.size(); ++i) {
       const uint8_t finger = static_cast<uint8_t>(s.jamming ? 3 + i : i);
       requests.push_back({finger, {host::TargetKind::kLevel, static_cast<double>(s.levels[i])}});
-      const host::Mapped m = host::MapRequest(board.fingers[finger], levels, d.curves(finger),
-                                              {host::TargetKind::kLevel, static_cast<double>(s.levels[i])});
+      const host::Mapped m =
+          host::MapRequest(board.fingers[finger], levels, d.curves(finger),
+                           {host::TargetKind::kLevel, static_cast<double>(s.levels[i])});
       want[finger] = s.jamming ? (m.target == 0 ? 0.7 : m.target / 1000.0) : m.target / 1000.0;
     }
     const double t0 = truth.now_s();
     const auto sent = std::chrono::steady_clock::now();
     const host::Outcome o = d.Set(requests);
-    const double latency_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - sent).count();
+    const double latency_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - sent).count();
     if (!o.ok()) {
       std::fprintf(stderr, "palpa demo: step %zu: %s\n", n + 1, o.message.c_str());
       return kExitFailed;
@@ -193,7 +208,8 @@ int CmdDemo(Context& c, const std::vector<std::string>& args) {
     for (const auto& sample : trace) {
       for (const auto& r : requests) {
         const double band = std::max(0.05 * std::fabs(achieved[r.finger]), s.jamming ? 0.01 : 0.03);
-        if (std::fabs(sample.outputs[r.finger] - achieved[r.finger]) > band) settled_s = sample.t_s - t0;
+        if (std::fabs(sample.outputs[r.finger] - achieved[r.finger]) > band)
+          settled_s = sample.t_s - t0;
       }
     }
     std::string target_text, achieved_text;
@@ -203,20 +219,24 @@ int CmdDemo(Context& c, const std::vector<std::string>& args) {
       target_text += cell;
       std::snprintf(cell, sizeof(cell), "%5.2f ", achieved[r.finger]);
       achieved_text += cell;
-      if (want[r.finger] > 0.1) worst_error_pct = std::max(worst_error_pct, 100 * std::fabs(achieved[r.finger] - want[r.finger]) / want[r.finger]);
+      if (want[r.finger] > 0.1)
+        worst_error_pct = std::max(
+            worst_error_pct, 100 * std::fabs(achieved[r.finger] - want[r.finger]) / want[r.finger]);
       targets[r.finger].points.push_back({t0, want[r.finger]});
       targets[r.finger].points.push_back({t0 + hold_s, want[r.finger]});
     }
-    std::printf("  %2zu/%zu  %-12s %-4s %-25s %-4s %-25s %5.2f s  %5.1f ms\n", n + 1, steps.size(), Levels(s.levels).c_str(),
-                s.jamming ? "N/mm" : "mm", target_text.c_str(), s.jamming ? "N/mm" : "mm", achieved_text.c_str(), settled_s,
-                latency_ms);
+    std::printf("  %2zu/%zu  %-12s %-4s %-25s %-4s %-25s %5.2f s  %5.1f ms\n", n + 1, steps.size(),
+                Levels(s.levels).c_str(), s.jamming ? "N/mm" : "mm", target_text.c_str(),
+                s.jamming ? "N/mm" : "mm", achieved_text.c_str(), settled_s, latency_ms);
     std::fflush(stdout);
   }
   const auto all = truth.All();
-  const char* names[] = {"finger 1 (mm)", "finger 2 (mm)", "finger 3 (mm)", "finger 4 (N/mm)", "finger 5 (N/mm)"};
+  const char* names[] = {"finger 1 (mm)", "finger 2 (mm)", "finger 3 (mm)", "finger 4 (N/mm)",
+                         "finger 5 (N/mm)"};
   for (size_t f = 0; f < 5; ++f) {
     host::Series trace{names[f], {}, "", false, false};
-    for (size_t i = 0; i < all.size(); i += 5) trace.points.push_back({all[i].t_s, all[i].outputs[f]});
+    for (size_t i = 0; i < all.size(); i += 5)
+      trace.points.push_back({all[i].t_s, all[i].outputs[f]});
     chart.series.push_back(trace);
   }
   chart.width = 1100;
@@ -225,8 +245,11 @@ int CmdDemo(Context& c, const std::vector<std::string>& args) {
     std::fprintf(stderr, "palpa demo: %s\n", error.c_str());
     return kExitFailed;
   }
-  std::printf("\nlargest difference between a target and the true output: %.1f %% — the nominal static inverse\n"
-              "with no hysteresis compensation (the unit's own curves and the film's loop show through).\n", worst_error_pct);
+  std::printf(
+      "\nlargest difference between a target and the true output: %.1f %% — the nominal static "
+      "inverse\n"
+      "with no hysteresis compensation (the unit's own curves and the film's loop show through).\n",
+      worst_error_pct);
   std::printf("traces plotted to %s\n", out.c_str());
   return kExitOk;
 }

@@ -179,15 +179,17 @@ int CmdPackage(Context&, const std::vector<std::string>& args) {
     return Usage("package", "--kind " + kind_text + ": expected sim, mps2-an386, stm32f4 or linux");
   spec.rollback_counter = counter;
   // An MCU's vector table follows the header and must be aligned to its size: pad to 256 bytes.
-  spec.header_size = spec.board_kind == pp::BoardKind::kSim || spec.board_kind == pp::BoardKind::kLinux
-                         ? pp::kImageHeaderSize
-                         : 256;
+  spec.header_size =
+      spec.board_kind == pp::BoardKind::kSim || spec.board_kind == pp::BoardKind::kLinux
+          ? pp::kImageHeaderSize
+          : 256;
   host::UpdatePackage package;
   const core::FlashLayout& layout = core::kDefaultLayout;
   for (uint8_t slot = 0; slot < 2; ++slot) {
     if (!ReadBytes(bodies[slot], &spec.body))
       return Usage("package", bodies[slot] + ": cannot be read");
-    if (pp::ImageSize(static_cast<uint32_t>(spec.body.size()), spec.header_size) > layout.slot_size) {
+    if (pp::ImageSize(static_cast<uint32_t>(spec.body.size()), spec.header_size) >
+        layout.slot_size) {
       return Usage("package", bodies[slot] + ": " + std::to_string(spec.body.size()) +
                                   " bytes do not fit a slot of " +
                                   std::to_string(layout.slot_size));

@@ -20,8 +20,8 @@ namespace pp = palpa::protocol;
 std::atomic<bool> g_stop{false};
 
 /// Reads "--rate HZ" and "--duration S" (and the record file) from args.
-bool Options(const std::string& command, const std::vector<std::string>& args, double& rate, double& duration,
-             std::string* file, int* usage) {
+bool Options(const std::string& command, const std::vector<std::string>& args, double& rate,
+             double& duration, std::string* file, int* usage) {
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if ((a == "--rate" || a == "--duration") && i + 1 < args.size()) {
@@ -67,12 +67,16 @@ int CmdMonitor(Context& c, const std::vector<std::string>& args) {
       const uint64_t at = t.first_sample_us + static_cast<uint64_t>(tick) * t.sample_interval_us;
       if (at < next_us) continue;
       next_us = at + every_us;
-      nlohmann::json j = {{"board_time_us", at}, {"host_time_s", f.host_time_s + tick * t.sample_interval_us / 1e6},
+      nlohmann::json j = {{"board_time_us", at},
+                          {"host_time_s", f.host_time_s + tick * t.sample_interval_us / 1e6},
                           {"faults", t.fault_bitmap}};
       for (uint8_t i = 0; i < t.line_count; ++i) {
         const pp::LineSample& s = t.samples[tick * t.line_count + i];
-        j["lines"].push_back({{"line", i + 1}, {"setpoint_pa", s.setpoint_pa}, {"measured_pa", s.measured_pa},
-                              {"command_counts", s.command_counts}, {"status", s.status}});
+        j["lines"].push_back({{"line", i + 1},
+                              {"setpoint_pa", s.setpoint_pa},
+                              {"measured_pa", s.measured_pa},
+                              {"command_counts", s.command_counts},
+                              {"status", s.status}});
       }
       std::printf("%s\n", j.dump().c_str());
     }
@@ -80,19 +84,22 @@ int CmdMonitor(Context& c, const std::vector<std::string>& args) {
   });
   std::signal(SIGINT, [](int) { g_stop = true; });
   const auto start = std::chrono::steady_clock::now();
-  while (!g_stop && (duration == 0 || std::chrono::steady_clock::now() - start < std::chrono::duration<double>(duration))) {
+  while (!g_stop && (duration == 0 || std::chrono::steady_clock::now() - start <
+                                          std::chrono::duration<double>(duration))) {
     std::this_thread::sleep_for(std::chrono::duration<double>(1.0 / rate));
     if (c.json) continue;
     std::lock_guard<std::mutex> lock(mutex);
     if (terminal) std::printf("\033[H\033[2J");
-    std::printf("%s  %s  faults: 0x%x  frames: %llu\n", d->link().Describe().c_str(), b.config_name.data(),
-                latest.fault_bitmap, static_cast<unsigned long long>(frames));
+    std::printf("%s  %s  faults: 0x%x  frames: %llu\n", d->link().Describe().c_str(),
+                b.config_name.data(), latest.fault_bitmap, static_cast<unsigned long long>(frames));
     std::printf("line  kind      setpoint kPa  measured kPa  DAC    status\n");
     for (uint8_t i = 0; i < latest.line_count && i < b.line_count; ++i) {
       const pp::LineSample& s = latest.samples[(latest.tick_count - 1) * latest.line_count + i];
-      std::printf("%4u  %-8s  %12.2f  %12.2f  %5u  %s%s%s\n", i + 1, pp::kLineKindNames[static_cast<int>(b.lines[i].kind)],
-                  s.setpoint_pa / 1000.0, s.measured_pa / 1000.0, s.command_counts,
-                  (s.status & pp::line_status::kSafe) ? "safe " : "", (s.status & pp::line_status::kRaw) ? "raw " : "",
+      std::printf("%4u  %-8s  %12.2f  %12.2f  %5u  %s%s%s\n", i + 1,
+                  pp::kLineKindNames[static_cast<int>(b.lines[i].kind)], s.setpoint_pa / 1000.0,
+                  s.measured_pa / 1000.0, s.command_counts,
+                  (s.status & pp::line_status::kSafe) ? "safe " : "",
+                  (s.status & pp::line_status::kRaw) ? "raw " : "",
                   (s.status & pp::line_status::kSaturated) ? "saturated" : "");
     }
     std::fflush(stdout);
@@ -114,7 +121,8 @@ int CmdRecord(Context& c, const std::vector<std::string>& args) {
   if (started != kExitOk) return started;
   std::signal(SIGINT, [](int) { g_stop = true; });
   const auto start = std::chrono::steady_clock::now();
-  while (!g_stop && std::chrono::steady_clock::now() - start < std::chrono::duration<double>(duration)) {
+  while (!g_stop &&
+         std::chrono::steady_clock::now() - start < std::chrono::duration<double>(duration)) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   const int rc = Report(c, d->StopRecording(), "record");

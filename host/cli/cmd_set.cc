@@ -1,7 +1,7 @@
 // palpa set, palpa line: fingers in people's terms, raw line setpoints.
+#include <chrono>
 #include <csignal>
 #include <cstdio>
-#include <chrono>
 #include <thread>
 
 #include "cli.h"
@@ -29,13 +29,16 @@ bool TakeHold(std::vector<std::string>& args, double& hold_s, std::string* error
 void Hold(const Context& c, double hold_s) {
   if (hold_s <= 0) {
     if (!c.json) {
-      std::printf("note: the board returns to its safe state within its host-silence timeout once palpa exits;\n"
-                  "      use --hold SECONDS, or keep a session open (palpa monitor), to hold it.\n");
+      std::printf(
+          "note: the board returns to its safe state within its host-silence timeout once palpa "
+          "exits;\n"
+          "      use --hold SECONDS, or keep a session open (palpa monitor), to hold it.\n");
     }
     return;
   }
   std::signal(SIGINT, [](int) { g_interrupted = 1; });
-  for (double t = 0; t < hold_s && !g_interrupted; t += 0.05) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  for (double t = 0; t < hold_s && !g_interrupted; t += 0.05)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
 }
 
 }  // namespace
@@ -45,9 +48,11 @@ int CmdSet(Context& c, const std::vector<std::string>& given) {
   double hold_s = 0;
   std::string hold_error;
   if (!TakeHold(args, hold_s, &hold_error)) return Usage("set", hold_error);
-  if (args.empty()) return Usage("set", "expected at least one F=VALUE, e.g. palpa set 1=L2 4=0.9N/mm");
+  if (args.empty())
+    return Usage("set", "expected at least one F=VALUE, e.g. palpa set 1=L2 4=0.9N/mm");
   std::vector<host::FingerRequest> requests;
-  for (const std::string& a : args) {  // syntax first: a malformed line sends nothing, not even Hello
+  for (const std::string& a :
+       args) {  // syntax first: a malformed line sends nothing, not even Hello
     host::FingerRequest r;
     std::string error;
     if (!ParseFingerArgument(a, protocol::kMaxFingers, r, &error)) return Usage("set", error);
@@ -67,7 +72,8 @@ int CmdLine(Context& c, const std::vector<std::string>& given) {
   double hold_s = 0;
   std::string hold_error;
   if (!TakeHold(args, hold_s, &hold_error)) return Usage("line", hold_error);
-  if (args.empty()) return Usage("line", "expected at least one L=VALUE in kPa, e.g. palpa line 1=30 6=-40");
+  if (args.empty())
+    return Usage("line", "expected at least one L=VALUE in kPa, e.g. palpa line 1=30 6=-40");
   std::vector<std::pair<uint8_t, double>> setpoints;
   for (const std::string& a : args) {
     std::pair<uint8_t, double> s;

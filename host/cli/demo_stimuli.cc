@@ -5,7 +5,8 @@ namespace palpa::cli {
 
 std::vector<std::vector<int>> TumourCombinations(size_t fingers, int levels) {
   std::vector<std::vector<int>> out;
-  for (int level = 0; level < levels; ++level) out.push_back(std::vector<int>(fingers, level));  // no tumour
+  for (int level = 0; level < levels; ++level)
+    out.push_back(std::vector<int>(fingers, level));  // no tumour
   for (int low = 0; low < levels; ++low) {
     for (int high = low + 1; high < levels; ++high) {
       for (size_t at = 0; at < fingers; ++at) {  // one finger stiffer

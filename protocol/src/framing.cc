@@ -43,10 +43,9 @@ FrameDecoder::Event FrameDecoder::Finish() {
   } else {
     const size_t packet_size = length - kCrcSize;
     const uint8_t* crc_bytes = buffer_ + packet_size;
-    const uint32_t received = static_cast<uint32_t>(crc_bytes[0]) |
-                              (static_cast<uint32_t>(crc_bytes[1]) << 8) |
-                              (static_cast<uint32_t>(crc_bytes[2]) << 16) |
-                              (static_cast<uint32_t>(crc_bytes[3]) << 24);
+    const uint32_t received =
+        static_cast<uint32_t>(crc_bytes[0]) | (static_cast<uint32_t>(crc_bytes[1]) << 8) |
+        (static_cast<uint32_t>(crc_bytes[2]) << 16) | (static_cast<uint32_t>(crc_bytes[3]) << 24);
     if (packet_size > kMaxPacketSize) {
       ++counters_.oversize;
       error = Status::kOverflow;

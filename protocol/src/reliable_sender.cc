@@ -56,8 +56,8 @@ void ReliableSender::MarkTimedOut(uint64_t now_us) {
     }
     ++counters_.timeouts;
     const uint64_t backed_off = static_cast<uint64_t>(rto_us_) * 2;
-    rto_us_ = static_cast<uint32_t>(backed_off > config_.max_rto_us ? config_.max_rto_us
-                                                                      : backed_off);
+    rto_us_ =
+        static_cast<uint32_t>(backed_off > config_.max_rto_us ? config_.max_rto_us : backed_off);
     return;
   }
 }

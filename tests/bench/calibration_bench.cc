@@ -269,7 +269,8 @@ int main(int argc, char** argv) {
     ph::Series goal{
         "goal: 3 %", {{time ? 1.0 : 5.0, 3}, {time ? 100.0 : 72.0, 3}}, "#27ae60", true, false};
     c.series = {adaptive, stops, grid, grid_bilinear, goal};
-    ph::WriteFileWhole(docs + (time ? "/calibration_time.svg" : "/calibration.svg"), ph::RenderSvg(c));
+    ph::WriteFileWhole(docs + (time ? "/calibration_time.svg" : "/calibration.svg"),
+                       ph::RenderSvg(c));
   }
   const std::string block = "Speed against accuracy (" + std::to_string(seeds) +
                             " seeds, each a held-out unit):\n\n" + table + "\nFailure detectors (" +

@@ -24,13 +24,23 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "host loss: %s\n", r.error.c_str());
     return 1;
   }
-  std::printf("== host loss: %d kills of a host process mid-stream (palpa-sim thesis-pneumatic-3, 80 kPa, --speed 4) ==\n", r.trials);
-  std::printf("  safe command written within timeout + 1 tick: %d / %d (after the last host frame: p50 %.1f ms, max %.1f ms; "
-              "timeout 100 ms)\n", r.safe_in_time, r.trials, Percentile(r.safe_after_ms, 0.5), Percentile(r.safe_after_ms, 1.0));
-  std::printf("  every chamber below 5 %% F.S. within timeout + 300 ms: %d / %d (p50 %.1f ms, max %.1f ms)\n", r.vented_in_time,
-              r.trials, Percentile(r.vented_after_ms, 0.5), Percentile(r.vented_after_ms, 1.0));
-  std::printf("  attempts run again (the host was starved and the board went safe before the kill): %d;"
-              " safe state never seen: %d\n",
-              r.not_pressurised, r.not_observed);
+  std::printf(
+      "== host loss: %d kills of a host process mid-stream (palpa-sim thesis-pneumatic-3, 80 kPa, "
+      "--speed 4) ==\n",
+      r.trials);
+  std::printf(
+      "  safe command written within timeout + 1 tick: %d / %d (after the last host frame: p50 "
+      "%.1f ms, max %.1f ms; "
+      "timeout 100 ms)\n",
+      r.safe_in_time, r.trials, Percentile(r.safe_after_ms, 0.5), Percentile(r.safe_after_ms, 1.0));
+  std::printf(
+      "  every chamber below 5 %% F.S. within timeout + 300 ms: %d / %d (p50 %.1f ms, max %.1f "
+      "ms)\n",
+      r.vented_in_time, r.trials, Percentile(r.vented_after_ms, 0.5),
+      Percentile(r.vented_after_ms, 1.0));
+  std::printf(
+      "  attempts run again (the host was starved and the board went safe before the kill): %d;"
+      " safe state never seen: %d\n",
+      r.not_pressurised, r.not_observed);
   return r.safe_in_time == r.trials && r.vented_in_time == r.trials ? 0 : 1;
 }

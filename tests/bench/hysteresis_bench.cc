@@ -65,7 +65,9 @@ int main(int argc, char** argv) {
       }
       cost[spec.substr(0, eq)] = std::atof(spec.c_str() + eq + 1);
     } else if (argv[i][0] == '-') {
-      std::fprintf(stderr, "usage: palpa_hysteresis_bench [--quick] [--cost NAME=INSTRUCTIONS ...] [DOCS_DIR]\n");
+      std::fprintf(
+          stderr,
+          "usage: palpa_hysteresis_bench [--quick] [--cost NAME=INSTRUCTIONS ...] [DOCS_DIR]\n");
       return 2;
     } else {
       docs = argv[i];
@@ -84,10 +86,13 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "identification failed: %s\n", id.error.c_str());
     return 1;
   }
-  std::printf("== hysteresis: pneumatic finger, identified on unit 1 (%zu sweep points), scored on unit 2 "
-              "(creep and rate on) ==\n", id.sweep.size());
-  std::printf("%-11s %9s %9s | %9s %7s %7s %7s | %8s %8s %8s %8s %8s %8s | %7s\n", "method", "fit rms", "fit max",
-              "gap um", "ratio", "+-5%", "+-20%", "demo rms", "max", "rand rms", "max", "ramp rms", "max", "M4 instr");
+  std::printf(
+      "== hysteresis: pneumatic finger, identified on unit 1 (%zu sweep points), scored on unit 2 "
+      "(creep and rate on) ==\n",
+      id.sweep.size());
+  std::printf("%-11s %9s %9s | %9s %7s %7s %7s | %8s %8s %8s %8s %8s %8s | %7s\n", "method",
+              "fit rms", "fit max", "gap um", "ratio", "+-5%", "+-20%", "demo rms", "max",
+              "rand rms", "max", "ramp rms", "max", "M4 instr");
   std::vector<Row> rows;
   double uncompensated_gap = 0;
   for (const pt::Method& m : pt::AllMethods()) {
@@ -100,35 +105,48 @@ int main(int argc, char** argv) {
       pt::FingerRig rig({0, 2, 22, effects});
       std::string reason;
       if (rig.Configure(id.inverse, m.kind, row.fit.params, &reason) != pp::Status::kOk) {
-        std::fprintf(stderr, "%s: the board refused the parameters: %s\n", m.name.c_str(), reason.c_str());
+        std::fprintf(stderr, "%s: the board refused the parameters: %s\n", m.name.c_str(),
+                     reason.c_str());
         std::exit(1);
       }
       body(rig);
     };
     evaluate([&](pt::FingerRig& rig) { row.gap = pt::BranchGap(rig, id.inverse, dwell); });
-    evaluate([&](pt::FingerRig& rig) { row.demo = pt::Track(rig, id.inverse, pt::InputSet::kDemoStimuli, seconds, 1); });
-    evaluate([&](pt::FingerRig& rig) { row.random = pt::Track(rig, id.inverse, pt::InputSet::kBandLimitedRandom, seconds, 2); });
-    evaluate([&](pt::FingerRig& rig) { row.ramps = pt::Track(rig, id.inverse, pt::InputSet::kFastRamps, seconds, 3); });
+    evaluate([&](pt::FingerRig& rig) {
+      row.demo = pt::Track(rig, id.inverse, pt::InputSet::kDemoStimuli, seconds, 1);
+    });
+    evaluate([&](pt::FingerRig& rig) {
+      row.random = pt::Track(rig, id.inverse, pt::InputSet::kBandLimitedRandom, seconds, 2);
+    });
+    evaluate([&](pt::FingerRig& rig) {
+      row.ramps = pt::Track(rig, id.inverse, pt::InputSet::kFastRamps, seconds, 3);
+    });
     if (m.kind == pp::CompensatorKind::kNone) uncompensated_gap = row.gap.major_gap;
     const double m4 = cost.count(m.name) ? cost[m.name] : 0;
-    std::printf("%-11s %9.1f %9.1f | %9.1f %6.0f%% %7.1f %7.1f | %8.1f %8.1f %8.1f %8.1f %8.1f %8.1f | %7.0f\n",
-                m.name.c_str(), row.fit.residual_rms, row.fit.residual_max, row.gap.major_gap,
-                100 * row.gap.major_gap / uncompensated_gap, row.gap.nested_gap_small, row.gap.nested_gap_large,
-                row.demo.rms, row.demo.max, row.random.rms, row.random.max, row.ramps.rms, row.ramps.max, m4);
+    std::printf(
+        "%-11s %9.1f %9.1f | %9.1f %6.0f%% %7.1f %7.1f | %8.1f %8.1f %8.1f %8.1f %8.1f %8.1f | "
+        "%7.0f\n",
+        m.name.c_str(), row.fit.residual_rms, row.fit.residual_max, row.gap.major_gap,
+        100 * row.gap.major_gap / uncompensated_gap, row.gap.nested_gap_small,
+        row.gap.nested_gap_large, row.demo.rms, row.demo.max, row.random.rms, row.random.max,
+        row.ramps.rms, row.ramps.max, m4);
     rows.push_back(row);
   }
 
   // --- jamming finger: the vacuum-history effect swept over 5–20 % of the stiffness range ----
-  std::printf("\n== hysteresis: jamming finger, vacuum-history effect h of the stiffness range; identified on unit 1, "
-              "scored on unit 2 ==\n");
-  std::printf("%5s %-11s %12s %10s | %10s %8s | %10s %8s\n", "h", "method", "gap mN/mm", "residual", "own unit",
-              "max", "held-out", "max");
+  std::printf(
+      "\n== hysteresis: jamming finger, vacuum-history effect h of the stiffness range; identified "
+      "on unit 1, "
+      "scored on unit 2 ==\n");
+  std::printf("%5s %-11s %12s %10s | %10s %8s | %10s %8s\n", "h", "method", "gap mN/mm", "residual",
+              "own unit", "max", "held-out", "max");
   std::vector<JammingRow> jamming;
   for (double h : {0.05, 0.10, 0.15, 0.20}) {
     palpa::sim::Effects jam_effects;
     jam_effects.history = static_cast<float>(h);
     pt::FingerRig identify_jam({3, 1, 13, jam_effects});
-    const pt::Identified jid = pt::Identify(identify_jam, cal::SweepPlan{identify_jam.drive_max(), 5000, 4}, 3 * dwell);
+    const pt::Identified jid =
+        pt::Identify(identify_jam, cal::SweepPlan{identify_jam.drive_max(), 5000, 4}, 3 * dwell);
     if (!jid.error.empty()) {
       std::fprintf(stderr, "jamming identification failed: %s\n", jid.error.c_str());
       return 1;
@@ -161,9 +179,10 @@ int main(int argc, char** argv) {
         row.own_levels = pt::SettledLevels(rig, jid.inverse, quick ? 8 : 20, 3 * dwell, 6);
       }
       if (m.kind == pp::CompensatorKind::kNone) injected = row.gap.major_gap;
-      std::printf("%5.2f %-11s %12.1f %9.0f%% | %9.1f%% %7.1f%% | %9.1f%% %7.1f%%\n", h, m.name.c_str(),
-                  row.gap.major_gap, 100 * row.gap.major_gap / injected, 100 * row.own_levels.mean_relative,
-                  100 * row.own_levels.max_relative, 100 * row.levels.mean_relative, 100 * row.levels.max_relative);
+      std::printf("%5.2f %-11s %12.1f %9.0f%% | %9.1f%% %7.1f%% | %9.1f%% %7.1f%%\n", h,
+                  m.name.c_str(), row.gap.major_gap, 100 * row.gap.major_gap / injected,
+                  100 * row.own_levels.mean_relative, 100 * row.own_levels.max_relative,
+                  100 * row.levels.mean_relative, 100 * row.levels.max_relative);
       row.injected = injected;
       jamming.push_back(row);
     }
@@ -193,9 +212,13 @@ int main(int argc, char** argv) {
     series.points.push_back({cost[r.method.name], r.gap.major_gap});
   }
   for (auto& [family, series] : families) chart.series.push_back(series);
-  chart.series.push_back({"goal: gap <= 30 % of none", {{150, 0.3 * uncompensated_gap}, {1000, 0.3 * uncompensated_gap}},
-                          "#888", true, false});
-  chart.series.push_back({"goal: pi(16) <= 300 instr.", {{300, 0}, {300, uncompensated_gap}}, "#bbb", true, false});
+  chart.series.push_back({"goal: gap <= 30 % of none",
+                          {{150, 0.3 * uncompensated_gap}, {1000, 0.3 * uncompensated_gap}},
+                          "#888",
+                          true,
+                          false});
+  chart.series.push_back(
+      {"goal: pi(16) <= 300 instr.", {{300, 0}, {300, uncompensated_gap}}, "#bbb", true, false});
   if (!pb::WriteFileWhole(docs + "/hysteresis.svg", pb::RenderSvg(chart))) {
     std::fprintf(stderr, "cannot write %s/hysteresis.svg\n", docs.c_str());
     return 1;
@@ -203,40 +226,56 @@ int main(int argc, char** argv) {
 
   // --- table block of docs/hysteresis.md ------------------------------------------------------
   std::string md;
-  md += "Pneumatic finger 0 (thesis-5finger), identified on unit 1 from " + std::to_string(id.sweep.size()) +
+  md += "Pneumatic finger 0 (thesis-5finger), identified on unit 1 from " +
+        std::to_string(id.sweep.size()) +
         " settled rig readings; scored on unit 2 with creep and rate dependence on, truth channel. "
-        "Gap: mean |falling - rising| at the static curve's 10-90 % levels; nested: the same at a level "
-        "approached from +-5 % and +-20 % away. Tracking: RMS and max of truth - target, the first second "
+        "Gap: mean |falling - rising| at the static curve's 10-90 % levels; nested: the same at a "
+        "level "
+        "approached from +-5 % and +-20 % away. Tracking: RMS and max of truth - target, the first "
+        "second "
         "after each new held level not scored.\n\n";
-  md += "| method | M4F instr/step | fit residual rms | gap (um) | gap / none | nested +-5 % | nested +-20 % | "
-        "abs error at reads (um) | demo rms / max | random rms / max | fast ramps rms / max |\n";
+  md +=
+      "| method | M4F instr/step | fit residual rms | gap (um) | gap / none | nested +-5 % | "
+      "nested +-20 % | "
+      "abs error at reads (um) | demo rms / max | random rms / max | fast ramps rms / max |\n";
   md += "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const Row& r : rows) {
     const bool branch = r.method.kind == pp::CompensatorKind::kBranch;
-    md += "| " + r.method.name + " | " + (cost.count(r.method.name) ? Figure(cost[r.method.name], 0) : "-") + " | " +
-          (r.method.kind == pp::CompensatorKind::kNone ? "-" : Figure(r.fit.residual_rms) + (branch ? " Pa" : " um")) +
-          " | " + Figure(r.gap.major_gap) + " | " + Figure(100 * r.gap.major_gap / uncompensated_gap, 0) + " % | " +
+    md += "| " + r.method.name + " | " +
+          (cost.count(r.method.name) ? Figure(cost[r.method.name], 0) : "-") + " | " +
+          (r.method.kind == pp::CompensatorKind::kNone
+               ? "-"
+               : Figure(r.fit.residual_rms) + (branch ? " Pa" : " um")) +
+          " | " + Figure(r.gap.major_gap) + " | " +
+          Figure(100 * r.gap.major_gap / uncompensated_gap, 0) + " % | " +
           Figure(r.gap.nested_gap_small) + " | " + Figure(r.gap.nested_gap_large) + " | " +
-          Figure(r.gap.mean_abs_error) + " | " + Figure(r.demo.rms) + " / " + Figure(r.demo.max) + " | " +
-          Figure(r.random.rms) + " / " + Figure(r.random.max) + " | " + Figure(r.ramps.rms) + " / " +
-          Figure(r.ramps.max) + " |\n";
+          Figure(r.gap.mean_abs_error) + " | " + Figure(r.demo.rms) + " / " + Figure(r.demo.max) +
+          " | " + Figure(r.random.rms) + " / " + Figure(r.random.max) + " | " +
+          Figure(r.ramps.rms) + " / " + Figure(r.ramps.max) + " |\n";
   }
-  md += "\nJamming finger 3, bias 20 kPa: the vacuum-history effect injected at h of the stiffness range; "
-        "identified on unit 1; gap as above in mN/mm (residual = gap / gap without compensation); "
-        "level error: |truth - target| / target at random held levels, on the identified unit with new rig "
-        "noise and on held-out unit 2.\n\n";
-  md += "| h | method | gap (mN/mm) | residual | level error, own unit (mean / max) | held-out unit (mean / max) |\n";
+  md +=
+      "\nJamming finger 3, bias 20 kPa: the vacuum-history effect injected at h of the stiffness "
+      "range; "
+      "identified on unit 1; gap as above in mN/mm (residual = gap / gap without compensation); "
+      "level error: |truth - target| / target at random held levels, on the identified unit with "
+      "new rig "
+      "noise and on held-out unit 2.\n\n";
+  md +=
+      "| h | method | gap (mN/mm) | residual | level error, own unit (mean / max) | held-out unit "
+      "(mean / max) |\n";
   md += "|---:|---|---:|---:|---:|---:|\n";
   for (const JammingRow& r : jamming) {
-    md += "| " + Figure(r.history, 2) + " | " + r.method.name + " | " + Figure(r.gap.major_gap) + " | " +
-          Figure(100 * r.gap.major_gap / r.injected, 0) + " % | " + Figure(100 * r.own_levels.mean_relative) + " / " +
-          Figure(100 * r.own_levels.max_relative) + " % | " + Figure(100 * r.levels.mean_relative) + " / " +
-          Figure(100 * r.levels.max_relative) + " % |\n";
+    md += "| " + Figure(r.history, 2) + " | " + r.method.name + " | " + Figure(r.gap.major_gap) +
+          " | " + Figure(100 * r.gap.major_gap / r.injected, 0) + " % | " +
+          Figure(100 * r.own_levels.mean_relative) + " / " +
+          Figure(100 * r.own_levels.max_relative) + " % | " + Figure(100 * r.levels.mean_relative) +
+          " / " + Figure(100 * r.levels.max_relative) + " % |\n";
   }
   if (!palpa::bench::ReplaceBlock(docs + "/hysteresis.md", "hysteresis-bench", md)) {
     std::fprintf(stderr, "cannot update the bench block of %s/hysteresis.md\n", docs.c_str());
     return 1;
   }
-  std::printf("\nwrote %s/hysteresis.svg and the table block of %s/hysteresis.md\n", docs.c_str(), docs.c_str());
+  std::printf("\nwrote %s/hysteresis.svg and the table block of %s/hysteresis.md\n", docs.c_str(),
+              docs.c_str());
   return 0;
 }

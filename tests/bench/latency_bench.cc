@@ -6,13 +6,13 @@
 
 #include <algorithm>
 #include <chrono>
-#include <random>
-#include <thread>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <map>
+#include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "mini_client.h"
@@ -30,8 +30,11 @@ int64_t MonotonicNs() {
 
 void Print(const char* what, std::vector<double> v) {
   std::sort(v.begin(), v.end());
-  const auto at = [&](double p) { return v[static_cast<size_t>(p * static_cast<double>(v.size() - 1))]; };
-  std::printf("  %-34s p50 %6.3f ms  p99 %6.3f ms  max %6.3f ms\n", what, at(0.5), at(0.99), v.back());
+  const auto at = [&](double p) {
+    return v[static_cast<size_t>(p * static_cast<double>(v.size() - 1))];
+  };
+  std::printf("  %-34s p50 %6.3f ms  p99 %6.3f ms  max %6.3f ms\n", what, at(0.5), at(0.99),
+              v.back());
 }
 
 }  // namespace
@@ -43,7 +46,8 @@ int main(int argc, char** argv) {
   const std::string pty = "/tmp/palpa-latency-pty-" + std::to_string(getpid());
   palpa::testing::SimProcess sim;
   if (!sim.Start({"--config", "thesis-pneumatic-3", "--speed", "1", "--listen",
-                  transport == "pty" ? "pty:" + pty : "tcp:127.0.0.1:0", "--stamp", "file:" + stamps})) {
+                  transport == "pty" ? "pty:" + pty : "tcp:127.0.0.1:0", "--stamp",
+                  "file:" + stamps})) {
     std::fprintf(stderr, "palpa-sim did not start\n");
     return 1;
   }
@@ -88,8 +92,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "no stamps matched\n");
     return 1;
   }
-  std::printf("== command -> output latency over %s, palpa-sim --speed 1 (%zu of %d commands stamped) ==\n",
-              transport == "pty" ? "a raw pty" : "TCP (loopback)", total.size(), commands);
+  std::printf(
+      "== command -> output latency over %s, palpa-sim --speed 1 (%zu of %d commands stamped) ==\n",
+      transport == "pty" ? "a raw pty" : "TCP (loopback)", total.size(), commands);
   Print("API call -> DAC write", total);
   Print("  of which link (call -> dispatch)", link);
   Print("  of which tick quantisation", tick);

@@ -19,8 +19,10 @@ namespace {
 
 std::string Cell(const pt::Margins& m, double ripple) {
   char buf[64];
-  const char* mark = !m.stable() ? "unstable" : (m.phase_deg >= 45 && m.gain_db >= 6 ? "ok" : "thin");
-  std::snprintf(buf, sizeof(buf), "%.0f° / %.0f dB %s%s", m.phase_deg, m.gain_db, mark, ripple > 0.0005 ? ", rings" : "");
+  const char* mark =
+      !m.stable() ? "unstable" : (m.phase_deg >= 45 && m.gain_db >= 6 ? "ok" : "thin");
+  std::snprintf(buf, sizeof(buf), "%.0f° / %.0f dB %s%s", m.phase_deg, m.gain_db, mark,
+                ripple > 0.0005 ? ", rings" : "");
   return buf;
 }
 
@@ -31,10 +33,14 @@ int main(int argc, char** argv) {
   const float chambers[] = {0.05f, 0.15f, 0.3f, 0.7f};
   const float dead_times[] = {0.002f, 0.005f, 0.01f, 0.02f};
   std::string md =
-      "Phase / gain margin at the worst dead time of 2, 5, 10 and 20 ms (the sensor behind the chamber's lag, "
-      "regulator lag 20 ms); gain multiplies the template trim (kp 0.1, ki 1/s). ok: phase ≥ 45° and gain ≥ 6 dB; "
-      "rings: the firmware's StepLine against the same plant still moves by more than 0.05 % F.S. after 15 s. "
-      "Configuration accepts gains up to 6.28 (ki ≤ 2π/s, kp ≤ 1).\n\n| gain | chamber 0.05 s | 0.15 s | 0.3 s | 0.7 s |\n"
+      "Phase / gain margin at the worst dead time of 2, 5, 10 and 20 ms (the sensor behind the "
+      "chamber's lag, "
+      "regulator lag 20 ms); gain multiplies the template trim (kp 0.1, ki 1/s). ok: phase ≥ 45° "
+      "and gain ≥ 6 dB; "
+      "rings: the firmware's StepLine against the same plant still moves by more than 0.05 % F.S. "
+      "after 15 s. "
+      "Configuration accepts gains up to 6.28 (ki ≤ 2π/s, kp ≤ 1).\n\n| gain | chamber 0.05 s | "
+      "0.15 s | 0.3 s | 0.7 s |\n"
       "|---:|---|---|---|---|\n";
   std::printf("== pressure loop: margins (worst over dead time 2-20 ms) ==\n%6s", "gain");
   for (float c : chambers) std::printf(" | %-26s", (std::to_string(c).substr(0, 4) + " s").c_str());
@@ -65,10 +71,14 @@ int main(int argc, char** argv) {
     std::printf("\n");
     md += " |\n";
   }
-  md += "\nSettled ripple (% F.S., peak to peak over the last 5 s of 60 s at 50 % F.S.), chamber 0.7 s, against the "
-        "regulator's dead band (backlash) and the trim's integrator dead band:\n\n| gain | trim dead band | valve 0 | "
-        "0.2 % | 0.5 % | 1 % |\n|---:|---:|---:|---:|---:|---:|\n";
-  std::printf("\n== pressure loop: settled ripple (%% F.S.) against dead bands, chamber 0.7 s ==\n");
+  md +=
+      "\nSettled ripple (% F.S., peak to peak over the last 5 s of 60 s at 50 % F.S.), chamber 0.7 "
+      "s, against the "
+      "regulator's dead band (backlash) and the trim's integrator dead band:\n\n| gain | trim dead "
+      "band | valve 0 | "
+      "0.2 % | 0.5 % | 1 % |\n|---:|---:|---:|---:|---:|---:|\n";
+  std::printf(
+      "\n== pressure loop: settled ripple (%% F.S.) against dead bands, chamber 0.7 s ==\n");
   for (float g : {1.0f, 6.0f}) {
     for (float trim : {0.0f, 0.001f}) {
       char head[64];

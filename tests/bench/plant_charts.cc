@@ -41,22 +41,34 @@ pb::Chart MajorLoop() {
     ps::Plant plant = MakePlant(unit);
     for (int kpa = 0; kpa <= 100; kpa += 2) {
       Hold(plant, static_cast<float>(kpa) * 1000, 1500);
-      up.points.push_back({plant.Truth().lines[0].chamber_pa / 1000, plant.Truth().fingers[0].deformation_mm});
+      up.points.push_back(
+          {plant.Truth().lines[0].chamber_pa / 1000, plant.Truth().fingers[0].deformation_mm});
     }
     for (int kpa = 100; kpa >= 0; kpa -= 2) {
       Hold(plant, static_cast<float>(kpa) * 1000, 1500);
-      down.points.push_back({plant.Truth().lines[0].chamber_pa / 1000, plant.Truth().fingers[0].deformation_mm});
+      down.points.push_back(
+          {plant.Truth().lines[0].chamber_pa / 1000, plant.Truth().fingers[0].deformation_mm});
     }
   }
   chart.series.push_back(up);
   chart.series.push_back(down);
-  chart.series.push_back({"Table 5-4 inflation fit", {{7.1, 0}, {100, 0.0428 * 100 - 0.3032}}, "#d62728", true, false});
-  chart.series.push_back({"Table 5-4 deflation fit", {{2.8, 0}, {100, 0.0475 * 100 - 0.1333}}, "#1f77b4", true, false});
+  chart.series.push_back({"Table 5-4 inflation fit",
+                          {{7.1, 0}, {100, 0.0428 * 100 - 0.3032}},
+                          "#d62728",
+                          true,
+                          false});
+  chart.series.push_back({"Table 5-4 deflation fit",
+                          {{2.8, 0}, {100, 0.0475 * 100 - 0.1333}},
+                          "#1f77b4",
+                          true,
+                          false});
   // Two other units, to show the spread.
   for (uint32_t unit : {3u, 8u}) {
     ps::Plant plant = MakePlant(unit);
     pb::Series s{"unit " + std::to_string(unit) + ", inflation", {}, "#999", false, false};
-    for (int kpa = 0; kpa <= 100; kpa += 5) s.points.push_back({static_cast<double>(kpa), plant.pneumatic(0)->RisingMajorMm(static_cast<float>(kpa))});
+    for (int kpa = 0; kpa <= 100; kpa += 5)
+      s.points.push_back(
+          {static_cast<double>(kpa), plant.pneumatic(0)->RisingMajorMm(static_cast<float>(kpa))});
     chart.series.push_back(s);
   }
   return chart;
@@ -70,15 +82,20 @@ pb::Chart Stiffness() {
   ps::Plant plant = MakePlant();
   ps::JammingActuator* j = plant.jamming(3);
   for (float bias : {0.0f, 15000.0f, 20000.0f}) {
-    pb::Series s{"bias " + std::to_string(static_cast<int>(bias / 1000)) + " kPa", {}, "", bias == 0, false};
-    for (int v = 0; v <= 100; v += 2) s.points.push_back({-static_cast<double>(v), j->StaticStiffness(bias, -1000.0f * static_cast<float>(v))});
+    pb::Series s{
+        "bias " + std::to_string(static_cast<int>(bias / 1000)) + " kPa", {}, "", bias == 0, false};
+    for (int v = 0; v <= 100; v += 2)
+      s.points.push_back(
+          {-static_cast<double>(v), j->StaticStiffness(bias, -1000.0f * static_cast<float>(v))});
     chart.series.push_back(s);
   }
   // The vacuum-history effect: down from full vacuum sits above the way up (10 % of the range).
   pb::Series down{"20 kPa, from full vacuum back (history 10 %)", {}, "#9467bd", true, false};
   j->Reset();
   j->Step(20000, -100000);
-  for (int v = 100; v >= 0; v -= 2) down.points.push_back({-static_cast<double>(v), j->Step(20000, -1000.0f * static_cast<float>(v))});
+  for (int v = 100; v >= 0; v -= 2)
+    down.points.push_back(
+        {-static_cast<double>(v), j->Step(20000, -1000.0f * static_cast<float>(v))});
   chart.series.push_back(down);
   return chart;
 }
@@ -91,20 +108,30 @@ pb::Chart PressLoops() {
   ps::Plant plant = MakePlant();
   ps::JammingActuator* j = plant.jamming(3);
   std::printf("== plant: jamming press loops (3 mm, loop area / loading work) ==\n");
-  for (auto [bias, vacuum] : {std::pair{20000.0f, 0.0f}, {20000.0f, -60000.0f}, {20000.0f, -100000.0f}, {0.0f, -100000.0f}}) {
+  for (auto [bias, vacuum] : {std::pair{20000.0f, 0.0f},
+                              {20000.0f, -60000.0f},
+                              {20000.0f, -100000.0f},
+                              {0.0f, -100000.0f}}) {
     j->Reset();
     j->Step(bias, vacuum);
-    pb::Series s{"bias " + std::to_string(static_cast<int>(bias / 1000)) + ", vacuum " + std::to_string(static_cast<int>(vacuum / 1000)) + " kPa", {}, "", bias == 0, false};
+    pb::Series s{"bias " + std::to_string(static_cast<int>(bias / 1000)) + ", vacuum " +
+                     std::to_string(static_cast<int>(vacuum / 1000)) + " kPa",
+                 {},
+                 "",
+                 bias == 0,
+                 false};
     double load = 0, unload = 0;
-    for (int i = 0; i <= 60; ++i) s.points.push_back({i * 0.05, j->PressForce(i * 0.05f, 3.0f, true)});
-    for (int i = 60; i >= 0; --i) s.points.push_back({i * 0.05, j->PressForce(i * 0.05f, 3.0f, false)});
+    for (int i = 0; i <= 60; ++i)
+      s.points.push_back({i * 0.05, j->PressForce(i * 0.05f, 3.0f, true)});
+    for (int i = 60; i >= 0; --i)
+      s.points.push_back({i * 0.05, j->PressForce(i * 0.05f, 3.0f, false)});
     for (int i = 0; i < 300; ++i) {
       const float d = 3.0f * (static_cast<float>(i) + 0.5f) / 300;
       load += j->PressForce(d, 3.0f, true) * 0.01;
       unload += j->PressForce(d, 3.0f, false) * 0.01;
     }
-    std::printf("  %-32s stiffness %.3f N/mm, loading work %.2f mJ, loop %.2f mJ (%.0f %%)\n", s.name.c_str(),
-                j->stiffness(), load, load - unload, 100 * (load - unload) / load);
+    std::printf("  %-32s stiffness %.3f N/mm, loading work %.2f mJ, loop %.2f mJ (%.0f %%)\n",
+                s.name.c_str(), j->stiffness(), load, load - unload, 100 * (load - unload) / load);
     chart.series.push_back(s);
   }
   return chart;
@@ -121,6 +148,7 @@ int main(int argc, char** argv) {
   bool ok = pb::WriteFileWhole(dir + "/plant_table_5_4.svg", pb::RenderSvg(MajorLoop()));
   ok &= pb::WriteFileWhole(dir + "/plant_fig_5_36.svg", pb::RenderSvg(Stiffness()));
   ok &= pb::WriteFileWhole(dir + "/plant_press_loops.svg", pb::RenderSvg(PressLoops()));
-  std::printf("charts: %s/plant_table_5_4.svg plant_fig_5_36.svg plant_press_loops.svg\n", dir.c_str());
+  std::printf("charts: %s/plant_table_5_4.svg plant_fig_5_36.svg plant_press_loops.svg\n",
+              dir.c_str());
   return ok ? 0 : 1;
 }

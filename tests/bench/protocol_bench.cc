@@ -24,7 +24,8 @@ pp::Telemetry EightLineTelemetry(uint32_t i) {
   t.sample_count = 16;
   for (uint8_t s = 0; s < 16; ++s) {
     t.samples[s] = pp::LineSample{static_cast<int32_t>(10000 * (s % 8) + i % 97),
-                                  static_cast<int32_t>(10000 * (s % 8) - 37), static_cast<uint16_t>(400 * s), 0};
+                                  static_cast<int32_t>(10000 * (s % 8) - 37),
+                                  static_cast<uint16_t>(400 * s), 0};
   }
   return t;
 }
@@ -72,9 +73,10 @@ int Throughput() {
     return 1;
   }
   const double mb = static_cast<double>(stream.size()) / 1e6;
-  std::printf("codec: %d telemetry frames (8 lines x 2 ticks, %zu bytes each on the wire)\n", kFrames,
-              stream.size() / kFrames);
-  std::printf("  encode + frame : %8.1f MB/s  (%.0f frames/s)\n", mb / encode_s, kFrames / encode_s);
+  std::printf("codec: %d telemetry frames (8 lines x 2 ticks, %zu bytes each on the wire)\n",
+              kFrames, stream.size() / kFrames);
+  std::printf("  encode + frame : %8.1f MB/s  (%.0f frames/s)\n", mb / encode_s,
+              kFrames / encode_s);
   std::printf("  deframe+decode : %8.1f MB/s  (%.0f frames/s)  [checksum %llu]\n", mb / decode_s,
               kFrames / decode_s, static_cast<unsigned long long>(checksum % 1000));
   return 0;

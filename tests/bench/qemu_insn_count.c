@@ -61,8 +61,8 @@ static int span_count;
 static Span* tick_span;
 static uint64_t executed;  // every guest instruction, incremented inline
 static uint64_t ticks;
-static int exclusions;              // spans named by exclude=
-static uint64_t control_total;      // tick minus the excluded spans, summed over ticks
+static int exclusions;          // spans named by exclude=
+static uint64_t control_total;  // tick minus the excluded spans, summed over ticks
 static uint64_t control_max;
 
 static void OnEntry(unsigned int vcpu, void* userdata) {

@@ -9,10 +9,10 @@
 
 #include "palpa/core/board_configs.h"
 #include "palpa/hal/fake/fakes.h"
-#include "palpa/protocol/codec.h"
-#include "sim_board.h"
 #include "palpa/host/file_write.h"
 #include "palpa/host/svg_chart.h"
+#include "palpa/protocol/codec.h"
+#include "sim_board.h"
 
 namespace ps = palpa::sim;
 namespace pp = palpa::protocol;
@@ -99,7 +99,8 @@ class Session {
   template <class M>
   void Send(const M& m, bool reliable) {
     uint8_t frame[pp::kMaxFrameSize];
-    const auto n = pp::EncodeMessageFrame(m, reliable ? seq_++ : 0, reliable ? pp::flags::kReliable : 0, frame, sizeof(frame));
+    const auto n = pp::EncodeMessageFrame(
+        m, reliable ? seq_++ : 0, reliable ? pp::flags::kReliable : 0, frame, sizeof(frame));
     link_.Inject(frame, n.value);
     sim_->Advance(sim_->now_us() % 1000 == 0 ? 1 : 0);  // dispatched between ticks
   }
@@ -127,7 +128,9 @@ double RegulatorSettleMs(const Step& s) {
   o.seed = 7;
   ps::Plant plant(c.lines.data(), c.line_count, c.fingers.data(), c.finger_count, o);
   plant.SetVented(false);
-  auto counts = [](float pa) { return static_cast<uint32_t>(std::fabs(pa) / 100000.0f * 4095.0f + 0.5f); };
+  auto counts = [](float pa) {
+    return static_cast<uint32_t>(std::fabs(pa) / 100000.0f * 4095.0f + 0.5f);
+  };
   plant.SetDacCounts(s.line, counts(s.from_pa));
   for (int i = 0; i < 3000; ++i) plant.Step();
   plant.SetDacCounts(s.line, counts(s.to_pa));
@@ -155,9 +158,11 @@ std::string Settle(double ms) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::printf("== plant + line pipeline: pressure steps, regulator static errors on (thesis-5finger, seed 7) ==\n");
-  std::printf("%-5s %-14s %10s %11s %11s | %9s %9s | %9s %9s\n", "level", "step", "regulator", "FF settle",
-              "FF+PI settle", "FF true", "FF sensor", "PI true", "PI sensor");
+  std::printf(
+      "== plant + line pipeline: pressure steps, regulator static errors on (thesis-5finger, seed "
+      "7) ==\n");
+  std::printf("%-5s %-14s %10s %11s %11s | %9s %9s | %9s %9s\n", "level", "step", "regulator",
+              "FF settle", "FF+PI settle", "FF true", "FF sensor", "PI true", "PI sensor");
   std::printf("%-5s %-14s %10s %11s %11s | %9s %9s | %9s %9s\n", "", "", "alone", "(2 %)", "(2 %)",
               "err kPa", "err kPa", "err kPa", "err kPa");
   pb::Chart chart;
@@ -169,19 +174,24 @@ int main(int argc, char** argv) {
     for (const Step& s : kSteps) {
       const StepResult a = ff.Run(s);
       const StepResult b = pi.Run(s);
-      std::printf("%-5d %-14s %8.0f ms %11s %11s | %9.2f %9.2f | %9.2f %9.2f\n", level, s.name, RegulatorSettleMs(s),
-                  Settle(a.settle_ms).c_str(), Settle(b.settle_ms).c_str(), a.error_true_pa / 1000,
-                  a.error_sensor_pa / 1000, b.error_true_pa / 1000, b.error_sensor_pa / 1000);
+      std::printf("%-5d %-14s %8.0f ms %11s %11s | %9.2f %9.2f | %9.2f %9.2f\n", level, s.name,
+                  RegulatorSettleMs(s), Settle(a.settle_ms).c_str(), Settle(b.settle_ms).c_str(),
+                  a.error_true_pa / 1000, a.error_sensor_pa / 1000, b.error_true_pa / 1000,
+                  b.error_sensor_pa / 1000);
       if (level == 3 && s.to_pa == 30000) {
-        chart.series.push_back({"setpoint", {{0, 30}, {s.hold_ms / 1000.0, 30}}, "#444", true, false});
+        chart.series.push_back(
+            {"setpoint", {{0, 30}, {s.hold_ms / 1000.0, 30}}, "#444", true, false});
         chart.series.push_back({"feed-forward only (true)", a.trace_true, "", false, false});
         chart.series.push_back({"FF + PI trim (true)", b.trace_true, "", false, false});
         chart.series.push_back({"FF + PI trim (sensor)", b.trace_sensor, "", true, false});
       }
     }
   }
-  std::printf("goals: PI steady-state error vs the sensor <= 0.1 kPa; vs the true pressure <= sensor accuracy\n"
-              "(0.26 kPa) + half the dead band (0.05 kPa); feed-forward alone shows the regulator's ~1 kPa.\n");
+  std::printf(
+      "goals: PI steady-state error vs the sensor <= 0.1 kPa; vs the true pressure <= sensor "
+      "accuracy\n"
+      "(0.26 kPa) + half the dead band (0.05 kPa); feed-forward alone shows the regulator's ~1 "
+      "kPa.\n");
   if (argc > 1) {
     if (!pb::WriteFileWhole(argv[1], pb::RenderSvg(chart))) return 1;
     std::printf("chart: %s\n", argv[1]);

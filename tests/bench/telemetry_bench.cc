@@ -19,7 +19,8 @@ namespace {
 double CpuSeconds() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
-  return u.ru_utime.tv_sec + u.ru_utime.tv_usec / 1e6 + u.ru_stime.tv_sec + u.ru_stime.tv_usec / 1e6;
+  return u.ru_utime.tv_sec + u.ru_utime.tv_usec / 1e6 + u.ru_stime.tv_sec +
+         u.ru_stime.tv_usec / 1e6;
 }
 
 }  // namespace
@@ -29,7 +30,8 @@ int main(int argc, char** argv) {
   const double seconds = argc > 2 ? std::atof(argv[2]) : 60;
   const std::string pty = "/tmp/palpa-telemetry-pty-" + std::to_string(getpid());
   palpa::testing::SimProcess sim;
-  if (!sim.Start({"--config", "full-8", "--speed", "1", "--listen", transport == "pty" ? "pty:" + pty : "tcp:127.0.0.1:0"})) {
+  if (!sim.Start({"--config", "full-8", "--speed", "1", "--listen",
+                  transport == "pty" ? "pty:" + pty : "tcp:127.0.0.1:0"})) {
     std::fprintf(stderr, "palpa-sim did not start\n");
     return 1;
   }
@@ -52,16 +54,19 @@ int main(int argc, char** argv) {
   const double cpu_before = CpuSeconds();
   const auto start = std::chrono::steady_clock::now();
   std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
-  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double cpu = CpuSeconds() - cpu_before;
   const auto after = device.value->link().counters();
   const uint64_t received = frames - frames_before;
-  std::printf("== telemetry: full-8 (8 lines x 1 kHz, 2 ticks per frame) for %.0f s over %s ==\n", elapsed,
-              transport == "pty" ? "a raw pty" : "TCP (loopback)");
+  std::printf("== telemetry: full-8 (8 lines x 1 kHz, 2 ticks per frame) for %.0f s over %s ==\n",
+              elapsed, transport == "pty" ? "a raw pty" : "TCP (loopback)");
   std::printf("  frames received %llu (%.0f/s), lost on the way %llu, dropped by the board %u\n",
               static_cast<unsigned long long>(received), received / elapsed,
-              static_cast<unsigned long long>(after.telemetry_lost - before.telemetry_lost), board_dropped.load());
-  std::printf("  host CPU %.2f %% of one core (reader, dispatcher and heartbeat threads)\n", 100 * cpu / elapsed);
+              static_cast<unsigned long long>(after.telemetry_lost - before.telemetry_lost),
+              board_dropped.load());
+  std::printf("  host CPU %.2f %% of one core (reader, dispatcher and heartbeat threads)\n",
+              100 * cpu / elapsed);
   device.value.reset();
   sim.Stop();
   return after.telemetry_lost == before.telemetry_lost ? 0 : 1;

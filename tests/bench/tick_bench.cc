@@ -40,15 +40,18 @@ int main(int argc, char** argv) {
   fake::FakeAnalogInput adc;
   fake::FakeDigitalOutput supply, dump, pump;
   fake::FakeByteLink link;
-  pc::Board board(*config, pc::BoardIo{clock, dac, &adc, supply, dump, pump, nullptr, link, nullptr, 0},
+  pc::Board board(*config,
+                  pc::BoardIo{clock, dac, &adc, supply, dump, pump, nullptr, link, nullptr, 0},
                   pc::BoardIdentity{});
   auto follow_model = [&] {
     for (uint8_t i = 0; i < config->line_count; ++i) {
       const pp::ConfigureLine& c = config->lines[i];
-      const float fraction = (board.line_state(i).reference_pa - static_cast<float>(c.sensor_min_pa)) /
-                             static_cast<float>(c.sensor_max_pa - c.sensor_min_pa);
-      adc.counts[i] = static_cast<uint32_t>(static_cast<float>(c.sensor_counts_min) +
-                                            fraction * static_cast<float>(c.sensor_counts_max - c.sensor_counts_min));
+      const float fraction =
+          (board.line_state(i).reference_pa - static_cast<float>(c.sensor_min_pa)) /
+          static_cast<float>(c.sensor_max_pa - c.sensor_min_pa);
+      adc.counts[i] = static_cast<uint32_t>(
+          static_cast<float>(c.sensor_counts_min) +
+          fraction * static_cast<float>(c.sensor_counts_max - c.sensor_counts_min));
     }
   };
   board.Start();
@@ -71,7 +74,8 @@ int main(int argc, char** argv) {
     follow_model();
   }
   if (board.safe() || board.latched_faults() != 0) {
-    std::fprintf(stderr, "the board went safe (faults 0x%x): the workload is wrong\n", board.latched_faults());
+    std::fprintf(stderr, "the board went safe (faults 0x%x): the workload is wrong\n",
+                 board.latched_faults());
     return 1;
   }
   return 0;

@@ -29,7 +29,8 @@ const char* WireType() {
 std::string Unit(const std::string& name) {
   auto ends = [&](const char* s) {
     const std::string suffix(s);
-    return name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+    return name.size() > suffix.size() &&
+           name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
   };
   if (ends("_pa_per_s")) return "Pa/s";
   if (ends("_pa")) return "Pa";
@@ -67,8 +68,10 @@ class Describer {
   void Field(const char* name, const T&, pp::Bound<T> lo, pp::Bound<T> hi) {
     std::string range;
     const bool full = lo == std::numeric_limits<T>::lowest() && hi == std::numeric_limits<T>::max();
-    if (std::is_same_v<T, float>) range = full ? "finite" : "finite, " + Number(lo) + " … " + Number(hi);
-    else if (!full) range = lo == hi ? "= " + Number(lo) : Number(lo) + " … " + Number(hi);
+    if (std::is_same_v<T, float>)
+      range = full ? "finite" : "finite, " + Number(lo) + " … " + Number(hi);
+    else if (!full)
+      range = lo == hi ? "= " + Number(lo) : Number(lo) + " … " + Number(hi);
     Row(name, WireType<T>(), range);
     Add(sizeof(T), sizeof(T));
   }
@@ -118,7 +121,8 @@ class Describer {
   void Row(const char* name, const std::string& type, const std::string& range) {
     const std::string full = prefix_ + name;
     const std::string unit = Unit(name);
-    rows += "| `" + full + "` | " + type + " | " + (unit.empty() ? "" : unit) + " | " + range + " |\n";
+    rows +=
+        "| `" + full + "` | " + type + " | " + (unit.empty() ? "" : unit) + " | " + range + " |\n";
   }
   void Add(size_t lo, size_t hi) {
     min_size += lo;
@@ -130,7 +134,8 @@ class Describer {
 constexpr const char* kSenderNames[] = {"host", "board"};
 
 std::string StatusTable() {
-  std::string t = "#### Status codes (Nack.status and every API result)\n\n| code | name |\n|---|---|\n";
+  std::string t =
+      "#### Status codes (Nack.status and every API result)\n\n| code | name |\n|---|---|\n";
   for (unsigned i = 0; i < static_cast<unsigned>(pp::Status::kCount); ++i) {
     t += "| " + std::to_string(i) + " | `" + pp::kStatusNames[i] + "` |\n";
   }
@@ -138,7 +143,8 @@ std::string StatusTable() {
 }
 
 std::string FaultTable() {
-  std::string t = "#### Fault bits (fault_bitmap, FaultRecord.fault)\n\n| bit | fault |\n|---|---|\n";
+  std::string t =
+      "#### Fault bits (fault_bitmap, FaultRecord.fault)\n\n| bit | fault |\n|---|---|\n";
   for (unsigned i = 0; i < static_cast<unsigned>(pp::Fault::kCount); ++i) {
     t += "| " + std::to_string(i) + " | `" + pp::kFaultNames[i] + "` |\n";
   }
@@ -146,7 +152,8 @@ std::string FaultTable() {
 }
 
 std::string LineStatusTable() {
-  std::string t = "#### Line status bits (LineSample.status in Telemetry)\n\n| bit | status |\n|---|---|\n";
+  std::string t =
+      "#### Line status bits (LineSample.status in Telemetry)\n\n| bit | status |\n|---|---|\n";
   for (unsigned i = 0; i < sizeof(pp::kLineStatusNames) / sizeof(pp::kLineStatusNames[0]); ++i) {
     t += "| " + std::to_string(i) + " | `" + pp::kLineStatusNames[i] + "` |\n";
   }
@@ -188,25 +195,31 @@ std::string BudgetTable() {
   }
   t += "\n" + rule + "\n";
   for (uint8_t lines : {1, 3, 5, 7, 8}) {
-    const uint8_t ticks = static_cast<uint8_t>(pp::kMaxTelemetrySamples / lines > 16 ? 16 : pp::kMaxTelemetrySamples / lines);
+    const uint8_t ticks = static_cast<uint8_t>(
+        pp::kMaxTelemetrySamples / lines > 16 ? 16 : pp::kMaxTelemetrySamples / lines);
     const size_t frame = TelemetryFrameBytes(lines, ticks);
     const double frames_per_s = 1000.0 / ticks;
-    t += "| " + std::to_string(lines) + " | " + std::to_string(ticks) + " | " + std::to_string(frame) +
-         " | " + std::to_string(static_cast<long>(frame * frames_per_s)) + " |";
+    t += "| " + std::to_string(lines) + " | " + std::to_string(ticks) + " | " +
+         std::to_string(frame) + " | " + std::to_string(static_cast<long>(frame * frames_per_s)) +
+         " |";
     for (const auto& tr : transports) {
       const double load = static_cast<double>(frame) * frames_per_s / tr.bytes_per_s;
       // Decimation that keeps telemetry at or under half the link, leaving room for answers.
       int decimation = 1;
       while (load / decimation > 0.5) ++decimation;
       char cell[64];
-      std::snprintf(cell, sizeof(cell), " %.1f %%%s |", load * 100,
-                    decimation > 1 ? (" → every " + std::to_string(decimation) + " ticks").c_str() : "");
+      std::snprintf(
+          cell, sizeof(cell), " %.1f %%%s |", load * 100,
+          decimation > 1 ? (" → every " + std::to_string(decimation) + " ticks").c_str() : "");
       t += cell;
     }
     t += "\n";
   }
-  return t + "\nHID carries the byte stream packed into 64-byte reports, one report per 1 ms USB frame.\n"
-             "A cell with \"every N ticks\" needs `telemetry_decimation` ≥ N to stay under half of the link.\n\n";
+  return t +
+         "\nHID carries the byte stream packed into 64-byte reports, one report per 1 ms USB "
+         "frame.\n"
+         "A cell with \"every N ticks\" needs `telemetry_decimation` ≥ N to stay under half of the "
+         "link.\n\n";
 }
 
 std::string Generate() {
@@ -238,10 +251,12 @@ std::string Generate() {
   });
   char hash[64];
   std::snprintf(hash, sizeof(hash), "Catalog hash of this build: `0x%08x`.\n\n", pp::kCatalogHash);
-  return hash + summary + "\n" + details + StatusTable() + FaultTable() + LineStatusTable() + BudgetTable();
+  return hash + summary + "\n" + details + StatusTable() + FaultTable() + LineStatusTable() +
+         BudgetTable();
 }
 
-constexpr const char* kBegin = "<!-- catalog:begin (generated by palpa_catalog_doc; do not edit) -->\n";
+constexpr const char* kBegin =
+    "<!-- catalog:begin (generated by palpa_catalog_doc; do not edit) -->\n";
 constexpr const char* kEnd = "<!-- catalog:end -->";
 
 // Finds the generated region of the document: [begin, end) between the markers.

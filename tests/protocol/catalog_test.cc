@@ -63,21 +63,22 @@ TEST(CatalogHash, BootstrapMessagesDoNotCount) {
 
 TEST(CatalogHash, RenumberedOrAddedFaultOrStatusBitsGiveADifferentHash) {
   // A later build that puts a new fault before output_write: bit 9 means something else.
-  constexpr const char* kInserted[] = {"host_silence", "over_limit",   "implausible_sensor",
-                                       "config_crc",   "unexpected_reset", "leak",
-                                       "estop_command", "estop_pin",   "pump_run_time",
-                                       "overheat",     "output_write"};
+  constexpr const char* kInserted[] = {
+      "host_silence",  "over_limit", "implausible_sensor", "config_crc", "unexpected_reset", "leak",
+      "estop_command", "estop_pin",  "pump_run_time",      "overheat",   "output_write"};
   constexpr uint32_t base = pp::ComputeCatalogHash(BaseCatalog{});
   CHECK(base != pp::ComputeCatalogHash(BaseCatalog{}, pp::BitNames{kInserted, 11}));
   CHECK(base != pp::ComputeCatalogHash(BaseCatalog{}, pp::BitNames{kInserted, 9}));  // one fewer
   // Two status bits swapped.
-  constexpr const char* kSwapped[] = {"safe", "trim_clamped", "slewing", "saturated",
-                                      "open_loop", "raw", "sensor_fault"};
-  CHECK(base != pp::ComputeCatalogHash(BaseCatalog{}, pp::kFaultBitNames, pp::BitNames{kSwapped, 7}));
+  constexpr const char* kSwapped[] = {"safe",      "trim_clamped", "slewing",     "saturated",
+                                      "open_loop", "raw",          "sensor_fault"};
+  CHECK(base !=
+        pp::ComputeCatalogHash(BaseCatalog{}, pp::kFaultBitNames, pp::BitNames{kSwapped, 7}));
   // The same names from another array: the same hash.
-  constexpr const char* kSame[] = {"safe", "slewing", "trim_clamped", "saturated",
-                                   "open_loop", "raw", "sensor_fault"};
-  UNSIGNED_LONGS_EQUAL(base, pp::ComputeCatalogHash(BaseCatalog{}, pp::kFaultBitNames, pp::BitNames{kSame, 7}));
+  constexpr const char* kSame[] = {"safe",      "slewing", "trim_clamped", "saturated",
+                                   "open_loop", "raw",     "sensor_fault"};
+  UNSIGNED_LONGS_EQUAL(
+      base, pp::ComputeCatalogHash(BaseCatalog{}, pp::kFaultBitNames, pp::BitNames{kSame, 7}));
 }
 
 TEST(CatalogHash, IsAComputedConstant) {
@@ -147,7 +148,8 @@ TEST(CatalogMismatch, UpdateMessagesStillWorkAcrossTheMismatch) {
     std::vector<std::vector<uint8_t>> replies;
     board.Receive(to_board.Deliver(now), replies);
     for (const auto& r : replies) to_host.Send(r.data(), r.size(), now);
-    host.Step(now, to_host.Deliver(now), [&](const uint8_t* f, size_t s) { to_board.Send(f, s, now); });
+    host.Step(now, to_host.Deliver(now),
+              [&](const uint8_t* f, size_t s) { to_board.Send(f, s, now); });
     now += 250;
   };
   while (!host.session.open()) step();

@@ -58,7 +58,8 @@ TEST_GROUP(Codec){};
 
 TEST(Codec, LittleEndianFieldByField) {
   const auto body = Body(TwoSetpoints());
-  const std::vector<uint8_t> expected = {3, 0, 0, 0, 2, 1, 0x10, 0x27, 0, 0, 2, 0x78, 0xEC, 0xFF, 0xFF};
+  const std::vector<uint8_t> expected = {3, 0, 0, 0,    2,    1,    0x10, 0x27,
+                                         0, 0, 2, 0x78, 0xEC, 0xFF, 0xFF};
   CHECK(body == expected);
 }
 
@@ -224,7 +225,8 @@ TEST(Codec, DispatchOfUnknownTypeIsUnsupported) {
   int calls = 0;
   pp::FieldError e;
   LONGS_EQUAL((int)pp::Status::kUnsupported,
-              (int)pp::DispatchFrame(frame, [&](const auto&, const pp::Header&) { ++calls; }, &e));
+              (int)pp::DispatchFrame(
+                  frame, [&](const auto&, const pp::Header&) { ++calls; }, &e));
   LONGS_EQUAL(0, calls);
   CHECK(pp::FindMessageInfo(0x7E) == nullptr);
   STRCMP_EQUAL("SetLineSetpoints", pp::FindMessageInfo(0x21)->name);

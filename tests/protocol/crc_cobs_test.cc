@@ -105,7 +105,8 @@ TEST(Cobs, RandomRoundTripsAndNeverEmitsZero) {
   for (int trial = 0; trial < 2000; ++trial) {
     std::vector<uint8_t> raw(rng() % 700);
     const int zero_percent = static_cast<int>(rng() % 101);
-    for (uint8_t& b : raw) b = (static_cast<int>(rng() % 100) < zero_percent) ? 0 : static_cast<uint8_t>(rng());
+    for (uint8_t& b : raw)
+      b = (static_cast<int>(rng() % 100) < zero_percent) ? 0 : static_cast<uint8_t>(rng());
     const std::vector<uint8_t> enc = Encode(raw);
     CHECK(enc.size() <= pp::CobsMaxEncodedSize(raw.size()));
     for (uint8_t b : enc) CHECK(b != 0);

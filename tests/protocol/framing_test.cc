@@ -2,8 +2,8 @@
 #include <random>
 #include <vector>
 
-#include "palpa/protocol/codec.h"
 #include "palpa/protocol/cobs.h"
+#include "palpa/protocol/codec.h"
 #include "palpa/protocol/crc32.h"
 #include "palpa/protocol/framing.h"
 
@@ -153,7 +153,8 @@ TEST_GROUP(FrameEncoder){};
 TEST(FrameEncoder, RejectsPacketsOutsideTheSizeLimits) {
   uint8_t packet[pp::kMaxPacketSize + 1] = {1, 0x20, 0, 0};
   uint8_t frame[pp::kMaxFrameSize + 8];
-  LONGS_EQUAL((int)pp::Status::kBadLength, (int)pp::EncodeFrame(packet, 3, frame, sizeof(frame)).status);
+  LONGS_EQUAL((int)pp::Status::kBadLength,
+              (int)pp::EncodeFrame(packet, 3, frame, sizeof(frame)).status);
   LONGS_EQUAL((int)pp::Status::kBadLength,
               (int)pp::EncodeFrame(packet, sizeof(packet), frame, sizeof(frame)).status);
   CHECK(pp::EncodeFrame(packet, pp::kMaxPacketSize, frame, sizeof(frame)).ok());

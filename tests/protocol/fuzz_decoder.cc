@@ -41,7 +41,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   pp::OwningFrameDecoder decoder;
   if (!packet_mode) {
     for (size_t i = 0; i < size; ++i) {
-      if (decoder.Process(data[i]) == pp::FrameDecoder::Event::kFrame) CheckRoundTrip(decoder.frame());
+      if (decoder.Process(data[i]) == pp::FrameDecoder::Event::kFrame)
+        CheckRoundTrip(decoder.frame());
     }
     return 0;
   }
@@ -50,7 +51,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const auto w = pp::EncodeFrame(data, size, wire, sizeof(wire));
   if (!w.ok()) std::abort();
   for (size_t i = 0; i < w.value; ++i) {
-    if (decoder.Process(wire[i]) == pp::FrameDecoder::Event::kFrame) CheckRoundTrip(decoder.frame());
+    if (decoder.Process(wire[i]) == pp::FrameDecoder::Event::kFrame)
+      CheckRoundTrip(decoder.frame());
   }
   return 0;
 }

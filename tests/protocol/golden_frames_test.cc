@@ -54,7 +54,8 @@ TEST(GoldenFrames, EncodingTheFieldsGivesTheRecordedBytes) {
       const M m = palpa::host::MessageFromJson<M>(g.at("fields"));
       uint8_t frame[pp::kMaxFrameSize];
       pp::FieldError e;
-      const auto n = pp::EncodeMessageFrame(m, g.at("seq"), g.at("flags"), frame, sizeof(frame), &e);
+      const auto n =
+          pp::EncodeMessageFrame(m, g.at("seq"), g.at("flags"), frame, sizeof(frame), &e);
       CHECK_TEXT(n.ok(), (name + ": " + pp::StatusName(n.status)).c_str());
       STRCMP_EQUAL_TEXT(g.at("hex").get<std::string>().c_str(),
                         palpa::host::ToHex(frame, n.value).c_str(), name.c_str());
@@ -79,8 +80,8 @@ TEST(GoldenFrames, DecodingTheBytesGivesTheRecordedFields) {
       const auto status = pp::DecodeBody(d.body.data(), d.body.size(), m, &e);
       CHECK_TEXT(status == pp::Status::kOk, (name + ": " + (e.field ? e.field : "?")).c_str());
       // Compare through the codec's own view so float text formatting does not matter.
-      const json expected = palpa::host::MessageToJson(
-          palpa::host::MessageFromJson<M>(g.at("fields")));
+      const json expected =
+          palpa::host::MessageToJson(palpa::host::MessageFromJson<M>(g.at("fields")));
       STRCMP_EQUAL_TEXT(expected.dump().c_str(), palpa::host::MessageToJson(m).dump().c_str(),
                         name.c_str());
     });

@@ -25,11 +25,11 @@ void Add(const std::string& name, const M& m, uint8_t seq, uint8_t flags) {
     std::exit(1);
   }
   frames.push_back(nlohmann::ordered_json{{"name", name},
-                        {"type", M::kInfo.name},
-                        {"seq", seq},
-                        {"flags", flags},
-                        {"hex", palpa::host::ToHex(frame, size.value)},
-                        {"fields", palpa::host::MessageToJson(m)}});
+                                          {"type", M::kInfo.name},
+                                          {"seq", seq},
+                                          {"flags", flags},
+                                          {"hex", palpa::host::ToHex(frame, size.value)},
+                                          {"fields", palpa::host::MessageToJson(m)}});
 }
 
 template <size_t N>
@@ -67,16 +67,16 @@ void Bootstrap() {
   for (uint8_t i = 0; i < 7; ++i) {
     const bool vacuum = i >= 5;
     const bool bias = i == 3 || i == 4;
-    r.lines[i] = pp::LineSummary{vacuum ? pp::LineKind::kVacuum
-                                        : (bias ? pp::LineKind::kBias : pp::LineKind::kPressure),
-                                 true, vacuum ? -100000 : 0, vacuum ? 0 : (bias ? 20000 : 100000)};
+    r.lines[i] = pp::LineSummary{
+        vacuum ? pp::LineKind::kVacuum : (bias ? pp::LineKind::kBias : pp::LineKind::kPressure),
+        true, vacuum ? -100000 : 0, vacuum ? 0 : (bias ? 20000 : 100000)};
   }
   r.finger_count = 5;
   for (uint8_t f = 0; f < 5; ++f) {
     const bool jamming = f >= 3;
-    r.fingers[f] = pp::FingerSummary{jamming ? pp::FingerKind::kJamming : pp::FingerKind::kPneumatic,
-                                     pp::FingerMode::kTarget, f,
-                                     jamming ? static_cast<uint8_t>(f + 2) : pp::kNoLine};
+    r.fingers[f] = pp::FingerSummary{
+        jamming ? pp::FingerKind::kJamming : pp::FingerKind::kPneumatic, pp::FingerMode::kTarget, f,
+        jamming ? static_cast<uint8_t>(f + 2) : pp::kNoLine};
   }
   Add("hello_reply_thesis_5finger", r, 0, board);
   Add("ack", pp::Ack{0xA5A5F00D, 0x30}, 7, board);
@@ -96,7 +96,8 @@ void Bootstrap() {
   Add("update_write_small", small, 3, reliable);
   Add("update_query", pp::UpdateQuery{1}, 4, reliable);
   pp::UpdateStatus st{0xA5A5F00D, 1, 65536, {}, true};
-  for (size_t i = 0; i < st.written_sha256.size(); ++i) st.written_sha256[i] = static_cast<uint8_t>(i);
+  for (size_t i = 0; i < st.written_sha256.size(); ++i)
+    st.written_sha256[i] = static_cast<uint8_t>(i);
   Add("update_status", st, 4, board);
   pp::UpdateActivate act{1, 65536, {}};
   act.image_sha256.fill(0xFF);
@@ -105,8 +106,10 @@ void Bootstrap() {
   Add("update_confirm", pp::UpdateConfirm{1}, 0, reliable);
   Add("slots_query", pp::SlotsQuery{}, 1, reliable);
   pp::SlotsReport slots{0xA5A5F00D, 1, 2, {}};
-  slots.slots[0] = pp::SlotInfo{pp::SlotState::kConfirmed, pp::BoardKind::kMps2An386, 0, 1, 0, 3, 61440};
-  slots.slots[1] = pp::SlotInfo{pp::SlotState::kTrial, pp::BoardKind::kMps2An386, 0, 2, 0, 4, 62000};
+  slots.slots[0] =
+      pp::SlotInfo{pp::SlotState::kConfirmed, pp::BoardKind::kMps2An386, 0, 1, 0, 3, 61440};
+  slots.slots[1] =
+      pp::SlotInfo{pp::SlotState::kTrial, pp::BoardKind::kMps2An386, 0, 2, 0, 4, 62000};
   Add("slots_report", slots, 1, board);
 }
 
@@ -220,8 +223,9 @@ void Reports() {
   t.dropped_frames = 0;
   t.sample_count = 16;
   for (uint8_t i = 0; i < 16; ++i) {
-    t.samples[i] = pp::LineSample{10000 * (i % 8), 10000 * (i % 8) - 37, static_cast<uint16_t>(409 * (i % 8)),
-                                  static_cast<uint8_t>(i % 8 == 7 ? pp::line_status::kOpenLoop : 0)};
+    t.samples[i] =
+        pp::LineSample{10000 * (i % 8), 10000 * (i % 8) - 37, static_cast<uint16_t>(409 * (i % 8)),
+                       static_cast<uint8_t>(i % 8 == 7 ? pp::line_status::kOpenLoop : 0)};
   }
   Add("telemetry_8_lines_2_ticks", t, 3, board);
   pp::Telemetry faulted{};
@@ -235,7 +239,8 @@ void Reports() {
   faulted.samples[0] = pp::LineSample{0, 0, 0, pp::line_status::kSafe};
   Add("telemetry_faulted", faulted, 4, board | pp::flags::kFaulted);
   Add("get_loop_stats", pp::GetLoopStats{}, 31, pp::flags::kReliable);
-  Add("loop_stats", pp::LoopStats{0xA5A5F00D, 600000, 1000, 12, 180, 95, 0, 3, 120000, 2}, 31, board);
+  Add("loop_stats", pp::LoopStats{0xA5A5F00D, 600000, 1000, 12, 180, 95, 0, 3, 120000, 2}, 31,
+      board);
   Add("get_diagnostics", pp::GetDiagnostics{}, 32, pp::flags::kReliable);
   pp::Diagnostics d{};
   d.boot_nonce = 0xA5A5F00D;

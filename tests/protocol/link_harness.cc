@@ -39,14 +39,13 @@ template <class M>
 void TestBoard::Reply(const M& m, uint8_t seq, uint8_t flags,
                       std::vector<std::vector<uint8_t>>& out) {
   std::vector<uint8_t> frame(pp::kMaxFrameSize);
-  const auto n = pp::EncodeMessageFrame(m, seq, flags | pp::flags::kFromBoard, frame.data(),
-                                        frame.size());
+  const auto n =
+      pp::EncodeMessageFrame(m, seq, flags | pp::flags::kFromBoard, frame.data(), frame.size());
   frame.resize(n.value);
   out.push_back(std::move(frame));
 }
 
-void TestBoard::Receive(const std::vector<uint8_t>& bytes,
-                        std::vector<std::vector<uint8_t>>& out) {
+void TestBoard::Receive(const std::vector<uint8_t>& bytes, std::vector<std::vector<uint8_t>>& out) {
   for (uint8_t b : bytes) {
     if (decoder_.Process(b) == pp::FrameDecoder::Event::kFrame) Handle(decoder_.frame(), out);
   }
@@ -176,8 +175,8 @@ void TestHost::Step(uint64_t now_us, const std::vector<uint8_t>& from_board,
       }
       const uint32_t nonce = hello_nonce_;
       uint8_t frame[pp::kMaxFrameSize];
-      const auto n = pp::EncodeMessageFrame(pp::Hello{nonce, next_initial_seq_}, 0, 0, frame,
-                                            sizeof(frame));
+      const auto n =
+          pp::EncodeMessageFrame(pp::Hello{nonce, next_initial_seq_}, 0, 0, frame, sizeof(frame));
       send(frame, n.value);
       hello_in_flight_ = true;
       hello_sent_us_ = now_us;

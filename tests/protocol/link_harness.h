@@ -20,12 +20,12 @@ namespace pp = palpa::protocol;
 
 /// Frame-level faults of one direction of a link, seeded.
 struct ChannelFaults {
-  double drop = 0;          ///< probability a frame is lost
-  double duplicate = 0;     ///< probability a frame arrives twice
-  double corrupt = 0;       ///< probability one random bit of a frame flips
-  double byte_loss = 0;     ///< probability per byte of vanishing (delimiters included)
+  double drop = 0;       ///< probability a frame is lost
+  double duplicate = 0;  ///< probability a frame arrives twice
+  double corrupt = 0;    ///< probability one random bit of a frame flips
+  double byte_loss = 0;  ///< probability per byte of vanishing (delimiters included)
   uint32_t latency_us = 300;
-  uint32_t jitter_us = 0;   ///< uniform extra delay: reorders frames when > frame spacing
+  uint32_t jitter_us = 0;  ///< uniform extra delay: reorders frames when > frame spacing
 };
 
 class LossyChannel {

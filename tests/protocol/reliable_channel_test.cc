@@ -61,7 +61,8 @@ void CheckExactlyOnceInOrder(const Run& run) {
   CHECK_TEXT(std::is_sorted(applied.begin(), applied.end()), "applied out of order");
   for (const auto& [id, status] : run.host.outcomes) {
     const bool was_applied = std::binary_search(sorted.begin(), sorted.end(), id);
-    if (status == pp::Status::kOk) CHECK_TEXT(was_applied, ("acked but not applied: " + std::to_string(id)).c_str());
+    if (status == pp::Status::kOk)
+      CHECK_TEXT(was_applied, ("acked but not applied: " + std::to_string(id)).c_str());
     if (status == pp::Status::kOutOfRange) CHECK_TEXT(!was_applied, "nacked but applied");
   }
 }
@@ -186,12 +187,14 @@ TEST(ReliableChannel, HostRestartOpensAFreshSession) {
     std::vector<std::vector<uint8_t>> replies;
     run.board.Receive(to_board.Deliver(now), replies);
     for (const auto& r : replies) to_host.Send(r.data(), r.size(), now);
-    fresh.Step(now, to_host.Deliver(now), [&](const uint8_t* f, size_t n) { to_board.Send(f, n, now); });
+    fresh.Step(now, to_host.Deliver(now),
+               [&](const uint8_t* f, size_t n) { to_board.Send(f, n, now); });
     now += 250;
   }
   LONGS_EQUAL(200, fresh.outcomes.size());
   LONGS_EQUAL(old_applied + 200, run.board.applied.size());
-  for (size_t i = 0; i < 200; ++i) LONGS_EQUAL(10001 + i, run.board.applied[old_applied + i].command_id);
+  for (size_t i = 0; i < 200; ++i)
+    LONGS_EQUAL(10001 + i, run.board.applied[old_applied + i].command_id);
   LONGS_EQUAL(2, run.board.sessions);
 }
 

@@ -12,7 +12,8 @@ TEST(BoardSession, OnlyHelloAndEStopBeforeASession) {
   CHECK_FALSE(s.open());
   pp::ForEachMessage(pp::Catalog{}, [&]<class M>() {
     if (M::kInfo.sender != pp::Sender::kHost) return;
-    const bool allowed = M::kInfo.type == pp::MessageType::kHello || M::kInfo.type == pp::MessageType::kEStop;
+    const bool allowed =
+        M::kInfo.type == pp::MessageType::kHello || M::kInfo.type == pp::MessageType::kEStop;
     LONGS_EQUAL_TEXT((int)(allowed ? pp::Status::kOk : pp::Status::kNoSession),
                      (int)s.Admit(static_cast<uint8_t>(M::kInfo.type)), M::kInfo.name);
   });

@@ -81,8 +81,8 @@ HostLossResult RunHostLossTrials(int trials, uint32_t seed, double speed) {
   SimProcess sim;
   char speed_text[16];
   std::snprintf(speed_text, sizeof(speed_text), "%g", speed);
-  if (!sim.Start({"--config", "thesis-pneumatic-3", "--listen", "tcp:127.0.0.1:0", "--truth", "tcp:127.0.0.1:0",
-                  "--truth-every-ms", "1", "--speed", speed_text})) {
+  if (!sim.Start({"--config", "thesis-pneumatic-3", "--listen", "tcp:127.0.0.1:0", "--truth",
+                  "tcp:127.0.0.1:0", "--truth-every-ms", "1", "--speed", speed_text})) {
     result.error = "palpa-sim did not start";
     return result;
   }
@@ -116,7 +116,8 @@ HostLossResult RunHostLossTrials(int trials, uint32_t seed, double speed) {
     }
     // Let the chambers fill, then kill the host at a random moment.
     bool pressurised = false;
-    ReadTruth(truth, pending, 3000, [&](const TruthLine& l) { return !(pressurised = l.max_chamber_pa > 50000); });
+    ReadTruth(truth, pending, 3000,
+              [&](const TruthLine& l) { return !(pressurised = l.max_chamber_pa > 50000); });
     std::this_thread::sleep_for(std::chrono::microseconds(rng() % 150000));
     kill(child, SIGKILL);
     waitpid(child, nullptr, 0);

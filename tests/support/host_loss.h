@@ -12,11 +12,11 @@ struct HostLossResult {
   int trials = 0;
   int safe_in_time = 0;    ///< safe command written within timeout + 1 tick (+1 ms truth sampling)
   int vented_in_time = 0;  ///< every chamber below 5 % F.S. within timeout + settling (300 ms)
-  std::vector<double> safe_after_ms;    ///< from the last host frame to the safe command, board time
+  std::vector<double> safe_after_ms;  ///< from the last host frame to the safe command, board time
   std::vector<double> vented_after_ms;  ///< from the last host frame to < 5 % F.S.
-  int not_pressurised = 0; ///< attempts whose chambers never filled before the kill (run again)
-  int not_observed = 0;    ///< trials where the safe state or the venting was never seen
-  std::string error;       ///< set when the run itself failed
+  int not_pressurised = 0;  ///< attempts whose chambers never filled before the kill (run again)
+  int not_observed = 0;     ///< trials where the safe state or the venting was never seen
+  std::string error;        ///< set when the run itself failed
 };
 
 /// Runs `trials` kills of a host process against one palpa-sim (thesis-pneumatic-3, 80 kPa on every

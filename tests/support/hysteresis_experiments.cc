@@ -48,11 +48,14 @@ cal::HysteresisFit FitMethod(const Method& m, const Identified& id, double drive
 
 double OutputAtShare(const std::vector<pp::InversePoint>& inverse, double share, double drive_max) {
   const double drive = share * drive_max;
-  auto drive_of = [](const pp::InversePoint& p) { return std::fabs(static_cast<double>(p.setpoint_pa)); };
+  auto drive_of = [](const pp::InversePoint& p) {
+    return std::fabs(static_cast<double>(p.setpoint_pa));
+  };
   if (drive <= drive_of(inverse.front())) return inverse.front().output;
   for (size_t k = 1; k < inverse.size(); ++k) {
     if (drive_of(inverse[k]) >= drive) {
-      const double t = (drive - drive_of(inverse[k - 1])) / (drive_of(inverse[k]) - drive_of(inverse[k - 1]));
+      const double t =
+          (drive - drive_of(inverse[k - 1])) / (drive_of(inverse[k]) - drive_of(inverse[k - 1]));
       return inverse[k - 1].output + t * (inverse[k].output - inverse[k - 1].output);
     }
   }
@@ -76,7 +79,8 @@ GapResult BranchGap(FingerRig& rig, const std::vector<pp::InversePoint>& inverse
   rig.Follow(0, dwell_ms);  // vented: the major loop starts from a wiped memory
   for (double level : levels) rising.push_back(read(level));
   read(OutputAtShare(inverse, 1.0, max) - 1);  // the top reversal
-  for (auto it = levels.rbegin(); it != levels.rend(); ++it) falling.insert(falling.begin(), read(*it));
+  for (auto it = levels.rbegin(); it != levels.rend(); ++it)
+    falling.insert(falling.begin(), read(*it));
   rig.Follow(0, dwell_ms);
   for (size_t k = 0; k < levels.size(); ++k) {
     const double gap = std::fabs(falling[k] - rising[k]);
@@ -100,8 +104,8 @@ GapResult BranchGap(FingerRig& rig, const std::vector<pp::InversePoint>& inverse
   return r;
 }
 
-LevelResult SettledLevels(FingerRig& rig, const std::vector<pp::InversePoint>& inverse, int levels, int dwell_ms,
-                          uint32_t seed) {
+LevelResult SettledLevels(FingerRig& rig, const std::vector<pp::InversePoint>& inverse, int levels,
+                          int dwell_ms, uint32_t seed) {
   LevelResult r;
   const double max = rig.drive_max();
   std::mt19937 rng(seed);
@@ -119,15 +123,18 @@ LevelResult SettledLevels(FingerRig& rig, const std::vector<pp::InversePoint>& i
 
 const char* InputSetName(InputSet s) {
   switch (s) {
-    case InputSet::kDemoStimuli: return "demo stimuli";
-    case InputSet::kBandLimitedRandom: return "band-limited random";
-    case InputSet::kFastRamps: return "fast ramps";
+    case InputSet::kDemoStimuli:
+      return "demo stimuli";
+    case InputSet::kBandLimitedRandom:
+      return "band-limited random";
+    case InputSet::kFastRamps:
+      return "fast ramps";
   }
   return "?";
 }
 
-TrackingResult Track(FingerRig& rig, const std::vector<pp::InversePoint>& inverse, InputSet set, int seconds,
-                     uint32_t seed) {
+TrackingResult Track(FingerRig& rig, const std::vector<pp::InversePoint>& inverse, InputSet set,
+                     int seconds, uint32_t seed) {
   TrackingResult r;
   const double max = rig.drive_max();
   const double lo = OutputAtShare(inverse, 0.1, max), hi = OutputAtShare(inverse, 0.9, max);
@@ -154,7 +161,8 @@ TrackingResult Track(FingerRig& rig, const std::vector<pp::InversePoint>& invers
   switch (set) {
     case InputSet::kDemoStimuli: {
       // The demo's levels: outputs at 0, 10 and 30 kPa, two seconds each, in shuffled order.
-      const double levels[] = {0, OutputAtShare(inverse, 0.1, max), OutputAtShare(inverse, 0.3, max)};
+      const double levels[] = {0, OutputAtShare(inverse, 0.1, max),
+                               OutputAtShare(inverse, 0.3, max)};
       for (int k = 0; k < seconds / 2; ++k) {
         const double target = levels[rng() % 3];
         settle = 1000;
@@ -171,7 +179,8 @@ TrackingResult Track(FingerRig& rig, const std::vector<pp::InversePoint>& invers
       for (int k = 0; k < seconds * 50; ++k) {
         const double t = k * 0.02;
         double x = 0.5;
-        for (int i = 0; i < 5; ++i) x += 0.08 * std::sin(2 * M_PI * (0.02 + 0.02 * i) * t + phases[i]);
+        for (int i = 0; i < 5; ++i)
+          x += 0.08 * std::sin(2 * M_PI * (0.02 + 0.02 * i) * t + phases[i]);
         const double target = lo + (hi - lo) * std::clamp(x, 0.0, 1.0);
         rig.Follow(target, 20, score(target));
       }

@@ -13,7 +13,7 @@ namespace palpa::testing {
 struct Method {
   std::string name;  ///< "none", "branch(12)", "pi(16)", "api(16)" ...
   protocol::CompensatorKind kind = protocol::CompensatorKind::kNone;
-  int size = 0;      ///< operators, or branch points
+  int size = 0;  ///< operators, or branch points
 };
 
 /// none, branch(12), pi(4, 8, 16, 32), api(8, 16).
@@ -32,16 +32,17 @@ Identified Identify(FingerRig& rig, const calibration::SweepPlan& plan, int dwel
 calibration::HysteresisFit FitMethod(const Method& m, const Identified& id, double drive_max);
 
 struct GapResult {
-  double major_gap = 0;          ///< mean |falling − rising| over the 10–90 % levels (output unit)
+  double major_gap = 0;  ///< mean |falling − rising| over the 10–90 % levels (output unit)
   double major_gap_max = 0;
-  double nested_gap_small = 0;   ///< reversals of ±5 % of the drive range
-  double nested_gap_large = 0;   ///< reversals of ±20 %
-  double mean_abs_error = 0;     ///< |truth − target| at the read points
+  double nested_gap_small = 0;  ///< reversals of ±5 % of the drive range
+  double nested_gap_large = 0;  ///< reversals of ±20 %
+  double mean_abs_error = 0;    ///< |truth − target| at the read points
 };
 
 /// The fixed protocol on the truth channel: targets at the static curve's 10..90 % levels up and
 /// down with a fixed dwell; then nested reversals at 30/50/70 %.
-GapResult BranchGap(FingerRig& rig, const std::vector<protocol::InversePoint>& inverse, int dwell_ms);
+GapResult BranchGap(FingerRig& rig, const std::vector<protocol::InversePoint>& inverse,
+                    int dwell_ms);
 
 struct TrackingResult {
   double rms = 0, max = 0;  ///< truth − target, output unit, over the whole record
@@ -53,18 +54,19 @@ enum class InputSet { kDemoStimuli, kBandLimitedRandom, kFastRamps };
 const char* InputSetName(InputSet s);
 
 /// Plays a held-out input set in target mode; `seconds` of it.
-TrackingResult Track(FingerRig& rig, const std::vector<protocol::InversePoint>& inverse, InputSet set,
-                     int seconds, uint32_t seed);
+TrackingResult Track(FingerRig& rig, const std::vector<protocol::InversePoint>& inverse,
+                     InputSet set, int seconds, uint32_t seed);
 
 struct LevelResult {
   double mean_relative = 0, max_relative = 0;  ///< |truth − target| / target at settled levels
 };
 
 /// Random held-out levels over 10–90 % of the range, each held `dwell_ms`, read at its end.
-LevelResult SettledLevels(FingerRig& rig, const std::vector<protocol::InversePoint>& inverse, int levels,
-                          int dwell_ms, uint32_t seed);
+LevelResult SettledLevels(FingerRig& rig, const std::vector<protocol::InversePoint>& inverse,
+                          int levels, int dwell_ms, uint32_t seed);
 
 /// The output the static inverse puts at a fraction of the drive range (its own table read back).
-double OutputAtShare(const std::vector<protocol::InversePoint>& inverse, double share, double drive_max);
+double OutputAtShare(const std::vector<protocol::InversePoint>& inverse, double share,
+                     double drive_max);
 
 }  // namespace palpa::testing

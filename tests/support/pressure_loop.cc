@@ -12,7 +12,7 @@
 namespace palpa::testing {
 namespace {
 
-constexpr double kT = 0.001;        // tick
+constexpr double kT = 0.001;  // tick
 constexpr double kFullScale = 100000;
 
 std::complex<double> Lag(double tau, std::complex<double> z_inverse) {
@@ -31,7 +31,8 @@ Margins LoopMargins(const LoopCase& c) {
   for (double w = 0.01; w < M_PI / kT; w *= 1.002) {
     const std::complex<double> zi = std::polar(1.0, -w * kT);
     const std::complex<double> controller = kp + ki_dt / (1.0 - zi);
-    const std::complex<double> plant = std::pow(zi, delay) * Lag(c.regulator_tau_s, zi) * Lag(c.chamber_tau_s, zi);
+    const std::complex<double> plant =
+        std::pow(zi, delay) * Lag(c.regulator_tau_s, zi) * Lag(c.chamber_tau_s, zi);
     const std::complex<double> loop = controller * plant;
     // Unwrapped phase: the delay keeps turning it past -180° as w grows.
     double phase = std::arg(loop) * 180 / M_PI;

@@ -7,13 +7,13 @@
 namespace palpa::testing {
 
 struct LoopCase {
-  float gain = 1;               ///< multiplies the configured trim kp and ki
-  float kp = 0.1f, ki = 1.0f;   ///< the pressure-line template's trim (ki per second)
+  float gain = 1;              ///< multiplies the configured trim kp and ki
+  float kp = 0.1f, ki = 1.0f;  ///< the pressure-line template's trim (ki per second)
   float regulator_tau_s = 0.02f;
   float dead_time_s = 0.005f;
   float chamber_tau_s = 0.15f;
-  float valve_dead_band = 0.0f;  ///< fraction of full scale the regulator ignores (backlash)
-  float trim_dead_band = 0.001f; ///< fraction of full scale: the trim's integrator dead band
+  float valve_dead_band = 0.0f;   ///< fraction of full scale the regulator ignores (backlash)
+  float trim_dead_band = 0.001f;  ///< fraction of full scale: the trim's integrator dead band
 };
 
 struct Margins {

@@ -40,9 +40,8 @@ struct UpdateOutcome {
 };
 /// The engines run on `engine_flash` (default: the world's flash) with `watchdog` (default none);
 /// the bootloader's reboot between activation and confirmation always reads the world's flash.
-UpdateOutcome RunUpdate(UpdateWorld& world, const host::UpdatePackage& release,
-                        bool confirm = true, hal::Watchdog* watchdog = nullptr,
-                        hal::Flash* engine_flash = nullptr);
+UpdateOutcome RunUpdate(UpdateWorld& world, const host::UpdatePackage& release, bool confirm = true,
+                        hal::Watchdog* watchdog = nullptr, hal::Flash* engine_flash = nullptr);
 
 /// One power cut: a fresh board, the update with the power failing after `cut_after` flash
 /// bytes, power back, boot. What booted, and whether it was the old release or the new.

@@ -21,14 +21,18 @@ pp::ConfigureFinger Params(pp::CompensatorKind kind, int size) {
   if (kind == pp::CompensatorKind::kBranch) {
     push(100.0f);
     push(500.0f);
-    for (int i = 0; i < size; ++i) push(4000.0f * static_cast<float>(i) / static_cast<float>(size - 1));
-    for (int i = 0; i < size; ++i) push(100000.0f * static_cast<float>(i) / static_cast<float>(size - 1));
-    for (int i = 0; i < size; ++i) push(90000.0f * static_cast<float>(i) / static_cast<float>(size - 1));
+    for (int i = 0; i < size; ++i)
+      push(4000.0f * static_cast<float>(i) / static_cast<float>(size - 1));
+    for (int i = 0; i < size; ++i)
+      push(100000.0f * static_cast<float>(i) / static_cast<float>(size - 1));
+    for (int i = 0; i < size; ++i)
+      push(90000.0f * static_cast<float>(i) / static_cast<float>(size - 1));
   } else {
     if (kind == pp::CompensatorKind::kAsymmetricPi) push(static_cast<float>(size));
     push(-100.0f);
     push(0.02f);
-    for (int i = 0; i < size; ++i) push(50000.0f * static_cast<float>(i) / static_cast<float>(size));
+    for (int i = 0; i < size; ++i)
+      push(50000.0f * static_cast<float>(i) / static_cast<float>(size));
     for (int i = 0; i < size; ++i) push(0.002f);
     if (kind == pp::CompensatorKind::kAsymmetricPi) {
       for (float d : {500.0f, 1000.0f, 1500.0f, 2000.0f}) push(d);
@@ -58,7 +62,7 @@ __attribute__((noinline)) void Sweep(Run& r) {
 }
 
 // One function per method and size: the plugin's spans are named after these.
-#define PALPA_STEP(NAME)                                                          \
+#define PALPA_STEP(NAME)                                                         \
   __attribute__((noinline)) float NAME(Run& r, float target) {                   \
     return pc::StepCompensator(r.compensator, r.state, target, r.applied).drive; \
   }
@@ -77,7 +81,8 @@ PALPA_STEP(StepApi32)
 #undef PALPA_STEP
 
 const float kInverseOutput[] = {0, 500, 1000, 1500, 2000, 2500, 3000, 3500, 4000, 4370};
-const float kInverseSetpoint[] = {0, 15500, 26400, 37300, 48300, 59200, 70100, 81000, 91900, 100000};
+const float kInverseSetpoint[] = {0,     15500, 26400, 37300, 48300,
+                                  59200, 70100, 81000, 91900, 100000};
 
 __attribute__((noinline)) float StepNone(Run&, float target) {
   return pc::Interpolate(kInverseOutput, kInverseSetpoint, 10, target);

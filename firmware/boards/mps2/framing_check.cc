@@ -1,10 +1,10 @@
 // Frame encoder check on the Cortex-M4F under QEMU: the ARMv7E-M word loop against CRC-then-COBS
 // (the byte-wise encoders) for packets of every size, zero density and long zero-free runs.
 // Exits through semihosting: 0 when every frame matched, 1 with the failing case printed.
+#include "check_random.h"
 #include "palpa/protocol/cobs.h"
 #include "palpa/protocol/crc32.h"
 #include "palpa/protocol/framing.h"
-#include "check_random.h"
 #include "semihosting.h"
 
 namespace pp = palpa::protocol;

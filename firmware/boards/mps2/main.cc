@@ -104,7 +104,8 @@ void StackGuard() {
 
 void WriteSafeCodes() {
   // The plant stands in for a DAC: every command to 0 Pa (every compiled-in safe value).
-  for (uint8_t i = 0; i < protocol::kMaxLines; ++i) static_cast<hal::AnalogOutput&>(g_plant).Write(i, 0);
+  for (uint8_t i = 0; i < protocol::kMaxLines; ++i)
+    static_cast<hal::AnalogOutput&>(g_plant).Write(i, 0);
 }
 
 void OnSysTick() { g_clock.OnTick(); }
@@ -166,10 +167,11 @@ int main() {
   id.rollback_counter = engine.rollback_floor();
   update = &engine;
 #endif
-  g_board = new (g_board_storage) palpa::core::Board(
-      *config, palpa::core::BoardIo{g_clock, g_plant, &g_plant, g_supply, g_dump, g_pump, nullptr, g_uart, nullptr, 0,
-                                    update},
-      id);
+  g_board = new (g_board_storage)
+      palpa::core::Board(*config,
+                         palpa::core::BoardIo{g_clock, g_plant, &g_plant, g_supply, g_dump, g_pump,
+                                              nullptr, g_uart, nullptr, 0, update},
+                         id);
   g_board->Start();
 #ifdef PALPA_SELFTEST
   if (cause == palpa::protocol::ResetCause::kWatchdog) {
@@ -190,9 +192,11 @@ int main() {
   targets.generation = 1;
   for (uint8_t f = 0; f < config->finger_count; ++f) {
     const bool jamming = config->fingers[f].kind == palpa::protocol::FingerKind::kJamming;
-    targets.entries[targets.entry_count++] = {f, jamming ? palpa::protocol::OutputUnit::kStiffnessMilliNewtonPerMm
-                                                         : palpa::protocol::OutputUnit::kDeformationMicrometre,
-                                              jamming ? 1000 : 1500};
+    targets.entries[targets.entry_count++] = {
+        f,
+        jamming ? palpa::protocol::OutputUnit::kStiffnessMilliNewtonPerMm
+                : palpa::protocol::OutputUnit::kDeformationMicrometre,
+        jamming ? 1000 : 1500};
   }
   inject(targets);
   uint32_t heartbeat = 0;
@@ -233,9 +237,12 @@ int main() {
 #ifdef PALPA_SELFTEST
     if (now > 2000000) {
       char text[160];
-      std::snprintf(text, sizeof(text), "palpa mps2-an386 firmware 0.1.0, catalog 0x%08lx, %s, %lu ticks, %lu overruns, safe=%d\n",
+      std::snprintf(text, sizeof(text),
+                    "palpa mps2-an386 firmware 0.1.0, catalog 0x%08lx, %s, %lu ticks, %lu "
+                    "overruns, safe=%d\n",
                     static_cast<unsigned long>(palpa::protocol::kCatalogHash), PALPA_BOARD_CONFIG,
-                    static_cast<unsigned long>(g_board->tick_stats().ticks), static_cast<unsigned long>(g_board->tick_stats().overruns),
+                    static_cast<unsigned long>(g_board->tick_stats().ticks),
+                    static_cast<unsigned long>(g_board->tick_stats().overruns),
                     g_board->safe() ? 1 : 0);
       Print(text);
       SemihostExit(g_board->tick_stats().ticks >= 1900 && g_board->safe() ? 0 : 1);

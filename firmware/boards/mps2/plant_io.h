@@ -27,8 +27,9 @@ class PlantIo final : public hal::AnalogOutput, public hal::AnalogInput {
       s.min_set_pa = params::kRegulatorMinSetPa;
       s.lag_tau_s = params::kRegulatorLagTauS;
       s.dead_time_s = params::kRegulatorDeadTimeS;
-      s.chamber_tau_s = config.lines[i].kind == protocol::LineKind::kVacuum ? params::kChamberVacuumTauS
-                                                                          : params::kChamberPneumaticTauS;
+      s.chamber_tau_s = config.lines[i].kind == protocol::LineKind::kVacuum
+                            ? params::kChamberVacuumTauS
+                            : params::kChamberPneumaticTauS;
       lines_[i] = sim::RegulatorLine(s, 0.001f);
       command_[i] = 0;
     }
@@ -51,7 +52,8 @@ class PlantIo final : public hal::AnalogOutput, public hal::AnalogInput {
     return SensorCounts(channel);
   }
   void DoReadAll(uint32_t* counts, uint8_t count) override {
-    for (uint8_t i = 0; i < count; ++i) counts[i] = i < count_ ? SensorCounts(i) : kConversionFailed;
+    for (uint8_t i = 0; i < count; ++i)
+      counts[i] = i < count_ ? SensorCounts(i) : kConversionFailed;
   }
   uint8_t DoBits() const override { return 14; }
 
@@ -61,13 +63,16 @@ class PlantIo final : public hal::AnalogOutput, public hal::AnalogInput {
   [[gnu::noinline]] void SetRegulatorCommand(uint8_t channel, uint32_t counts) {
     const protocol::ConfigureLine& c = config_[channel];
     const float fraction = static_cast<float>(counts) / static_cast<float>((1u << c.dac_bits) - 1u);
-    command_[channel] = (c.kind == protocol::LineKind::kVacuum ? -1.0f : 1.0f) * fraction * params::kRegulatorFullScalePa;
+    command_[channel] = (c.kind == protocol::LineKind::kVacuum ? -1.0f : 1.0f) * fraction *
+                        params::kRegulatorFullScalePa;
   }
   [[gnu::noinline]] uint32_t SensorCounts(uint8_t channel) const {
     const protocol::ConfigureLine& c = config_[channel];
     const float pa = lines_[channel].outlet_pa();
-    const float fraction = (pa - static_cast<float>(c.sensor_min_pa)) / static_cast<float>(c.sensor_max_pa - c.sensor_min_pa);
-    const float counts = static_cast<float>(c.sensor_counts_min) + fraction * static_cast<float>(c.sensor_counts_max - c.sensor_counts_min);
+    const float fraction = (pa - static_cast<float>(c.sensor_min_pa)) /
+                           static_cast<float>(c.sensor_max_pa - c.sensor_min_pa);
+    const float counts = static_cast<float>(c.sensor_counts_min) +
+                         fraction * static_cast<float>(c.sensor_counts_max - c.sensor_counts_min);
     return static_cast<uint32_t>(counts < 0 ? 0.0f : counts + 0.5f);
   }
 

@@ -2,10 +2,10 @@
 // the C++ one for every operator count, random parameter sets, memories, drive changes (up to
 // saturation) and starts (up to the ±2³⁰ clamp). Exits through semihosting: 0 when every result
 // and every memory word matched, 1 with the failing case printed.
+#include "check_random.h"
 #include "palpa/core/compensator.h"
 #include "play_lanes.h"
 #include "play_pairs.h"
-#include "check_random.h"
 #include "semihosting.h"
 
 namespace pc = palpa::core;

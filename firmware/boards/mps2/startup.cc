@@ -33,7 +33,9 @@ void Reset_Handler() {
 // The watchdog's first expiry: the loop stopped kicking it (a tick hung). Safe first, then reset.
 void NMI_Handler() { SafeAndReset(palpa::protocol::ResetCause::kWatchdog); }
 void HardFault_Handler() { SafeAndReset(palpa::protocol::ResetCause::kFaultHandler); }
-void MemManage_Handler() { SafeAndReset(palpa::protocol::ResetCause::kFaultHandler); }  // stack guard
+void MemManage_Handler() {
+  SafeAndReset(palpa::protocol::ResetCause::kFaultHandler);
+}  // stack guard
 void BusFault_Handler() { SafeAndReset(palpa::protocol::ResetCause::kFaultHandler); }
 void UsageFault_Handler() { SafeAndReset(palpa::protocol::ResetCause::kFaultHandler); }
 void Default_Handler() { SafeAndReset(palpa::protocol::ResetCause::kFaultHandler); }
@@ -48,16 +50,31 @@ __attribute__((section(".isr_vector"), used)) void (*const g_vectors[16 + 16])()
     MemManage_Handler,
     BusFault_Handler,
     UsageFault_Handler,
-    nullptr, nullptr, nullptr, nullptr,
+    nullptr,
+    nullptr,
+    nullptr,
+    nullptr,
     Default_Handler,  // SVCall
     Default_Handler,  // debug monitor
     nullptr,
     Default_Handler,  // PendSV
     SysTick_Handler,
     Uart0Rx_Handler,  // IRQ 0: UART0 receive
-    Default_Handler, Default_Handler, Default_Handler, Default_Handler, Default_Handler, Default_Handler,
-    Default_Handler, Default_Handler, Default_Handler, Default_Handler, Default_Handler, Default_Handler,
-    Default_Handler, Default_Handler, Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
 };
 
 }  // extern "C"

@@ -75,8 +75,8 @@ void SimBoard::BootBoard(protocol::ResetCause cause) {
   update_ = std::make_unique<core::UpdateEngine>(flash_.get(), layout, protocol::BoardKind::kSim,
                                                  last_boot_.slot);
   if (id.recovery) id.active_slot = static_cast<uint8_t>(1 - update_->inactive_slot());
-  core::BoardIo io{clock_, *dac_, adc_.get(), supply_, dump_, pump_, nullptr, *link_, nullptr, 0,
-                   update_.get()};
+  core::BoardIo io{clock_,  *dac_,  adc_.get(), supply_, dump_,        pump_,
+                   nullptr, *link_, nullptr,    0,       update_.get()};
   board_ = std::make_unique<core::Board>(*config_, io, id);
   board_->Start();
 }

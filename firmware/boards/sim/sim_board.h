@@ -10,10 +10,10 @@
 #include "palpa/core/board.h"
 #include "palpa/core/boot_state.h"
 #include "palpa/core/update_engine.h"
-#include "palpa/hal/fake/simulated_nor_flash.h"
 #include "palpa/hal/byte_link.h"
 #include "palpa/hal/clock.h"
 #include "palpa/hal/digital_io.h"
+#include "palpa/hal/fake/simulated_nor_flash.h"
 #include "palpa/hal/sim/plant.h"
 #include "palpa/hal/sim/sim_io.h"
 

@@ -45,7 +45,8 @@ void Board::Start() {
     case protocol::ResetCause::kWatchdog:
     case protocol::ResetCause::kBrownOut:
     case protocol::ResetCause::kFaultHandler:
-      LatchFault(supervisor_, Fault::kUnexpectedReset, now, static_cast<int32_t>(identity_.reset_cause));
+      LatchFault(supervisor_, Fault::kUnexpectedReset, now,
+                 static_cast<int32_t>(identity_.reset_cause));
       break;
     default:
       break;
@@ -59,7 +60,9 @@ bool Board::DacMatches(const BoardConfig& config, ConfigError* error) const {
   for (uint8_t i = 0; i < config.line_count; ++i) {
     const hal::AnalogOutputSpec spec = io_.dac.spec(i);
     if (config.lines[i].dac_bits != spec.bits || config.lines[i].dac_signal != spec.range) {
-      if (error != nullptr) *error = {protocol::ConfigSection::kLine, i, "DAC resolution or signal range differs from the board's DAC"};
+      if (error != nullptr)
+        *error = {protocol::ConfigSection::kLine, i,
+                  "DAC resolution or signal range differs from the board's DAC"};
       return false;
     }
   }
@@ -109,7 +112,8 @@ void Board::ApplyLive(uint64_t now_us) {
     const protocol::ConfigureFinger& finger = live_.fingers[f];
     const bool jamming = finger.kind == protocol::FingerKind::kJamming;
     const protocol::ConfigureLine& driven = live_.lines[jamming ? finger.line_b : finger.line_a];
-    const float drive_limit = static_cast<float>(jamming ? -driven.limit_min_pa : driven.limit_max_pa);
+    const float drive_limit =
+        static_cast<float>(jamming ? -driven.limit_min_pa : driven.limit_max_pa);
     finger_params_[f] = MakeFingerParams(finger, drive_limit);
     finger_state_[f].target = 0;
   }
@@ -185,9 +189,11 @@ void Board::ReadInputs(uint64_t now_us, SupervisorInput& in) {
     const uint32_t counts = scan[i];
     const bool converted = counts != hal::AnalogInput::kConversionFailed;
     // Readings outside the sensor's output span (open or shorted wire) are not pressures.
-    o->sensor_valid = converted && counts >= p->sensor_counts_low && counts <= p->sensor_counts_high;
+    o->sensor_valid =
+        converted && counts >= p->sensor_counts_low && counts <= p->sensor_counts_high;
     if (o->sensor_valid) {
-      o->measured_pa = p->sensor_min_pa + (static_cast<float>(counts) - p->sensor_counts_min) * p->sensor_pa_per_count;
+      o->measured_pa = p->sensor_min_pa +
+                       (static_cast<float>(counts) - p->sensor_counts_min) * p->sensor_pa_per_count;
     }
     o->raw_counts = converted ? counts : 0;
   }
@@ -223,7 +229,8 @@ void Board::WriteOutputs() {
   uint8_t failed = kNoLine;  // the supervisor judges a failed write on the next tick
   for (uint8_t i = 0; i < live_.line_count; ++i) {
     if (safe_) line_out_[i].counts = line_params_[i].safe_counts;
-    if (io_.dac.Write(i, line_out_[i].counts) != protocol::Status::kOk && failed == kNoLine) failed = i;
+    if (io_.dac.Write(i, line_out_[i].counts) != protocol::Status::kOk && failed == kNoLine)
+      failed = i;
   }
   if (unparked_channels_ != 0) {
     const uint8_t channel = ParkDroppedChannels();

@@ -28,7 +28,9 @@ int32_t Abs(int32_t v) { return v < 0 ? -v : v; }
 Status ValidateCorrection(const protocol::ConfigureLine& line, ConfigError* error) {
   const uint8_t n = line.correction_count;
   if (n == 0) return Status::kOk;
-  if (n == 1) return Fail(error, ConfigSection::kLine, line.line, "correction needs >= 2 points", Status::kBadValue);
+  if (n == 1)
+    return Fail(error, ConfigSection::kLine, line.line, "correction needs >= 2 points",
+                Status::kBadValue);
   int32_t command[protocol::kMaxCorrectionPoints], rising[protocol::kMaxCorrectionPoints],
       falling[protocol::kMaxCorrectionPoints];
   for (uint8_t i = 0; i < n; ++i) {
@@ -55,7 +57,8 @@ Status ValidateLine(const protocol::ConfigureLine& line, ConfigError* error) {
       !Within(line.limit_max_pa, ceiling.min_pa, ceiling.max_pa)) {
     return Fail(error, ConfigSection::kLine, i, "limits beyond the hard ceiling");
   }
-  if (line.limit_min_pa > line.limit_max_pa) return Fail(error, ConfigSection::kLine, i, "limit_min > limit_max");
+  if (line.limit_min_pa > line.limit_max_pa)
+    return Fail(error, ConfigSection::kLine, i, "limit_min > limit_max");
   if (!Within(line.safe_pa, line.limit_min_pa, line.limit_max_pa)) {
     return Fail(error, ConfigSection::kLine, i, "safe value outside the limits");
   }
@@ -65,20 +68,25 @@ Status ValidateLine(const protocol::ConfigureLine& line, ConfigError* error) {
   const int32_t nearest_zero = line.limit_min_pa > 0 ? line.limit_min_pa : -line.limit_max_pa;
   if (!zero_within && nearest_zero < line.regulator_min_pa) {
     return Fail(error, ConfigSection::kLine, i,
-                "limits leave 0 Pa out but reach below the regulator's minimum, where the line commands 0 Pa");
+                "limits leave 0 Pa out but reach below the regulator's minimum, where the line "
+                "commands 0 Pa");
   }
   if (line.command_min_pa == line.command_max_pa) {
     return Fail(error, ConfigSection::kLine, i, "command range is empty", Status::kBadValue);
   }
-  const int32_t command_lo = line.command_min_pa < line.command_max_pa ? line.command_min_pa : line.command_max_pa;
-  const int32_t command_hi = line.command_min_pa < line.command_max_pa ? line.command_max_pa : line.command_min_pa;
-  if (!Within(line.limit_min_pa, command_lo, command_hi) || !Within(line.limit_max_pa, command_lo, command_hi)) {
+  const int32_t command_lo =
+      line.command_min_pa < line.command_max_pa ? line.command_min_pa : line.command_max_pa;
+  const int32_t command_hi =
+      line.command_min_pa < line.command_max_pa ? line.command_max_pa : line.command_min_pa;
+  if (!Within(line.limit_min_pa, command_lo, command_hi) ||
+      !Within(line.limit_max_pa, command_lo, command_hi)) {
     return Fail(error, ConfigSection::kLine, i, "limits outside the regulator's command range");
   }
   if (line.sensor == protocol::SensorKind::kAnalog) {
     const uint32_t adc_max = (1u << line.adc_bits) - 1u;
     if (line.sensor_counts_min >= line.sensor_counts_max || line.sensor_counts_max > adc_max) {
-      return Fail(error, ConfigSection::kLine, i, "sensor counts not within the ADC", Status::kBadValue);
+      return Fail(error, ConfigSection::kLine, i, "sensor counts not within the ADC",
+                  Status::kBadValue);
     }
     if (line.sensor_min_pa >= line.sensor_max_pa) {
       return Fail(error, ConfigSection::kLine, i, "sensor range is empty", Status::kBadValue);
@@ -106,15 +114,21 @@ Status ValidateFinger(const protocol::ConfigureFinger& finger, const BoardConfig
   const auto& a = config.lines[finger.line_a];
   const protocol::ConfigureLine* driven = &a;
   if (finger.kind == FingerKind::kPneumatic) {
-    if (a.kind != LineKind::kPressure) return Fail(error, s, f, "pneumatic finger needs a pressure line", Status::kBadValue);
-    if (finger.line_b != protocol::kNoLine) return Fail(error, s, f, "pneumatic finger has one line", Status::kBadValue);
-    if (finger.bias_pa != 0) return Fail(error, s, f, "pneumatic finger has no bias", Status::kBadValue);
+    if (a.kind != LineKind::kPressure)
+      return Fail(error, s, f, "pneumatic finger needs a pressure line", Status::kBadValue);
+    if (finger.line_b != protocol::kNoLine)
+      return Fail(error, s, f, "pneumatic finger has one line", Status::kBadValue);
+    if (finger.bias_pa != 0)
+      return Fail(error, s, f, "pneumatic finger has no bias", Status::kBadValue);
   } else {
-    if (a.kind != LineKind::kBias) return Fail(error, s, f, "jamming finger needs a bias line as line_a", Status::kBadValue);
-    if (finger.line_b >= config.line_count || config.lines[finger.line_b].kind != LineKind::kVacuum) {
+    if (a.kind != LineKind::kBias)
+      return Fail(error, s, f, "jamming finger needs a bias line as line_a", Status::kBadValue);
+    if (finger.line_b >= config.line_count ||
+        config.lines[finger.line_b].kind != LineKind::kVacuum) {
       return Fail(error, s, f, "jamming finger needs a vacuum line as line_b", Status::kBadValue);
     }
-    if (!Within(finger.bias_pa, a.limit_min_pa, a.limit_max_pa)) return Fail(error, s, f, "bias outside the bias line's limits");
+    if (!Within(finger.bias_pa, a.limit_min_pa, a.limit_max_pa))
+      return Fail(error, s, f, "bias outside the bias line's limits");
     driven = &config.lines[finger.line_b];
   }
   const uint8_t n = finger.inverse_count;
@@ -127,9 +141,12 @@ Status ValidateFinger(const protocol::ConfigureFinger& finger, const BoardConfig
       return Fail(error, s, f, "static inverse outside the line's limits");
     }
   }
-  if (Direction(output, n, true) != 1) return Fail(error, s, f, "inverse outputs not strictly increasing", Status::kBadValue);
-  if (Direction(setpoint, n, false) == 2) return Fail(error, s, f, "inverse setpoints not monotone", Status::kBadValue);
-  if (const char* why = CompensatorParamsError(finger)) return Fail(error, s, f, why, Status::kBadValue);
+  if (Direction(output, n, true) != 1)
+    return Fail(error, s, f, "inverse outputs not strictly increasing", Status::kBadValue);
+  if (Direction(setpoint, n, false) == 2)
+    return Fail(error, s, f, "inverse setpoints not monotone", Status::kBadValue);
+  if (const char* why = CompensatorParamsError(finger))
+    return Fail(error, s, f, why, Status::kBadValue);
   return Status::kOk;
 }
 
@@ -137,13 +154,14 @@ Status ValidateConfig(const BoardConfig& config, ConfigError* error) {
   if (config.line_count > protocol::kMaxLines || config.finger_count > protocol::kMaxFingers) {
     return Fail(error, ConfigSection::kBoard, 0, "too many lines or fingers");
   }
-  const uint8_t batch_limit = static_cast<uint8_t>(
-      protocol::kMaxTelemetrySamples / (config.line_count > 0 ? config.line_count : 1));
+  const uint8_t batch_limit = static_cast<uint8_t>(protocol::kMaxTelemetrySamples /
+                                                   (config.line_count > 0 ? config.line_count : 1));
   if (config.board.telemetry_batch > batch_limit) {
     return Fail(error, ConfigSection::kBoard, 0, "telemetry batch does not fit one frame");
   }
   for (uint8_t i = 0; i < config.line_count; ++i) {
-    if (config.lines[i].line != i) return Fail(error, ConfigSection::kLine, i, "line index out of order", Status::kBadValue);
+    if (config.lines[i].line != i)
+      return Fail(error, ConfigSection::kLine, i, "line index out of order", Status::kBadValue);
     const Status s = ValidateLine(config.lines[i], error);
     if (s != Status::kOk) return s;
   }
@@ -151,12 +169,15 @@ Status ValidateConfig(const BoardConfig& config, ConfigError* error) {
   for (uint8_t& o : owner) o = protocol::kNoLine;
   for (uint8_t f = 0; f < config.finger_count; ++f) {
     const auto& finger = config.fingers[f];
-    if (finger.finger != f) return Fail(error, ConfigSection::kFinger, f, "finger index out of order", Status::kBadValue);
+    if (finger.finger != f)
+      return Fail(error, ConfigSection::kFinger, f, "finger index out of order", Status::kBadValue);
     const Status s = ValidateFinger(finger, config, error);
     if (s != Status::kOk) return s;
     for (uint8_t line : {finger.line_a, finger.line_b}) {
       if (line == protocol::kNoLine) continue;
-      if (owner[line] != protocol::kNoLine) return Fail(error, ConfigSection::kFinger, f, "line already used by another finger", Status::kBadValue);
+      if (owner[line] != protocol::kNoLine)
+        return Fail(error, ConfigSection::kFinger, f, "line already used by another finger",
+                    Status::kBadValue);
       owner[line] = f;
     }
   }

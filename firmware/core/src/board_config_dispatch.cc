@@ -52,7 +52,8 @@ Outcome BoardDispatch::Apply(const protocol::StagedPart& m, const protocol::Head
   if (b_.staged_expected_ == 0) return {Status::kUnavailable, 0};
   // Parts arrive in order on the reliable channel; anything else is a host bug.
   if (m.offset != b_.staged_received_) return {Status::kOutOfRange, b_.staged_received_};
-  if (m.data_size > b_.staged_expected_ - b_.staged_received_) return {Status::kOutOfRange, b_.staged_received_};
+  if (m.data_size > b_.staged_expected_ - b_.staged_received_)
+    return {Status::kOutOfRange, b_.staged_received_};
   std::memcpy(b_.staged_.data() + m.offset, m.data.data(), m.data_size);
   b_.staged_crc_ = protocol::Crc32Update(b_.staged_crc_, m.data.data(), m.data_size);
   b_.staged_received_ = static_cast<uint16_t>(b_.staged_received_ + m.data_size);
@@ -61,8 +62,8 @@ Outcome BoardDispatch::Apply(const protocol::StagedPart& m, const protocol::Head
 
 Outcome BoardDispatch::Apply(const protocol::StagedCommit& m, const protocol::Header&) {
   const uint16_t received = b_.staged_received_;
-  const bool complete = b_.staged_expected_ != 0 && received == b_.staged_expected_ &&
-                        m.total_bytes == received;
+  const bool complete =
+      b_.staged_expected_ != 0 && received == b_.staged_expected_ && m.total_bytes == received;
   b_.staged_expected_ = b_.staged_received_ = 0;  // one commit per begin, whatever happens
   if (!complete) return {Status::kStagedIncomplete, received};
   if (b_.staged_crc_ != m.crc32) return {Status::kCrcError, 0};
@@ -96,7 +97,8 @@ Outcome BoardDispatch::Apply(const protocol::ClearFault& m, const protocol::Head
   // This very frame proves the host is back: host silence no longer persists.
   b_.supervisor_.active &= ~protocol::FaultBit(protocol::Fault::kHostSilence);
   const Status status = ClearFaults(b_.supervisor_, m.mask);
-  if (status != Status::kOk) return {status, b_.supervisor_.latched & b_.supervisor_.active & m.mask};
+  if (status != Status::kOk)
+    return {status, b_.supervisor_.latched & b_.supervisor_.active & m.mask};
   b_.Hold();  // outputs stay safe until new setpoints arrive; compensators re-home
   return {};
 }

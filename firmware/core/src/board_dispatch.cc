@@ -1,4 +1,5 @@
-// Command dispatch: session and reliable-channel rules from protocol/, then one handler per message.
+// Command dispatch: session and reliable-channel rules from protocol/, then one handler per
+// message.
 #include <cstring>
 
 #include "board_dispatch.h"
@@ -35,11 +36,11 @@ void BoardDispatch::Answer(uint8_t type, uint8_t seq, uint8_t answer_flags, Stat
                                                     (b_.supervisor_.latched ? flags::kFaulted : 0));
   protocol::Result<size_t> n = Status::kOk;
   if (status == Status::kOk) {
-    n = protocol::EncodeMessageFrame(protocol::Ack{b_.session_.boot_nonce(), type}, seq, header_flags,
-                                     slot, protocol::kMaxFrameSize);
-  } else {
-    n = protocol::EncodeMessageFrame(protocol::Nack{b_.session_.boot_nonce(), type, status, detail}, seq,
+    n = protocol::EncodeMessageFrame(protocol::Ack{b_.session_.boot_nonce(), type}, seq,
                                      header_flags, slot, protocol::kMaxFrameSize);
+  } else {
+    n = protocol::EncodeMessageFrame(protocol::Nack{b_.session_.boot_nonce(), type, status, detail},
+                                     seq, header_flags, slot, protocol::kMaxFrameSize);
   }
   if (n.ok()) b_.tx_.CommitAnswer(n.value);
 }
@@ -149,7 +150,8 @@ Outcome BoardDispatch::Apply(const protocol::SetFingerTargets& m, const protocol
     const protocol::FingerTarget& e = m.entries[i];
     if (e.finger >= b_.live_.finger_count) return {Status::kNotFound, i};
     const FingerParams& p = b_.finger_params_[e.finger];
-    if (b_.finger_state_[e.finger].mode != protocol::FingerMode::kTarget) return {Status::kWrongMode, i};
+    if (b_.finger_state_[e.finger].mode != protocol::FingerMode::kTarget)
+      return {Status::kWrongMode, i};
     if (e.unit != UnitOf(p.kind)) return {Status::kBadValue, i};
     if (e.target > p.max_target) return {Status::kOutOfRange, i};
   }
@@ -170,7 +172,8 @@ Outcome BoardDispatch::Apply(const protocol::SetFingerMode& m, const protocol::H
   if (m.mode == protocol::FingerMode::kRaw) {
     // Raw setpoints start where the finger's lines are now, until the host sends its own.
     b_.raw_setpoint_pa_[p.line_a] = b_.line_state_[p.line_a].slewed_pa;
-    if (p.line_b != protocol::kNoLine) b_.raw_setpoint_pa_[p.line_b] = b_.line_state_[p.line_b].slewed_pa;
+    if (p.line_b != protocol::kNoLine)
+      b_.raw_setpoint_pa_[p.line_b] = b_.line_state_[p.line_b].slewed_pa;
   } else {
     RequireHoming(s);  // back to target mode: the compensator's memory is stale
   }

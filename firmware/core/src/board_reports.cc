@@ -13,7 +13,8 @@ namespace {
 namespace flags = protocol::flags;
 
 uint8_t BoardFlags(const Board& b, uint8_t extra) {
-  return static_cast<uint8_t>(flags::kFromBoard | extra | (b.latched_faults() ? flags::kFaulted : 0));
+  return static_cast<uint8_t>(flags::kFromBoard | extra |
+                              (b.latched_faults() ? flags::kFaulted : 0));
 }
 
 /// Telemetry carries readings within ±200 kPa; a sensor gone wild still fits the field.
@@ -49,14 +50,16 @@ void BoardReports::HelloReply(Board& b, uint32_t host_nonce, uint8_t seq) {
   r.time_scale = id.time_scale;
   r.rx_buffer_bytes = id.rx_buffer_bytes;
   r.active_slot = id.active_slot;
-  r.rollback_counter = b.io_.update != nullptr ? b.io_.update->rollback_floor() : id.rollback_counter;
+  r.rollback_counter =
+      b.io_.update != nullptr ? b.io_.update->rollback_floor() : id.rollback_counter;
   r.host_timeout_us = b.live_.board.host_timeout_us;
   r.fault_bitmap = b.supervisor_.latched;
   r.config_name = b.live_.board.config_name;
   r.line_count = b.live_.line_count;
   for (uint8_t i = 0; i < b.live_.line_count; ++i) {
     const protocol::ConfigureLine& c = b.live_.lines[i];
-    r.lines[i] = protocol::LineSummary{c.kind, c.sensor != protocol::SensorKind::kNone, c.limit_min_pa, c.limit_max_pa};
+    r.lines[i] = protocol::LineSummary{c.kind, c.sensor != protocol::SensorKind::kNone,
+                                       c.limit_min_pa, c.limit_max_pa};
   }
   r.finger_count = b.live_.finger_count;
   for (uint8_t f = 0; f < b.live_.finger_count; ++f) {
@@ -105,7 +108,8 @@ void BoardReports::Slots(Board& b, protocol::SlotsReport r, uint8_t seq) {
   QueueAnswer(b.tx_, r, seq, BoardFlags(b, flags::kReliable));
 }
 
-protocol::Status BoardReports::ConfigReport(Board& b, const protocol::GetConfig& request, uint8_t seq) {
+protocol::Status BoardReports::ConfigReport(Board& b, const protocol::GetConfig& request,
+                                            uint8_t seq) {
   uint8_t body[480];
   protocol::Result<size_t> size = protocol::Status::kNotFound;
   switch (request.section) {
@@ -113,10 +117,12 @@ protocol::Status BoardReports::ConfigReport(Board& b, const protocol::GetConfig&
       size = protocol::EncodeBody(b.live_.board, body, sizeof(body));
       break;
     case protocol::ConfigSection::kLine:
-      if (request.index < b.live_.line_count) size = protocol::EncodeBody(b.live_.lines[request.index], body, sizeof(body));
+      if (request.index < b.live_.line_count)
+        size = protocol::EncodeBody(b.live_.lines[request.index], body, sizeof(body));
       break;
     case protocol::ConfigSection::kFinger:
-      if (request.index < b.live_.finger_count) size = protocol::EncodeBody(b.live_.fingers[request.index], body, sizeof(body));
+      if (request.index < b.live_.finger_count)
+        size = protocol::EncodeBody(b.live_.fingers[request.index], body, sizeof(body));
       break;
     default:
       break;
@@ -131,7 +137,8 @@ protocol::Status BoardReports::ConfigReport(Board& b, const protocol::GetConfig&
   r.total_bytes = static_cast<uint16_t>(size.value);
   r.offset = request.offset;
   const size_t left = size.value - request.offset;
-  r.data_size = static_cast<uint8_t>(left < protocol::kMaxConfigChunk ? left : protocol::kMaxConfigChunk);
+  r.data_size =
+      static_cast<uint8_t>(left < protocol::kMaxConfigChunk ? left : protocol::kMaxConfigChunk);
   std::memcpy(r.data.data(), body + request.offset, r.data_size);
   QueueAnswer(b.tx_, r, seq, BoardFlags(b, flags::kReliable));
   return protocol::Status::kOk;
@@ -146,9 +153,10 @@ void Board::SampleTelemetry(uint64_t now_us, bool fault_report) {
     for (uint8_t i = 0; i < live_.line_count; ++i) {
       const LineOutput& o = line_out_[i];
       const LineObservation& seen = supervisor_input_.lines[i];
-      batch_.samples[batch_.sample_count++] = protocol::LineSample{
-          static_cast<int32_t>(line_state_[i].slewed_pa), seen.sensor_valid ? ClampReading(seen.measured_pa) : 0,
-          static_cast<uint16_t>(o.counts), o.status};
+      batch_.samples[batch_.sample_count++] =
+          protocol::LineSample{static_cast<int32_t>(line_state_[i].slewed_pa),
+                               seen.sensor_valid ? ClampReading(seen.measured_pa) : 0,
+                               static_cast<uint16_t>(o.counts), o.status};
     }
     ++batch_.tick_count;
   }
@@ -163,8 +171,9 @@ void Board::SampleTelemetry(uint64_t now_us, bool fault_report) {
   batch_.dropped_frames = tx_.telemetry_dropped();
   uint8_t* slot = tx_.ReserveTelemetry(fault_report);
   if (slot != nullptr) {
-    const auto n = protocol::EncodeMessageFrame(batch_, static_cast<uint8_t>(tick_index_),
-                                                BoardFlags(*this, 0), slot, protocol::kMaxFrameSize);
+    const auto n =
+        protocol::EncodeMessageFrame(batch_, static_cast<uint8_t>(tick_index_),
+                                     BoardFlags(*this, 0), slot, protocol::kMaxFrameSize);
     if (n.ok()) tx_.CommitTelemetry(n.value, fault_report);
   }
   batch_.tick_count = 0;

@@ -1,8 +1,8 @@
 // Compensator steps: memory from the applied drive, then the inverse for the target.
 #include "palpa/core/compensator.h"
 
-#include "palpa/core/curve.h"
 #include "float_ops.h"
+#include "palpa/core/curve.h"
 #include "play_lanes.h"
 #include "play_pairs.h"
 
@@ -22,8 +22,8 @@ float OutputMapInverse(const PlayTable& t, float s) {
 // operators' shares and every inverse threshold within 2²⁹ (compensator_params.cc), so a
 // clamped start still puts each inverse state beyond its threshold (as the true one is) and no
 // sum leaves int32.
-constexpr float kStartLimit = 1073741824.0f;  // 2³⁰
-constexpr float kHalfUpperStep = 32768.0f;    // rounds the states' upper halves to nearest
+constexpr float kStartLimit = 1073741824.0f;     // 2³⁰
+constexpr float kHalfUpperStep = 32768.0f;       // rounds the states' upper halves to nearest
 constexpr float kMaxAppliedSteps = 16777216.0f;  // 2²⁴: exact in float, far beyond any sensor
 
 /// Analytic PI inverse evaluated from the forward memory, two operators per word, top pair

@@ -73,8 +73,8 @@ bool BuildPlayOperators(const float* r, const float* w, uint8_t n, PlayTable& t)
   float before = t.w0;  // W_{i-1}
   float weighted_thresholds = 0;
   float largest_weight = 0;
-  float weighted_spread = 0;   // Σ |w_j| r_j
-  float widest = 0;            // max |W_i| r_i
+  float weighted_spread = 0;  // Σ |w_j| r_j
+  float widest = 0;           // max |W_i| r_i
   t.inverse_gain = 1.0f / t.w0;
   bool finite = true;
   for (uint8_t i = 0; i < n; ++i) {
@@ -91,8 +91,8 @@ bool BuildPlayOperators(const float* r, const float* w, uint8_t n, PlayTable& t)
   }
   t.drive_step = Largest(r[n - 1] / 16383.0f, 0.01f);
   t.per_drive_step = 1.0f / t.drive_step;
-  t.sum_step = Largest(largest_weight * t.drive_step / 32767.0f,
-                       (weighted_spread + widest) / 536870912.0f);
+  t.sum_step =
+      Largest(largest_weight * t.drive_step / 32767.0f, (weighted_spread + widest) / 536870912.0f);
   t.per_sum_step = 1.0f / t.sum_step;
   const float weight_scale = t.drive_step * t.per_sum_step;  // sum steps per drive step
   t.applied_gain = before * weight_scale;

@@ -11,7 +11,6 @@ namespace {
 constexpr uint32_t kMagic = 0x50434647;  // "GFCP"
 constexpr uint32_t kHeaderSize = 20;
 
-
 // One blob buffer shared by load and save: both run between ticks, never together.
 uint8_t g_blob[kMaxConfigBlob];
 
@@ -19,7 +18,8 @@ uint8_t g_blob[kMaxConfigBlob];
 
 bool ConfigStore::ReadHeader(uint8_t copy, Header& header) {
   uint8_t raw[kHeaderSize];
-  if (flash_->Read(base_ + copy * flash_->sector_size(), raw, sizeof(raw)) != Status::kOk) return false;
+  if (flash_->Read(base_ + copy * flash_->sector_size(), raw, sizeof(raw)) != Status::kOk)
+    return false;
   header = Header{protocol::LoadLe32(raw), protocol::LoadLe32(raw + 4), protocol::LoadLe32(raw + 8),
                   protocol::LoadLe32(raw + 12), protocol::LoadLe32(raw + 16)};
   return header.magic == kMagic && protocol::Crc32(raw, 16) == header.header_crc &&

@@ -60,8 +60,7 @@ FingerOutput StepFinger(const FingerParams& p, FingerState& s, uint64_t now_us,
     setpoint = StaticInverse(p, s.target);
   } else {
     // Memory follows the applied drive every tick, also while the target is 0 (venting).
-    const CompensatorOutput c =
-        StepCompensator(p.compensation, s.memory, s.target, applied_drive);
+    const CompensatorOutput c = StepCompensator(p.compensation, s.memory, s.target, applied_drive);
     const float drive = s.target > 0 ? c.drive : 0.0f;  // "off" is 0 Pa whatever the model says
     out.saturated = s.target > 0 && c.saturated;
     setpoint = jamming ? -drive : drive;

@@ -1,10 +1,10 @@
 // The line pipeline: the only code between a setpoint and a DAC code.
 #include "palpa/core/line_pipeline.h"
 
+#include "float_ops.h"
 #include "palpa/core/ceilings.h"
 #include "palpa/core/curve.h"
 #include "palpa/protocol/enums.h"
-#include "float_ops.h"
 
 namespace palpa::core {
 namespace {
@@ -41,8 +41,10 @@ LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us)
   p.sensor_counts_min = static_cast<float>(line.sensor_counts_min);
   p.sensor_pa_per_count = static_cast<float>(line.sensor_max_pa - line.sensor_min_pa) /
                           static_cast<float>(line.sensor_counts_max - line.sensor_counts_min);
-  p.limit_min_pa = static_cast<float>(line.limit_min_pa > ceiling.min_pa ? line.limit_min_pa : ceiling.min_pa);
-  p.limit_max_pa = static_cast<float>(line.limit_max_pa < ceiling.max_pa ? line.limit_max_pa : ceiling.max_pa);
+  p.limit_min_pa =
+      static_cast<float>(line.limit_min_pa > ceiling.min_pa ? line.limit_min_pa : ceiling.min_pa);
+  p.limit_max_pa =
+      static_cast<float>(line.limit_max_pa < ceiling.max_pa ? line.limit_max_pa : ceiling.max_pa);
   p.safe_pa = Clamp(static_cast<float>(line.safe_pa), p.limit_min_pa, p.limit_max_pa);
   // No slew limit is a step no setpoint change can exceed (one compare a tick instead of two).
   p.max_step_pa = line.slew_pa_per_s > 0 ? static_cast<float>(line.slew_pa_per_s) * dt : kUnbounded;
@@ -52,7 +54,9 @@ LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us)
   p.command_span_pa = static_cast<float>(line.command_max_pa - line.command_min_pa);
   p.max_counts = (1u << line.dac_bits) - 1u;
   // A 4-20 mA output is a 0-20 mA DAC: 0 % of the signal is 4 mA, a fifth of full scale.
-  p.counts_low = line.dac_signal == protocol::SignalRange::kMilliamp4To20 ? 0.2f * static_cast<float>(p.max_counts) : 0.0f;
+  p.counts_low = line.dac_signal == protocol::SignalRange::kMilliamp4To20
+                     ? 0.2f * static_cast<float>(p.max_counts)
+                     : 0.0f;
   p.counts_high = static_cast<float>(p.max_counts);
   p.kp = line.trim_kp;
   p.ki_dt = line.trim_ki_per_s * dt;
@@ -143,7 +147,8 @@ void StepLine(const LineParams& p, LineState& s, const LineInput& in, LineOutput
   const float unclamped_command = feed_forward + trim;
   out.command_pa = Clamp(unclamped_command, p.limit_min_pa, p.limit_max_pa);
   if (out.command_pa != unclamped_command) {
-    s.integrator_pa = Clamp(s.integrator_pa + (out.command_pa - unclamped_command), -p.authority_pa, p.authority_pa);
+    s.integrator_pa = Clamp(s.integrator_pa + (out.command_pa - unclamped_command), -p.authority_pa,
+                            p.authority_pa);
     out.status |= ls::kSaturated;
   }
   out.counts = Counts(p, out.command_pa);

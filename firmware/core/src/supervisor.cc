@@ -44,7 +44,8 @@ void LatchFault(SupervisorState& s, Fault fault, uint64_t now_us, int32_t detail
   if (s.history_count < protocol::kMaxFaultRecords) ++s.history_count;
 }
 
-uint32_t Supervise(const SupervisorSettings& settings, SupervisorState& s, const SupervisorInput& in) {
+uint32_t Supervise(const SupervisorSettings& settings, SupervisorState& s,
+                   const SupervisorInput& in) {
   const uint32_t before = s.latched;
   uint32_t active = 0;
   // Written by the first raise of a fault and read only for raised faults: no per-tick zeroing
@@ -89,7 +90,8 @@ uint32_t Supervise(const SupervisorSettings& settings, SupervisorState& s, const
     LineMonitor& m = s.lines[slot];
     // More pressure than the regulator was told to make, for longer than the chamber settles.
     const bool beyond_model = Abs(o.measured_pa) > Abs(o.reference_pa) + tol;
-    if (HeldFor(beyond_model, m.implausible_timing, m.implausible_since, in.now_us, settings.sensor_window_us)) {
+    if (HeldFor(beyond_model, m.implausible_timing, m.implausible_since, in.now_us,
+                settings.sensor_window_us)) {
       raise(Fault::kImplausibleSensor, slot);
     }
     // Stuck: the very same counts while the command moved by more than the tolerance.
@@ -102,9 +104,11 @@ uint32_t Supervise(const SupervisorSettings& settings, SupervisorState& s, const
       raise(Fault::kImplausibleSensor, slot);
     }
     // Leak: the model has settled on the setpoint but the chamber stays short of it.
-    const bool short_of_setpoint = o.closed_loop && !in.safe && Abs(o.reference_pa - o.setpoint_pa) < tol &&
+    const bool short_of_setpoint = o.closed_loop && !in.safe &&
+                                   Abs(o.reference_pa - o.setpoint_pa) < tol &&
                                    Abs(o.measured_pa) < Abs(o.setpoint_pa) - tol;
-    if (HeldFor(short_of_setpoint, m.leak_timing, m.leak_since, in.now_us, settings.leak_timeout_us)) {
+    if (HeldFor(short_of_setpoint, m.leak_timing, m.leak_since, in.now_us,
+                settings.leak_timeout_us)) {
       raise(Fault::kLeak, slot);
     }
   }
@@ -118,7 +122,8 @@ uint32_t Supervise(const SupervisorSettings& settings, SupervisorState& s, const
 
   s.active = active;
   for (uint8_t f = 0; active != 0 && f < static_cast<uint8_t>(Fault::kCount); ++f) {
-    if ((active & FaultBit(static_cast<Fault>(f))) != 0) LatchFault(s, static_cast<Fault>(f), in.now_us, detail[f]);
+    if ((active & FaultBit(static_cast<Fault>(f))) != 0)
+      LatchFault(s, static_cast<Fault>(f), in.now_us, detail[f]);
   }
   if (s.latched != 0) s.pump_on = false;
   return s.latched & ~before;
@@ -137,7 +142,8 @@ protocol::Status ClearFaults(SupervisorState& s, uint32_t mask) {
 uint8_t FaultHistory(const SupervisorState& s, protocol::FaultRecord* out) {
   const uint8_t start = static_cast<uint8_t>(
       (s.history_next + protocol::kMaxFaultRecords - s.history_count) % protocol::kMaxFaultRecords);
-  for (uint8_t i = 0; i < s.history_count; ++i) out[i] = s.history[(start + i) % protocol::kMaxFaultRecords];
+  for (uint8_t i = 0; i < s.history_count; ++i)
+    out[i] = s.history[(start + i) % protocol::kMaxFaultRecords];
   return s.history_count;
 }
 

@@ -26,7 +26,8 @@ Status SimulatedNorFlash::DoErase(uint32_t offset) {
   for (uint32_t i = 0; i < sector_size_; ++i) {
     if (!Spend()) {
       // A torn erase leaves the rest of the sector with random bits set.
-      for (uint32_t j = i; j < sector_size_; ++j) memory_[offset + j] |= static_cast<uint8_t>(rng_());
+      for (uint32_t j = i; j < sector_size_; ++j)
+        memory_[offset + j] |= static_cast<uint8_t>(rng_());
       return Status::kIoError;
     }
     memory_[offset + i] = 0xFF;

@@ -39,7 +39,9 @@ size_t Uart::DoRead(uint8_t* out, size_t capacity) {
   return n;
 }
 
-size_t Uart::DoWriteSpace() const { return kTxSize - 1 - (tx_head_ + kTxSize - tx_tail_) % kTxSize; }
+size_t Uart::DoWriteSpace() const {
+  return kTxSize - 1 - (tx_head_ + kTxSize - tx_tail_) % kTxSize;
+}
 
 size_t Uart::DoWrite(const uint8_t* data, size_t size) {
   const size_t n = size < DoWriteSpace() ? size : DoWriteSpace();

@@ -50,7 +50,8 @@ void PneumaticActuator::Reset() {
 
 float PneumaticActuator::Reversible(float kpa) const {
   const float x = std::max(0.0f, kpa - p::kPneumaticReversibleDeadZoneKpa);
-  return p::kPneumaticReversibleLinearMmPerKpa * x + p::kPneumaticReversibleQuadraticMmPerKpa2 * x * x;
+  return p::kPneumaticReversibleLinearMmPerKpa * x +
+         p::kPneumaticReversibleQuadraticMmPerKpa2 * x * x;
 }
 
 float PneumaticActuator::RisingMajorMm(float kpa) const {
@@ -72,7 +73,8 @@ float PneumaticActuator::Step(float chamber_pa, float dt_s) {
   const float instant = unit_gain_ * (Reversible(rate_kpa_) + loop_->Apply(rate_kpa_));
   if (effects_.creep) {
     // A fraction of every change arrives with the creep time constant.
-    creep_mm_ += (p::kPneumaticCreepFraction * instant - creep_mm_) * dt_s / (p::kPneumaticCreepTauS + dt_s);
+    creep_mm_ +=
+        (p::kPneumaticCreepFraction * instant - creep_mm_) * dt_s / (p::kPneumaticCreepTauS + dt_s);
     deformation_mm_ = (1.0f - p::kPneumaticCreepFraction) * instant + creep_mm_;
   } else {
     deformation_mm_ = instant;
@@ -87,7 +89,8 @@ JammingActuator::JammingActuator(float unit_gain, Effects effects)
       history_(std::make_shared<PreisachModel>(40, 100.0f, HistoryDensity)) {
   float widest = 0;
   for (int x = 0; x <= 100; ++x) {
-    widest = std::max(widest, history_->FallingMajor(static_cast<float>(x)) - history_->RisingMajor(static_cast<float>(x)));
+    widest = std::max(widest, history_->FallingMajor(static_cast<float>(x)) -
+                                  history_->RisingMajor(static_cast<float>(x)));
   }
   history_norm_ = widest > 0 ? widest : 1.0f;
 }
@@ -106,7 +109,9 @@ float JammingActuator::StaticStiffness(float bias_pa, float vacuum_pa) const {
   const float c = p::kJammingCurvature;
   const float linear = (1.0f - c) * x + c * x * x;
   // Without bias the granules jam abruptly around mid vacuum: a normalised logistic step.
-  auto logistic = [](float v) { return 1.0f / (1.0f + std::exp(-(v - p::kJammingNoBiasCenter) / p::kJammingNoBiasWidth)); };
+  auto logistic = [](float v) {
+    return 1.0f / (1.0f + std::exp(-(v - p::kJammingNoBiasCenter) / p::kJammingNoBiasWidth));
+  };
   const float abrupt = (logistic(x) - logistic(0)) / (logistic(1) - logistic(0));
   return unit_gain_ * (k0 + span * (b * linear + (1.0f - b) * abrupt));
 }
@@ -117,14 +122,16 @@ float JammingActuator::Step(float bias_pa, float vacuum_pa) {
   const float x = std::clamp(-vacuum_pa / 1000.0f, 0.0f, 100.0f);
   const float memory = history_->Apply(x) - history_->RisingMajor(x);
   const float span = p::kJammingStiffnessAtFullVacuumNPerMm - p::kJammingStiffnessAt0NPerMm;
-  stiffness_ = StaticStiffness(bias_pa, vacuum_pa) + unit_gain_ * history_fraction_ * span * (memory / history_norm_);
+  stiffness_ = StaticStiffness(bias_pa, vacuum_pa) +
+               unit_gain_ * history_fraction_ * span * (memory / history_norm_);
   return stiffness_;
 }
 
 float JammingActuator::PressLoopFraction() const {
   const float x = std::clamp(-vacuum_ / 100000.0f, 0.0f, 1.0f);
   const float b = std::clamp(bias_ / p::kJammingBiasForLinearPa, 0.0f, 1.0f);
-  const float growth = 1.0f + p::kJammingPressLoopGrowthBeyond60kpa * std::max(0.0f, (x - 0.6f) / 0.4f);
+  const float growth =
+      1.0f + p::kJammingPressLoopGrowthBeyond60kpa * std::max(0.0f, (x - 0.6f) / 0.4f);
   return p::kJammingPressLoopFraction * growth * (1.0f - p::kJammingPressLoopBiasReduction * b);
 }
 

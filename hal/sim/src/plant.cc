@@ -38,8 +38,8 @@ float ChamberTau(protocol::LineKind kind) {
 
 }  // namespace
 
-Plant::Plant(const protocol::ConfigureLine* lines, uint8_t line_count, const protocol::ConfigureFinger* fingers,
-             uint8_t finger_count, PlantOptions options)
+Plant::Plant(const protocol::ConfigureLine* lines, uint8_t line_count,
+             const protocol::ConfigureFinger* fingers, uint8_t finger_count, PlantOptions options)
     : options_(options) {
   std::mt19937 rng(options.seed * 2654435761u + 17u);
   for (uint8_t i = 0; i < line_count; ++i) {
@@ -106,7 +106,9 @@ void Plant::SetDacCounts(uint8_t line, uint32_t counts) {
   lines_[line].command_pa = NominalCommand(lines_[line].config, counts);
 }
 
-uint32_t Plant::SensorCounts(uint8_t line) const { return line < lines_.size() ? lines_[line].counts : 0; }
+uint32_t Plant::SensorCounts(uint8_t line) const {
+  return line < lines_.size() ? lines_[line].counts : 0;
+}
 
 JammingActuator* Plant::jamming(uint8_t finger) {
   return finger < fingers_.size() ? fingers_[finger].jamming.get() : nullptr;
@@ -125,7 +127,8 @@ void Plant::Step() {
   for (Finger& f : fingers_) {
     const float a = lines_[f.config.line_a].regulator.chamber_pa();
     if (f.jamming) {
-      const float b = f.config.line_b < lines_.size() ? lines_[f.config.line_b].regulator.chamber_pa() : 0.0f;
+      const float b =
+          f.config.line_b < lines_.size() ? lines_[f.config.line_b].regulator.chamber_pa() : 0.0f;
       f.jamming->Step(a, b);
     } else if (f.pneumatic) {
       f.pneumatic->Step(a, kStepS);
@@ -137,21 +140,25 @@ PlantTruth Plant::Truth() const {
   PlantTruth t;
   t.time_s = time_s_;
   for (const Line& line : lines_) {
-    t.lines.push_back(LineTruth{line.command_pa, line.regulator.outlet_pa(), line.regulator.chamber_pa()});
+    t.lines.push_back(
+        LineTruth{line.command_pa, line.regulator.outlet_pa(), line.regulator.chamber_pa()});
   }
   for (const Finger& f : fingers_) {
     FingerTruth ft;
     ft.jamming = f.jamming != nullptr;
     if (f.jamming) {
-      ft.stiffness_n_per_mm = options_.level >= 2
-                                  ? f.jamming->stiffness()
-                                  : f.jamming->StaticStiffness(lines_[f.config.line_a].regulator.chamber_pa(),
-                                                               lines_[f.config.line_b].regulator.chamber_pa());
+      ft.stiffness_n_per_mm =
+          options_.level >= 2
+              ? f.jamming->stiffness()
+              : f.jamming->StaticStiffness(lines_[f.config.line_a].regulator.chamber_pa(),
+                                           lines_[f.config.line_b].regulator.chamber_pa());
     } else if (f.pneumatic) {
       const float kpa = lines_[f.config.line_a].regulator.chamber_pa() / 1000.0f;
       // Below level 2 the film has no memory: the middle of its major loop.
-      ft.deformation_mm = options_.level >= 2 ? f.pneumatic->deformation_mm()
-                                              : 0.5f * (f.pneumatic->RisingMajorMm(kpa) + f.pneumatic->FallingMajorMm(kpa));
+      ft.deformation_mm =
+          options_.level >= 2
+              ? f.pneumatic->deformation_mm()
+              : 0.5f * (f.pneumatic->RisingMajorMm(kpa) + f.pneumatic->FallingMajorMm(kpa));
     }
     t.fingers.push_back(ft);
   }

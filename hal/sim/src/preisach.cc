@@ -3,7 +3,8 @@
 
 namespace palpa::sim {
 
-PreisachModel::PreisachModel(int cells, float range, const std::function<float(float, float)>& density) {
+PreisachModel::PreisachModel(int cells, float range,
+                             const std::function<float(float, float)>& density) {
   const float step = range / static_cast<float>(cells);
   for (int i = 0; i < cells; ++i) {
     for (int j = 0; j <= i; ++j) {

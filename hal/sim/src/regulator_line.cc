@@ -14,7 +14,8 @@ RegulatorLine::RegulatorLine(const RegulatorSetup& setup, float step_s) : setup_
   constexpr float kDumpTauS = 0.05f;  // the dump valve vents the chamber directly
   vent_alpha_ = step_s / (kDumpTauS + step_s);
   const float steps = step_s > 0 ? setup.dead_time_s / step_s + 0.5f : 0.0f;
-  delay_steps_ = static_cast<uint8_t>(steps >= kMaxRegulatorDelaySteps ? kMaxRegulatorDelaySteps - 1 : steps);
+  delay_steps_ =
+      static_cast<uint8_t>(steps >= kMaxRegulatorDelaySteps ? kMaxRegulatorDelaySteps - 1 : steps);
 }
 
 float RegulatorLine::StaticOutput(float magnitude) const {

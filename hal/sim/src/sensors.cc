@@ -38,7 +38,8 @@ uint32_t PressureSensor::Read(float true_pa, float dt_s) {
 
 float PressureSensor::PressureOf(uint32_t counts) const {
   const float span = p::kPressureSensorCountsMax - p::kPressureSensorCountsMin;
-  return min_pa_ + (static_cast<float>(counts) - p::kPressureSensorCountsMin) / span * (max_pa_ - min_pa_);
+  return min_pa_ +
+         (static_cast<float>(counts) - p::kPressureSensorCountsMin) / span * (max_pa_ - min_pa_);
 }
 
 ForceSensor::ForceSensor(bool ideal, uint32_t seed) : ideal_(ideal), rng_(seed) {}

@@ -248,7 +248,8 @@ Result<uint32_t> ScanAdc::DoRead(uint8_t channel) {
 void ScanAdc::DoReadAll(uint32_t* counts, uint8_t count) {
   const bool overrun = (kAdc1->SR & (1u << 5)) != 0;  // one status read for the whole scan
   for (uint8_t i = 0; i < count; ++i) {
-    counts[i] = overrun || i >= kChannels ? kConversionFailed : static_cast<uint32_t>(samples_[i]) << 2;
+    counts[i] =
+        overrun || i >= kChannels ? kConversionFailed : static_cast<uint32_t>(samples_[i]) << 2;
   }
 }
 

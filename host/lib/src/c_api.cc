@@ -88,9 +88,13 @@ void palpa_close(palpa_device* d) {
   delete d;
 }
 
-const char* palpa_last_error(const palpa_device* d) { return d == nullptr ? g_open_error.c_str() : d->error.c_str(); }
+const char* palpa_last_error(const palpa_device* d) {
+  return d == nullptr ? g_open_error.c_str() : d->error.c_str();
+}
 
-const char* palpa_status_name(int status) { return pp::StatusName(static_cast<pp::Status>(status)); }
+const char* palpa_status_name(int status) {
+  return pp::StatusName(static_cast<pp::Status>(status));
+}
 
 int palpa_get_info(palpa_device* d, palpa_info* info) {
   if (d == nullptr || info == nullptr) return static_cast<int>(pp::Status::kInvalidArgument);
@@ -108,26 +112,43 @@ int palpa_get_info(palpa_device* d, palpa_info* info) {
   std::memcpy(info->config_name, b.config_name.data(), b.config_name.size());
   info->line_count = b.line_count;
   info->finger_count = b.finger_count;
-  for (uint8_t f = 0; f < b.finger_count; ++f) info->finger_kind[f] = static_cast<uint8_t>(b.fingers[f].kind);
+  for (uint8_t f = 0; f < b.finger_count; ++f)
+    info->finger_kind[f] = static_cast<uint8_t>(b.fingers[f].kind);
   info->fault_bitmap = b.fault_bitmap;
   return PALPA_OK;
 }
 
-int palpa_set_level(palpa_device* d, uint8_t finger, int level) { return Set(d, finger, ph::TargetKind::kLevel, level); }
-int palpa_set_normalized(palpa_device* d, uint8_t finger, double v) { return Set(d, finger, ph::TargetKind::kNormalized, v); }
-int palpa_set_stiffness(palpa_device* d, uint8_t finger, double v) { return Set(d, finger, ph::TargetKind::kStiffnessNPerMm, v); }
-int palpa_set_deformation(palpa_device* d, uint8_t finger, double v) { return Set(d, finger, ph::TargetKind::kDeformationMm, v); }
-int palpa_set_pressure(palpa_device* d, uint8_t finger, double v) { return Set(d, finger, ph::TargetKind::kPressureKpa, v); }
+int palpa_set_level(palpa_device* d, uint8_t finger, int level) {
+  return Set(d, finger, ph::TargetKind::kLevel, level);
+}
+int palpa_set_normalized(palpa_device* d, uint8_t finger, double v) {
+  return Set(d, finger, ph::TargetKind::kNormalized, v);
+}
+int palpa_set_stiffness(palpa_device* d, uint8_t finger, double v) {
+  return Set(d, finger, ph::TargetKind::kStiffnessNPerMm, v);
+}
+int palpa_set_deformation(palpa_device* d, uint8_t finger, double v) {
+  return Set(d, finger, ph::TargetKind::kDeformationMm, v);
+}
+int palpa_set_pressure(palpa_device* d, uint8_t finger, double v) {
+  return Set(d, finger, ph::TargetKind::kPressureKpa, v);
+}
 
-int palpa_estop(palpa_device* d) { return d == nullptr ? static_cast<int>(pp::Status::kInvalidArgument) : Report(d, d->device->EStop()); }
+int palpa_estop(palpa_device* d) {
+  return d == nullptr ? static_cast<int>(pp::Status::kInvalidArgument)
+                      : Report(d, d->device->EStop());
+}
 int palpa_clear_fault(palpa_device* d) {
-  return d == nullptr ? static_cast<int>(pp::Status::kInvalidArgument) : Report(d, d->device->ClearFault());
+  return d == nullptr ? static_cast<int>(pp::Status::kInvalidArgument)
+                      : Report(d, d->device->ClearFault());
 }
 
 int palpa_read_samples(palpa_device* d, palpa_sample* out, int capacity, int timeout_ms) {
-  if (d == nullptr || out == nullptr || capacity <= 0) return -static_cast<int>(pp::Status::kInvalidArgument);
+  if (d == nullptr || out == nullptr || capacity <= 0)
+    return -static_cast<int>(pp::Status::kInvalidArgument);
   std::unique_lock<std::mutex> lock(d->mutex);
-  d->arrived.wait_for(lock, std::chrono::milliseconds(timeout_ms), [&] { return !d->samples.empty(); });
+  d->arrived.wait_for(lock, std::chrono::milliseconds(timeout_ms),
+                      [&] { return !d->samples.empty(); });
   int n = 0;
   while (n < capacity && !d->samples.empty()) {
     out[n++] = d->samples.front();
@@ -142,7 +163,8 @@ int palpa_record_start(palpa_device* d, const char* path) {
 }
 
 int palpa_record_stop(palpa_device* d) {
-  return d == nullptr ? static_cast<int>(pp::Status::kInvalidArgument) : Report(d, d->device->StopRecording());
+  return d == nullptr ? static_cast<int>(pp::Status::kInvalidArgument)
+                      : Report(d, d->device->StopRecording());
 }
 
 }  // extern "C"

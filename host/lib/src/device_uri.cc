@@ -41,7 +41,8 @@ Status ParseDeviceUri(const std::string& uri, DeviceUri& out, std::string* error
     if (out.path.empty()) return Fail(error, uri, "expected serial:PATH[?baud=N]");
     if (q != std::string::npos) {
       const std::string query = rest.substr(q + 1);
-      if (query.rfind("baud=", 0) != 0) return Fail(error, uri, "unknown option '" + query + "' (expected baud=N)");
+      if (query.rfind("baud=", 0) != 0)
+        return Fail(error, uri, "unknown option '" + query + "' (expected baud=N)");
       char* end = nullptr;
       const long baud = std::strtol(query.c_str() + 5, &end, 10);
       if (*end != '\0' || baud <= 0) return Fail(error, uri, "baud must be a positive number");
@@ -66,14 +67,19 @@ Status ParseDeviceUri(const std::string& uri, DeviceUri& out, std::string* error
     out.kind = scheme == "hid" ? DeviceUri::Kind::kHid : DeviceUri::Kind::kUsb;
     const size_t c1 = rest.find(':');
     const size_t c2 = c1 == std::string::npos ? std::string::npos : rest.find(':', c1 + 1);
-    if (c1 == std::string::npos) return Fail(error, uri, "expected " + scheme + ":VID:PID[:SERIAL] (hex ids)");
-    if (!Hex16(rest.substr(0, c1), out.vendor)) return Fail(error, uri, "vendor id '" + rest.substr(0, c1) + "' is not 1-4 hex digits");
-    const std::string pid = rest.substr(c1 + 1, c2 == std::string::npos ? std::string::npos : c2 - c1 - 1);
-    if (!Hex16(pid, out.product)) return Fail(error, uri, "product id '" + pid + "' is not 1-4 hex digits");
+    if (c1 == std::string::npos)
+      return Fail(error, uri, "expected " + scheme + ":VID:PID[:SERIAL] (hex ids)");
+    if (!Hex16(rest.substr(0, c1), out.vendor))
+      return Fail(error, uri, "vendor id '" + rest.substr(0, c1) + "' is not 1-4 hex digits");
+    const std::string pid =
+        rest.substr(c1 + 1, c2 == std::string::npos ? std::string::npos : c2 - c1 - 1);
+    if (!Hex16(pid, out.product))
+      return Fail(error, uri, "product id '" + pid + "' is not 1-4 hex digits");
     if (c2 != std::string::npos) out.serial_number = rest.substr(c2 + 1);
     return Status::kOk;
   }
-  return Fail(error, uri, "unknown scheme '" + scheme + "' (expected sim, serial, tcp, hid or usb)");
+  return Fail(error, uri,
+              "unknown scheme '" + scheme + "' (expected sim, serial, tcp, hid or usb)");
 }
 
 }  // namespace palpa::host

@@ -9,7 +9,9 @@ namespace palpa::host {
 namespace {
 
 int64_t NowMs() {
-  return std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  return std::chrono::duration_cast<std::chrono::milliseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
 }
 
 }  // namespace
@@ -25,7 +27,8 @@ std::vector<uint8_t> FaultTransport::Damage(const uint8_t* data, size_t size) {
     if (u(rng_) < spec_.bit_flip) b ^= static_cast<uint8_t>(1u << (rng_() % 8));
     out.push_back(b);
     if (u(rng_) < spec_.duplicate) out.push_back(b);
-    if (out.size() >= 2 && u(rng_) < spec_.reorder) std::swap(out[out.size() - 1], out[out.size() - 2]);
+    if (out.size() >= 2 && u(rng_) < spec_.reorder)
+      std::swap(out[out.size() - 1], out[out.size() - 2]);
   }
   return out;
 }
@@ -43,7 +46,8 @@ Result<size_t> FaultTransport::Read(uint8_t* out, size_t capacity, int timeout_m
   std::vector<uint8_t> raw(capacity);
   const auto n = inner_->Read(raw.data(), raw.size(), delayed_in_.empty() ? timeout_ms : 1);
   if (!n.ok()) return n.status;
-  if (n.value > 0) delayed_in_.push_back(Timed{NowMs() + spec_.delay_ms, Damage(raw.data(), n.value)});
+  if (n.value > 0)
+    delayed_in_.push_back(Timed{NowMs() + spec_.delay_ms, Damage(raw.data(), n.value)});
   size_t count = 0;
   while (!delayed_in_.empty() && delayed_in_.front().due_ms <= NowMs() && count < capacity) {
     Timed& t = delayed_in_.front();

@@ -138,8 +138,8 @@ FlashReport FlashPackage(Link& link, const UpdatePackage& package, const FlashOp
       drain();
       report.write_seconds = Since(began);
       return Fail(report, r.status,
-                  "write at " + std::to_string(f.at) + " of " + std::to_string(size) + ": " + Why(r) +
-                      "; run again with --resume to go on from what the board has");
+                  "write at " + std::to_string(f.at) + " of " + std::to_string(size) + ": " +
+                      Why(r) + "; run again with --resume to go on from what the board has");
     }
     report.bytes_written += f.size;
     progress("write", f.at + f.size, size, Since(began));

@@ -22,7 +22,8 @@ std::string HidError(hid_device* device) {
 
 class HidTransport final : public Transport {
  public:
-  HidTransport(hid_device* device, std::string description) : device_(device), description_(std::move(description)) {}
+  HidTransport(hid_device* device, std::string description)
+      : device_(device), description_(std::move(description)) {}
   ~HidTransport() override {
     hid_close(device_);
     hid_exit();
@@ -45,7 +46,8 @@ class HidTransport final : public Transport {
       std::memcpy(report + 1, data + at, chunk);
       const int n = hid_write(device_, report, sizeof(report));
       if (n < 0) return Status::kDisconnected;
-      if (static_cast<size_t>(n) < sizeof(report)) return Status::kIoError;  // a short write loses a report
+      if (static_cast<size_t>(n) < sizeof(report))
+        return Status::kIoError;  // a short write loses a report
     }
     return Status::kOk;
   }
@@ -62,7 +64,8 @@ class HidTransport final : public Transport {
 Result<std::unique_ptr<Transport>> OpenHid(const DeviceUri& uri, std::string* error) {
   char id[16];
   std::snprintf(id, sizeof(id), "%04x:%04x", uri.vendor, uri.product);
-  const std::string where = "hid:" + std::string(id) + (uri.serial_number.empty() ? "" : ":" + uri.serial_number);
+  const std::string where =
+      "hid:" + std::string(id) + (uri.serial_number.empty() ? "" : ":" + uri.serial_number);
   if (hid_init() != 0) {
     *error = where + ": hidapi failed to initialise";
     return Status::kIoError;
@@ -70,7 +73,8 @@ Result<std::unique_ptr<Transport>> OpenHid(const DeviceUri& uri, std::string* er
   std::wstring serial(uri.serial_number.begin(), uri.serial_number.end());
   hid_device* device = hid_open(uri.vendor, uri.product, serial.empty() ? nullptr : serial.c_str());
   if (device == nullptr) {
-    *error = where + ": no such device (" + HidError(nullptr) + "); is it plugged in, and does the udev rule give you access?";
+    *error = where + ": no such device (" + HidError(nullptr) +
+             "); is it plugged in, and does the udev rule give you access?";
     hid_exit();
     return Status::kNotFound;
   }

@@ -69,7 +69,7 @@ double HostTimeoutTracker::HeartbeatPeriodSeconds() const {
 }
 
 std::optional<uint32_t> CarriedHostTimeout::Carried(uint8_t type, const uint8_t* body,
-                                                   size_t size) {
+                                                    size_t size) {
   using protocol::MessageType;
   using protocol::Status;
   switch (static_cast<MessageType>(type)) {

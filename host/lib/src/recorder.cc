@@ -16,22 +16,28 @@ Outcome Device::StartRecording(const std::string& path) {
   const pp::HelloReply b = link_->board();
   nlohmann::ordered_json header;
   header["format"] = "palpa recording 1";
-  header["board"] = {{"kind", pp::kBoardKindNames[static_cast<int>(b.board_kind)]},
-                     {"id", b.board_id},
-                     {"firmware", std::to_string(b.firmware_major) + "." + std::to_string(b.firmware_minor) + "." +
-                                      std::to_string(b.firmware_patch)},
-                     {"catalog_hash", b.catalog_hash},
-                     {"plant_simulated", b.plant_simulated},
-                     {"time_scale", b.time_scale}};
+  header["board"] = {
+      {"kind", pp::kBoardKindNames[static_cast<int>(b.board_kind)]},
+      {"id", b.board_id},
+      {"firmware", std::to_string(b.firmware_major) + "." + std::to_string(b.firmware_minor) + "." +
+                       std::to_string(b.firmware_patch)},
+      {"catalog_hash", b.catalog_hash},
+      {"plant_simulated", b.plant_simulated},
+      {"time_scale", b.time_scale}};
   header["configuration"] = std::string(b.config_name.data());
   nlohmann::ordered_json lines = nlohmann::ordered_json::array();
   for (uint8_t i = 0; i < b.line_count; ++i) {
-    lines.push_back({{"line", i}, {"kind", pp::kLineKindNames[static_cast<int>(b.lines[i].kind)]},
-                     {"limit_min_pa", b.lines[i].limit_min_pa}, {"limit_max_pa", b.lines[i].limit_max_pa}});
+    lines.push_back({{"line", i},
+                     {"kind", pp::kLineKindNames[static_cast<int>(b.lines[i].kind)]},
+                     {"limit_min_pa", b.lines[i].limit_min_pa},
+                     {"limit_max_pa", b.lines[i].limit_max_pa}});
   }
   header["lines"] = lines;
-  header["units"] = {{"host_time_s", "s, host steady clock"}, {"board_time_us", "us, board clock"},
-                     {"setpoint_pa", "Pa"}, {"measured_pa", "Pa"}, {"command_counts", "DAC counts"},
+  header["units"] = {{"host_time_s", "s, host steady clock"},
+                     {"board_time_us", "us, board clock"},
+                     {"setpoint_pa", "Pa"},
+                     {"measured_pa", "Pa"},
+                     {"command_counts", "DAC counts"},
                      {"status", "line status bits (docs/protocol.md)"}};
   header["clock"] = {{"host_time_s", "board_time_us / 1e6 / time_scale + offset_s"},
                      {"offset_s", link_->BoardToHostSeconds(0)}};
@@ -43,12 +49,14 @@ Outcome Device::StartRecording(const std::string& path) {
     const pp::Telemetry& t = f.telemetry;
     char row[160];
     for (uint8_t tick = 0; tick < t.tick_count; ++tick) {
-      const uint64_t board_us = t.first_sample_us + static_cast<uint64_t>(tick) * t.sample_interval_us;
+      const uint64_t board_us =
+          t.first_sample_us + static_cast<uint64_t>(tick) * t.sample_interval_us;
       for (uint8_t line = 0; line < t.line_count; ++line) {
         const pp::LineSample& s = t.samples[tick * t.line_count + line];
-        std::snprintf(row, sizeof(row), "%.6f,%llu,%u,%d,%d,%u,%u\n", link_->BoardToHostSeconds(board_us),
-                      static_cast<unsigned long long>(board_us), line, s.setpoint_pa, s.measured_pa, s.command_counts,
-                      s.status);
+        std::snprintf(row, sizeof(row), "%.6f,%llu,%u,%d,%d,%u,%u\n",
+                      link_->BoardToHostSeconds(board_us),
+                      static_cast<unsigned long long>(board_us), line, s.setpoint_pa, s.measured_pa,
+                      s.command_counts, s.status);
         record_ << row;
       }
     }
@@ -66,7 +74,8 @@ Outcome Device::StopRecording() {
   link_->Unsubscribe(subscription);
   std::lock_guard<std::mutex> lock(record_mutex_);
   record_.close();
-  const bool ok = static_cast<bool>(record_) && std::rename((record_path_ + ".part").c_str(), record_path_.c_str()) == 0;
+  const bool ok = static_cast<bool>(record_) &&
+                  std::rename((record_path_ + ".part").c_str(), record_path_.c_str()) == 0;
   record_ = std::ofstream();
   return ok ? Outcome{} : Outcome{Status::kIoError, record_path_ + ": could not be completed", {}};
 }

@@ -31,8 +31,8 @@ std::string Num(double v) {
 }
 
 /// Keeps v in [lo, hi] under the policy; false (with *error) when refused.
-bool InRange(double& v, double lo, double hi, RangePolicy policy, const std::string& what, std::string* note,
-             std::string* error) {
+bool InRange(double& v, double lo, double hi, RangePolicy policy, const std::string& what,
+             std::string* note, std::string* error) {
   if (v >= lo && v <= hi) return true;
   if (policy == RangePolicy::kRefuse) {
     *error = what + " " + Num(v) + " is outside the calibrated range " + Num(lo) + " … " + Num(hi);
@@ -77,12 +77,15 @@ bool ParseTables(const nlohmann::json& j, LevelTables& out, std::string* error) 
     t.jamming_bias_kpa = j.at("jamming").at("bias_kpa").get<double>();
     t.jamming_alternative_middle_kpa = j.at("jamming").value("alternative_middle_kpa", -30.0);
     for (double v : t.pneumatic_kpa) {
-      if (v < 0 || v > 100) throw std::runtime_error("pneumatic.levels_kpa: " + Num(v) + " is outside 0 … 100 kPa");
+      if (v < 0 || v > 100)
+        throw std::runtime_error("pneumatic.levels_kpa: " + Num(v) + " is outside 0 … 100 kPa");
     }
     for (double v : t.jamming_kpa) {
-      if (v > 0 || v < -100) throw std::runtime_error("jamming.levels_kpa: " + Num(v) + " is outside -100 … 0 kPa");
+      if (v > 0 || v < -100)
+        throw std::runtime_error("jamming.levels_kpa: " + Num(v) + " is outside -100 … 0 kPa");
     }
-    if (t.pneumatic_kpa.empty() || t.jamming_kpa.empty()) throw std::runtime_error("a level table is empty");
+    if (t.pneumatic_kpa.empty() || t.jamming_kpa.empty())
+      throw std::runtime_error("a level table is empty");
     out = t;
     return true;
   } catch (const std::exception& e) {
@@ -118,8 +121,8 @@ bool LevelTables::Load(const std::string& path, LevelTables& out, std::string* e
   return true;
 }
 
-Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& levels, const FingerCurves& curves,
-                  Request request, RangePolicy policy) {
+Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& levels,
+                  const FingerCurves& curves, Request request, RangePolicy policy) {
   const bool jamming = finger.kind == FingerKind::kJamming;
   Mapped m;
   m.note = curves.source + "; ";
@@ -130,7 +133,8 @@ Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& leve
       const auto& table = jamming ? levels.jamming_kpa : levels.pneumatic_kpa;
       const double level = request.value;
       if (level != std::floor(level) || level < 0 || level >= static_cast<double>(table.size())) {
-        return Refuse("level " + Num(level) + " does not exist: this finger has levels 0 … " + std::to_string(table.size() - 1));
+        return Refuse("level " + Num(level) + " does not exist: this finger has levels 0 … " +
+                      std::to_string(table.size() - 1));
       }
       kpa = table[static_cast<size_t>(level)];
       from_pressure = true;
@@ -143,7 +147,8 @@ Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& leve
         m.line_a_pa = static_cast<int32_t>(levels.jamming_bias_kpa * 1000);
         m.line_b_pa = static_cast<int32_t>(std::lround(v * 1000));
       } else {
-        if (!InRange(v, 0, 100, policy, "pressure (kPa)", &m.note, &m.error)) return Refuse(m.error);
+        if (!InRange(v, 0, 100, policy, "pressure (kPa)", &m.note, &m.error))
+          return Refuse(m.error);
         m.line_a_pa = static_cast<int32_t>(std::lround(v * 1000));
       }
       m.raw = true;
@@ -152,11 +157,14 @@ Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& leve
     }
     case TargetKind::kStiffnessNPerMm: {
       if (!jamming) {
-        return Refuse("N/mm means nothing for a pneumatic finger: it renders deformation (use mm, a level or 0..1)",
-                      Status::kBadValue);
+        return Refuse(
+            "N/mm means nothing for a pneumatic finger: it renders deformation (use mm, a level or "
+            "0..1)",
+            Status::kBadValue);
       }
       double v = request.value;
-      if (!InRange(v, curves.stiffness_at_0, curves.stiffness_at_full_vacuum, policy, "stiffness (N/mm)", &m.note, &m.error)) {
+      if (!InRange(v, curves.stiffness_at_0, curves.stiffness_at_full_vacuum, policy,
+                   "stiffness (N/mm)", &m.note, &m.error)) {
         return Refuse(m.error);
       }
       m.target = static_cast<int32_t>(std::lround(v * 1000));
@@ -164,20 +172,26 @@ Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& leve
     }
     case TargetKind::kDeformationMm: {
       if (jamming) {
-        return Refuse("mm means nothing for a jamming finger: it renders stiffness (use N/mm, a level or 0..1)",
-                      Status::kBadValue);
+        return Refuse(
+            "mm means nothing for a jamming finger: it renders stiffness (use N/mm, a level or "
+            "0..1)",
+            Status::kBadValue);
       }
       double v = request.value;
-      if (!InRange(v, 0, curves.max_deformation_mm, policy, "deformation (mm)", &m.note, &m.error)) return Refuse(m.error);
+      if (!InRange(v, 0, curves.max_deformation_mm, policy, "deformation (mm)", &m.note, &m.error))
+        return Refuse(m.error);
       m.target = static_cast<int32_t>(std::lround(v * 1000));
       return m;
     }
     case TargetKind::kNormalized: {
       double v = request.value;
-      if (!InRange(v, 0, 1, policy, "normalised stiffness", &m.note, &m.error)) return Refuse(m.error);
-      m.target = jamming ? static_cast<int32_t>(std::lround(1000 * (curves.stiffness_at_0 +
-                                                                     v * (curves.stiffness_at_full_vacuum - curves.stiffness_at_0))))
-                         : static_cast<int32_t>(std::lround(1000 * v * curves.max_deformation_mm));
+      if (!InRange(v, 0, 1, policy, "normalised stiffness", &m.note, &m.error))
+        return Refuse(m.error);
+      m.target = jamming
+                     ? static_cast<int32_t>(std::lround(
+                           1000 * (curves.stiffness_at_0 +
+                                   v * (curves.stiffness_at_full_vacuum - curves.stiffness_at_0))))
+                     : static_cast<int32_t>(std::lround(1000 * v * curves.max_deformation_mm));
       if (jamming && v == 0) m.target = 0;  // 0 is "off": released vacuum
       return m;
     }
@@ -185,7 +199,8 @@ Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& leve
   if (from_pressure && !curves.calibrated.empty()) {
     // A calibrated curve covers what was measured, no more.
     const double a = curves.calibrated.front().first, b = curves.calibrated.back().first;
-    if (kpa != 0 && !InRange(kpa, std::min(a, b), std::max(a, b), policy, "level pressure (kPa)", &m.note, &m.error)) {
+    if (kpa != 0 && !InRange(kpa, std::min(a, b), std::max(a, b), policy, "level pressure (kPa)",
+                             &m.note, &m.error)) {
       return Refuse(m.error);
     }
   }
@@ -195,7 +210,8 @@ Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& leve
     if (jamming) {
       m.target = kpa == 0 ? 0 : static_cast<int32_t>(std::lround(1000 * StiffnessAt(curves, kpa)));
     } else {
-      m.target = kpa == 0 ? 0 : static_cast<int32_t>(std::lround(1000 * DeformationAt(curves, kpa)));
+      m.target =
+          kpa == 0 ? 0 : static_cast<int32_t>(std::lround(1000 * DeformationAt(curves, kpa)));
     }
   }
   return m;

@@ -9,7 +9,8 @@
 namespace palpa::host {
 namespace {
 
-const char* const kPalette[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#17becf", "#7f7f7f"};
+const char* const kPalette[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
+                                "#9467bd", "#8c564b", "#17becf", "#7f7f7f"};
 
 std::string Num(double v) {
   char b[32];
@@ -22,10 +23,17 @@ std::string Escape(const std::string& text) {
   std::string out;
   for (char ch : text) {
     switch (ch) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      default: out += ch;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '&':
+        out += "&amp;";
+        break;
+      default:
+        out += ch;
     }
   }
   return out;
@@ -75,15 +83,19 @@ std::string RenderSvg(const Chart& c) {
   const double pw = c.width - left - right, ph = c.height - top - bottom;
   auto px = [&](double x) { return left + (tx(x) - x0) / (x1 - x0) * pw; };
   auto py = [&](double y) { return top + (1 - (y - y0) / (y1 - y0)) * ph; };
-  std::string svg = "<svg xmlns='http://www.w3.org/2000/svg' width='" + Num(c.width) + "' height='" + Num(c.height) +
-                    "' font-family='sans-serif' font-size='12'>\n<rect width='100%' height='100%' fill='white'/>\n";
-  svg += "<text x='" + Num(c.width / 2) + "' y='22' text-anchor='middle' font-size='14'>" + Escape(c.title) + "</text>\n";
-  svg += "<rect x='" + Num(left) + "' y='" + Num(top) + "' width='" + Num(pw) + "' height='" + Num(ph) +
-         "' fill='none' stroke='#444'/>\n";
+  std::string svg = "<svg xmlns='http://www.w3.org/2000/svg' width='" + Num(c.width) +
+                    "' height='" + Num(c.height) +
+                    "' font-family='sans-serif' font-size='12'>\n<rect width='100%' height='100%' "
+                    "fill='white'/>\n";
+  svg += "<text x='" + Num(c.width / 2) + "' y='22' text-anchor='middle' font-size='14'>" +
+         Escape(c.title) + "</text>\n";
+  svg += "<rect x='" + Num(left) + "' y='" + Num(top) + "' width='" + Num(pw) + "' height='" +
+         Num(ph) + "' fill='none' stroke='#444'/>\n";
   // A log axis is labelled at 1, 2 and 5 of each decade (round numbers a reader can place).
   std::vector<double> x_ticks;
   if (c.log_x) {
-    for (int decade = static_cast<int>(std::floor(x0)); decade <= static_cast<int>(std::ceil(x1)); ++decade) {
+    for (int decade = static_cast<int>(std::floor(x0)); decade <= static_cast<int>(std::ceil(x1));
+         ++decade) {
       for (double m : {1.0, 2.0, 5.0}) {
         const double t = decade + std::log10(m);
         if (t >= x0 - 1e-9 && t <= x1 + 1e-9) x_ticks.push_back(t);
@@ -93,17 +105,22 @@ std::string RenderSvg(const Chart& c) {
   if (x_ticks.size() < 2) x_ticks = Ticks(x0, x1, 8);
   for (double t : x_ticks) {
     const double x = left + (t - x0) / (x1 - x0) * pw;
-    svg += "<line x1='" + Num(x) + "' y1='" + Num(top) + "' x2='" + Num(x) + "' y2='" + Num(top + ph) + "' stroke='#eee'/>";
+    svg += "<line x1='" + Num(x) + "' y1='" + Num(top) + "' x2='" + Num(x) + "' y2='" +
+           Num(top + ph) + "' stroke='#eee'/>";
     svg += "<text x='" + Num(x) + "' y='" + Num(top + ph + 16) + "' text-anchor='middle'>" +
            Label(c.log_x ? std::pow(10.0, t) : t) + "</text>\n";
   }
   for (double t : Ticks(y0, y1, 6)) {
     const double y = py(t);
-    svg += "<line x1='" + Num(left) + "' y1='" + Num(y) + "' x2='" + Num(left + pw) + "' y2='" + Num(y) + "' stroke='#eee'/>";
-    svg += "<text x='" + Num(left - 6) + "' y='" + Num(y + 4) + "' text-anchor='end'>" + Label(t) + "</text>\n";
+    svg += "<line x1='" + Num(left) + "' y1='" + Num(y) + "' x2='" + Num(left + pw) + "' y2='" +
+           Num(y) + "' stroke='#eee'/>";
+    svg += "<text x='" + Num(left - 6) + "' y='" + Num(y + 4) + "' text-anchor='end'>" + Label(t) +
+           "</text>\n";
   }
-  svg += "<text x='" + Num(left + pw / 2) + "' y='" + Num(c.height - 10) + "' text-anchor='middle'>" + Escape(c.x_label) + "</text>\n";
-  svg += "<text transform='translate(16," + Num(top + ph / 2) + ") rotate(-90)' text-anchor='middle'>" + Escape(c.y_label) + "</text>\n";
+  svg += "<text x='" + Num(left + pw / 2) + "' y='" + Num(c.height - 10) +
+         "' text-anchor='middle'>" + Escape(c.x_label) + "</text>\n";
+  svg += "<text transform='translate(16," + Num(top + ph / 2) +
+         ") rotate(-90)' text-anchor='middle'>" + Escape(c.y_label) + "</text>\n";
   for (size_t i = 0; i < c.series.size(); ++i) {
     const Series& s = c.series[i];
     const std::string color = s.color.empty() ? kPalette[i % 8] : s.color;
@@ -116,15 +133,18 @@ std::string RenderSvg(const Chart& c) {
     if (s.markers) {
       if (s.joined) polyline("1", false);
       for (const auto& [x, y] : s.points) {
-        svg += "<circle cx='" + Num(px(x)) + "' cy='" + Num(py(y)) + "' r='4' fill='" + color + "'/>";
+        svg +=
+            "<circle cx='" + Num(px(x)) + "' cy='" + Num(py(y)) + "' r='4' fill='" + color + "'/>";
       }
     } else {
       polyline("1.6", s.dashed);
     }
     const double ly = top + 14 + 18 * static_cast<double>(i);
-    svg += "<line x1='" + Num(left + pw + 12) + "' y1='" + Num(ly - 4) + "' x2='" + Num(left + pw + 34) + "' y2='" +
-           Num(ly - 4) + "' stroke='" + color + "' stroke-width='3'/>";
-    svg += "<text x='" + Num(left + pw + 40) + "' y='" + Num(ly) + "'>" + Escape(s.name) + "</text>\n";
+    svg += "<line x1='" + Num(left + pw + 12) + "' y1='" + Num(ly - 4) + "' x2='" +
+           Num(left + pw + 34) + "' y2='" + Num(ly - 4) + "' stroke='" + color +
+           "' stroke-width='3'/>";
+    svg +=
+        "<text x='" + Num(left + pw + 40) + "' y='" + Num(ly) + "'>" + Escape(s.name) + "</text>\n";
   }
   return svg + "</svg>\n";
 }

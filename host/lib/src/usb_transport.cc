@@ -11,21 +11,33 @@ namespace {
 
 Status FromLibusb(int code) {
   switch (code) {
-    case LIBUSB_SUCCESS: return Status::kOk;
-    case LIBUSB_ERROR_TIMEOUT: return Status::kTimeout;
-    case LIBUSB_ERROR_NO_DEVICE: return Status::kDisconnected;
-    case LIBUSB_ERROR_NOT_FOUND: return Status::kNotFound;
-    case LIBUSB_ERROR_ACCESS: return Status::kUnavailable;
-    case LIBUSB_ERROR_BUSY: return Status::kBusy;
-    default: return Status::kIoError;
+    case LIBUSB_SUCCESS:
+      return Status::kOk;
+    case LIBUSB_ERROR_TIMEOUT:
+      return Status::kTimeout;
+    case LIBUSB_ERROR_NO_DEVICE:
+      return Status::kDisconnected;
+    case LIBUSB_ERROR_NOT_FOUND:
+      return Status::kNotFound;
+    case LIBUSB_ERROR_ACCESS:
+      return Status::kUnavailable;
+    case LIBUSB_ERROR_BUSY:
+      return Status::kBusy;
+    default:
+      return Status::kIoError;
   }
 }
 
 class UsbTransport final : public Transport {
  public:
-  UsbTransport(libusb_context* context, libusb_device_handle* handle, int interface, uint8_t in, uint8_t out,
-               std::string description)
-      : context_(context), handle_(handle), interface_(interface), in_(in), out_(out), description_(std::move(description)) {}
+  UsbTransport(libusb_context* context, libusb_device_handle* handle, int interface, uint8_t in,
+               uint8_t out, std::string description)
+      : context_(context),
+        handle_(handle),
+        interface_(interface),
+        in_(in),
+        out_(out),
+        description_(std::move(description)) {}
   ~UsbTransport() override {
     libusb_release_interface(handle_, interface_);
     libusb_close(handle_);
@@ -34,10 +46,12 @@ class UsbTransport final : public Transport {
 
   Result<size_t> Read(uint8_t* out, size_t capacity, int timeout_ms) override {
     int transferred = 0;
-    int rc = libusb_bulk_transfer(handle_, in_, out, static_cast<int>(capacity), &transferred, static_cast<unsigned>(timeout_ms));
+    int rc = libusb_bulk_transfer(handle_, in_, out, static_cast<int>(capacity), &transferred,
+                                  static_cast<unsigned>(timeout_ms));
     if (rc == LIBUSB_ERROR_PIPE) {  // the endpoint stalled: clear it once and carry on
       libusb_clear_halt(handle_, in_);
-      rc = libusb_bulk_transfer(handle_, in_, out, static_cast<int>(capacity), &transferred, static_cast<unsigned>(timeout_ms));
+      rc = libusb_bulk_transfer(handle_, in_, out, static_cast<int>(capacity), &transferred,
+                                static_cast<unsigned>(timeout_ms));
     }
     if (rc == LIBUSB_SUCCESS || rc == LIBUSB_ERROR_TIMEOUT || rc == LIBUSB_ERROR_OVERFLOW) {
       return static_cast<size_t>(transferred);  // a timeout may still have moved some bytes
@@ -50,8 +64,8 @@ class UsbTransport final : public Transport {
     int stalls = 0;
     while (at < size) {
       int transferred = 0;
-      const int rc = libusb_bulk_transfer(handle_, out_, const_cast<uint8_t*>(data + at), static_cast<int>(size - at),
-                                          &transferred, 1000);
+      const int rc = libusb_bulk_transfer(handle_, out_, const_cast<uint8_t*>(data + at),
+                                          static_cast<int>(size - at), &transferred, 1000);
       at += static_cast<size_t>(transferred);
       if (rc == LIBUSB_ERROR_PIPE && stalls++ == 0) {
         libusb_clear_halt(handle_, out_);
@@ -106,7 +120,8 @@ bool FindBulkEndpoints(libusb_device* device, int& interface, uint8_t& in, uint8
 Result<std::unique_ptr<Transport>> OpenUsb(const DeviceUri& uri, std::string* error) {
   char id[16];
   std::snprintf(id, sizeof(id), "%04x:%04x", uri.vendor, uri.product);
-  const std::string where = "usb:" + std::string(id) + (uri.serial_number.empty() ? "" : ":" + uri.serial_number);
+  const std::string where =
+      "usb:" + std::string(id) + (uri.serial_number.empty() ? "" : ":" + uri.serial_number);
   libusb_context* context = nullptr;
   if (libusb_init(&context) != LIBUSB_SUCCESS) {
     *error = where + ": libusb failed to initialise";
@@ -154,9 +169,11 @@ Result<std::unique_ptr<Transport>> OpenUsb(const DeviceUri& uri, std::string* er
   if (handle == nullptr) {
     libusb_exit(context);
     *error = where + (status == Status::kNotFound ? ": no such device"
-                      : status == Status::kUnsupported ? ": no interface with a bulk IN and a bulk OUT endpoint"
-                      : status == Status::kUnavailable ? ": access denied (install the udev rule, or run as root)"
-                                                         : std::string(": cannot open: ") + protocol::StatusName(status));
+                      : status == Status::kUnsupported
+                          ? ": no interface with a bulk IN and a bulk OUT endpoint"
+                      : status == Status::kUnavailable
+                          ? ": access denied (install the udev rule, or run as root)"
+                          : std::string(": cannot open: ") + protocol::StatusName(status));
     return status;
   }
   return std::unique_ptr<Transport>(new UsbTransport(context, handle, interface, in, out, where));

@@ -29,7 +29,8 @@ TEST(BoardConfigs, EveryCompiledConfigurationIsValid) {
   for (uint8_t i = 0; i < pc::kBoardConfigCount; ++i) {
     pc::ConfigError e;
     const pp::Status s = pc::ValidateConfig(*pc::kBoardConfigs[i].config, &e);
-    CHECK_TEXT(s == pp::Status::kOk, (std::string(pc::kBoardConfigs[i].name) + ": " + e.reason).c_str());
+    CHECK_TEXT(s == pp::Status::kOk,
+               (std::string(pc::kBoardConfigs[i].name) + ": " + e.reason).c_str());
     STRCMP_EQUAL(pc::kBoardConfigs[i].name, pc::kBoardConfigs[i].config->board.config_name.data());
   }
 }
@@ -156,7 +157,8 @@ TEST(ConfigBlob, RoundTripsEveryConfigurationAndItsCrc) {
     const auto n = pc::EncodeConfigBlob(original, blob.data(), blob.size());
     CHECK(n.ok());
     pc::BoardConfig back{};
-    LONGS_EQUAL((int)pp::Status::kOk, (int)pc::ApplyConfigBlob(blob.data(), n.value, back, nullptr));
+    LONGS_EQUAL((int)pp::Status::kOk,
+                (int)pc::ApplyConfigBlob(blob.data(), n.value, back, nullptr));
     LONGS_EQUAL(pc::ConfigCrc(original), pc::ConfigCrc(back));
     LONGS_EQUAL(original.finger_count, back.finger_count);
   }
@@ -168,7 +170,9 @@ TEST(ConfigBlob, BadRecordsAreNamed) {
   const auto n = pc::EncodeConfigBlob(Thesis5(), blob.data(), blob.size());
   pc::BoardConfig back{};
   pc::ConfigError e;
-  LONGS_EQUAL((int)pp::Status::kBadLength, (int)pc::ApplyConfigBlob(blob.data(), n.value - 1, back, &e));
+  LONGS_EQUAL((int)pp::Status::kBadLength,
+              (int)pc::ApplyConfigBlob(blob.data(), n.value - 1, back, &e));
   blob[2] = 0x21;  // the first record claims to be a setpoint message
-  LONGS_EQUAL((int)pp::Status::kUnsupported, (int)pc::ApplyConfigBlob(blob.data(), n.value, back, &e));
+  LONGS_EQUAL((int)pp::Status::kUnsupported,
+              (int)pc::ApplyConfigBlob(blob.data(), n.value, back, &e));
 }

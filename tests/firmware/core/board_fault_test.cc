@@ -63,7 +63,8 @@ TEST(HostSilence, SafeCommandWrittenWithinTimeoutPlusOneTickInRandomTrials) {
       if (AllLinesSafe(h)) safe_at = h.clock.now_us;
     }
     CHECK(safe_at != 0);
-    CHECK_TEXT(safe_at - last_frame <= 100000 + pc::Board::kTickUs, std::to_string(safe_at - last_frame).c_str());
+    CHECK_TEXT(safe_at - last_frame <= 100000 + pc::Board::kTickUs,
+               std::to_string(safe_at - last_frame).c_str());
     CHECK(h.board->latched_faults() & FaultBit(Fault::kHostSilence));
     h.Drain();
   }
@@ -83,7 +84,8 @@ TEST_GROUP(BoardFaults) {
 TEST(BoardFaults, EStopGoesSafeOnTheNextTickAndIsAcked) {
   CHECK_FALSE(AllLinesSafe(h));
   h.Send(pp::EStop{});
-  LONGS_EQUAL((int)pp::Status::kOk, (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kEStop));
+  LONGS_EQUAL((int)pp::Status::kOk,
+              (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kEStop));
   h.Run(1, true);
   CHECK(AllLinesSafe(h));
   CHECK(h.board->latched_faults() & FaultBit(Fault::kEStopCommand));
@@ -101,9 +103,12 @@ TEST(BoardFaults, WhileFaultedSetpointsAreNackedAndTheRestWorks) {
   h.Send(board);
   h.Send(pp::SaveConfig{});
   const auto frames = h.Drain();
-  LONGS_EQUAL((int)pp::Status::kFaulted, (int)BoardHarness::AnswerFor(frames, pp::MessageType::kSetLineSetpoints));
-  LONGS_EQUAL((int)pp::Status::kOk, (int)BoardHarness::AnswerFor(frames, pp::MessageType::kConfigureBoard));
-  LONGS_EQUAL((int)pp::Status::kOk, (int)BoardHarness::AnswerFor(frames, pp::MessageType::kSaveConfig));
+  LONGS_EQUAL((int)pp::Status::kFaulted,
+              (int)BoardHarness::AnswerFor(frames, pp::MessageType::kSetLineSetpoints));
+  LONGS_EQUAL((int)pp::Status::kOk,
+              (int)BoardHarness::AnswerFor(frames, pp::MessageType::kConfigureBoard));
+  LONGS_EQUAL((int)pp::Status::kOk,
+              (int)BoardHarness::AnswerFor(frames, pp::MessageType::kSaveConfig));
   bool report = false, diagnostics = false;
   for (const BoardFrame& f : frames) {
     if (f.Is<pp::ConfigReport>()) {
@@ -129,7 +134,8 @@ TEST(BoardFaults, ClearedFaultKeepsOutputsSafeUntilNewSetpointsAndRehomes) {
   h.Send(pp::EStop{});
   h.Run(5, true);
   h.Send(pp::ClearFault{});
-  LONGS_EQUAL((int)pp::Status::kOk, (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kClearFault));
+  LONGS_EQUAL((int)pp::Status::kOk,
+              (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kClearFault));
   LONGS_EQUAL(0, h.board->latched_faults());
   h.Run(50, true);
   CHECK(AllLinesSafe(h));  // the old setpoint does not come back by itself
@@ -144,18 +150,21 @@ TEST(BoardFaults, ClearFaultIsRefusedWhileTheEStopPinIsHeld) {
   CHECK(AllLinesSafe(h));
   h.Drain();
   h.Send(pp::ClearFault{});
-  LONGS_EQUAL((int)pp::Status::kConditionPersists, (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kClearFault));
+  LONGS_EQUAL((int)pp::Status::kConditionPersists,
+              (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kClearFault));
   h.estop.level = false;
   h.Run(2, true);
   h.Send(pp::ClearFault{});
-  LONGS_EQUAL((int)pp::Status::kOk, (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kClearFault));
+  LONGS_EQUAL((int)pp::Status::kOk,
+              (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kClearFault));
 }
 
 TEST(BoardFaults, FlippedByteInTheLiveConfigurationFaultsWithinTheCheckPeriod) {
   const uint32_t period_us = h.board->config().board.config_check_period_ms * 1000u;
   reinterpret_cast<uint8_t*>(&h.board->live_config_for_test())[1234] ^= 0x10;
   const uint64_t flipped_at = h.clock.now_us;
-  while ((h.board->latched_faults() & FaultBit(Fault::kConfigCrc)) == 0 && h.clock.now_us < flipped_at + 10 * period_us) {
+  while ((h.board->latched_faults() & FaultBit(Fault::kConfigCrc)) == 0 &&
+         h.clock.now_us < flipped_at + 10 * period_us) {
     h.Run(1, true);
   }
   CHECK(h.board->latched_faults() & FaultBit(Fault::kConfigCrc));
@@ -171,7 +180,8 @@ TEST(BoardFaults, SensorReadingBeyondTheLimitsFaults) {
   h.adc.counts[0] = 14745;  // sensor's 103.4 kPa
   h.SetMeasured(0, 106000);
   h.Run(2, true);
-  CHECK(h.board->latched_faults() & (FaultBit(Fault::kOverLimit) | FaultBit(Fault::kImplausibleSensor)));
+  CHECK(h.board->latched_faults() &
+        (FaultBit(Fault::kOverLimit) | FaultBit(Fault::kImplausibleSensor)));
   CHECK(AllLinesSafe(h));
 }
 
@@ -216,12 +226,14 @@ TEST(BoardFaults, AFailedDacWriteLatchesAndTheValvesLetGo) {
   CHECK_FALSE(h.pump.level);
   h.Drain();
   h.Send(pp::ClearFault{});
-  LONGS_EQUAL((int)pp::Status::kConditionPersists, (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kClearFault));
+  LONGS_EQUAL((int)pp::Status::kConditionPersists,
+              (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kClearFault));
   h.dac.fail = false;
   h.Run(2, true);
   CHECK(AllLinesSafe(h));  // the safe codes reach the regulators once writes work again
   h.Send(pp::ClearFault{});
-  LONGS_EQUAL((int)pp::Status::kOk, (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kClearFault));
+  LONGS_EQUAL((int)pp::Status::kOk,
+              (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kClearFault));
 }
 
 TEST(BoardFaults, AScanReadsEachChannelOnceAndMarksFailedOnes) {
@@ -246,7 +258,8 @@ TEST(BoardBoot, WatchdogResetIsLatchedAndReported) {
   CHECK(r.reset_cause == pp::ResetCause::kWatchdog);
   CHECK(r.fault_bitmap & FaultBit(Fault::kUnexpectedReset));
   h.Send(pp::ClearFault{});
-  LONGS_EQUAL((int)pp::Status::kOk, (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kClearFault));
+  LONGS_EQUAL((int)pp::Status::kOk,
+              (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kClearFault));
 }
 
 TEST(BoardBoot, SavedConfigurationSurvivesARebootAndFactoryResetForgetsIt) {
@@ -258,7 +271,8 @@ TEST(BoardBoot, SavedConfigurationSurvivesARebootAndFactoryResetForgetsIt) {
     board.host_timeout_us = 250000;
     h.Send(board);
     h.Send(pp::SaveConfig{});
-    LONGS_EQUAL((int)pp::Status::kOk, (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kSaveConfig));
+    LONGS_EQUAL((int)pp::Status::kOk,
+                (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kSaveConfig));
   }
   {
     BoardHarness h("thesis-5finger", pp::ResetCause::kPowerOn, &flash);
@@ -283,8 +297,10 @@ TEST(BoardBoot, ASavedConfigurationForAnotherDacFallsBackToTheFactoryOne) {
     h.Send(line);
     h.Send(pp::SaveConfig{});
     const auto frames = h.Drain();
-    LONGS_EQUAL((int)pp::Status::kOk, (int)BoardHarness::AnswerFor(frames, pp::MessageType::kConfigureLine));
-    LONGS_EQUAL((int)pp::Status::kOk, (int)BoardHarness::AnswerFor(frames, pp::MessageType::kSaveConfig));
+    LONGS_EQUAL((int)pp::Status::kOk,
+                (int)BoardHarness::AnswerFor(frames, pp::MessageType::kConfigureLine));
+    LONGS_EQUAL((int)pp::Status::kOk,
+                (int)BoardHarness::AnswerFor(frames, pp::MessageType::kSaveConfig));
   }
   BoardHarness h("thesis-5finger", pp::ResetCause::kPowerOn, &flash);  // the usual 12-bit DAC
   CHECK(h.Connect().config_is_default);
@@ -304,7 +320,8 @@ TEST(BoardConfiguration, ConfigurationBeyondTheHardCeilingIsNacked) {
   line.limit_max_pa = 30000;
   h.Send(line);
   const auto frames = h.Drain();
-  LONGS_EQUAL((int)pp::Status::kOutOfRange, (int)BoardHarness::AnswerFor(frames, pp::MessageType::kConfigureLine));
+  LONGS_EQUAL((int)pp::Status::kOutOfRange,
+              (int)BoardHarness::AnswerFor(frames, pp::MessageType::kConfigureLine));
   LONGS_EQUAL(20000, h.board->config().lines[3].limit_max_pa);
 }
 
@@ -312,16 +329,20 @@ TEST(BoardConfiguration, ALineMustMatchItsDac) {
   pp::ConfigureLine line = h.board->config().lines[2];
   line.dac_bits = 16;  // the DAC has 12: every command would land 16 times too low
   h.Send(line);
-  LONGS_EQUAL((int)pp::Status::kBadValue, (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kConfigureLine));
+  LONGS_EQUAL((int)pp::Status::kBadValue,
+              (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kConfigureLine));
   line = h.board->config().lines[2];
   line.dac_signal = pp::SignalRange::kMilliamp4To20;  // the output is 0-10 V
   h.Send(line);
-  LONGS_EQUAL((int)pp::Status::kBadValue, (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kConfigureLine));
+  LONGS_EQUAL((int)pp::Status::kBadValue,
+              (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kConfigureLine));
   LONGS_EQUAL(12, h.board->config().lines[2].dac_bits);
   CHECK(h.board->config().lines[2].dac_signal == pp::SignalRange::kVolt0To10);
-  h.dac.specs[2] = {12, pp::SignalRange::kMilliamp4To20};  // a board whose output 3 is a current loop
+  h.dac.specs[2] = {12,
+                    pp::SignalRange::kMilliamp4To20};  // a board whose output 3 is a current loop
   h.Send(line);
-  LONGS_EQUAL((int)pp::Status::kOk, (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kConfigureLine));
+  LONGS_EQUAL((int)pp::Status::kOk,
+              (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kConfigureLine));
 }
 
 TEST(BoardConfiguration, StagedConfigurationAppliesAllOrNothing) {
@@ -332,12 +353,14 @@ TEST(BoardConfiguration, StagedConfigurationAppliesAllOrNothing) {
   auto n = pc::EncodeConfigBlob(wanted, blob.data(), blob.size());
   blob.resize(n.value);
   // `crc_flip` corrupts the commit's CRC; `parts` < all abandons the upload before its commit.
-  auto upload = [&](const std::vector<uint8_t>& bytes, uint32_t crc_flip = 0, size_t parts = SIZE_MAX) {
+  auto upload = [&](const std::vector<uint8_t>& bytes, uint32_t crc_flip = 0,
+                    size_t parts = SIZE_MAX) {
     h.Send(pp::StagedBegin{static_cast<uint16_t>(bytes.size())});
     for (size_t at = 0; at < bytes.size() && parts > 0; at += pp::kMaxStagedChunk, --parts) {
       pp::StagedPart part{};
       part.offset = static_cast<uint16_t>(at);
-      part.data_size = static_cast<uint8_t>(std::min<size_t>(pp::kMaxStagedChunk, bytes.size() - at));
+      part.data_size =
+          static_cast<uint8_t>(std::min<size_t>(pp::kMaxStagedChunk, bytes.size() - at));
       std::copy(bytes.begin() + at, bytes.begin() + at + part.data_size, part.data.begin());
       h.Send(part);
     }
@@ -370,7 +393,8 @@ TEST(BoardConfiguration, AChannelTheConfigurationDropsIsLeftAtItsSafeCode) {
   extra.line = 7;
   extra.safe_pa = 0;
   h.Send(extra);
-  LONGS_EQUAL((int)pp::Status::kOk, (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kConfigureLine));
+  LONGS_EQUAL((int)pp::Status::kOk,
+              (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kConfigureLine));
   for (int i = 0; i < 50; ++i) {
     h.Run(1, i % 20 == 0);
     h.FollowModel();

@@ -49,26 +49,32 @@ std::vector<BoardFrame> BoardHarness::Drain() {
 pp::Status BoardHarness::AnswerFor(const std::vector<BoardFrame>& frames, pp::MessageType type) {
   pp::Status status = pp::Status::kUnavailable;
   for (const BoardFrame& f : frames) {
-    if (f.Is<pp::Ack>() && f.As<pp::Ack>().acked_type == static_cast<uint8_t>(type)) status = pp::Status::kOk;
-    if (f.Is<pp::Nack>() && f.As<pp::Nack>().refused_type == static_cast<uint8_t>(type)) status = f.As<pp::Nack>().status;
+    if (f.Is<pp::Ack>() && f.As<pp::Ack>().acked_type == static_cast<uint8_t>(type))
+      status = pp::Status::kOk;
+    if (f.Is<pp::Nack>() && f.As<pp::Nack>().refused_type == static_cast<uint8_t>(type))
+      status = f.As<pp::Nack>().status;
   }
   return status;
 }
 
 void BoardHarness::SetMeasured(uint8_t line, float pa) {
   const pp::ConfigureLine& c = board->config().lines[line];
-  const float fraction = (pa - static_cast<float>(c.sensor_min_pa)) / static_cast<float>(c.sensor_max_pa - c.sensor_min_pa);
+  const float fraction = (pa - static_cast<float>(c.sensor_min_pa)) /
+                         static_cast<float>(c.sensor_max_pa - c.sensor_min_pa);
   const float counts = static_cast<float>(c.sensor_counts_min) +
-                       fraction * static_cast<float>(c.sensor_counts_max - c.sensor_counts_min) + 0.5f;
+                       fraction * static_cast<float>(c.sensor_counts_max - c.sensor_counts_min) +
+                       0.5f;
   // An ADC saturates at its ends (a pressure far beyond the sensor's span, or none: NaN).
   const float full_scale = static_cast<float>((1u << c.adc_bits) - 1u);
-  adc.counts[line] = counts >= 0 ? static_cast<uint32_t>(counts < full_scale ? counts : full_scale) : 0;
+  adc.counts[line] =
+      counts >= 0 ? static_cast<uint32_t>(counts < full_scale ? counts : full_scale) : 0;
 }
 
 float BoardHarness::CommandedPa(uint8_t line) const { return board->line_output(line).command_pa; }
 
 void BoardHarness::FollowModel() {
-  for (uint8_t i = 0; i < board->config().line_count; ++i) SetMeasured(i, board->line_state(i).reference_pa);
+  for (uint8_t i = 0; i < board->config().line_count; ++i)
+    SetMeasured(i, board->line_state(i).reference_pa);
 }
 
 void BoardHarness::FollowCommands() {

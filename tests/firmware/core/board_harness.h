@@ -47,13 +47,15 @@ struct BoardHarness {
   void Send(const M& m, bool reliable = M::kInfo.delivery == pp::Delivery::kReliable) {
     uint8_t frame[pp::kMaxFrameSize];
     const uint8_t seq = reliable ? next_seq++ : 0;
-    const auto n = pp::EncodeMessageFrame(m, seq, reliable ? pp::flags::kReliable : 0, frame, sizeof(frame));
+    const auto n =
+        pp::EncodeMessageFrame(m, seq, reliable ? pp::flags::kReliable : 0, frame, sizeof(frame));
     link.Inject(frame, n.value);
     board->Step();
   }
   /// Opens a session (Hello) and returns the HelloReply.
   pp::HelloReply Connect(uint8_t initial_seq = 0);
-  /// Runs `ms` milliseconds of virtual time, one loop pass per 1 ms tick (plus heartbeats if asked).
+  /// Runs `ms` milliseconds of virtual time, one loop pass per 1 ms tick (plus heartbeats if
+  /// asked).
   void Run(uint32_t ms, bool heartbeat = false);
   /// Frames the board has sent since the last call.
   std::vector<BoardFrame> Drain();

@@ -13,7 +13,8 @@ namespace pc = palpa::core;
 
 namespace {
 
-pp::SetLineSetpoints Setpoints(uint32_t generation, std::initializer_list<pp::LineSetpoint> entries) {
+pp::SetLineSetpoints Setpoints(uint32_t generation,
+                               std::initializer_list<pp::LineSetpoint> entries) {
   pp::SetLineSetpoints m{};
   m.generation = generation;
   for (const auto& e : entries) m.entries[m.entry_count++] = e;
@@ -32,9 +33,7 @@ constexpr auto kStiff = pp::OutputUnit::kStiffnessMilliNewtonPerMm;
 
 }  // namespace
 
-TEST_GROUP(BoardSession) {
-  BoardHarness h;
-};
+TEST_GROUP(BoardSession) { BoardHarness h; };
 
 TEST(BoardSession, HelloReportsTheBoard) {
   const pp::HelloReply r = h.Connect();
@@ -53,10 +52,13 @@ TEST(BoardSession, EverythingButHelloAndEStopIsRefusedBeforeHello) {
   h.Send(Setpoints(1, {{0, 1000}}));
   h.Send(pp::GetDiagnostics{});
   const auto frames = h.Drain();
-  LONGS_EQUAL((int)pp::Status::kNoSession, (int)BoardHarness::AnswerFor(frames, pp::MessageType::kSetLineSetpoints));
-  LONGS_EQUAL((int)pp::Status::kNoSession, (int)BoardHarness::AnswerFor(frames, pp::MessageType::kGetDiagnostics));
+  LONGS_EQUAL((int)pp::Status::kNoSession,
+              (int)BoardHarness::AnswerFor(frames, pp::MessageType::kSetLineSetpoints));
+  LONGS_EQUAL((int)pp::Status::kNoSession,
+              (int)BoardHarness::AnswerFor(frames, pp::MessageType::kGetDiagnostics));
   h.Send(pp::EStop{});
-  LONGS_EQUAL((int)pp::Status::kOk, (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kEStop));
+  LONGS_EQUAL((int)pp::Status::kOk,
+              (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kEStop));
 }
 
 TEST(BoardSession, DuplicateReliableCommandIsAnsweredAgainNotReapplied) {
@@ -115,7 +117,8 @@ TEST(BoardSetpoints, RawSetpointReachesTheDacAfterTheSlew) {
 TEST(BoardSetpoints, OutOfLimitSetpointIsNackedNeverClamped) {
   h.Send(Setpoints(1, {{0, 10000}, {3, 30000}}));  // line 3 is a bias line: 20 kPa at most
   const auto frames = h.Drain();
-  LONGS_EQUAL((int)pp::Status::kOutOfRange, (int)BoardHarness::AnswerFor(frames, pp::MessageType::kSetLineSetpoints));
+  LONGS_EQUAL((int)pp::Status::kOutOfRange,
+              (int)BoardHarness::AnswerFor(frames, pp::MessageType::kSetLineSetpoints));
   for (const auto& f : frames) {
     if (f.Is<pp::Nack>()) LONGS_EQUAL(1, f.As<pp::Nack>().detail);  // the offending entry
   }
@@ -126,7 +129,8 @@ TEST(BoardSetpoints, OutOfLimitSetpointIsNackedNeverClamped) {
 
 TEST(BoardSetpoints, LinesOfAFingerInTargetModeRefuseRawSetpoints) {
   h.Send(Setpoints(1, {{1, 10000}}));
-  LONGS_EQUAL((int)pp::Status::kWrongMode, (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kSetLineSetpoints));
+  LONGS_EQUAL((int)pp::Status::kWrongMode,
+              (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kSetLineSetpoints));
 }
 
 TEST(BoardSetpoints, OlderGenerationsAreDropped) {
@@ -162,11 +166,14 @@ TEST(BoardTargets, JammingTargetHoldsTheBiasAndSetsTheVacuum) {
 
 TEST(BoardTargets, WrongUnitAndBeyondTheCurveAreRefused) {
   h.Send(Targets(1, {{3, kUm, 1000}}));
-  LONGS_EQUAL((int)pp::Status::kBadValue, (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kSetFingerTargets));
+  LONGS_EQUAL((int)pp::Status::kBadValue,
+              (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kSetFingerTargets));
   h.Send(Targets(2, {{0, kUm, 5000}}));
-  LONGS_EQUAL((int)pp::Status::kOutOfRange, (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kSetFingerTargets));
+  LONGS_EQUAL((int)pp::Status::kOutOfRange,
+              (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kSetFingerTargets));
   h.Send(Targets(3, {{7, kUm, 100}}));
-  LONGS_EQUAL((int)pp::Status::kNotFound, (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kSetFingerTargets));
+  LONGS_EQUAL((int)pp::Status::kNotFound,
+              (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kSetFingerTargets));
 }
 
 TEST(BoardTargets, ValvesArePulsedOnlyWhileNotSafe) {
@@ -196,7 +203,8 @@ TEST(BoardTargets, PiCompensatorDrivesTheLineAndSaysWhenItSaturates) {
   f.params[2] = 20000;
   f.params[3] = 0.01f;
   h.Send(f);
-  LONGS_EQUAL((int)pp::Status::kOk, (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kConfigureFinger));
+  LONGS_EQUAL((int)pp::Status::kOk,
+              (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kConfigureFinger));
   auto run = [this](int ms) {
     for (int i = 0; i < ms; ++i) {
       h.Run(1, true);
@@ -221,6 +229,7 @@ TEST(BoardTargets, CompensatorParametersThatCannotBeInvertedAreNackedAndNothingC
   const float params[] = {0, 0.04f, 0, 20000, 0.01f, -0.06f};  // cumulative weight < 0
   for (int i = 0; i < 6; ++i) f.params[i] = params[i];
   h.Send(f);
-  LONGS_EQUAL((int)pp::Status::kBadValue, (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kConfigureFinger));
+  LONGS_EQUAL((int)pp::Status::kBadValue,
+              (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kConfigureFinger));
   CHECK(h.board->config().fingers[0].compensator == pp::CompensatorKind::kNone);
 }

@@ -138,8 +138,8 @@ TEST(Compensator, PiIntegerTablesGiveTheFloatModelsDriveAtEveryScale) {
       std::vector<double> z(n);
       for (int i = 0; i < n; ++i) z[i] = pc::PlayState(c, s, static_cast<uint8_t>(i));
       const double v = Uniform(rng, 0, cumulative * 100000);
-      const auto out = pc::StepCompensator(c, s, static_cast<float>(v + p[0]),
-                                           static_cast<float>(applied));
+      const auto out =
+          pc::StepCompensator(c, s, static_cast<float>(v + p[0]), static_cast<float>(applied));
       // The reference sees the applied drive as the memory holds it: in whole drive steps.
       const double held = std::round(applied / c.play.drive_step) * c.play.drive_step;
       const double expected = ReferenceDrive(p, n, z, held, v);
@@ -173,7 +173,7 @@ TEST(Compensator, PiDriveIsWithinAFewPascalOfTheExactInverseOnAThesisLikeFinger)
   pc::CompensatorState s;
   pc::HomeCompensator(c, s);
   std::vector<double> z(p.begin() + 2, p.begin() + 2 + n);  // homed: on the upper clamps
-  std::normal_distribution<double> lag(0, 300);              // the chamber never quite arrives
+  std::normal_distribution<double> lag(0, 300);             // the chamber never quite arrives
   double applied = 0;
   double worst = 0;
   for (int k = 0; k < 5000; ++k) {
@@ -183,7 +183,7 @@ TEST(Compensator, PiDriveIsWithinAFewPascalOfTheExactInverseOnAThesisLikeFinger)
     if (!out.saturated) worst = std::max(worst, std::abs(out.drive - expected));
     applied = std::max(0.0, out.drive + lag(rng));
   }
-  CHECK(worst > 0);  // integer arithmetic, so not exact ...
+  CHECK(worst > 0);   // integer arithmetic, so not exact ...
   CHECK(worst < 10);  // ... but within 10 Pa
 }
 
@@ -305,7 +305,7 @@ TEST(Compensator, ParametersThatCannotBeInvertedAreRefusedWithAReason) {
       {K::kPrandtlIshlinskii, {0, 0.01f, -5, 0.01f}},               // negative threshold
       {K::kPrandtlIshlinskii, {nan, 0.01f, 0, 0.01f}},
       {K::kPrandtlIshlinskii, {0, INFINITY, 0, 0.01f}},
-      {K::kPrandtlIshlinskii, {0, 1e-30f, 0, 1e30f}},  // scales overflow float
+      {K::kPrandtlIshlinskii, {0, 1e-30f, 0, 1e30f}},                     // scales overflow float
       {K::kAsymmetricPi, {2.5f, 0, 0.01f, 0, 100, 0.01f, 0.01f, 10, 1}},  // n not an integer
       {K::kAsymmetricPi, {1, 0, 0.01f, 0, 0.01f}},                        // no dead zone
       {K::kAsymmetricPi, {1, 0, 0.01f, 0, 0.01f, 10, -1}},                // slope 0

@@ -21,7 +21,8 @@ float PressureOfCounts(const pp::ConfigureLine& c, uint32_t counts) {
   const float max = static_cast<float>((1u << c.dac_bits) - 1u);
   const float low = c.dac_signal == pp::SignalRange::kMilliamp4To20 ? 0.2f * max : 0.0f;
   const float fraction = (static_cast<float>(counts) - low) / (max - low);
-  return static_cast<float>(c.command_min_pa) + fraction * static_cast<float>(c.command_max_pa - c.command_min_pa);
+  return static_cast<float>(c.command_min_pa) +
+         fraction * static_cast<float>(c.command_max_pa - c.command_min_pa);
 }
 
 struct Generator {
@@ -31,14 +32,18 @@ struct Generator {
 
   int32_t Pressure(uint8_t line, bool out_of_limit) {
     const pp::ConfigureLine& c = config.lines[line];
-    if (!out_of_limit) return c.limit_min_pa + static_cast<int32_t>(rng() % static_cast<uint32_t>(c.limit_max_pa - c.limit_min_pa + 1));
+    if (!out_of_limit)
+      return c.limit_min_pa +
+             static_cast<int32_t>(rng() %
+                                  static_cast<uint32_t>(c.limit_max_pa - c.limit_min_pa + 1));
     // Beyond whichever limit the wire range leaves room to exceed.
     const int32_t excess = 1 + static_cast<int32_t>(rng() % 20000);
-    const bool above = c.limit_max_pa == pp::kMaxPressurePa ? false
+    const bool above = c.limit_max_pa == pp::kMaxPressurePa   ? false
                        : c.limit_min_pa == pp::kMinPressurePa ? true
                                                               : rng() % 2 == 0;
     const int32_t v = above ? c.limit_max_pa + excess : c.limit_min_pa - excess;
-    return v > pp::kMaxPressurePa ? pp::kMaxPressurePa : (v < pp::kMinPressurePa ? pp::kMinPressurePa : v);
+    return v > pp::kMaxPressurePa ? pp::kMaxPressurePa
+                                  : (v < pp::kMinPressurePa ? pp::kMinPressurePa : v);
   }
 };
 
@@ -53,7 +58,8 @@ TEST(DispatchProperty, OutOfLimitSetpointsAreNackedAndTheDacStaysWithinLimits) {
   std::vector<std::vector<uint8_t>> sent;  // for duplicates and reordering
   uint32_t out_of_limit_sent = 0, out_of_limit_nacked = 0, frames = 0;
   h.Connect();
-  for (uint8_t f = 0; f < config.finger_count; ++f) h.Send(pp::SetFingerMode{f, f % 2 ? pp::FingerMode::kRaw : pp::FingerMode::kTarget});
+  for (uint8_t f = 0; f < config.finger_count; ++f)
+    h.Send(pp::SetFingerMode{f, f % 2 ? pp::FingerMode::kRaw : pp::FingerMode::kTarget});
   h.Drain();
 
   for (int sequence = 0; sequence < 100000; ++sequence) {
@@ -90,7 +96,9 @@ TEST(DispatchProperty, OutOfLimitSetpointsAreNackedAndTheDacStaysWithinLimits) {
       for (size_t i = 0; i < n; ++i) frame[i] = static_cast<uint8_t>(g.rng());
       frame[n++] = 0;
     } else if (kind < 90) {
-      n = pp::EncodeMessageFrame(pp::ClearFault{}, static_cast<uint8_t>(g.rng()), pp::flags::kReliable, frame, sizeof(frame)).value;
+      n = pp::EncodeMessageFrame(pp::ClearFault{}, static_cast<uint8_t>(g.rng()),
+                                 pp::flags::kReliable, frame, sizeof(frame))
+              .value;
     } else if (kind < 93) {
       n = pp::EncodeMessageFrame(pp::EStop{}, 0, 0, frame, sizeof(frame)).value;
     } else {
@@ -104,7 +112,8 @@ TEST(DispatchProperty, OutOfLimitSetpointsAreNackedAndTheDacStaysWithinLimits) {
     const auto answers = h.Drain();
     if (expect_nack) {
       const pp::Status s = BoardHarness::AnswerFor(answers, pp::MessageType::kSetLineSetpoints);
-      CHECK_TEXT(s != pp::Status::kOk && s != pp::Status::kUnavailable, std::to_string(sequence).c_str());
+      CHECK_TEXT(s != pp::Status::kOk && s != pp::Status::kUnavailable,
+                 std::to_string(sequence).c_str());
       out_of_limit_nacked += s != pp::Status::kUnavailable;
     }
     h.Run(1);
@@ -114,8 +123,10 @@ TEST(DispatchProperty, OutOfLimitSetpointsAreNackedAndTheDacStaysWithinLimits) {
       const float pa = PressureOfCounts(c, h.dac.counts[i]);
       const pc::Ceiling ceiling = pc::CeilingFor(c.kind);
       const float lsb = 100000.0f / 4095.0f;
-      CHECK(pa >= static_cast<float>(c.limit_min_pa) - lsb && pa <= static_cast<float>(c.limit_max_pa) + lsb);
-      CHECK(pa >= static_cast<float>(ceiling.min_pa) - lsb && pa <= static_cast<float>(ceiling.max_pa) + lsb);
+      CHECK(pa >= static_cast<float>(c.limit_min_pa) - lsb &&
+            pa <= static_cast<float>(c.limit_max_pa) + lsb);
+      CHECK(pa >= static_cast<float>(ceiling.min_pa) - lsb &&
+            pa <= static_cast<float>(ceiling.max_pa) + lsb);
     }
     if (sequence % 500 == 0) {  // keep the session alive and faults clearable
       h.Connect(static_cast<uint8_t>(g.rng()));

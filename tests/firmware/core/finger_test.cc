@@ -1,6 +1,6 @@
 // Fingers: static inverse (target 0 → 0 Pa), homing before following, jamming bias.
-#include "palpa/core/board_configs.h"
 #include "palpa/core/finger.h"
+#include "palpa/core/board_configs.h"
 
 #include "CppUTest/TestHarness.h"
 

@@ -41,8 +41,10 @@ Link g_link;
 extern "C" int palpa_check_main() {
   const pc::BoardConfig* config = pc::FindBoardConfig("thesis-5finger");
   if (config == nullptr) return 1;
-  static pc::Board board(*config, pc::BoardIo{g_clock, g_dac, nullptr, g_supply, g_dump, g_pump, nullptr, g_link, nullptr, 0},
-                         pc::BoardIdentity{});
+  static pc::Board board(
+      *config,
+      pc::BoardIo{g_clock, g_dac, nullptr, g_supply, g_dump, g_pump, nullptr, g_link, nullptr, 0},
+      pc::BoardIdentity{});
   board.Start();
   for (int i = 0; i < 100; ++i) board.Step();
   return board.safe() ? 0 : 2;

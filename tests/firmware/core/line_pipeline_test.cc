@@ -31,8 +31,8 @@ pp::ConfigureLine PressureLine() {
   return c;
 }
 
-pc::LineOutput Step(const pc::LineParams& p, pc::LineState& s, float setpoint, bool measured_valid = false,
-                    float measured = 0, bool safe = false) {
+pc::LineOutput Step(const pc::LineParams& p, pc::LineState& s, float setpoint,
+                    bool measured_valid = false, float measured = 0, bool safe = false) {
   pc::LineOutput out;
   pc::StepLine(p, s, pc::LineInput{setpoint, safe, measured_valid, measured}, out);
   return out;
@@ -61,7 +61,7 @@ TEST(LinePipeline, FeedForwardInvertsTheRisingAndFallingCorrection) {
   auto c = PressureLine();
   c.sensor = pp::SensorKind::kNone;
   c.correction_count = 2;
-  c.correction[0] = {0, 0, 1000};          // falling branch sits 1 kPa higher
+  c.correction[0] = {0, 0, 1000};             // falling branch sits 1 kPa higher
   c.correction[1] = {100000, 98000, 100000};  // rising branch reaches only 98 kPa
   const pc::LineParams p = pc::MakeLineParams(c, 1000);
   pc::LineState s;

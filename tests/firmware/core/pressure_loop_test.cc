@@ -49,6 +49,6 @@ TEST(PressureLoop, TheIntegratorDeadBandStopsHuntingAgainstAValveDeadBand) {
   c.valve_dead_band = 0.005f;
   c.trim_dead_band = 0;
   CHECK(pt::SettledRipple(c, 60) > 0.0005);  // without it: a limit cycle
-  c.trim_dead_band = 0.001f;                   // the template's ±0.1 % F.S.
+  c.trim_dead_band = 0.001f;                 // the template's ±0.1 % F.S.
   CHECK(pt::SettledRipple(c, 60) < 0.0001);
 }

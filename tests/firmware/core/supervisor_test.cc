@@ -166,7 +166,8 @@ TEST(Supervisor, EStopPinLatchesAndBlocksClearingWhileAsserted) {
   LONGS_EQUAL(FaultBit(Fault::kEStopPin), f.At(1));
   f.in.last_host_frame_us = 2;
   f.At(2);
-  LONGS_EQUAL((int)pp::Status::kConditionPersists, (int)pc::ClearFaults(f.state, FaultBit(Fault::kEStopPin)));
+  LONGS_EQUAL((int)pp::Status::kConditionPersists,
+              (int)pc::ClearFaults(f.state, FaultBit(Fault::kEStopPin)));
   f.in.estop_pin = false;
   f.At(3);
   LONGS_EQUAL((int)pp::Status::kOk, (int)pc::ClearFaults(f.state, FaultBit(Fault::kEStopPin)));

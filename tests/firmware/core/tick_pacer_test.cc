@@ -30,7 +30,7 @@ TEST(TickPacer, CountsMissedPeriodsAndSkipsThem) {
   pc::TickPacer pacer(1000);
   pacer.Start(0);
   pacer.BeginTick(0);
-  pacer.EndTick(3500);  // a 3.5 ms tick
+  pacer.EndTick(3500);    // a 3.5 ms tick
   pacer.BeginTick(3500);  // serves the 1000 deadline late; 2000 and 3000 got no tick at all
   LONGS_EQUAL(2, pacer.stats().overruns);
   LONGS_EQUAL(4000, pacer.deadline_us());

@@ -15,7 +15,8 @@ namespace params = palpa::sim::params;
 
 namespace {
 
-ps::Plant MakePlant(int level, uint32_t unit = 0, uint32_t seed = 1, bool errors = true, ps::Effects effects = {}) {
+ps::Plant MakePlant(int level, uint32_t unit = 0, uint32_t seed = 1, bool errors = true,
+                    ps::Effects effects = {}) {
   const auto& c = *palpa::core::FindBoardConfig("thesis-5finger");
   ps::PlantOptions o;
   o.level = level;
@@ -154,16 +155,20 @@ TEST(PneumaticLoop, MajorLoopMatchesTable54WithinTolerance) {
   }
   const double tol = params::kTolerancesSlopeTolerance;
   const double sr = Slope(p, rising), sf = Slope(p_down, falling);
-  CHECK_TEXT(std::fabs(sr / params::kTolerancesRisingSlopeMmPerKpa - 1) <= tol, std::to_string(sr).c_str());
-  CHECK_TEXT(std::fabs(sf / params::kTolerancesFallingSlopeMmPerKpa - 1) <= tol, std::to_string(sf).c_str());
-  DOUBLES_EQUAL(params::kTolerancesGapAt10kpaMm, falling[1] - rising[1], params::kTolerancesGapAt10kpaToleranceMm);
+  CHECK_TEXT(std::fabs(sr / params::kTolerancesRisingSlopeMmPerKpa - 1) <= tol,
+             std::to_string(sr).c_str());
+  CHECK_TEXT(std::fabs(sf / params::kTolerancesFallingSlopeMmPerKpa - 1) <= tol,
+             std::to_string(sf).c_str());
+  DOUBLES_EQUAL(params::kTolerancesGapAt10kpaMm, falling[1] - rising[1],
+                params::kTolerancesGapAt10kpaToleranceMm);
   double mean_gap = 0;
   for (int i = 2; i <= 8; ++i) mean_gap += falling[i] - rising[i];
   DOUBLES_EQUAL(params::kTolerancesMeanGapMm, mean_gap / 7, params::kTolerancesMeanGapToleranceMm);
   // Each branch stays near its thesis line, not only its slope.
   double rms = 0;
   for (int i = 1; i <= 9; ++i) {
-    const double dr = rising[i] - (0.0428 * p[i] - 0.3032), df = falling[i] - (0.0475 * p_down[i] - 0.1333);
+    const double dr = rising[i] - (0.0428 * p[i] - 0.3032),
+                 df = falling[i] - (0.0475 * p_down[i] - 0.1333);
     rms += dr * dr + df * df;
   }
   CHECK(std::sqrt(rms / 18) <= params::kTolerancesBranchRmsToFitMm);
@@ -217,7 +222,8 @@ TEST(PneumaticLoop, FastCyclesWidenTheLoop) {
       plant.Step();
       const auto t = plant.Truth();
       if (up < 0 && ms < 2000 && t.lines[0].chamber_pa >= 30000) up = t.fingers[0].deformation_mm;
-      if (down < 0 && ms > 2000 && t.lines[0].chamber_pa <= 30000) down = t.fingers[0].deformation_mm;
+      if (down < 0 && ms > 2000 && t.lines[0].chamber_pa <= 30000)
+        down = t.fingers[0].deformation_mm;
     }
     return down - up;
   };
@@ -269,7 +275,8 @@ TEST(JammingStiffness, EndPointsAndShapeFollowFig536) {
   float max_slope_bias = 0, max_slope_none = 0;
   for (int v = 0; v < 100; v += 5) {
     const float a = static_cast<float>(-v) * 1000, b = static_cast<float>(-v - 5) * 1000;
-    max_slope_bias = std::max(max_slope_bias, j->StaticStiffness(20000, b) - j->StaticStiffness(20000, a));
+    max_slope_bias =
+        std::max(max_slope_bias, j->StaticStiffness(20000, b) - j->StaticStiffness(20000, a));
     max_slope_none = std::max(max_slope_none, j->StaticStiffness(0, b) - j->StaticStiffness(0, a));
     CHECK(j->StaticStiffness(20000, b) >= j->StaticStiffness(20000, a));  // monotone
   }
@@ -310,10 +317,11 @@ TEST(JammingStiffness, PressLoopsStayBelowTheLoadingWorkAndFollowVacuumAndBias) 
     return static_cast<float>(load - unload);
   };
   float w0 = 0, w1 = 0, w2 = 0, w3 = 0;
-  const float at0 = loop(20000, 0, w0), at60 = loop(20000, -60000, w1), at100 = loop(20000, -100000, w2);
+  const float at0 = loop(20000, 0, w0), at60 = loop(20000, -60000, w1),
+              at100 = loop(20000, -100000, w2);
   const float unbiased100 = loop(0, -100000, w3);
   CHECK(at0 < w0 && at60 < w1 && at100 < w2 && unbiased100 < w3);
-  CHECK(at100 / w2 > 1.3f * at60 / w1);          // loops grow beyond −60 kPa
+  CHECK(at100 / w2 > 1.3f * at60 / w1);                          // loops grow beyond −60 kPa
   DOUBLES_EQUAL(0.35, (at100 / w2) / (unbiased100 / w3), 0.02);  // bias shrinks them by 65 %
 }
 

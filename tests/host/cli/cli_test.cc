@@ -237,7 +237,8 @@ TEST(CliCalibrate, QuickCalibrationOnTheSimulatedRigWritesAValidFileRawDataAndAR
 TEST(CliCalibrate, AdaptiveMapOnAJammingFingerReportsItsChecks) {
   char pattern[] = "/tmp/palpa-cal-cli-XXXXXX";
   const std::string dir = mkdtemp(pattern);
-  const Run r = Palpa("calibrate --rig sim --finger 4 --quick --protocol adaptive --max-cycles 8 --out " + dir);
+  const Run r = Palpa(
+      "calibrate --rig sim --finger 4 --quick --protocol adaptive --max-cycles 8 --out " + dir);
   LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
   CHECK(Has(r, "stiffness map: adaptive, 8 cycles"));
   for (const char* check : {"check points", "check noise", "check force_zero", "check leak"})
@@ -253,7 +254,8 @@ TEST(CliCalibrate, AdaptiveMapOnAJammingFingerReportsItsChecks) {
   nlohmann::json other = j;
   other["actuator_serial"] = "JAM-2";
   std::ofstream(dir + "/other.json") << other.dump();
-  const Run refused = Palpa("calibrate --rig sim --finger 4 --quick --out " + dir + " --previous " + dir + "/other.json");
+  const Run refused = Palpa("calibrate --rig sim --finger 4 --quick --out " + dir + " --previous " +
+                            dir + "/other.json");
   LONGS_EQUAL(2, refused.code);
   CHECK(Has(refused, "calibrates JAM-2, not JAM-1"));
 }

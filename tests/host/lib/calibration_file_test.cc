@@ -119,7 +119,8 @@ TEST(CalibrationFile, EveryBadFieldIsNamedByItsPath) {
       {[](json& j) { j["quality"]["protocol"] = "quick"; }, "quality.protocol"},
       {[](json& j) { j["quality"]["checks"][0]["passed"] = "yes"; },
        "quality.checks[0].passed: must be true or false"},
-      {[](json& j) { j["quality"]["checks"][1].erase("limit"); }, "quality.checks[1].limit: missing"},
+      {[](json& j) { j["quality"]["checks"][1].erase("limit"); },
+       "quality.checks[1].limit: missing"},
       {[](json& j) { j["quality"]["map_error"] = -0.1; }, "quality.map_error"},
       {[](json& j) { j["kind"] = "jamming"; }, "conditions.bias_kpa: missing"},
   };

@@ -35,7 +35,9 @@ extern "C" {
 
 int hid_init(void) { return 0; }
 int hid_exit(void) { return 0; }
-hid_device* hid_open(unsigned short, unsigned short, const wchar_t*) { return Hid().present ? &g_hid_device : nullptr; }
+hid_device* hid_open(unsigned short, unsigned short, const wchar_t*) {
+  return Hid().present ? &g_hid_device : nullptr;
+}
 void hid_close(hid_device*) { Hid().closed = true; }
 const wchar_t* hid_error(hid_device*) { return L"fake hidapi error"; }
 int hid_read_timeout(hid_device*, unsigned char* data, size_t length, int) {
@@ -83,7 +85,8 @@ int libusb_open(libusb_device*, libusb_device_handle** h) {
   return 0;
 }
 void libusb_close(libusb_device_handle*) {}
-int libusb_get_string_descriptor_ascii(libusb_device_handle*, uint8_t, unsigned char* data, int length) {
+int libusb_get_string_descriptor_ascii(libusb_device_handle*, uint8_t, unsigned char* data,
+                                       int length) {
   const char serial[] = "PALPA-0042";
   std::strncpy(reinterpret_cast<char*>(data), serial, static_cast<size_t>(length));
   return static_cast<int>(sizeof(serial) - 1);
@@ -97,7 +100,8 @@ int libusb_get_active_config_descriptor(libusb_device*, struct libusb_config_des
   g_endpoints[0].bEndpointAddress = 0x81;
   g_endpoints[0].bmAttributes = LIBUSB_TRANSFER_TYPE_BULK;
   g_endpoints[1].bEndpointAddress = 0x02;
-  g_endpoints[1].bmAttributes = Usb().has_bulk_pair ? LIBUSB_TRANSFER_TYPE_BULK : LIBUSB_TRANSFER_TYPE_INTERRUPT;
+  g_endpoints[1].bmAttributes =
+      Usb().has_bulk_pair ? LIBUSB_TRANSFER_TYPE_BULK : LIBUSB_TRANSFER_TYPE_INTERRUPT;
   std::memset(&g_altsetting, 0, sizeof(g_altsetting));
   g_altsetting.bInterfaceNumber = 0;
   g_altsetting.bNumEndpoints = 2;
@@ -120,8 +124,8 @@ int libusb_clear_halt(libusb_device_handle*, unsigned char) {
   ++Usb().clear_halts;
   return 0;
 }
-int libusb_bulk_transfer(libusb_device_handle*, unsigned char endpoint, unsigned char* data, int length,
-                         int* transferred, unsigned int) {
+int libusb_bulk_transfer(libusb_device_handle*, unsigned char endpoint, unsigned char* data,
+                         int length, int* transferred, unsigned int) {
   *transferred = 0;
   if (Usb().no_device) return LIBUSB_ERROR_NO_DEVICE;
   if (endpoint & LIBUSB_ENDPOINT_IN) {

@@ -9,9 +9,9 @@ namespace palpa::testing {
 
 struct FakeHid {
   bool present = true;
-  bool disconnected = false;      ///< hid_read/hid_write fail as after an unplug
-  int short_write_bytes = -1;     ///< >=0: hid_write reports that many bytes
-  std::vector<std::vector<uint8_t>> reports_in;  ///< what hid_read returns, one report per call
+  bool disconnected = false;                      ///< hid_read/hid_write fail as after an unplug
+  int short_write_bytes = -1;                     ///< >=0: hid_write reports that many bytes
+  std::vector<std::vector<uint8_t>> reports_in;   ///< what hid_read returns, one report per call
   std::vector<std::vector<uint8_t>> reports_out;  ///< what hid_write got
   int reads = 0, timeouts = 0;
   bool closed = false;
@@ -26,7 +26,7 @@ struct FakeUsb {
   std::vector<uint8_t> bulk_out;              ///< everything OUT transfers took
   int stall_next_in = 0;                      ///< IN transfers to fail with PIPE
   int stall_next_out = 0;
-  int out_chunk = 0;                          ///< >0: OUT transfers move at most this many bytes
+  int out_chunk = 0;  ///< >0: OUT transfers move at most this many bytes
   bool no_device = false;
   int clear_halts = 0;
   bool released = false;

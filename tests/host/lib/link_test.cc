@@ -74,7 +74,8 @@ std::vector<uint8_t> StagedRecord(const M& message) {
 /// The board's latched faults in words, for failure messages.
 std::string LatchedFaults(ph::Device& device) {
   const auto diagnostics = device.Diagnostics();
-  return diagnostics.ok() ? "latched: " + ph::FaultNames(diagnostics.value.fault_bitmap) : "no diagnostics";
+  return diagnostics.ok() ? "latched: " + ph::FaultNames(diagnostics.value.fault_bitmap)
+                          : "no diagnostics";
 }
 
 TEST_GROUP(LinkFaults){};
@@ -90,11 +91,13 @@ TEST(LinkFaults, ThousandCommandsExactlyOnceInOrderAtOnePercentLossAndBitFlips) 
   // command 30 s instead of the default 3 s.
   ph::LinkOptions patient;
   patient.command_timeout_ms = 30000;
-  auto link = OpenLink(std::make_unique<ph::FaultTransport>(std::make_unique<BoardTransport>(board), faults, 5),
-                       patient);
+  auto link = OpenLink(
+      std::make_unique<ph::FaultTransport>(std::make_unique<BoardTransport>(board), faults, 5),
+      patient);
   for (uint32_t id = 1; id <= 1000; ++id) {
     const ph::CommandResult r = link->Command(pp::ClearFault{id});
-    LONGS_EQUAL_TEXT((int)pp::Status::kOk, (int)r.status, (std::to_string(id) + " " + r.message).c_str());
+    LONGS_EQUAL_TEXT((int)pp::Status::kOk, (int)r.status,
+                     (std::to_string(id) + " " + r.message).c_str());
   }
   LONGS_EQUAL(1000, board.applied.size());
   for (uint32_t i = 0; i < 1000; ++i) LONGS_EQUAL(i + 1, board.applied[i].command_id);
@@ -107,7 +110,8 @@ TEST(LinkFaults, BoardRestartReportsInFlightCommandsAsOutcomeUnknownAndReconnect
   ph::FaultSpec slow;
   slow.delay_ms = 30;  // commands stay in flight long enough to be caught by the reset
   auto* transport = new BoardTransport(board);
-  auto link = OpenLink(std::make_unique<ph::FaultTransport>(std::unique_ptr<ph::Transport>(transport), slow, 6));
+  auto link = OpenLink(
+      std::make_unique<ph::FaultTransport>(std::unique_ptr<ph::Transport>(transport), slow, 6));
   std::atomic<int> unknown{0}, ok{0};
   std::thread sender([&] {
     for (uint32_t id = 1; id <= 40; ++id) {
@@ -123,9 +127,11 @@ TEST(LinkFaults, BoardRestartReportsInFlightCommandsAsOutcomeUnknownAndReconnect
   CHECK(ok.load() >= 1);
   CHECK(link->counters().board_resets >= 1);
   bool told = false;
-  for (const std::string& e : link->TakeEvents()) told |= e.find("unknown outcome") != std::string::npos;
+  for (const std::string& e : link->TakeEvents())
+    told |= e.find("unknown outcome") != std::string::npos;
   CHECK(told);
-  LONGS_EQUAL((int)pp::Status::kOk, (int)link->Command(pp::ClearFault{999}).status);  // a new session works
+  LONGS_EQUAL((int)pp::Status::kOk,
+              (int)link->Command(pp::ClearFault{999}).status);  // a new session works
   CHECK(board.sessions >= 2);
 }
 
@@ -139,8 +145,9 @@ TEST(LinkFaults, ABoardThatReportsNoHostTimeoutGetsHeartbeatsAtTheDefaultRate) {
   // A quarter of the default 100 ms: at most one per 25 ms (a slow machine only sends fewer).
   // Read as "as fast as possible", 0 made the link send one every millisecond.
   CHECK(heartbeats >= 1);
-  CHECK_TEXT(heartbeats <= elapsed / 0.025 + 2,
-             (std::to_string(heartbeats) + " heartbeats in " + std::to_string(elapsed) + " s").c_str());
+  CHECK_TEXT(
+      heartbeats <= elapsed / 0.025 + 2,
+      (std::to_string(heartbeats) + " heartbeats in " + std::to_string(elapsed) + " s").c_str());
 }
 
 TEST(LinkFaults, CatalogMismatchRefusesEverythingButTheBootstrapSet) {
@@ -161,11 +168,14 @@ TEST(LinkFaults, CatalogMismatchRefusesEverythingButTheBootstrapSet) {
 
 TEST(LinkFaults, FaultNamesShowEveryFaultIncludingOnesThisHostDoesNotKnow) {
   STRCMP_EQUAL("none", ph::FaultNames(0).c_str());
-  const uint32_t known = pp::FaultBit(pp::Fault::kHostSilence) | pp::FaultBit(pp::Fault::kOutputWrite);
+  const uint32_t known =
+      pp::FaultBit(pp::Fault::kHostSilence) | pp::FaultBit(pp::Fault::kOutputWrite);
   STRCMP_EQUAL("host_silence, output_write", ph::FaultNames(known).c_str());
-  STRCMP_EQUAL("leak, fault_31", ph::FaultNames(pp::FaultBit(pp::Fault::kLeak) | (1u << 31)).c_str());
+  STRCMP_EQUAL("leak, fault_31",
+               ph::FaultNames(pp::FaultBit(pp::Fault::kLeak) | (1u << 31)).c_str());
   // The fault history names its entries the same way (a history entry carries the bit index).
-  STRCMP_EQUAL("output_write", ph::FaultName(static_cast<uint8_t>(pp::Fault::kOutputWrite)).c_str());
+  STRCMP_EQUAL("output_write",
+               ph::FaultName(static_cast<uint8_t>(pp::Fault::kOutputWrite)).c_str());
   STRCMP_EQUAL("fault_10", ph::FaultName(static_cast<uint8_t>(pp::Fault::kCount)).c_str());
 }
 
@@ -178,7 +188,8 @@ TEST(LinkSim, StreamsConvergeToTheLatestValueUnderFaults) {
   ph::FaultSpec faults;
   faults.drop = 0.01;
   faults.bit_flip = 0.001;
-  auto device = ph::Device::Attach(std::make_unique<ph::FaultTransport>(LaunchSimAt("0.25"), faults, 7), {}, &error);
+  auto device = ph::Device::Attach(
+      std::make_unique<ph::FaultTransport>(LaunchSimAt("0.25"), faults, 7), {}, &error);
   CHECK_TEXT(device.ok(), error.c_str());
   // A 1 % byte loss drops about one heartbeat in seven; four in a row would trip the default
   // 100 ms host-silence timeout now and then. This test is about the stream, so give it 1 s.
@@ -187,8 +198,10 @@ TEST(LinkSim, StreamsConvergeToTheLatestValueUnderFaults) {
   const ph::Outcome last = device.value->SetLines({{0, 42.0}}, true);
   CHECK_TEXT(last.ok(), (last.message + " (" + LatchedFaults(*device.value) + ")").c_str());
   std::atomic<int32_t> seen{0};
-  const int id = device.value->Subscribe([&](const ph::TelemetryFrame& f) { seen = f.telemetry.samples[0].setpoint_pa; });
-  for (int i = 0; i < 250 && seen.load() != 42000; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  const int id = device.value->Subscribe(
+      [&](const ph::TelemetryFrame& f) { seen = f.telemetry.samples[0].setpoint_pa; });
+  for (int i = 0; i < 250 && seen.load() != 42000; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
   device.value->Unsubscribe(id);
   LONGS_EQUAL(42000, seen.load());
 }

@@ -16,7 +16,8 @@ TEST_GROUP(StiffnessMap) {
   pp::FingerSummary jamming{pp::FingerKind::kJamming, pp::FingerMode::kTarget, 3, 5};
   ph::LevelTables levels = ph::LevelTables::Shipped();
   ph::FingerCurves curves;
-  ph::Mapped Map(const pp::FingerSummary& f, ph::TargetKind k, double v, ph::RangePolicy p = ph::RangePolicy::kRefuse) {
+  ph::Mapped Map(const pp::FingerSummary& f, ph::TargetKind k, double v,
+                 ph::RangePolicy p = ph::RangePolicy::kRefuse) {
     return ph::MapRequest(f, levels, curves, ph::Request{k, v}, p);
   }
 };
@@ -34,7 +35,8 @@ TEST(StiffnessMap, LevelsBecomeTargetsThroughTheNominalCurves) {
   LONGS_EQUAL(1164, Map(pneumatic, ph::TargetKind::kLevel, 2).target);  // at 30 kPa
   LONGS_EQUAL(760, Map(jamming, ph::TargetKind::kLevel, 1).target);     // -10 kPa at 20 kPa bias
   LONGS_EQUAL(1300, Map(jamming, ph::TargetKind::kLevel, 2).target);
-  CHECK(Map(jamming, ph::TargetKind::kLevel, 2).note.find("nominal thesis curves") != std::string::npos);
+  CHECK(Map(jamming, ph::TargetKind::kLevel, 2).note.find("nominal thesis curves") !=
+        std::string::npos);
   const ph::Mapped bad = Map(jamming, ph::TargetKind::kLevel, 3);
   LONGS_EQUAL((int)pp::Status::kOutOfRange, (int)bad.status);
   CHECK(bad.error.find("levels 0 … 2") != std::string::npos);
@@ -44,7 +46,8 @@ TEST(StiffnessMap, UnitsMustSuitTheFingerKind) {
   const ph::Mapped n = Map(pneumatic, ph::TargetKind::kStiffnessNPerMm, 1.0);
   LONGS_EQUAL((int)pp::Status::kBadValue, (int)n.status);
   CHECK(n.error.find("pneumatic") != std::string::npos);
-  LONGS_EQUAL((int)pp::Status::kBadValue, (int)Map(jamming, ph::TargetKind::kDeformationMm, 1.0).status);
+  LONGS_EQUAL((int)pp::Status::kBadValue,
+              (int)Map(jamming, ph::TargetKind::kDeformationMm, 1.0).status);
   LONGS_EQUAL(1100, Map(jamming, ph::TargetKind::kStiffnessNPerMm, 1.1).target);
   LONGS_EQUAL(1200, Map(pneumatic, ph::TargetKind::kDeformationMm, 1.2).target);
 }
@@ -53,7 +56,8 @@ TEST(StiffnessMap, OutsideTheCalibratedRangeIsRefusedOrClampedNeverExtrapolated)
   const ph::Mapped refused = Map(jamming, ph::TargetKind::kStiffnessNPerMm, 1.5);
   LONGS_EQUAL((int)pp::Status::kOutOfRange, (int)refused.status);
   CHECK(refused.error.find("0.7 … 1.3") != std::string::npos);
-  const ph::Mapped clamped = Map(jamming, ph::TargetKind::kStiffnessNPerMm, 1.5, ph::RangePolicy::kClamp);
+  const ph::Mapped clamped =
+      Map(jamming, ph::TargetKind::kStiffnessNPerMm, 1.5, ph::RangePolicy::kClamp);
   LONGS_EQUAL(1300, clamped.target);
   CHECK(clamped.note.find("clamped") != std::string::npos);
 }
@@ -66,7 +70,8 @@ TEST(StiffnessMap, NormalizedAndRawPressure) {
   CHECK(raw.raw);
   LONGS_EQUAL(20000, raw.line_a_pa);
   LONGS_EQUAL(-40000, raw.line_b_pa);
-  LONGS_EQUAL((int)pp::Status::kOutOfRange, (int)Map(pneumatic, ph::TargetKind::kPressureKpa, 120).status);
+  LONGS_EQUAL((int)pp::Status::kOutOfRange,
+              (int)Map(pneumatic, ph::TargetKind::kPressureKpa, 120).status);
 }
 
 TEST(StiffnessMap, LevelFilesAreValidated) {
@@ -76,7 +81,10 @@ TEST(StiffnessMap, LevelFilesAreValidated) {
   CHECK(error.find("cannot open") != std::string::npos);
   const std::string path = "/tmp/palpa-levels-test-" + std::to_string(getpid()) + ".json";
   FILE* f = fopen(path.c_str(), "w");
-  fputs("{\"pneumatic\": {\"levels_kpa\": [0, 150]}, \"jamming\": {\"bias_kpa\": 20, \"levels_kpa\": [0]}}", f);
+  fputs(
+      "{\"pneumatic\": {\"levels_kpa\": [0, 150]}, \"jamming\": {\"bias_kpa\": 20, \"levels_kpa\": "
+      "[0]}}",
+      f);
   fclose(f);
   const bool loaded = ph::LevelTables::Load(path, t, &error);
   std::remove(path.c_str());

@@ -13,16 +13,17 @@ namespace pp = palpa::protocol;
 using palpa::testing::Hid;
 using palpa::testing::Usb;
 
-TEST_GROUP(HidTransport) {
-  void setup() override { palpa::testing::ResetFakes(); }
-  void teardown() override { palpa::testing::ResetFakes(); }
-  std::unique_ptr<ph::Transport> Open(const char* uri = "hid:1209:0001") {
-    std::string error;
-    auto t = ph::OpenTransport(uri, &error);
-    CHECK_TEXT(t.ok(), error.c_str());
-    return std::move(t.value);
-  }
-};
+TEST_GROUP(HidTransport){void setup() override{palpa::testing::ResetFakes();
+}
+void teardown() override { palpa::testing::ResetFakes(); }
+std::unique_ptr<ph::Transport> Open(const char* uri = "hid:1209:0001") {
+  std::string error;
+  auto t = ph::OpenTransport(uri, &error);
+  CHECK_TEXT(t.ok(), error.c_str());
+  return std::move(t.value);
+}
+}
+;
 
 TEST(HidTransport, WritesReportsWithTheReportIdInFrontAndZeroPadding) {
   auto t = Open();
@@ -74,10 +75,11 @@ TEST(HidTransport, MissingDeviceIsNamed) {
   CHECK(error.find("udev") != std::string::npos);
 }
 
-TEST_GROUP(UsbTransport) {
-  void setup() override { palpa::testing::ResetFakes(); }
-  void teardown() override { palpa::testing::ResetFakes(); }
-};
+TEST_GROUP(UsbTransport){void setup() override{palpa::testing::ResetFakes();
+}
+void teardown() override { palpa::testing::ResetFakes(); }
+}
+;
 
 TEST(UsbTransport, BulkInAndOutWithShortTransfersAndStalls) {
   std::string error;
@@ -98,7 +100,8 @@ TEST(UsbTransport, BulkInAndOutWithShortTransfersAndStalls) {
   CHECK(n.ok());
   LONGS_EQUAL(0, n.value);
   Usb().no_device = true;
-  LONGS_EQUAL((int)pp::Status::kDisconnected, (int)t.value->Read(buffer, sizeof(buffer), 10).status);
+  LONGS_EQUAL((int)pp::Status::kDisconnected,
+              (int)t.value->Read(buffer, sizeof(buffer), 10).status);
   LONGS_EQUAL((int)pp::Status::kDisconnected, (int)t.value->Write(bytes.data(), 1));
   t.value.reset();
   CHECK(Usb().released);
@@ -129,10 +132,12 @@ TEST(DeviceUri, BadUrisNameTheirFault) {
   CHECK(ph::OpenTransport("tcp:localhost:99999", &error).status == pp::Status::kInvalidArgument);
   CHECK(ph::OpenTransport("hid:12G9:0001", &error).status == pp::Status::kInvalidArgument);
   CHECK(error.find("vendor id") != std::string::npos);
-  CHECK(ph::OpenTransport("serial:/dev/null?speed=9", &error).status == pp::Status::kInvalidArgument);
+  CHECK(ph::OpenTransport("serial:/dev/null?speed=9", &error).status ==
+        pp::Status::kInvalidArgument);
   CHECK(ph::OpenTransport("bluetooth:x", &error).status == pp::Status::kInvalidArgument);
   CHECK(error.find("unknown scheme") != std::string::npos);
   CHECK(ph::OpenTransport("serial:/nonexistent/tty", &error).status == pp::Status::kNotFound);
-  CHECK(ph::OpenTransport("serial:/dev/null", &error).status == pp::Status::kInvalidArgument);  // not a tty
+  CHECK(ph::OpenTransport("serial:/dev/null", &error).status ==
+        pp::Status::kInvalidArgument);  // not a tty
   CHECK(ph::OpenTransport("tcp:127.0.0.1:1", &error).status == pp::Status::kUnavailable);
 }

@@ -2,7 +2,8 @@
 // deformation sweep with nested reversals or (jamming) the stiffness map over bias × vacuum —
 // the thesis's grid or the adaptive protocol — the recommended bias, and a stiffness sweep at it;
 // fits, static inverse, compensator, the failure detectors' verdicts — a calibration file and its
-// raw data. Each finished step is kept in a journal, so an interrupted run resumes where it stopped.
+// raw data. Each finished step is kept in a journal, so an interrupted run resumes where it
+// stopped.
 #pragma once
 
 #include <functional>
@@ -31,7 +32,7 @@ struct ProtocolOptions {
   /// The stiffness sweep's presses measure the slope only, so they go faster: the whole sweep then
   /// holds vacuum for minutes, inside the board's pump run-time limit (10 min by default).
   double sweep_press_speed_mm_s = 1.0;
-  int repeats = 8;                ///< thesis: 8 per condition
+  int repeats = 8;  ///< thesis: 8 per condition
   std::vector<double> biases_kpa = {0, 10, 20};
   std::vector<double> vacuums_kpa = {0, -50, -100};
   SweepPlan pneumatic_sweep{100000, 5000, 4};
@@ -59,15 +60,15 @@ struct RunInfo {
   uint32_t board_id = 0;
   std::string date;  ///< UTC ISO 8601
   std::string rig;
-  std::string raw_data;  ///< CSV file name beside the calibration
+  std::string raw_data;                             ///< CSV file name beside the calibration
   const host::CalibrationFile* previous = nullptr;  ///< the actuator's last calibration, if any
 };
 
 struct CalibrationRun {
   host::CalibrationFile file;
   std::vector<std::string> csv;     ///< raw readings, first line the header
-  std::vector<MapPress> map;         ///< jamming: every press of the stiffness map
-  std::vector<PressCycle> presses;   ///< the force-depth readings of those taken in this session
+  std::vector<MapPress> map;        ///< jamming: every press of the stiffness map
+  std::vector<PressCycle> presses;  ///< the force-depth readings of those taken in this session
   MapEstimate map_estimate;
   std::vector<SweepSample> sweep;
 };
@@ -75,8 +76,7 @@ struct CalibrationRun {
 /// Runs (or resumes) the protocol; on a safety stop returns its reason with everything safe,
 /// and the journal keeps what was finished.
 RigStatus RunCalibration(Rig& rig, uint8_t finger, const ProtocolOptions& options,
-                            const RunInfo& info, Journal& journal,
-                            const std::function<void(const Progress&)>& progress,
-                            CalibrationRun* out);
+                         const RunInfo& info, Journal& journal,
+                         const std::function<void(const Progress&)>& progress, CalibrationRun* out);
 
 }  // namespace palpa::calibration

@@ -56,7 +56,7 @@ struct PressCycle {
   double r2 = 0;                  ///< of that fit
   double loop_area_mj = 0;        ///< between loading and unloading (N·mm = mJ)
   double peak_force_n = 0;
-  double residual_n = 0;    ///< RMS of the loading fit's residuals: the force sensor's noise, mostly
+  double residual_n = 0;  ///< RMS of the loading fit's residuals: the force sensor's noise, mostly
   double free_force_n = 0;  ///< mean reading just clear of the surface before the press: its zero
   std::vector<std::pair<double, double>> loading, unloading;  ///< (depth mm, force N)
 };

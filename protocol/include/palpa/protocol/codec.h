@@ -12,7 +12,9 @@
 namespace palpa::protocol {
 
 template <class M>
-concept HasCheck = requires(const M& m) { M::Check(m); };
+concept HasCheck = requires(const M& m) {
+  M::Check(m);
+};
 
 /// Encodes the body of `m` into out[0..capacity). Returns the body size, or the failing status
 /// (kOutOfRange, kBadValue, kOverflow) with the field in *error.

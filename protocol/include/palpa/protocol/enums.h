@@ -6,10 +6,10 @@
 namespace palpa::protocol {
 
 // Each enum ends with kCount and has an EnumNames() overload found by argument-dependent lookup.
-#define PALPA_ENUM_NAMES(Type, ...)                                                    \
-  inline constexpr const char* const k##Type##Names[] = {__VA_ARGS__};                 \
-  static_assert(sizeof(k##Type##Names) / sizeof(k##Type##Names[0]) ==                 \
-                static_cast<unsigned>(Type::kCount));                                  \
+#define PALPA_ENUM_NAMES(Type, ...)                                    \
+  inline constexpr const char* const k##Type##Names[] = {__VA_ARGS__}; \
+  static_assert(sizeof(k##Type##Names) / sizeof(k##Type##Names[0]) ==  \
+                static_cast<unsigned>(Type::kCount));                  \
   constexpr const char* const* EnumNames(Type) { return k##Type##Names; }
 
 enum class MessageType : uint8_t;  // catalog.h lists them
@@ -18,7 +18,15 @@ enum class BoardKind : uint8_t { kSim, kMps2An386, kStm32f4, kLinux, kCount };
 PALPA_ENUM_NAMES(BoardKind, "sim", "mps2-an386", "stm32f4", "linux")
 
 enum class ResetCause : uint8_t {
-  kPowerOn, kSoftware, kWatchdog, kBrownOut, kPin, kFaultHandler, kUpdate, kUnknown, kCount
+  kPowerOn,
+  kSoftware,
+  kWatchdog,
+  kBrownOut,
+  kPin,
+  kFaultHandler,
+  kUpdate,
+  kUnknown,
+  kCount
 };
 PALPA_ENUM_NAMES(ResetCause, "power_on", "software", "watchdog", "brown_out", "pin",
                  "fault_handler", "update", "unknown")
@@ -65,13 +73,13 @@ inline constexpr int32_t kMaxPressurePa = 100000;
 
 /// Line status bits in telemetry samples.
 namespace line_status {
-inline constexpr uint8_t kSafe = 1u << 0;        ///< holding its safe value
-inline constexpr uint8_t kSlewing = 1u << 1;     ///< slew limiter active
-inline constexpr uint8_t kTrimClamped = 1u << 2; ///< PI trim at its authority
-inline constexpr uint8_t kSaturated = 1u << 3;   ///< output clamped to the line limits
-inline constexpr uint8_t kOpenLoop = 1u << 4;    ///< no sensor, or below regulator minimum
-inline constexpr uint8_t kRaw = 1u << 5;         ///< finger in raw mode
-inline constexpr uint8_t kSensorFault = 1u << 6; ///< implausible reading
+inline constexpr uint8_t kSafe = 1u << 0;         ///< holding its safe value
+inline constexpr uint8_t kSlewing = 1u << 1;      ///< slew limiter active
+inline constexpr uint8_t kTrimClamped = 1u << 2;  ///< PI trim at its authority
+inline constexpr uint8_t kSaturated = 1u << 3;    ///< output clamped to the line limits
+inline constexpr uint8_t kOpenLoop = 1u << 4;     ///< no sensor, or below regulator minimum
+inline constexpr uint8_t kRaw = 1u << 5;          ///< finger in raw mode
+inline constexpr uint8_t kSensorFault = 1u << 6;  ///< implausible reading
 }  // namespace line_status
 
 /// The line status bits' names, bit 0 first: hashed into the catalog (they give the bits meaning).

@@ -20,8 +20,8 @@ enum class Fault : uint8_t {
 };
 
 inline constexpr const char* const kFaultNames[] = {
-    "host_silence", "over_limit",   "implausible_sensor", "config_crc",    "unexpected_reset",
-    "leak",         "estop_command", "estop_pin",         "pump_run_time", "output_write"};
+    "host_silence", "over_limit",    "implausible_sensor", "config_crc",    "unexpected_reset",
+    "leak",         "estop_command", "estop_pin",          "pump_run_time", "output_write"};
 static_assert(sizeof(kFaultNames) / sizeof(kFaultNames[0]) == static_cast<unsigned>(Fault::kCount));
 
 constexpr uint32_t FaultBit(Fault f) { return 1u << static_cast<uint8_t>(f); }

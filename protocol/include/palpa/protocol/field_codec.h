@@ -1,4 +1,5 @@
-// Field visitors that turn a message's single Fields() definition into little-endian bytes and back.
+// Field visitors that turn a message's single Fields() definition into little-endian bytes and
+// back.
 #pragma once
 
 #include <array>
@@ -23,9 +24,9 @@ template <typename T>
 using Bound = std::type_identity_t<std::remove_cv_t<T>>;
 
 template <typename T>
-constexpr bool kIsWireScalar = std::is_same_v<T, uint8_t> || std::is_same_v<T, uint16_t> ||
-                               std::is_same_v<T, uint32_t> || std::is_same_v<T, uint64_t> ||
-                               std::is_same_v<T, int32_t> || std::is_same_v<T, float>;
+constexpr bool kIsWireScalar =
+    std::is_same_v<T, uint8_t> || std::is_same_v<T, uint16_t> || std::is_same_v<T, uint32_t> ||
+    std::is_same_v<T, uint64_t> || std::is_same_v<T, int32_t> || std::is_same_v<T, float>;
 
 /// Enums on the wire are one byte (Status: two) and end with a kCount enumerator.
 template <typename E>

@@ -69,11 +69,11 @@ struct HelloReply {
   ResetCause reset_cause = ResetCause::kPowerOn;
   bool config_is_default = true;
   bool plant_simulated = false;
-  float time_scale = 1.0f;      ///< virtual seconds per wall-clock second (palpa-sim --speed)
-  uint16_t rx_buffer_bytes = 0; ///< host keeps at most this many bytes in flight
+  float time_scale = 1.0f;       ///< virtual seconds per wall-clock second (palpa-sim --speed)
+  uint16_t rx_buffer_bytes = 0;  ///< host keeps at most this many bytes in flight
   uint8_t active_slot = 0;
   uint32_t rollback_counter = 0;
-  uint32_t host_timeout_us = 0; ///< host-silence timeout in board time
+  uint32_t host_timeout_us = 0;  ///< host-silence timeout in board time
   uint32_t fault_bitmap = 0;
   std::array<char, 24> config_name{};
   uint8_t line_count = 0;

@@ -31,26 +31,26 @@ struct CorrectionPoint {
 };
 
 struct ConfigureLine {
-  static constexpr MessageInfo kInfo{MessageType::kConfigureLine, "ConfigureLine", Sender::kHost,
-                                     Delivery::kReliable,
-                                     "scaling, limits, slew, safe value, sensor, PI trim, correction"};
+  static constexpr MessageInfo kInfo{
+      MessageType::kConfigureLine, "ConfigureLine", Sender::kHost, Delivery::kReliable,
+      "scaling, limits, slew, safe value, sensor, PI trim, correction"};
   uint8_t line = 0;
   LineKind kind = LineKind::kPressure;
   uint8_t dac_bits = 12;
   SignalRange dac_signal = SignalRange::kVolt0To10;
-  int32_t command_min_pa = 0;     ///< pressure at 0 % of the command signal
-  int32_t command_max_pa = 0;     ///< pressure at 100 % of the command signal
+  int32_t command_min_pa = 0;  ///< pressure at 0 % of the command signal
+  int32_t command_max_pa = 0;  ///< pressure at 100 % of the command signal
   int32_t limit_min_pa = 0;
   int32_t limit_max_pa = 0;
   int32_t safe_pa = 0;
-  uint32_t slew_pa_per_s = 0;     ///< 0: no slew limit
-  int32_t regulator_min_pa = 0;   ///< below this magnitude the command is 0, integrator off
+  uint32_t slew_pa_per_s = 0;    ///< 0: no slew limit
+  int32_t regulator_min_pa = 0;  ///< below this magnitude the command is 0, integrator off
   SensorKind sensor = SensorKind::kNone;
   uint8_t adc_bits = 14;
   int32_t sensor_min_pa = 0;
   int32_t sensor_max_pa = 0;
-  uint32_t sensor_counts_min = 0; ///< ADC counts at sensor_min_pa
-  uint32_t sensor_counts_max = 0; ///< ADC counts at sensor_max_pa
+  uint32_t sensor_counts_min = 0;  ///< ADC counts at sensor_min_pa
+  uint32_t sensor_counts_max = 0;  ///< ADC counts at sensor_max_pa
   float trim_kp = 0.0f;
   float trim_ki_per_s = 0.0f;
   int32_t trim_authority_pa = 0;
@@ -129,9 +129,9 @@ struct ConfigureFinger {
 };
 
 struct ConfigureBoard {
-  static constexpr MessageInfo kInfo{MessageType::kConfigureBoard, "ConfigureBoard",
-                                     Sender::kHost, Delivery::kReliable,
-                                     "name, host-silence timeout, telemetry rate and batching, monitors, homing"};
+  static constexpr MessageInfo kInfo{
+      MessageType::kConfigureBoard, "ConfigureBoard", Sender::kHost, Delivery::kReliable,
+      "name, host-silence timeout, telemetry rate and batching, monitors, homing"};
   std::array<char, 24> config_name{};
   uint32_t host_timeout_us = 100000;
   uint16_t telemetry_decimation = 1;  ///< one sample every N ticks
@@ -139,9 +139,9 @@ struct ConfigureBoard {
   uint16_t config_check_period_ms = 100;
   uint32_t leak_timeout_ms = 5000;
   uint32_t pump_max_run_ms = 600000;
-  uint16_t sensor_window_ms = 2000;   ///< implausible-sensor comparison window
+  uint16_t sensor_window_ms = 2000;  ///< implausible-sensor comparison window
   int32_t sensor_tolerance_pa = 5000;
-  uint16_t home_dwell_ms = 300;       ///< vented / released time before a compensator re-homes
+  uint16_t home_dwell_ms = 300;  ///< vented / released time before a compensator re-homes
   template <class V, class M>
   static constexpr void Fields(V& v, M& m) {
     v.Text("config_name", m.config_name);

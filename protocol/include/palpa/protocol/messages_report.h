@@ -76,7 +76,7 @@ struct LoopStats {
   uint32_t jitter_max_us = 0;  ///< largest |start - deadline|
   uint32_t worst_tick_us = 0;
   uint32_t mean_tick_us = 0;
-  uint32_t overruns = 0;       ///< deadlines missed
+  uint32_t overruns = 0;  ///< deadlines missed
   uint32_t telemetry_dropped = 0;
   uint32_t rx_frames = 0;
   uint32_t rx_errors = 0;
@@ -96,9 +96,8 @@ struct LoopStats {
 };
 
 struct GetDiagnostics {
-  static constexpr MessageInfo kInfo{MessageType::kGetDiagnostics, "GetDiagnostics",
-                                     Sender::kHost, Delivery::kReliable,
-                                     "answered by Diagnostics"};
+  static constexpr MessageInfo kInfo{MessageType::kGetDiagnostics, "GetDiagnostics", Sender::kHost,
+                                     Delivery::kReliable, "answered by Diagnostics"};
   template <class V, class M>
   static constexpr void Fields(V&, M&) {}
 };

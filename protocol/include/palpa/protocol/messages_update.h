@@ -86,8 +86,8 @@ struct UpdateStatus {
 };
 
 struct UpdateActivate {
-  static constexpr MessageInfo kInfo{MessageType::kUpdateActivate, "UpdateActivate",
-                                     Sender::kHost, Delivery::kReliable,
+  static constexpr MessageInfo kInfo{MessageType::kUpdateActivate, "UpdateActivate", Sender::kHost,
+                                     Delivery::kReliable,
                                      "verify the written image and mark it for one trial boot"};
   uint8_t slot = 0;
   uint32_t image_size = 0;
@@ -109,8 +109,7 @@ struct UpdateReboot {
 
 struct UpdateConfirm {
   static constexpr MessageInfo kInfo{MessageType::kUpdateConfirm, "UpdateConfirm", Sender::kHost,
-                                     Delivery::kReliable,
-                                     "make the running trial image permanent"};
+                                     Delivery::kReliable, "make the running trial image permanent"};
   uint8_t slot = 0;
   template <class V, class M>
   static constexpr void Fields(V& v, M& m) {

@@ -56,7 +56,8 @@ class ReliableReceiver {
 
   /// Records the answer to the expected command and moves on to the next seq.
   void Complete(uint8_t type, Status status, uint32_t detail, bool data_reply) {
-    cache_[expected_ % kMaxWindow] = CachedOutcome{expected_, type, status, detail, data_reply, true};
+    cache_[expected_ % kMaxWindow] =
+        CachedOutcome{expected_, type, status, detail, data_reply, true};
     ++expected_;
     gap_signalled_ = false;
   }

@@ -11,9 +11,9 @@
 namespace palpa::protocol {
 
 struct SenderConfig {
-  uint8_t window = kMaxWindow;        ///< ≤ kMaxWindow
-  uint32_t max_bytes_in_flight = 512; ///< the board's receive buffer (HelloReply)
-  uint32_t initial_rto_us = 100000;   ///< before the first round-trip sample
+  uint8_t window = kMaxWindow;         ///< ≤ kMaxWindow
+  uint32_t max_bytes_in_flight = 512;  ///< the board's receive buffer (HelloReply)
+  uint32_t initial_rto_us = 100000;    ///< before the first round-trip sample
   uint32_t min_rto_us = 2000;
   uint32_t max_rto_us = 2000000;
 };
@@ -71,10 +71,12 @@ class ReliableSender {
   }
 
   /// As Submit, for a body already encoded (the host library encodes before it locks).
-  Result<uint8_t> SubmitEncoded(uint8_t type, const uint8_t* body, size_t body_size, uint32_t cookie) {
+  Result<uint8_t> SubmitEncoded(uint8_t type, const uint8_t* body, size_t body_size,
+                                uint32_t cookie) {
     if (pending() >= config_.window) return Status::kWindowFull;
     if (body_size > kMaxBodySize) return Status::kOverflow;
-    if (pending() > 0 && BytesInFlight() + FramedSize(kHeaderSize + body_size) > config_.max_bytes_in_flight) {
+    if (pending() > 0 &&
+        BytesInFlight() + FramedSize(kHeaderSize + body_size) > config_.max_bytes_in_flight) {
       return Status::kWindowFull;
     }
     Pending& slot = slots_[next_seq_ % kMaxWindow];
@@ -171,10 +173,12 @@ class ReliableSender {
   uint64_t NextDeadline() const;
 
   size_t pending() const { return static_cast<uint8_t>(next_seq_ - base_seq_); }
-  /// Whether a command with a body of `body_size` bytes fits the window and the bytes in flight now.
+  /// Whether a command with a body of `body_size` bytes fits the window and the bytes in flight
+  /// now.
   bool HasRoomFor(size_t body_size) const {
-    return pending() == 0 || (pending() < config_.window &&
-                              BytesInFlight() + FramedSize(kHeaderSize + body_size) <= config_.max_bytes_in_flight);
+    return pending() == 0 ||
+           (pending() < config_.window &&
+            BytesInFlight() + FramedSize(kHeaderSize + body_size) <= config_.max_bytes_in_flight);
   }
   uint8_t next_seq() const { return next_seq_; }
   uint32_t rto_us() const { return rto_us_; }

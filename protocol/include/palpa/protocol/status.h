@@ -39,13 +39,34 @@ enum class Status : uint16_t {
   kCount
 };
 
-inline constexpr const char* kStatusNames[] = {
-    "ok",           "no_session",         "unsupported",      "bad_length",    "out_of_range",
-    "bad_value",    "seq_gap",            "window_full",      "faulted",       "condition_persists",
-    "catalog_mismatch", "crc_error",      "version_error",    "reserved_flags", "overflow",
-    "timeout",      "outcome_unknown",    "not_found",        "io_error",      "unavailable",
-    "wrong_mode",   "staged_incomplete",  "image_invalid",    "rollback_refused", "stale",
-    "busy",         "disconnected",       "invalid_argument"};
+inline constexpr const char* kStatusNames[] = {"ok",
+                                               "no_session",
+                                               "unsupported",
+                                               "bad_length",
+                                               "out_of_range",
+                                               "bad_value",
+                                               "seq_gap",
+                                               "window_full",
+                                               "faulted",
+                                               "condition_persists",
+                                               "catalog_mismatch",
+                                               "crc_error",
+                                               "version_error",
+                                               "reserved_flags",
+                                               "overflow",
+                                               "timeout",
+                                               "outcome_unknown",
+                                               "not_found",
+                                               "io_error",
+                                               "unavailable",
+                                               "wrong_mode",
+                                               "staged_incomplete",
+                                               "image_invalid",
+                                               "rollback_refused",
+                                               "stale",
+                                               "busy",
+                                               "disconnected",
+                                               "invalid_argument"};
 static_assert(sizeof(kStatusNames) / sizeof(kStatusNames[0]) ==
               static_cast<unsigned>(Status::kCount));
 
@@ -67,7 +88,7 @@ struct Result {
   T value{};
 
   constexpr Result(T v) : value(static_cast<T&&>(v)) {}  // NOLINT: implicit, like pw::Result
-  constexpr Result(Status s) : status(s) {}  // NOLINT
+  constexpr Result(Status s) : status(s) {}              // NOLINT
   constexpr bool ok() const { return status == Status::kOk; }
 };
 

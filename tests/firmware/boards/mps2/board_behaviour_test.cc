@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "mini_client.h"
-#include "qemu_process.h"
 #include "palpa/core/board_config.h"
 #include "palpa/host/device.h"
 #include "palpa/protocol/faults.h"
+#include "qemu_process.h"
 
 #include "CppUTest/TestHarness.h"
 
@@ -50,8 +50,10 @@ void CheckBoardBehaviour(const std::string& address, pp::BoardKind kind) {
     status = t.samples[(t.tick_count - 1) * t.line_count].status;
     faults = t.fault_bitmap;
   });
-  for (int i = 0; i < 150 && measured.load() < 39000; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  CHECK_TEXT(measured.load() > 39000 && measured.load() < 41000, std::to_string(measured.load()).c_str());  // the plant follows
+  for (int i = 0; i < 150 && measured.load() < 39000; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  CHECK_TEXT(measured.load() > 39000 && measured.load() < 41000,
+             std::to_string(measured.load()).c_str());  // the plant follows
 
   d.Unsubscribe(id);
   opened.value.reset();
@@ -63,7 +65,8 @@ void CheckBoardBehaviour(const std::string& address, pp::BoardKind kind) {
   CHECK(client.ConnectTcp(address.substr(4, colon - 4), std::atoi(address.c_str() + colon + 1)));
   CHECK(client.Hello(77).ok());
   LONGS_EQUAL((int)pp::Status::kOk, (int)client.Reliable(pp::ClearFault{}));
-  LONGS_EQUAL((int)pp::Status::kOk, (int)client.Reliable(pp::SetFingerMode{0, pp::FingerMode::kRaw}));
+  LONGS_EQUAL((int)pp::Status::kOk,
+              (int)client.Reliable(pp::SetFingerMode{0, pp::FingerMode::kRaw}));
   pp::SetLineSetpoints sp{};
   sp.generation = 1;
   sp.entry_count = 1;
@@ -73,7 +76,8 @@ void CheckBoardBehaviour(const std::string& address, pp::BoardKind kind) {
   for (uint32_t g = 1; g <= 15; ++g) {
     client.Send(pp::Heartbeat{g});
     for (const auto& f : client.Read(20)) {
-      if (f.Is<pp::Telemetry>()) live |= (f.As<pp::Telemetry>().samples[0].status & pp::line_status::kSafe) == 0;
+      if (f.Is<pp::Telemetry>())
+        live |= (f.As<pp::Telemetry>().samples[0].status & pp::line_status::kSafe) == 0;
     }
   }
   CHECK(live);
@@ -82,7 +86,8 @@ void CheckBoardBehaviour(const std::string& address, pp::BoardKind kind) {
     if (!f.Is<pp::Telemetry>()) continue;
     const auto t = f.As<pp::Telemetry>();
     bool all = (t.fault_bitmap & pp::FaultBit(pp::Fault::kHostSilence)) != 0;
-    for (uint8_t i = 0; i < t.line_count; ++i) all &= (t.samples[i].status & pp::line_status::kSafe) != 0;
+    for (uint8_t i = 0; i < t.line_count; ++i)
+      all &= (t.samples[i].status & pp::line_status::kSafe) != 0;
     safe |= all;
   }
   CHECK(safe);
@@ -94,17 +99,19 @@ TEST_GROUP(QemuBoard){};
 
 TEST(QemuBoard, BehavesAsTheProtocolSays) {
   palpa::testing::QemuProcess qemu;
-  CHECK_TEXT(access(PALPA_MPS2_IMAGE, R_OK) == 0 && qemu.Start(PALPA_QEMU, {"-kernel", PALPA_MPS2_IMAGE}),
-             "QEMU or the mps2 image is missing (build the mps2 preset)");
+  CHECK_TEXT(
+      access(PALPA_MPS2_IMAGE, R_OK) == 0 && qemu.Start(PALPA_QEMU, {"-kernel", PALPA_MPS2_IMAGE}),
+      "QEMU or the mps2 image is missing (build the mps2 preset)");
   CheckBoardBehaviour(qemu.address(), pp::BoardKind::kMps2An386);
 }
 
 /// The mps2 image with time paced by instructions, 32 ns each (about the MPS2's 25 MHz): the
 /// loop's own figures are then the firmware's, not the host's scheduling.
 std::unique_ptr<ph::Device> OpenAtTheBoardsOwnSpeed(palpa::testing::QemuProcess& qemu) {
-  CHECK_TEXT(access(PALPA_MPS2_IMAGE, R_OK) == 0 &&
-                 qemu.Start(PALPA_QEMU, {"-icount", "shift=5,sleep=off", "-kernel", PALPA_MPS2_IMAGE}),
-             "QEMU or the mps2 image is missing (build the mps2 preset)");
+  CHECK_TEXT(
+      access(PALPA_MPS2_IMAGE, R_OK) == 0 &&
+          qemu.Start(PALPA_QEMU, {"-icount", "shift=5,sleep=off", "-kernel", PALPA_MPS2_IMAGE}),
+      "QEMU or the mps2 image is missing (build the mps2 preset)");
   std::string error;
   auto opened = ph::Device::Open(qemu.address(), {}, &error);
   CHECK_TEXT(opened.ok(), error.c_str());
@@ -149,7 +156,8 @@ TEST(QemuBoard, AtTheBoardsOwnSpeedTheLoopMissesNoDeadline) {
   CHECK_TEXT(stats.ok(), error.c_str());
   CHECK(stats.value.ticks > 100);
   LONGS_EQUAL(0, stats.value.overruns);
-  CHECK_TEXT(stats.value.worst_tick_us < stats.value.period_us, std::to_string(stats.value.worst_tick_us).c_str());
+  CHECK_TEXT(stats.value.worst_tick_us < stats.value.period_us,
+             std::to_string(stats.value.worst_tick_us).c_str());
 }
 
 TEST(QemuBoard, AtTheBoardsOwnSpeedAConfigurationChangeCostsAtMostThreeTicks) {

@@ -55,7 +55,8 @@ void ExerciseBoard(const std::string& address) {
   board.host_timeout_us = 200000;
   board.telemetry_batch = 2;
   LONGS_EQUAL((int)pp::Status::kOk, (int)client.Reliable(board));
-  LONGS_EQUAL((int)pp::Status::kOk, (int)client.Reliable(pp::SetFingerMode{0, pp::FingerMode::kRaw}));
+  LONGS_EQUAL((int)pp::Status::kOk,
+              (int)client.Reliable(pp::SetFingerMode{0, pp::FingerMode::kRaw}));
   pp::SetLineSetpoints sp{};
   sp.generation = 1;
   sp.entry_count = 1;
@@ -105,13 +106,14 @@ TEST(PalpaSimProcess, OverARawPty) {
 TEST(PalpaSimProcess, BadArgumentsAreNamed) {
   SimProcess sim;
   CHECK_FALSE(sim.Start({"--config", "thesis-5finger", "--listen", "udp:1"}));
-  CHECK_FALSE(sim.Start({"--config", "thesis-5finger", "--listen", "tcp:127.0.0.1:0", "--plant", "7"}));
+  CHECK_FALSE(
+      sim.Start({"--config", "thesis-5finger", "--listen", "tcp:127.0.0.1:0", "--plant", "7"}));
 }
 
 TEST(PalpaSimProcess, TruthStreamsOverItsOwnTcpPort) {
   SimProcess sim;
-  CHECK(sim.Start({"--config", "thesis-jamming-2", "--listen", "tcp:127.0.0.1:0", "--truth", "tcp:127.0.0.1:0",
-                   "--truth-every-ms", "5"}));
+  CHECK(sim.Start({"--config", "thesis-jamming-2", "--listen", "tcp:127.0.0.1:0", "--truth",
+                   "tcp:127.0.0.1:0", "--truth-every-ms", "5"}));
   MiniClient truth;
   const std::string& a = sim.truth_address();
   const size_t colon = a.rfind(':');

@@ -32,7 +32,8 @@ struct Rig {
   template <class M>
   void Send(const M& m, bool reliable = false) {
     uint8_t frame[pp::kMaxFrameSize];
-    const auto n = pp::EncodeMessageFrame(m, reliable ? seq++ : 0, reliable ? pp::flags::kReliable : 0, frame, sizeof(frame));
+    const auto n = pp::EncodeMessageFrame(
+        m, reliable ? seq++ : 0, reliable ? pp::flags::kReliable : 0, frame, sizeof(frame));
     link.Inject(frame, n.value);
   }
   /// Runs with heartbeats every 20 ms.
@@ -117,7 +118,8 @@ TEST(SimBoard, HostLossVentsEveryChamberWithinTimeoutPlusSettling) {
     for (const auto& l : rig.sim->plant().Truth().lines) vented &= std::fabs(l.chamber_pa) < 5000;
     if (vented) vented_at = rig.sim->now_us();
   }
-  CHECK(safe_at != 0 && safe_at - last <= 100000 + 1000 + 20000);  // heartbeat phase: up to 20 ms early
+  CHECK(safe_at != 0 &&
+        safe_at - last <= 100000 + 1000 + 20000);  // heartbeat phase: up to 20 ms early
   CHECK(!rig.sim->valves_held());
   CHECK_TEXT(vented_at - last <= 100000 + 250000, std::to_string(vented_at - last).c_str());
 }

@@ -27,13 +27,13 @@ namespace palpa::core {
 struct BoardIo {
   hal::Clock& clock;
   hal::AnalogOutput& dac;
-  hal::AnalogInput* adc;             ///< nullptr: no sensors fitted
-  hal::DigitalOutput& supply_enable; ///< pulsing enable of the normally-closed supply shut-off
-  hal::DigitalOutput& dump_enable;   ///< pulsing enable of the normally-open dump valve
+  hal::AnalogInput* adc;              ///< nullptr: no sensors fitted
+  hal::DigitalOutput& supply_enable;  ///< pulsing enable of the normally-closed supply shut-off
+  hal::DigitalOutput& dump_enable;    ///< pulsing enable of the normally-open dump valve
   hal::DigitalOutput& pump_enable;
-  hal::DigitalInput* estop;          ///< nullptr: no E-stop input; high = asserted
+  hal::DigitalInput* estop;  ///< nullptr: no E-stop input; high = asserted
   hal::ByteLink& link;
-  hal::Flash* flash;                 ///< nullptr: nothing persists
+  hal::Flash* flash;  ///< nullptr: nothing persists
   uint32_t flash_config_base = 0;
   class UpdateEngine* update = nullptr;  ///< nullptr: the board cannot be updated over the link
 };
@@ -137,7 +137,7 @@ class Board {
   std::array<FingerParams, protocol::kMaxFingers> finger_params_{};
   std::array<FingerState, protocol::kMaxFingers> finger_state_{};
   std::array<uint8_t, protocol::kMaxLines> line_owner_{};
-  uint8_t driven_lines_ = 0;  ///< DAC channels the live configuration's lines write each tick
+  uint8_t driven_lines_ = 0;        ///< DAC channels the live configuration's lines write each tick
   uint32_t unparked_channels_ = 0;  ///< dropped channels whose safe code is not written yet
 
   hal::PulsingEnable supply_pulse_;

@@ -42,8 +42,7 @@ inline constexpr size_t kMaxConfigBlob = 8192;
 
 /// Writes config as records [u16 body length][u8 type][body]: board, lines, fingers.
 /// Returns the blob size, or kOverflow.
-protocol::Result<size_t> EncodeConfigBlob(const BoardConfig& config, uint8_t* out,
-                                          size_t capacity);
+protocol::Result<size_t> EncodeConfigBlob(const BoardConfig& config, uint8_t* out, size_t capacity);
 
 /// Applies the records of a blob onto `config` (records not present keep their values).
 /// Each record is decoded with the codec's range checks; *error names the record.

@@ -18,7 +18,8 @@ class BoardReports {
   static void LoopStats(Board& board, uint8_t seq);
   static void Diagnostics(Board& board, uint8_t seq);
   /// kNotFound for a section that does not exist, kOutOfRange for an offset past its end.
-  static protocol::Status ConfigReport(Board& board, const protocol::GetConfig& request, uint8_t seq);
+  static protocol::Status ConfigReport(Board& board, const protocol::GetConfig& request,
+                                       uint8_t seq);
   /// Reports of the update set, stamped with the boot nonce.
   static void UpdateStatus(Board& board, protocol::UpdateStatus report, uint8_t seq);
   static void Slots(Board& board, protocol::SlotsReport report, uint8_t seq);

@@ -22,10 +22,10 @@ inline constexpr uint8_t kMaxBranchPoints = 24;
 ///
 /// Units: drive in `drive_step` Pa; the inverse-domain sums in `sum_step` output units; the
 /// inverse states, after dropping the sums' low 16 bits, in 2¹⁶ · `sum_step`.
-struct PlayPair {  // in this order: the ARMv7E-M loop loads the last two words first
-  uint32_t cumulative = 0;          ///< W_i = w0 + Σ_{j≤i} w_j (sum steps per drive step)
-  uint32_t weight = 0;              ///< w_i (sum steps per drive step)
-  uint32_t inverse_threshold = 0;   ///< r'_i = W_i r_i − Σ_{j≤i} w_j r_j (inverse-state steps)
+struct PlayPair {           // in this order: the ARMv7E-M loop loads the last two words first
+  uint32_t cumulative = 0;  ///< W_i = w0 + Σ_{j≤i} w_j (sum steps per drive step)
+  uint32_t weight = 0;      ///< w_i (sum steps per drive step)
+  uint32_t inverse_threshold = 0;  ///< r'_i = W_i r_i − Σ_{j≤i} w_j r_j (inverse-state steps)
   uint32_t negative_inverse_threshold = 0;
   uint32_t inverse_weight = 0;      ///< w'_i = −w_i / (W_i W_{i−1}), in `drive_gain` units
   uint32_t threshold = 0;           ///< r_i (drive steps)
@@ -39,7 +39,7 @@ struct PlayTable {
   uint8_t dead_zones = 0;
   float offset = 0;
   float w0 = 0;
-  float drive_step = 0;     ///< Pa per step of the memory and of the applied drive
+  float drive_step = 0;      ///< Pa per step of the memory and of the applied drive
   float per_drive_step = 0;  ///< 1 / drive_step
   float sum_step = 0;        ///< output units per step of the inverse-domain sums
   float per_sum_step = 0;    ///< 1 / sum_step
@@ -79,9 +79,9 @@ struct CompensatorState {
   /// as PlayPair: z_i = (applied_steps + lane_i) · drive_step.
   uint32_t play[kMaxPlayOperators / 2]{};
   int32_t applied_steps = 0;  ///< last applied drive, in drive steps
-  bool rising = true;            ///< branch: which curve is active
-  float extreme = 0;             ///< branch: applied drive at the last turning point so far
-  float reversal_output = 0;     ///< branch: output where the active branch started
+  bool rising = true;         ///< branch: which curve is active
+  float extreme = 0;          ///< branch: applied drive at the last turning point so far
+  float reversal_output = 0;  ///< branch: output where the active branch started
 };
 
 /// Why a parameter set cannot be inverted, or nullptr when it is valid.

@@ -24,7 +24,7 @@ constexpr bool SameText(const char* a, const char* b) {
 }
 
 template <typename E>
-  requires std::is_enum_v<E>
+requires std::is_enum_v<E>
 constexpr void Set(E& field, const char* name) {
   const char* const* names = EnumNames(E{});
   for (uint64_t i = 0; i < protocol::EnumCount<E>(); ++i) {
@@ -50,9 +50,7 @@ constexpr void Set(std::array<char, N>& field, const char* text) {
 }
 
 template <typename T, typename V>
-  requires std::is_arithmetic_v<T> && std::is_arithmetic_v<V>
-constexpr void Set(T& field, V value) {
-  field = static_cast<T>(value);
-}
+requires std::is_arithmetic_v<T> && std::is_arithmetic_v<V>
+constexpr void Set(T& field, V value) { field = static_cast<T>(value); }
 
 }  // namespace palpa::core

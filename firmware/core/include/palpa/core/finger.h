@@ -21,7 +21,7 @@ struct FingerParams {
   uint8_t inverse_count = 0;
   std::array<float, protocol::kMaxInversePoints> inverse_output{};
   std::array<float, protocol::kMaxInversePoints> inverse_setpoint{};
-  int32_t max_target = 0;  ///< largest output the inverse covers; beyond it targets are refused
+  int32_t max_target = 0;    ///< largest output the inverse covers; beyond it targets are refused
   Compensator compensation;  ///< tables of branch / pi / api (unused for none)
 };
 

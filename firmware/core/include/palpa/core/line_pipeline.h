@@ -20,16 +20,16 @@ struct LineParams {
   float sensor_min_pa = 0, sensor_counts_min = 0, sensor_pa_per_count = 0;
   float limit_min_pa = 0, limit_max_pa = 0;  ///< already intersected with the hard ceiling
   float safe_pa = 0;
-  float max_step_pa = 0;                     ///< slew per tick; the largest float when none
+  float max_step_pa = 0;  ///< slew per tick; the largest float when none
   float regulator_min_pa = 0;
   float pump_below_pa = 0;  ///< commands below this need the vacuum pump (lowest float: never)
   float command_min_pa = 0, command_span_pa = 1;  ///< pressure at 0 % and span to 100 %
   float counts_low = 0, counts_high = 0;          ///< DAC codes at 0 % and 100 % of the signal
   uint32_t max_counts = 0;
-  uint32_t safe_counts = 0, zero_counts = 0;      ///< DAC codes for safe_pa and for 0 Pa
-  float kp = 0, ki_dt = 0;                   ///< ki already multiplied by the tick period
+  uint32_t safe_counts = 0, zero_counts = 0;  ///< DAC codes for safe_pa and for 0 Pa
+  float kp = 0, ki_dt = 0;                    ///< ki already multiplied by the tick period
   float authority_pa = 0, dead_band_pa = 0;
-  float model_alpha = 1;                     ///< regulator-model lag per tick
+  float model_alpha = 1;  ///< regulator-model lag per tick
   uint8_t dead_ticks = 0;
   uint8_t correction_count = 0;
   std::array<float, protocol::kMaxCorrectionPoints> correction_command{};
@@ -40,12 +40,12 @@ struct LineParams {
 LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us);
 
 struct LineState {
-  float slewed_pa = 0;     ///< setpoint after the slew limiter
+  float slewed_pa = 0;  ///< setpoint after the slew limiter
   float integrator_pa = 0;
   float reference_pa = 0;  ///< regulator-model output: where the pressure should be now
   std::array<float, kMaxDeadTicks> delay{};  ///< slewed setpoints, oldest at delay_index
   uint8_t delay_index = 0;
-  bool rising = true;      ///< direction for the correction branch, kept while steady
+  bool rising = true;  ///< direction for the correction branch, kept while steady
 };
 
 /// Resets the state to hold `pa` steadily (after configuration, or leaving the safe state).
@@ -53,7 +53,7 @@ void ResetLineState(const LineParams& p, LineState& s, float pa);
 
 struct LineInput {
   float setpoint_pa = 0;
-  bool safe = false;          ///< shutdown: write the safe value now, bypassing the slew
+  bool safe = false;  ///< shutdown: write the safe value now, bypassing the slew
   bool measured_valid = false;
   float measured_pa = 0;
 };

@@ -24,15 +24,15 @@ SupervisorSettings MakeSupervisorSettings(const protocol::ConfigureBoard& board)
 /// What the tick saw on one line.
 struct LineObservation {
   bool configured = false;
-  bool closed_loop = false;   ///< last tick commanded pressure with the trim on (outside safe)
+  bool closed_loop = false;  ///< last tick commanded pressure with the trim on (outside safe)
   bool has_sensor = false;
   bool sensor_valid = false;  ///< conversion succeeded and the counts are inside the sensor's span
   uint32_t raw_counts = 0;
   float measured_pa = 0;
-  float reference_pa = 0;     ///< regulator-model output
+  float reference_pa = 0;  ///< regulator-model output
   float setpoint_pa = 0;
   float limit_min_pa = 0, limit_max_pa = 0;
-  bool vacuum_demand = false; ///< the pump is needed for this line
+  bool vacuum_demand = false;  ///< the pump is needed for this line
 };
 
 struct SupervisorInput {
@@ -73,7 +73,8 @@ void LatchFault(SupervisorState& s, protocol::Fault fault, uint64_t now_us, int3
 
 /// Evaluates every condition for this tick, latches new faults and decides the pump.
 /// Returns the bits newly latched.
-uint32_t Supervise(const SupervisorSettings& settings, SupervisorState& s, const SupervisorInput& in);
+uint32_t Supervise(const SupervisorSettings& settings, SupervisorState& s,
+                   const SupervisorInput& in);
 
 /// ClearFault: refused (kConditionPersists) while any masked fault's condition is still present.
 protocol::Status ClearFaults(SupervisorState& s, uint32_t mask);

@@ -27,7 +27,8 @@ class TickPacer {
   /// periods missed entirely.
   void BeginTick(uint64_t now_us) {
     const uint64_t late = now_us - deadline_us_;
-    if (late > stats_.jitter_max_us) stats_.jitter_max_us = static_cast<uint32_t>(late > 0xFFFFFFFFu ? 0xFFFFFFFFu : late);
+    if (late > stats_.jitter_max_us)
+      stats_.jitter_max_us = static_cast<uint32_t>(late > 0xFFFFFFFFu ? 0xFFFFFFFFu : late);
     deadline_us_ += period_us_;
     if (now_us >= deadline_us_) {
       const uint64_t missed = (now_us - deadline_us_) / period_us_ + 1;

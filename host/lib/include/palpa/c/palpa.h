@@ -19,9 +19,9 @@ typedef struct palpa_device palpa_device;
 typedef struct {
   uint32_t board_id;
   uint8_t firmware_major, firmware_minor, firmware_patch;
-  uint8_t board_kind;       /* 0 sim, 1 mps2-an386, 2 stm32f4, 3 linux */
+  uint8_t board_kind; /* 0 sim, 1 mps2-an386, 2 stm32f4, 3 linux */
   uint32_t catalog_hash;
-  int catalog_matches;      /* 0: only flashing is possible */
+  int catalog_matches; /* 0: only flashing is possible */
   int plant_simulated;
   float time_scale;
   char config_name[25];
@@ -43,7 +43,8 @@ typedef struct {
 } palpa_sample;
 
 /* Opens a device URI ("sim:thesis-5finger", "serial:/dev/ttyACM0", "tcp:HOST:PORT",
-   "hid:1209:0001", "usb:1209:0001"). On failure *out is NULL and palpa_last_error(NULL) says why. */
+   "hid:1209:0001", "usb:1209:0001"). On failure *out is NULL and palpa_last_error(NULL) says why.
+ */
 int palpa_open(const char* uri, palpa_device** out);
 void palpa_close(palpa_device* device);
 /* The last error message of this device (or of the last failed open, for NULL); never NULL. */
@@ -55,9 +56,10 @@ int palpa_get_info(palpa_device* device, palpa_info* info);
 /* Fingers are 0-based. Each call waits until the board applied it or refused it. */
 int palpa_set_level(palpa_device* device, uint8_t finger, int level);
 int palpa_set_normalized(palpa_device* device, uint8_t finger, double value);
-int palpa_set_stiffness(palpa_device* device, uint8_t finger, double n_per_mm);  /* jamming fingers */
-int palpa_set_deformation(palpa_device* device, uint8_t finger, double mm);      /* pneumatic fingers */
-int palpa_set_pressure(palpa_device* device, uint8_t finger, double kpa);        /* raw mode */
+int palpa_set_stiffness(palpa_device* device, uint8_t finger,
+                        double n_per_mm);                                   /* jamming fingers */
+int palpa_set_deformation(palpa_device* device, uint8_t finger, double mm); /* pneumatic fingers */
+int palpa_set_pressure(palpa_device* device, uint8_t finger, double kpa);   /* raw mode */
 int palpa_estop(palpa_device* device);
 int palpa_clear_fault(palpa_device* device);
 

@@ -52,11 +52,11 @@ struct QualityCheck {
 struct CalibrationQuality {
   double residual_rms = 0;  ///< of the output curve's fit, output unit
   double residual_max = 0;
-  int points = 0;                  ///< settled readings the fits used
-  std::vector<std::string> flags;  ///< detectors that fired and other warnings (empty: clean)
-  std::string protocol;            ///< "thesis" or "adaptive"; empty in older files
-  int cycles = 0;                  ///< indentation cycles of the stiffness map
-  double rig_time_s = 0;           ///< of the whole run
+  int points = 0;                   ///< settled readings the fits used
+  std::vector<std::string> flags;   ///< detectors that fired and other warnings (empty: clean)
+  std::string protocol;             ///< "thesis" or "adaptive"; empty in older files
+  int cycles = 0;                   ///< indentation cycles of the stiffness map
+  double rig_time_s = 0;            ///< of the whole run
   std::optional<double> map_error;  ///< jamming: cross-validated map error (fraction of value)
   std::vector<QualityCheck> checks;
 };
@@ -84,7 +84,8 @@ struct CalibrationFile {
   std::optional<LineFit> rising_fit, falling_fit;  ///< pneumatic deformation branches
   std::vector<GridPoint> grid;                     ///< jamming indentation grid
   std::vector<protocol::InversePoint> static_inverse;
-  std::vector<RegulatorCorrection> regulator_corrections;  ///< one per line of the finger, at most two
+  std::vector<RegulatorCorrection>
+      regulator_corrections;  ///< one per line of the finger, at most two
   protocol::CompensatorKind compensator = protocol::CompensatorKind::kNone;
   std::vector<float> compensator_params;
   std::optional<double> recommended_bias_kpa;

@@ -41,10 +41,11 @@ struct FingerRequest {
 class Device {
  public:
   /// Opens a device URI (see OpenTransport) and a session with it.
-  static Result<std::unique_ptr<Device>> Open(const std::string& uri, DeviceOptions options, std::string* error);
+  static Result<std::unique_ptr<Device>> Open(const std::string& uri, DeviceOptions options,
+                                              std::string* error);
   /// Opens a session over a transport the caller made (tests, fault injection).
-  static Result<std::unique_ptr<Device>> Attach(std::unique_ptr<Transport> transport, DeviceOptions options,
-                                                std::string* error);
+  static Result<std::unique_ptr<Device>> Attach(std::unique_ptr<Transport> transport,
+                                                DeviceOptions options, std::string* error);
   ~Device();
 
   pp::HelloReply info() const { return link_->board(); }
@@ -74,7 +75,9 @@ class Device {
   Result<pp::Diagnostics> Diagnostics(std::string* error = nullptr);
   Result<pp::LoopStats> LoopStats(std::string* error = nullptr);
 
-  int Subscribe(std::function<void(const TelemetryFrame&)> callback) { return link_->Subscribe(std::move(callback)); }
+  int Subscribe(std::function<void(const TelemetryFrame&)> callback) {
+    return link_->Subscribe(std::move(callback));
+  }
   void Unsubscribe(int id) { link_->Unsubscribe(id); }
 
   /// Records telemetry to a CSV file whose first line is a JSON header (board, configuration,

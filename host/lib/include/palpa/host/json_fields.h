@@ -1,4 +1,5 @@
-// JSON views of protocol messages (golden files, configuration files, the CLI), driven by each message's Fields().
+// JSON views of protocol messages (golden files, configuration files, the CLI), driven by each
+// message's Fields().
 #pragma once
 
 #include <array>

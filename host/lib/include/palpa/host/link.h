@@ -25,12 +25,12 @@ namespace palpa::host {
 namespace pp = palpa::protocol;
 
 struct LinkOptions {
-  int hello_timeout_ms = 50;    ///< Hello is resent this often until answered
+  int hello_timeout_ms = 50;  ///< Hello is resent this often until answered
   int hello_attempts = 60;
   int command_timeout_ms = 3000;
-  bool reconnect = true;              ///< open a new session after a board reset
-  size_t subscriber_queue = 8192;     ///< telemetry frames queued before the slowest drops some
-  int stream_resend_ms = 50;          ///< resend a stream value not yet shown applied
+  bool reconnect = true;           ///< open a new session after a board reset
+  size_t subscriber_queue = 8192;  ///< telemetry frames queued before the slowest drops some
+  int stream_resend_ms = 50;       ///< resend a stream value not yet shown applied
 };
 
 /// One fault id in words: "leak"; an id this build has no name for (a newer board) as "fault_N".
@@ -63,8 +63,8 @@ struct CommandResult {
 struct LinkCounters {
   uint64_t frames = 0;
   uint64_t telemetry_frames = 0;
-  uint64_t telemetry_lost = 0;        ///< frames missing in the sequence (link or board drops)
-  uint64_t subscriber_dropped = 0;    ///< frames a slow subscriber never saw
+  uint64_t telemetry_lost = 0;      ///< frames missing in the sequence (link or board drops)
+  uint64_t subscriber_dropped = 0;  ///< frames a slow subscriber never saw
   uint64_t framing_errors = 0;
   uint64_t retransmissions = 0;
   uint64_t board_resets = 0;
@@ -76,8 +76,8 @@ class Link {
  public:
   /// Opens a session over `transport` (Hello, with retries). A catalog mismatch still opens:
   /// then only the bootstrap set works, and catalog_matches() is false.
-  static Result<std::unique_ptr<Link>> Open(std::unique_ptr<Transport> transport, LinkOptions options,
-                                            std::string* error);
+  static Result<std::unique_ptr<Link>> Open(std::unique_ptr<Transport> transport,
+                                            LinkOptions options, std::string* error);
   ~Link();
   Link(const Link&) = delete;
   Link& operator=(const Link&) = delete;
@@ -100,11 +100,16 @@ class Link {
     pp::FieldError field;
     const auto size = pp::EncodePacket(m, 0, 0, packet, sizeof(packet), &field);
     if (!size.ok()) {
-      return CommandResult{size.status, 0, 0, {}, std::string("cannot encode ") + M::kInfo.name + ": field " +
-                                                      (field.field ? field.field : "?") + " is " + pp::StatusName(size.status)};
+      return CommandResult{size.status,
+                           0,
+                           0,
+                           {},
+                           std::string("cannot encode ") + M::kInfo.name + ": field " +
+                               (field.field ? field.field : "?") + " is " +
+                               pp::StatusName(size.status)};
     }
-    return CommandPacket(static_cast<uint8_t>(M::kInfo.type), packet + pp::kHeaderSize, size.value - pp::kHeaderSize,
-                         timeout_ms);
+    return CommandPacket(static_cast<uint8_t>(M::kInfo.type), packet + pp::kHeaderSize,
+                         size.value - pp::kHeaderSize, timeout_ms);
   }
 
   /// Queues a reliable command without waiting for its answer (commands go out in the order of
@@ -116,12 +121,16 @@ class Link {
     pp::FieldError field;
     const auto size = pp::EncodePacket(m, 0, 0, packet, sizeof(packet), &field);
     if (!size.ok()) {
-      return FailedTicket(CommandResult{size.status, 0, 0, {}, std::string("cannot encode ") + M::kInfo.name + ": field " +
-                                                             (field.field ? field.field : "?") + " is " +
-                                                             pp::StatusName(size.status)});
+      return FailedTicket(CommandResult{size.status,
+                                        0,
+                                        0,
+                                        {},
+                                        std::string("cannot encode ") + M::kInfo.name + ": field " +
+                                            (field.field ? field.field : "?") + " is " +
+                                            pp::StatusName(size.status)});
     }
-    return SubmitPacket(static_cast<uint8_t>(M::kInfo.type), packet + pp::kHeaderSize, size.value - pp::kHeaderSize,
-                        timeout_ms);
+    return SubmitPacket(static_cast<uint8_t>(M::kInfo.type), packet + pp::kHeaderSize,
+                        size.value - pp::kHeaderSize, timeout_ms);
   }
   CommandResult Await(uint32_t ticket, int timeout_ms = -1);
 

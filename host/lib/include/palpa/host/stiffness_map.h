@@ -54,15 +54,16 @@ enum class RangePolicy { kRefuse, kClamp };
 
 struct Mapped {
   protocol::Status status = protocol::Status::kOk;
-  std::string error;  ///< for people: what was wrong and what was expected
-  bool raw = false;   ///< raw mode: line setpoints; otherwise a target in the output unit
-  int32_t target = 0;               ///< µm (pneumatic) or mN/mm (jamming)
+  std::string error;   ///< for people: what was wrong and what was expected
+  bool raw = false;    ///< raw mode: line setpoints; otherwise a target in the output unit
+  int32_t target = 0;  ///< µm (pneumatic) or mN/mm (jamming)
   int32_t line_a_pa = 0, line_b_pa = 0;  ///< raw mode
-  std::string note;   ///< e.g. which curves were used, or that the value was clamped
+  std::string note;  ///< e.g. which curves were used, or that the value was clamped
 };
 
 /// Maps one request for one finger. `finger` comes from HelloReply.
-Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& levels, const FingerCurves& curves,
-                  Request request, RangePolicy policy = RangePolicy::kRefuse);
+Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& levels,
+                  const FingerCurves& curves, Request request,
+                  RangePolicy policy = RangePolicy::kRefuse);
 
 }  // namespace palpa::host

@@ -39,7 +39,8 @@ Result<std::unique_ptr<Transport>> OpenTransport(const std::string& uri, std::st
 /// connects to it. With `truth_address` non-null the simulator also streams its truth side channel
 /// (for demos and benchmarks) and *truth_address receives where ("tcp:127.0.0.1:PORT"); with
 /// `rig_address` non-null (and --rig-modbus among the options) it waits for the rig's address too.
-Result<std::unique_ptr<Transport>> LaunchSim(const std::string& config, const std::vector<std::string>& options,
+Result<std::unique_ptr<Transport>> LaunchSim(const std::string& config,
+                                             const std::vector<std::string>& options,
                                              std::string* truth_address, std::string* error,
                                              std::string* rig_address = nullptr);
 

@@ -22,14 +22,14 @@ inline constexpr uint32_t kUartCtrlRxInterrupt = 1u << 3;
 inline constexpr uint32_t kUartIntRx = 1u << 1;
 
 struct CmsdkWatchdog {
-  volatile uint32_t LOAD;     // 0x000
-  volatile uint32_t VALUE;    // 0x004
-  volatile uint32_t CTRL;     // 0x008: bit0 INTEN, bit1 RESEN
-  volatile uint32_t INTCLR;   // 0x00C: any write clears the interrupt and reloads
-  volatile uint32_t RIS;      // 0x010
-  volatile uint32_t MIS;      // 0x014
+  volatile uint32_t LOAD;    // 0x000
+  volatile uint32_t VALUE;   // 0x004
+  volatile uint32_t CTRL;    // 0x008: bit0 INTEN, bit1 RESEN
+  volatile uint32_t INTCLR;  // 0x00C: any write clears the interrupt and reloads
+  volatile uint32_t RIS;     // 0x010
+  volatile uint32_t MIS;     // 0x014
   uint32_t reserved[762];
-  volatile uint32_t LOCK;     // 0xC00
+  volatile uint32_t LOCK;  // 0xC00
 };
 inline constexpr uint32_t kWatchdogUnlock = 0x1ACCE551u;
 

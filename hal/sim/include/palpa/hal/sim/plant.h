@@ -49,8 +49,8 @@ class Plant {
 
   /// The plant wired as the configuration says: regulator class, DAC scaling and sensor range
   /// per line; actuator kind per finger.
-  Plant(const protocol::ConfigureLine* lines, uint8_t line_count, const protocol::ConfigureFinger* fingers,
-        uint8_t finger_count, PlantOptions options);
+  Plant(const protocol::ConfigureLine* lines, uint8_t line_count,
+        const protocol::ConfigureFinger* fingers, uint8_t finger_count, PlantOptions options);
 
   /// A DAC code arrives (from the board's analogue output).
   void SetDacCounts(uint8_t line, uint32_t counts);

@@ -10,20 +10,20 @@ inline constexpr uint8_t kMaxRegulatorDelaySteps = 32;
 
 /// One regulator unit's static errors (all zero for an ideal regulator).
 struct RegulatorErrors {
-  float gain = 0;          ///< relative, e.g. 0.01 = +1 %
+  float gain = 0;  ///< relative, e.g. 0.01 = +1 %
   float offset_pa = 0;
   float linearity_pa = 0;  ///< amplitude of the bow, largest mid-scale
   float play_pa = 0;       ///< half-width of hysteresis + sensitivity (a backlash on the command)
 };
 
 struct RegulatorSetup {
-  float sign = 1;              ///< +1 pressure regulator, -1 vacuum regulator
+  float sign = 1;  ///< +1 pressure regulator, -1 vacuum regulator
   float full_scale_pa = 100000;
-  float min_set_pa = 1000;     ///< below it the regulator vents to 0
+  float min_set_pa = 1000;  ///< below it the regulator vents to 0
   float lag_tau_s = 0.020f;
   float dead_time_s = 0.005f;
   float chamber_tau_s = 0.15f;
-  bool dynamics = true;        ///< false: level 0, the output is the command at once
+  bool dynamics = true;  ///< false: level 0, the output is the command at once
   RegulatorErrors errors{};
 };
 
