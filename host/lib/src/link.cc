@@ -204,11 +204,18 @@ void Link::DispatchLoop() {
     if (stop_) return;
     const TelemetryFrame frame = queue_.front();
     queue_.pop_front();
-    auto subscribers = subscribers_;
-    lock.unlock();
-    for (auto& [id, callback] : subscribers)
-      callback(frame);  // outside the lock: may take its time
-    lock.lock();
+    // One subscriber at a time, looked up afresh: one that unsubscribed meanwhile is not called.
+    for (auto it = subscribers_.begin(); it != subscribers_.end() && !stop_;) {
+      const int id = it->first;
+      const auto callback = it->second;
+      running_subscriber_ = id;
+      lock.unlock();
+      (*callback)(frame);  // outside the lock: may take its time
+      lock.lock();
+      running_subscriber_ = 0;
+      callback_returned_.notify_all();
+      it = subscribers_.upper_bound(id);
+    }
   }
 }
 
@@ -307,13 +314,16 @@ Status Link::EStop() {
 int Link::Subscribe(std::function<void(const TelemetryFrame&)> callback) {
   std::lock_guard<std::mutex> lock(mutex_);
   const int id = next_subscriber_++;
-  subscribers_[id] = std::move(callback);
+  subscribers_[id] =
+      std::make_shared<std::function<void(const TelemetryFrame&)>>(std::move(callback));
   return id;
 }
 
 void Link::Unsubscribe(int id) {
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::unique_lock<std::mutex> lock(mutex_);
   subscribers_.erase(id);
+  if (std::this_thread::get_id() == dispatcher_.get_id()) return;  // from its own callback
+  callback_returned_.wait(lock, [&] { return running_subscriber_ != id; });
 }
 
 LinkCounters Link::counters() const {

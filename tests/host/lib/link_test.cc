@@ -229,6 +229,42 @@ TEST(LinkSim, AStalledSubscriberStallsNeitherCommandsNorHeartbeats) {
   device->Unsubscribe(id);
 }
 
+TEST(LinkSim, UnsubscribeReturnsOnlyOnceTheCallbackHasReturned) {
+  // What the callback uses may go once Unsubscribe returns: it is not running and never runs
+  // again (here it captures this test's locals).
+  const auto device = OpenSimAt("1");
+  std::atomic<bool> inside{false}, running{false}, unsubscribed{false};
+  std::atomic<int> calls_after{0};
+  const int id = device->Subscribe([&](const ph::TelemetryFrame&) {
+    running = true;
+    inside = true;
+    if (unsubscribed) ++calls_after;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    running = false;
+  });
+  while (!inside) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  device->Unsubscribe(id);
+  unsubscribed = true;
+  CHECK_FALSE(running.load());
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // several more frames
+  LONGS_EQUAL(0, calls_after.load());
+}
+
+TEST(LinkSim, ACallbackMayUnsubscribeItself) {
+  const auto device = OpenSimAt("1");
+  std::atomic<int> id{0}, calls{0};
+  std::atomic<bool> done{false};
+  id = device->Subscribe([&](const ph::TelemetryFrame&) {
+    while (id.load() == 0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    ++calls;
+    device->Unsubscribe(id);  // from the dispatcher's own thread: must not wait for itself
+    done = true;
+  });
+  while (!done) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  LONGS_EQUAL(1, calls.load());
+}
+
 TEST(LinkSim, DeviceConfiguresReadsBackAndRecords) {
   std::string error;
   auto opened = ph::Device::Open("sim:thesis-jamming-2", {}, &error);

@@ -149,6 +149,8 @@ class Link {
   /// Calls `callback` with every telemetry frame, on a thread of its own: a slow callback
   /// delays only itself (frames beyond the queue are dropped and counted).
   int Subscribe(std::function<void(const TelemetryFrame&)> callback);
+  /// Once this returns the callback is neither running nor called again, so what it uses may go.
+  /// Called from inside a callback it returns at once (that call finishes; no other follows).
   void Unsubscribe(int id);
 
   LinkCounters counters() const;
@@ -217,8 +219,10 @@ class Link {
   double offset_window_start_s_ = 0;
   double window_min_offset_s_ = 1e300;
   // Subscribers and their queue.
-  std::map<int, std::function<void(const TelemetryFrame&)>> subscribers_;
+  std::map<int, std::shared_ptr<std::function<void(const TelemetryFrame&)>>> subscribers_;
   int next_subscriber_ = 1;
+  int running_subscriber_ = 0;  ///< whose callback the dispatcher is in (0: none)
+  std::condition_variable callback_returned_;
   std::deque<TelemetryFrame> queue_;
   std::condition_variable queue_changed_;
   bool stop_ = false;
