@@ -29,6 +29,9 @@ endif()
 if(PALPA_FUZZ)
   add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all)
   add_link_options(-fsanitize=address,undefined)
+  # CppUTest's leak detector replaces operator new, which clang's ASan runtime also defines: the
+  # unit tests this preset builds alongside the fuzzers rely on ASan's leak checks instead.
+  add_compile_definitions(CPPUTEST_MEM_LEAK_DETECTION_DISABLED)
 endif()
 
 # A hand-scheduled ARMv7E-M routine on the MCU: assembles `asm_source` into `target` and defines
