@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "board_harness.h"
+#include "dac_pressure.h"
 #include "palpa/core/ceilings.h"
 
 #include "CppUTest/TestHarness.h"
@@ -16,14 +17,7 @@ namespace pc = palpa::core;
 
 namespace {
 
-/// Pressure a DAC code commands on a line (the inverse of the line's scaling).
-float PressureOfCounts(const pp::ConfigureLine& c, uint32_t counts) {
-  const float max = static_cast<float>((1u << c.dac_bits) - 1u);
-  const float low = c.dac_signal == pp::SignalRange::kMilliamp4To20 ? 0.2f * max : 0.0f;
-  const float fraction = (static_cast<float>(counts) - low) / (max - low);
-  return static_cast<float>(c.command_min_pa) +
-         fraction * static_cast<float>(c.command_max_pa - c.command_min_pa);
-}
+using palpa::testing::PressureOfCounts;
 
 struct Generator {
   std::mt19937 rng;

@@ -21,6 +21,7 @@
 
 #include "board_fuzz_update.h"
 #include "board_harness.h"
+#include "dac_pressure.h"
 #include "fuzz_input.h"
 #include "palpa/core/board_configs.h"
 #include "palpa/core/ceilings.h"
@@ -36,20 +37,8 @@ using Script = palpa::testing::FuzzInput;
 
 constexpr auto Fail = palpa::testing::BoardFuzzFail;
 
-/// Pressure a DAC code commands on a line: the line's scaling, inverted independently.
-float PressureOfCounts(const pp::ConfigureLine& c, uint32_t counts) {
-  const float max = static_cast<float>((1u << c.dac_bits) - 1u);
-  const float low = c.dac_signal == pp::SignalRange::kMilliamp4To20 ? 0.2f * max : 0.0f;
-  const float fraction = (static_cast<float>(counts) - low) / (max - low);
-  return static_cast<float>(c.command_min_pa) +
-         fraction * static_cast<float>(c.command_max_pa - c.command_min_pa);
-}
-
-/// One DAC step in pascal (a vacuum line's command range runs downwards).
-float PressurePerCount(const pp::ConfigureLine& c) {
-  return std::fabs(static_cast<float>(c.command_max_pa - c.command_min_pa)) /
-         static_cast<float>((1u << c.dac_bits) - 1u);
-}
+using palpa::testing::PressureOfCounts;
+using palpa::testing::PressurePerCount;
 
 bool IsConfigurationChange(uint8_t type) {
   using T = pp::MessageType;
