@@ -1,6 +1,7 @@
 // Flashing palpa-sim over its link: a full update seen answering Hello on the new image and
 // confirmed, a dry run, refusals (kind, rollback, a corrupted package), and a write cut by a
 // lost link that a second run resumes from what the board reports.
+#include <atomic>
 #include <random>
 #include <string>
 
@@ -17,7 +18,8 @@ namespace pt = palpa::testing;
 
 namespace {
 
-/// A transport that goes dead after so many bytes written (a cable pulled mid-update).
+/// A transport that goes dead after so many bytes written (a cable pulled mid-update). The link
+/// reads on its own thread while the caller writes, so the cut is seen across threads.
 class CutTransport final : public ph::Transport {
  public:
   CutTransport(std::unique_ptr<ph::Transport> inner, size_t budget)
@@ -38,8 +40,8 @@ class CutTransport final : public ph::Transport {
 
  private:
   std::unique_ptr<ph::Transport> inner_;
-  size_t budget_;
-  bool cut_ = false;
+  size_t budget_;  // written by the writing thread only
+  std::atomic<bool> cut_ = false;
 };
 
 std::unique_ptr<ph::Link> Connect(const std::string& address, size_t budget = SIZE_MAX) {
