@@ -23,6 +23,13 @@ if(PALPA_SANITIZE)
   add_link_options(-fsanitize=address,undefined)
 endif()
 
+# The tsan preset: the host library's reader thread, heartbeat and subscribers under
+# ThreadSanitizer (it cannot share a build with ASan).
+if(PALPA_TSAN)
+  add_compile_options(-fsanitize=thread -fno-omit-frame-pointer)
+  add_link_options(-fsanitize=thread)
+endif()
+
 # The fuzz preset instruments every library for libFuzzer's coverage and the sanitizers, so a
 # fuzz target is guided through the code it drives, not only through its own file; the targets
 # themselves link -fsanitize=fuzzer.
