@@ -206,6 +206,20 @@ HysteresisFit FitApi(const std::vector<SweepSample>& sweep, int operators, int d
   return fit;
 }
 
+HysteresisFit FitCompensator(CompensatorKind kind, int size, const std::vector<SweepSample>& sweep,
+                             double drive_max) {
+  switch (kind) {
+    case CompensatorKind::kBranch:
+      return FitBranch(sweep, size);
+    case CompensatorKind::kPrandtlIshlinskii:
+      return FitPi(sweep, size, drive_max);
+    case CompensatorKind::kAsymmetricPi:
+      return FitApi(sweep, size, kApiDeadZones, drive_max);
+    default:
+      return HysteresisFit{};  // none: the static inverse alone
+  }
+}
+
 PlayModel ModelOf(CompensatorKind kind, const std::vector<float>& params) {
   PlayModel m;
   size_t at = 0;

@@ -34,16 +34,7 @@ Identified Identify(FingerRig& rig, const cal::SweepPlan& plan, int dwell_ms) {
 }
 
 cal::HysteresisFit FitMethod(const Method& m, const Identified& id, double drive_max) {
-  switch (m.kind) {
-    case pp::CompensatorKind::kBranch:
-      return cal::FitBranch(id.sweep, m.size);
-    case pp::CompensatorKind::kPrandtlIshlinskii:
-      return cal::FitPi(id.sweep, m.size, drive_max);
-    case pp::CompensatorKind::kAsymmetricPi:
-      return cal::FitApi(id.sweep, m.size, 4, drive_max);
-    default:
-      return cal::HysteresisFit{};
-  }
+  return cal::FitCompensator(m.kind, m.size, id.sweep, drive_max);
 }
 
 double OutputAtShare(const std::vector<pp::InversePoint>& inverse, double share, double drive_max) {

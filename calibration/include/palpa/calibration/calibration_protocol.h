@@ -38,6 +38,9 @@ struct ProtocolOptions {
   SweepPlan pneumatic_sweep{100000, 5000, 4};
   SweepPlan jamming_sweep{100000, 10000, 2};
   int correction_points = 8;
+  /// The compensator fitted to the sweep, pi or api, with this many operators (both models'
+  /// residuals are in the finger's output unit, as the calibration file reports them).
+  protocol::CompensatorKind compensator = protocol::CompensatorKind::kPrandtlIshlinskii;
   int compensator_operators = 16;
 };
 

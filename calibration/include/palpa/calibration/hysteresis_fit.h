@@ -37,6 +37,14 @@ HysteresisFit FitApi(const std::vector<SweepSample>& sweep, int operators, int d
 /// Rising and falling curves at `points` output levels; the reversal band chosen on the sweep.
 HysteresisFit FitBranch(const std::vector<SweepSample>& sweep, int points);
 
+/// Dead zones of an `api` fit: four knots of S are what the evidence in docs/hysteresis.md used.
+constexpr int kApiDeadZones = 4;
+
+/// The fit of one compensator kind: `size` operators (pi, api) or curve points (branch); `none`
+/// is an empty parameter set.
+HysteresisFit FitCompensator(protocol::CompensatorKind kind, int size,
+                             const std::vector<SweepSample>& sweep, double drive_max);
+
 /// The static inverse (none): the mid-line of the rising and falling curves at `points` outputs.
 /// `vacuum` makes setpoints negative (jamming fingers). Empty on a bad sweep (*error set).
 std::vector<protocol::InversePoint> FitStaticInverse(const std::vector<SweepSample>& sweep,
