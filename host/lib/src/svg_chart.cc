@@ -121,6 +121,7 @@ std::string RenderSvg(const Chart& c) {
          "' text-anchor='middle'>" + Escape(c.x_label) + "</text>\n";
   svg += "<text transform='translate(16," + Num(top + ph / 2) +
          ") rotate(-90)' text-anchor='middle'>" + Escape(c.y_label) + "</text>\n";
+  size_t listed = 0;  // legend entries so far
   for (size_t i = 0; i < c.series.size(); ++i) {
     const Series& s = c.series[i];
     const std::string color = s.color.empty() ? kPalette[i % 8] : s.color;
@@ -139,10 +140,12 @@ std::string RenderSvg(const Chart& c) {
     } else {
       polyline("1.6", s.dashed);
     }
-    const double ly = top + 14 + 18 * static_cast<double>(i);
+    if (s.name.empty()) continue;  // drawn, not listed (e.g. a second part of a named series)
+    const double ly = top + 14 + 18 * static_cast<double>(listed++);
     svg += "<line x1='" + Num(left + pw + 12) + "' y1='" + Num(ly - 4) + "' x2='" +
            Num(left + pw + 34) + "' y2='" + Num(ly - 4) + "' stroke='" + color +
-           "' stroke-width='3'/>";
+           "' stroke-width='3'" +
+           (s.dashed ? std::string(" stroke-dasharray='6,4'") : std::string()) + "/>";
     svg +=
         "<text x='" + Num(left + pw + 40) + "' y='" + Num(ly) + "'>" + Escape(s.name) + "</text>\n";
   }

@@ -1,4 +1,5 @@
-// SVG charts: text that holds markup characters is escaped, so the document stays well-formed.
+// SVG charts: text that holds markup characters is escaped, so the document stays well-formed;
+// the legend lists the named series, with a dashed swatch for a dashed one.
 #include <cctype>
 #include <string>
 
@@ -33,4 +34,21 @@ TEST(SvgChart, LegendsTitlesAndAxisLabelsWithMarkupCharactersAreEscaped) {
       CHECK_TEXT(end != std::string::npos && end - i <= 5, svg.substr(i, 20).c_str());
     }
   }
+}
+
+TEST(SvgChart, UnnamedSeriesAreDrawnButNotListed) {
+  ph::Chart chart;
+  chart.series.push_back({"first", {{0, 1}, {1, 2}}, "#111111", false, false});
+  chart.series.push_back({"", {{2, 1}, {3, 2}}, "#111111", false, false});
+  chart.series.push_back({"target", {{0, 0}, {3, 0}}, "#222222", true, false});
+  const std::string svg = ph::RenderSvg(chart);
+  auto count = [&svg](const std::string& what) {
+    size_t n = 0;
+    for (size_t at = svg.find(what); at != std::string::npos; at = svg.find(what, at + 1)) ++n;
+    return n;
+  };
+  LONGS_EQUAL(3, count("<polyline"));
+  LONGS_EQUAL(2, count("stroke-width='3'"));  // legend swatches: the named series only
+  // The dashed series' swatch is dashed too: its line and its swatch.
+  LONGS_EQUAL(2, count("stroke-dasharray"));
 }

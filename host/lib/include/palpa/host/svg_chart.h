@@ -8,7 +8,7 @@
 namespace palpa::host {
 
 struct Series {
-  std::string name;
+  std::string name;  ///< the legend's entry; empty: drawn but not listed
   std::vector<std::pair<double, double>> points;
   std::string color;  ///< CSS colour; empty picks one
   bool dashed = false;
