@@ -23,6 +23,7 @@
 #include "palpa/host/file_write.h"
 #include "palpa/host/svg_chart.h"
 #include "palpa/host/transport.h"
+#include "sim_rig.h"
 
 namespace palpa::cli {
 namespace {
@@ -40,6 +41,8 @@ struct CalibrateArgs {
   double speed = 4;
   double target_pct = 2.5;
   int max_cycles = 18;
+  protocol::CompensatorKind compensator = protocol::CompensatorKind::kPrandtlIshlinskii;
+  int operators = 0;     ///< 0: the protocol's default (16, or 8 with --quick)
   std::string previous;  ///< empty: DIR/SERIAL.json when there is one
 };
 
@@ -67,6 +70,25 @@ void ProgressBar(const cal::Progress& p, std::chrono::steady_clock::time_point s
 }
 
 }  // namespace
+
+bool ParseCompensator(const std::string& text, protocol::CompensatorKind& kind, int& operators) {
+  const size_t colon = text.find(':');
+  const std::string name = text.substr(0, colon);
+  if (name == "pi") {
+    kind = protocol::CompensatorKind::kPrandtlIshlinskii;
+  } else if (name == "api") {
+    kind = protocol::CompensatorKind::kAsymmetricPi;
+  } else {
+    return false;
+  }
+  operators = 0;
+  if (colon == std::string::npos) return true;
+  double n = 0;
+  if (!ParseNumber(text.substr(colon + 1), n) || n < 1 || n > 32 || n != std::floor(n))
+    return false;
+  operators = static_cast<int>(n);
+  return true;
+}
 
 int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
   CalibrateArgs a;
@@ -99,6 +121,10 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
       if (!value(v) || !ParseNumber(v, n) || n < 6 || n > 200 || n != std::floor(n))
         return Usage("calibrate", "--max-cycles " + v + ": expected 6 to 200 indentation cycles");
       a.max_cycles = static_cast<int>(n);
+    } else if (arg == "--compensator") {
+      if (!value(v) || !ParseCompensator(v, a.compensator, a.operators))
+        return Usage("calibrate", "--compensator " + v +
+                                      ": expected pi or api, optionally :OPERATORS (1 to 32)");
     } else if (arg == "--previous") {
       if (!value(a.previous)) return Usage("calibrate", "--previous needs a calibration file");
     } else if (arg == "--finger") {
@@ -108,10 +134,12 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
       }
       a.finger = static_cast<int>(n) - 1;
     } else if (arg == "--speed") {
-      if (!value(v) || !ParseNumber(v, a.speed) || a.speed < 1 || a.speed > 100) {
+      // Faster, the board's 100 ms host-silence timeout is a few ms of real time: too short for
+      // a host sharing its cores with the simulator, whose board then goes safe mid-run.
+      if (!value(v) || !ParseNumber(v, a.speed) || a.speed < 1 || a.speed > 10) {
         return Usage(
             "calibrate",
-            "--speed " + v + ": expected 1 to 100 (palpa-sim's time scale, --rig sim only)");
+            "--speed " + v + ": expected 1 to 10 (palpa-sim's time scale, --rig sim only)");
       }
     } else {
       return Usage("calibrate", "unexpected argument '" + arg + "'");
@@ -133,31 +161,22 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
   std::string error;
   std::optional<cal::RigDescription> description;
   host::Device* device = nullptr;
-  std::unique_ptr<host::Device> own_device;
+  std::optional<SimRig> sim;
+  std::optional<cal::RigDevices> lab_devices;
+  cal::RigDevices* devices = nullptr;
   if (a.rig == "sim") {
     if (!c.device_uri.empty() && c.device_uri.rfind("sim", 0) != 0) {
       return Usage("calibrate", "--rig sim goes with a simulated device (--device sim[:CONFIG])");
     }
     const std::string config = c.device_uri.size() > 4 ? c.device_uri.substr(4) : "thesis-5finger";
-    std::string rig_address;
-    char speed[16];
-    std::snprintf(speed, sizeof(speed), "%g", a.speed);
-    auto transport = host::LaunchSim(config,
-                                     {"--speed", speed, "--rig-modbus", "tcp:127.0.0.1:0",
-                                      "--rig-finger", std::to_string(a.finger)},
-                                     nullptr, &error, &rig_address);
-    if (!transport.ok()) {
+    sim = OpenSimRig(config, a.finger, a.speed, &error);
+    if (!sim) {
       std::fprintf(stderr, "palpa calibrate: %s\n", error.c_str());
       return kExitConnect;
     }
-    auto opened = host::Device::Attach(std::move(transport.value), host::DeviceOptions{}, &error);
-    if (!opened.ok()) {
-      std::fprintf(stderr, "palpa calibrate: %s\n", error.c_str());
-      return kExitConnect;
-    }
-    own_device = std::move(opened.value);
-    device = own_device.get();
-    description = cal::SimRigDescription("modbus-tcp://" + rig_address.substr(4) + "/1");
+    device = sim->device.get();
+    description = sim->description;
+    devices = &sim->devices;
   } else {
     description = cal::LoadRigDescription(a.rig, &error);
     if (!description) return Usage("calibrate", "--rig " + error);
@@ -168,10 +187,14 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
     return Usage("calibrate", "--finger " + std::to_string(a.finger + 1) + ": the board has " +
                                   std::to_string(device->info().finger_count) + " fingers");
   }
-  auto devices = cal::OpenRigDevices(*description, &error);
-  if (!devices) {
-    std::fprintf(stderr, "palpa calibrate: rig %s: %s\n", description->name.c_str(), error.c_str());
-    return kExitConnect;
+  if (devices == nullptr) {
+    lab_devices = cal::OpenRigDevices(*description, &error);
+    if (!lab_devices) {
+      std::fprintf(stderr, "palpa calibrate: rig %s: %s\n", description->name.c_str(),
+                   error.c_str());
+      return kExitConnect;
+    }
+    devices = &*lab_devices;
   }
   const auto finger_config = device->ReadFinger(static_cast<uint8_t>(a.finger), &error);
   if (!finger_config.ok()) {
@@ -193,7 +216,9 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
   cal::ScaledTime time(device->info().time_scale);
   cal::Rig rig{*devices->stage,   *devices->force,           board, time, description->limits,
                description->name, description->force_noise_n};
-  if (!out_exists && mkdir(a.out.c_str(), 0755) != 0) {
+  // Another run (of another finger) may have made it meanwhile: only a failure to have it counts.
+  if (!out_exists && mkdir(a.out.c_str(), 0755) != 0 &&
+      !(errno == EEXIST && stat(a.out.c_str(), &st) == 0 && S_ISDIR(st.st_mode))) {
     std::fprintf(stderr, "palpa calibrate: cannot create --out %s: %s\n", a.out.c_str(),
                  std::strerror(errno));
     return kExitFailed;
@@ -236,6 +261,8 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
   const auto start = std::chrono::steady_clock::now();
   cal::ProtocolOptions options = a.quick ? cal::QuickProtocol() : cal::ProtocolOptions{};
   if (a.protocol == "adaptive") options.map_protocol = cal::MapProtocol::kAdaptive;
+  options.compensator = a.compensator;
+  if (a.operators > 0) options.compensator_operators = a.operators;
   options.adaptive.target_error = a.target_pct / 100;
   options.adaptive.max_cycles = a.max_cycles;
   options.adaptive.min_cycles = std::min(options.adaptive.min_cycles, a.max_cycles);

@@ -57,16 +57,18 @@ const std::map<std::string, Command>& Commands() {
       {"calibrate",
        {CmdCalibrate,
         "calibrate --rig FILE|sim --finger N --out DIR [--protocol thesis|adaptive] [--target PCT] "
-        "[--max-cycles N] [--previous FILE] [--resume] [--quick] [--apply]",
+        "[--max-cycles N] [--compensator pi|api[:N]] [--previous FILE] [--resume] [--quick] "
+        "[--apply]",
         "Runs the thesis calibration of one finger on a rig: zero, regulator correction, then a\n"
         "deformation sweep (pneumatic) or the bias x vacuum indentation grid (jamming) and a\n"
         "hysteresis sweep. Writes DIR/SERIAL.json (the calibration file), SERIAL.csv (raw "
         "readings)\n"
         "and SERIAL.html (report). --rig sim starts palpa-sim serving board and rig (--speed X, "
-        "1-100,\n"
+        "1-10,\n"
         "default 4); a rig FILE names the stage and force sensor (docs/calibration.md). A stopped\n"
         "run keeps DIR/SERIAL.journal.json: --resume continues it. --quick: short settings.\n"
-        "--apply uploads the result to the finger (one staged change)."}},
+        "--compensator: the model fitted, pi (default) or api, with N operators (default 16, 8 "
+        "with\n--quick). --apply uploads the result to the finger (one staged change)."}},
       {"flash",
        {CmdFlash,
         "flash PACKAGE [--resume] [--dry-run] [--reset-line CHIP:LINE] [--boot-line CHIP:LINE]",
@@ -87,10 +89,15 @@ const std::map<std::string, Command>& Commands() {
         "header, board kind, slot, anti-rollback counter and SHA-256. KIND: sim (default),\n"
         "mps2-an386, stm32f4."}},
       {"demo",
-       {CmdDemo, "demo [--out FILE.svg] [--speed X]",
+       {CmdDemo, "demo [--out FILE.svg] [--speed X] [--calibration DIR | --nominal-only]",
         "Starts a simulated thesis-5finger board and plays the thesis's discrimination stimuli:\n"
-        "18 three-finger pneumatic combinations and 9 two-finger jamming ones; prints target\n"
-        "against achieved, settling and latency, and plots the traces."}},
+        "18 three-finger pneumatic combinations and 9 two-finger jamming ones, on the nominal\n"
+        "curves; then calibrates the pneumatic fingers on simulated rigs (quick protocol, api) "
+        "and\n"
+        "plays their stimuli again, compensated. Prints target against achieved, settling and\n"
+        "latency, the two passes' errors side by side, and plots the traces. --calibration DIR\n"
+        "uses the calibration files in DIR instead (SERIAL.json); --nominal-only stops after the\n"
+        "first pass. --speed X: 0.1-10, default 4."}},
   };
   return commands;
 }

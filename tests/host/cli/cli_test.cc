@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
@@ -89,6 +90,15 @@ TEST(CliUsage, MalformedCommandLinesNameTheArgumentAndSendNothing) {
   r = Palpa("demo --out");
   LONGS_EQUAL(2, r.code);
   CHECK(Has(r, "--out needs a file name"));
+  r = Palpa("demo --speed 20");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "--speed needs a number from 0.1 to 10"));
+  r = Palpa("demo --calibration /nonexistent-dir");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "--calibration /nonexistent-dir: not a directory"));
+  r = Palpa("demo --nominal-only --calibration /tmp");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "exclude each other"));
   const std::string bad = OwnTempPath("bad.json");
   std::ofstream(bad) << "{\"board\": {\"host_timeout_us\": 1e3.5}";
   r = Palpa(nowhere + "config load " + bad);
@@ -210,6 +220,15 @@ TEST(CliCalibrate, BadArgumentsAreNamedBeforeAnythingStarts) {
   r = Palpa(nowhere + "calibrate --rig sim --finger 4 --out /tmp --max-cycles 3");
   LONGS_EQUAL(2, r.code);
   CHECK(Has(r, "--max-cycles 3: expected 6 to 200"));
+  r = Palpa(nowhere + "calibrate --rig sim --finger 1 --out /tmp --compensator branch");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "--compensator branch: expected pi or api"));
+  r = Palpa(nowhere + "calibrate --rig sim --finger 1 --out /tmp --compensator api:40");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "--compensator api:40"));
+  r = Palpa(nowhere + "calibrate --rig sim --finger 1 --out /tmp --speed 20");
+  LONGS_EQUAL(2, r.code);
+  CHECK(Has(r, "--speed 20: expected 1 to 10"));
   r = Palpa("calibrate --rig sim --finger 4 --out /tmp --previous /tmp/palpa-cli-no-such.json");
   LONGS_EQUAL(2, r.code);
   CHECK(Has(r, "palpa-cli-no-such.json"));
@@ -314,4 +333,41 @@ TEST(CliFlash, PackagesAreMadeCheckedAndFlashedOverTheLink) {
   r = Palpa(device + "flash " + dir + "/old.palpa");
   LONGS_EQUAL(2, r.code);
   CHECK(Has(r, "anti-rollback counter 0 is below the board's 3"));
+}
+
+TEST_GROUP(CliDemo){};
+
+namespace {
+
+/// The two figures of a summary row ("label   46.2 %   2.5 %"); -1 where one is missing.
+std::pair<double, double> SummaryRow(const Run& r, const std::string& label) {
+  const size_t at = r.output.find(label);
+  if (at == std::string::npos) return {-1, -1};
+  double nominal = -1, calibrated = -1;
+  char unit[8];
+  std::sscanf(r.output.c_str() + at + label.size(), " %lf %7s %lf", &nominal, unit, &calibrated);
+  return {nominal, calibrated};
+}
+
+}  // namespace
+
+TEST(CliDemo, CalibratedFingersFollowTheirTargetsWhereNominalOnesShowTheirLoops) {
+  // ./run demo's main job end to end: the stimuli on the nominal curves, the pneumatic fingers
+  // calibrated on simulated rigs (api), the stimuli again.
+  const std::string chart = OwnTempPath("demo.svg");
+  const Run r = Palpa("demo --out " + chart);
+  std::ifstream svg(chart);
+  const bool plotted = svg.good();
+  std::remove(chart.c_str());
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  CHECK(plotted);
+  CHECK(Has(r, "pass 2"));
+  CHECK_TEXT(Has(r, "calibrated, api(8)"), r.output.c_str());
+  const auto worst = SummaryRow(r, "pneumatic fingers: largest |error| / target");
+  const auto gap = SummaryRow(r, "level 1 from above minus from below");
+  // Nominal: the film's loop (0.18 against 0.36 mm at one target); calibrated: a few percent.
+  CHECK_TEXT(worst.first > 30, r.output.c_str());
+  CHECK_TEXT(worst.second >= 0 && worst.second < 10, r.output.c_str());
+  CHECK_TEXT(gap.first > 100, r.output.c_str());
+  CHECK_TEXT(std::fabs(gap.second) < 40, r.output.c_str());
 }

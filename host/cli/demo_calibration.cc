@@ -1,0 +1,174 @@
+// The demo's calibration step: the pneumatic fingers calibrated on simulated rigs, in parallel.
+#include "demo_calibration.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <thread>
+
+#include "palpa/calibration/calibration_protocol.h"
+#include "sim_rig.h"
+
+namespace palpa::cli {
+namespace {
+
+namespace cal = calibration;
+namespace pp = palpa::protocol;
+
+/// One finger on its own simulator: the quick protocol, api(8); false with *error.
+bool CalibrateOne(const std::string& config, int finger, double speed, host::CalibrationFile* out,
+                  std::string* error) {
+  std::optional<SimRig> sim = OpenSimRig(config, finger, speed, error);
+  if (!sim) return false;
+  const auto fc = sim->device->ReadFinger(static_cast<uint8_t>(finger), error);
+  if (!fc.ok()) return false;
+  const std::string serial(
+      fc.value.actuator_serial.data(),
+      strnlen(fc.value.actuator_serial.data(), fc.value.actuator_serial.size()));
+  cal::DeviceBoardPort board(*sim->device);
+  cal::ScaledTime time(sim->device->info().time_scale);
+  cal::Rig rig{
+      *sim->devices.stage,   *sim->devices.force,           board, time, sim->description.limits,
+      sim->description.name, sim->description.force_noise_n};
+  cal::ProtocolOptions options = cal::QuickProtocol();
+  options.compensator = protocol::CompensatorKind::kAsymmetricPi;
+  options.compensator_operators = kDemoOperators;
+  cal::Journal journal;  // nothing to resume: a failed demo is run again
+  cal::CalibrationRun run;
+  const cal::RunInfo info{serial, sim->device->info().board_id, "", sim->description.name, ""};
+  const cal::RigStatus s =
+      cal::RunCalibration(rig, static_cast<uint8_t>(finger), options, info, journal, nullptr, &run);
+  if (!s.ok) {
+    *error = s.error;
+    return false;
+  }
+  *out = run.file;
+  return true;
+}
+
+/// `fingers` calibrated in parallel, one file each, in order; empty with *error naming the finger
+/// when one fails.
+std::optional<std::vector<host::CalibrationFile>> CalibrateSimulatedFingers(
+    const std::string& config, const std::vector<int>& fingers, double speed, std::string* error) {
+  std::vector<host::CalibrationFile> files(fingers.size());
+  std::vector<std::string> errors(fingers.size());
+  std::vector<char> done(fingers.size(), 0);
+  std::vector<std::thread> threads;
+  for (size_t i = 0; i < fingers.size(); ++i) {
+    threads.emplace_back([&, i] {
+      done[i] = CalibrateOne(config, fingers[i], speed, &files[i], &errors[i]) ? 1 : 0;
+    });
+  }
+  for (std::thread& t : threads) t.join();
+  for (size_t i = 0; i < fingers.size(); ++i) {
+    if (!done[i]) {
+      *error = "calibrating finger " + std::to_string(fingers[i] + 1) + ": " + errors[i];
+      return std::nullopt;
+    }
+  }
+  return files;
+}
+
+/// DIR/SERIAL.json of each serial that has one; empty with *error when one cannot be read.
+std::optional<std::vector<host::CalibrationFile>> LoadCalibrations(
+    const std::string& dir, const std::vector<std::string>& serials, std::string* error) {
+  std::vector<host::CalibrationFile> files;
+  for (const std::string& serial : serials) {
+    const std::string path = dir + "/" + serial + ".json";
+    if (access(path.c_str(), F_OK) != 0) continue;
+    auto file = host::LoadCalibration(path, error);
+    if (!file) return std::nullopt;
+    files.push_back(std::move(*file));
+  }
+  return files;
+}
+
+std::string Serial(host::Device& d, uint8_t finger) {
+  std::string error;
+  const auto f = d.ReadFinger(finger, &error);
+  if (!f.ok()) return "";
+  return std::string(f.value.actuator_serial.data(),
+                     strnlen(f.value.actuator_serial.data(), f.value.actuator_serial.size()));
+}
+
+/// "api(8)": the kind and its operator count (pi: offset, w0, then n thresholds and n weights).
+std::string CompensatorLabel(const host::CalibrationFile& f) {
+  const std::string kind(pp::EnumNames(pp::CompensatorKind{})[static_cast<size_t>(f.compensator)]);
+  const auto& p = f.compensator_params;
+  size_t n = 0;
+  if (f.compensator == pp::CompensatorKind::kAsymmetricPi && !p.empty())
+    n = static_cast<size_t>(p[0]);
+  if (f.compensator == pp::CompensatorKind::kPrandtlIshlinskii && p.size() >= 2)
+    n = (p.size() - 2) / 2;
+  return n > 0 ? kind + "(" + std::to_string(n) + ")" : kind;
+}
+
+}  // namespace
+
+PneumaticFingers FindPneumatic(host::Device& d) {
+  PneumaticFingers p;
+  for (uint8_t f = 0; f < d.info().finger_count; ++f) {
+    if (d.info().fingers[f].kind != pp::FingerKind::kPneumatic) continue;
+    p.fingers.push_back(f);
+    p.serials.push_back(Serial(d, f));
+  }
+  return p;
+}
+
+std::optional<std::vector<host::CalibrationFile>> ReadCalibrationDir(const PneumaticFingers& p,
+                                                                     const std::string& dir) {
+  std::string error;
+  auto files = LoadCalibrations(dir, p.serials, &error);
+  if (files && files->empty())
+    error = "--calibration " + dir + ": no calibration file of " + p.serials.front() + " .. " +
+            p.serials.back() + " (SERIAL.json)";
+  if (!files || files->empty()) {
+    std::fprintf(stderr, "palpa demo: %s\n", error.c_str());
+    return std::nullopt;
+  }
+  return files;
+}
+
+std::optional<std::vector<host::CalibrationFile>> CalibrateOnSimulatedRigs(
+    const std::string& config, const PneumaticFingers& p, double speed) {
+  std::printf(
+      "\ncalibrating fingers 1-%zu on simulated rigs of their own, in parallel (palpa calibrate "
+      "--rig sim\n--quick --compensator api:%d: a sweep with nested reversals measured by the "
+      "rig's stage and force sensor)\n",
+      p.fingers.size(), kDemoOperators);
+  const auto started = std::chrono::steady_clock::now();
+  std::string error;
+  auto files = CalibrateSimulatedFingers(config, p.fingers, speed, &error);
+  if (!files) {
+    std::fprintf(stderr, "palpa demo: %s\n", error.c_str());
+    return std::nullopt;
+  }
+  std::printf("  done in %.0f s\n",
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
+  return files;
+}
+
+bool ApplyCalibrations(host::Device& d, const PneumaticFingers& p,
+                       const std::vector<host::CalibrationFile>& files, std::string* compensator) {
+  for (const host::CalibrationFile& file : files) {
+    const auto at = std::find(p.serials.begin(), p.serials.end(), file.actuator_serial);
+    const uint8_t finger =
+        static_cast<uint8_t>(p.fingers[static_cast<size_t>(at - p.serials.begin())]);
+    const host::Outcome o = d.ApplyCalibration(finger, file);
+    if (!o.ok()) {
+      std::fprintf(stderr, "palpa demo: %s: %s\n", file.actuator_serial.c_str(), o.message.c_str());
+      return false;
+    }
+    *compensator = "calibrated, " + CompensatorLabel(file);
+    std::printf("  finger %d (%s): fit residual %.1f um RMS%s%s\n", finger + 1,
+                file.actuator_serial.c_str(), 1000 * file.quality.residual_rms,
+                file.quality.flags.empty() ? "" : "; note: ",
+                file.quality.flags.empty() ? "" : file.quality.flags.front().c_str());
+  }
+  return true;
+}
+
+}  // namespace palpa::cli
