@@ -7,6 +7,8 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <functional>
+#include <mutex>
 #include <thread>
 
 #include "palpa/calibration/calibration_protocol.h"
@@ -18,9 +20,37 @@ namespace {
 namespace cal = calibration;
 namespace pp = palpa::protocol;
 
+/// Every finger's progress on one line of a terminal (the step table stays on stdout).
+class ProgressLine {
+ public:
+  explicit ProgressLine(const std::vector<int>& fingers)
+      : fingers_(fingers), done_(fingers.size(), 0), total_(fingers.size(), 0) {}
+  void Report(size_t i, const cal::Progress& p) {
+    if (!isatty(STDERR_FILENO)) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    done_[i] = p.done;
+    total_[i] = p.total;
+    std::string line = "\r ";
+    for (size_t k = 0; k < done_.size(); ++k) {
+      line += " finger " + std::to_string(fingers_[k] + 1) + " " + std::to_string(done_[k]) + "/" +
+              std::to_string(total_[k]) + (k + 1 < done_.size() ? "," : "");
+    }
+    std::fputs(line.c_str(), stderr);
+    std::fflush(stderr);
+  }
+  ~ProgressLine() {
+    if (isatty(STDERR_FILENO)) std::fputs("\r\033[K", stderr);  // the line goes with the step
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<int> fingers_, done_, total_;
+};
+
 /// One finger on its own simulator: the quick protocol, api(8); false with *error.
-bool CalibrateOne(const std::string& config, int finger, double speed, host::CalibrationFile* out,
-                  std::string* error) {
+bool CalibrateOne(const std::string& config, int finger, double speed,
+                  const std::function<void(const cal::Progress&)>& progress,
+                  host::CalibrationFile* out, std::string* error) {
   std::optional<SimRig> sim = OpenSimRig(config, finger, speed, error);
   if (!sim) return false;
   const auto fc = sim->device->ReadFinger(static_cast<uint8_t>(finger), error);
@@ -39,8 +69,8 @@ bool CalibrateOne(const std::string& config, int finger, double speed, host::Cal
   cal::Journal journal;  // nothing to resume: a failed demo is run again
   cal::CalibrationRun run;
   const cal::RunInfo info{serial, sim->device->info().board_id, "", sim->description.name, ""};
-  const cal::RigStatus s =
-      cal::RunCalibration(rig, static_cast<uint8_t>(finger), options, info, journal, nullptr, &run);
+  const cal::RigStatus s = cal::RunCalibration(rig, static_cast<uint8_t>(finger), options, info,
+                                               journal, progress, &run);
   if (!s.ok) {
     *error = s.error;
     return false;
@@ -56,13 +86,17 @@ std::optional<std::vector<host::CalibrationFile>> CalibrateSimulatedFingers(
   std::vector<host::CalibrationFile> files(fingers.size());
   std::vector<std::string> errors(fingers.size());
   std::vector<char> done(fingers.size(), 0);
-  std::vector<std::thread> threads;
-  for (size_t i = 0; i < fingers.size(); ++i) {
-    threads.emplace_back([&, i] {
-      done[i] = CalibrateOne(config, fingers[i], speed, &files[i], &errors[i]) ? 1 : 0;
-    });
+  {
+    ProgressLine line(fingers);
+    std::vector<std::thread> threads;
+    for (size_t i = 0; i < fingers.size(); ++i) {
+      threads.emplace_back([&, i] {
+        const auto progress = [&line, i](const cal::Progress& p) { line.Report(i, p); };
+        done[i] = CalibrateOne(config, fingers[i], speed, progress, &files[i], &errors[i]) ? 1 : 0;
+      });
+    }
+    for (std::thread& t : threads) t.join();
   }
-  for (std::thread& t : threads) t.join();
   for (size_t i = 0; i < fingers.size(); ++i) {
     if (!done[i]) {
       *error = "calibrating finger " + std::to_string(fingers[i] + 1) + ": " + errors[i];
