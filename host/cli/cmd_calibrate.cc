@@ -314,10 +314,14 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
                     });
     if (!from_check) std::printf("  note: %s\n", flag.c_str());
   }
-  std::printf(
-      "  compensator %s(%zu params), fit residual %.4f RMS\n",
-      protocol::EnumNames(protocol::CompensatorKind{})[static_cast<size_t>(run.file.compensator)],
-      run.file.compensator_params.size(), run.file.quality.residual_rms);
+  if (run.file.compensator == protocol::CompensatorKind::kNone) {
+    std::printf("  compensator none: the static inverse alone (no model was fitted)\n");
+  } else {
+    const bool jamming = run.file.kind == protocol::FingerKind::kJamming;
+    std::printf("  compensator %s, fit residual %.1f RMS, %.1f max (%s)\n",
+                host::CompensatorLabel(run.file).c_str(), 1000 * run.file.quality.residual_rms,
+                1000 * run.file.quality.residual_max, jamming ? "mN/mm" : "um");
+  }
   if (a.apply) {
     const host::Outcome o = device->ApplyCalibration(static_cast<uint8_t>(a.finger), run.file);
     if (!o.ok()) return Report(c, o, "apply calibration");

@@ -128,18 +128,6 @@ std::string Serial(host::Device& d, uint8_t finger) {
                      strnlen(f.value.actuator_serial.data(), f.value.actuator_serial.size()));
 }
 
-/// "api(8)": the kind and its operator count (pi: offset, w0, then n thresholds and n weights).
-std::string CompensatorLabel(const host::CalibrationFile& f) {
-  const std::string kind(pp::EnumNames(pp::CompensatorKind{})[static_cast<size_t>(f.compensator)]);
-  const auto& p = f.compensator_params;
-  size_t n = 0;
-  if (f.compensator == pp::CompensatorKind::kAsymmetricPi && !p.empty())
-    n = static_cast<size_t>(p[0]);
-  if (f.compensator == pp::CompensatorKind::kPrandtlIshlinskii && p.size() >= 2)
-    n = (p.size() - 2) / 2;
-  return n > 0 ? kind + "(" + std::to_string(n) + ")" : kind;
-}
-
 }  // namespace
 
 PneumaticFingers FindPneumatic(host::Device& d) {
@@ -196,7 +184,7 @@ bool ApplyCalibrations(host::Device& d, const PneumaticFingers& p,
       std::fprintf(stderr, "palpa demo: %s: %s\n", file.actuator_serial.c_str(), o.message.c_str());
       return false;
     }
-    *compensator = "calibrated, " + CompensatorLabel(file);
+    *compensator = "calibrated, " + host::CompensatorLabel(file);
     std::printf("  finger %d (%s): fit residual %.1f um RMS%s%s\n", finger + 1,
                 file.actuator_serial.c_str(), 1000 * file.quality.residual_rms,
                 file.quality.flags.empty() ? "" : "; note: ",

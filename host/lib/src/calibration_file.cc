@@ -190,4 +190,24 @@ std::optional<CalibrationFile> FindCalibration(const std::string& dir, const std
   return c;
 }
 
+std::string CompensatorLabel(const CalibrationFile& c) {
+  const std::string kind(pp::EnumNames(pp::CompensatorKind{})[static_cast<size_t>(c.compensator)]);
+  const auto& p = c.compensator_params;
+  size_t n = 0;
+  switch (c.compensator) {
+    case pp::CompensatorKind::kPrandtlIshlinskii:  // offset, w0, n thresholds, n weights
+      n = p.size() >= 2 ? (p.size() - 2) / 2 : 0;
+      break;
+    case pp::CompensatorKind::kAsymmetricPi:  // n first
+      n = p.empty() ? 0 : static_cast<size_t>(p[0]);
+      break;
+    case pp::CompensatorKind::kBranch:  // band, dead band, then three values a point
+      n = p.size() >= 2 ? (p.size() - 2) / 3 : 0;
+      break;
+    default:
+      break;
+  }
+  return n > 0 ? kind + "(" + std::to_string(n) + ")" : kind;
+}
+
 }  // namespace palpa::host

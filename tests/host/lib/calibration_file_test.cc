@@ -188,3 +188,20 @@ TEST(CalibrationFile, DeviceFindsCalibrationsByActuatorSerialAndUploadsThemAtomi
   LONGS_EQUAL(6, d.ReadFinger(0).value.param_count);  // the earlier calibration is untouched
   LONGS_EQUAL(50000, d.ReadLine(0).value.correction[1].command_pa);
 }
+
+TEST(CalibrationFile, CompensatorsAreNamedWithTheirSize) {
+  ph::CalibrationFile c = Example();
+  c.compensator = pp::CompensatorKind::kPrandtlIshlinskii;
+  c.compensator_params.assign(2 + 2 * 16, 1.0f);
+  STRCMP_EQUAL("pi(16)", ph::CompensatorLabel(c).c_str());
+  c.compensator = pp::CompensatorKind::kAsymmetricPi;
+  c.compensator_params.assign(3 + 2 * 8 + 2 * 4, 1.0f);
+  c.compensator_params[0] = 8;
+  STRCMP_EQUAL("api(8)", ph::CompensatorLabel(c).c_str());
+  c.compensator = pp::CompensatorKind::kBranch;
+  c.compensator_params.assign(2 + 3 * 12, 1.0f);
+  STRCMP_EQUAL("branch(12)", ph::CompensatorLabel(c).c_str());
+  c.compensator = pp::CompensatorKind::kNone;
+  c.compensator_params.clear();
+  STRCMP_EQUAL("none", ph::CompensatorLabel(c).c_str());
+}

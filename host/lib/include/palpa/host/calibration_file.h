@@ -121,4 +121,8 @@ std::optional<CalibrationFile> FindCalibration(const std::string& dir, const std
 /// The curves a calibration gives the stiffness map: its measured curve and its range.
 FingerCurves CurvesFromCalibration(const CalibrationFile& c);
 
+/// The compensator a calibration carries, as people name it: "api(8)", "pi(16)", "branch(12)",
+/// "none" (operators or curve points from the parameters' layout, docs/hysteresis.md).
+std::string CompensatorLabel(const CalibrationFile& c);
+
 }  // namespace palpa::host
