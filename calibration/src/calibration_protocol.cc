@@ -229,10 +229,15 @@ RigStatus RunCalibration(Rig& rig, uint8_t finger, const ProtocolOptions& o, con
     f.curve.push_back({q.setpoint_pa / 1000.0, q.output / 1000.0});
   }
   if (!jamming && fitted) BranchFits(sweep, drive_max, f);
-  const bool play = o.compensator == protocol::CompensatorKind::kPrandtlIshlinskii ||
-                    o.compensator == protocol::CompensatorKind::kAsymmetricPi;
-  HysteresisFit fit = FitCompensator(o.compensator, o.compensator_operators, sweep, drive_max);
-  if (!play) fit.error = "a calibration fits pi or api";  // their residuals are in output units
+  HysteresisFit fit;
+  if (!o.compensator) {
+    fit = FitBetterPlayModel(sweep, o.compensator_operators, drive_max, &out->compensator_choice);
+  } else {
+    fit = FitCompensator(*o.compensator, o.compensator_operators, sweep, drive_max);
+    const bool play = *o.compensator == protocol::CompensatorKind::kPrandtlIshlinskii ||
+                      *o.compensator == protocol::CompensatorKind::kAsymmetricPi;
+    if (!play) fit.error = "a calibration fits pi or api";  // their residuals are output units
+  }
   if (fit.ok()) {
     f.compensator = fit.kind;
     f.compensator_params = fit.params;

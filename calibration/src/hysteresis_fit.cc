@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "palpa/calibration/nnls.h"
 #include "palpa/core/compensator.h"
@@ -218,6 +219,29 @@ HysteresisFit FitCompensator(CompensatorKind kind, int size, const std::vector<S
     default:
       return HysteresisFit{};  // none: the static inverse alone
   }
+}
+
+HysteresisFit FitBetterPlayModel(const std::vector<SweepSample>& sweep, int operators,
+                                 double drive_max, std::string* why) {
+  HysteresisFit pi = FitPi(sweep, operators, drive_max);
+  HysteresisFit api = FitApi(sweep, operators, kApiDeadZones, drive_max);
+  const std::string n = "(" + std::to_string(operators) + ")";
+  char text[160];
+  if (!api.ok()) {
+    std::snprintf(text, sizeof(text), "pi%s; api%s not fitted: %s", n.c_str(), n.c_str(),
+                  api.error.c_str());
+    *why = text;
+    return pi;
+  }
+  if (!pi.ok()) {
+    *why = "api" + n + "; pi" + n + " not fitted: " + pi.error;
+    return api;
+  }
+  const bool api_better = api.residual_rms <= 0.75 * pi.residual_rms;
+  std::snprintf(text, sizeof(text), "%s: api%s %.3g against pi%s %.3g RMS",
+                api_better ? "api" : "pi", n.c_str(), api.residual_rms, n.c_str(), pi.residual_rms);
+  *why = text;
+  return api_better ? api : pi;
 }
 
 PlayModel ModelOf(CompensatorKind kind, const std::vector<float>& params) {

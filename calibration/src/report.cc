@@ -163,7 +163,11 @@ std::string RenderReport(const CalibrationRun& run) {
        Escape(f.rig) + ". " + std::to_string(f.quality.points) +
        " sweep readings; compensator fit residual " + Fixed(f.quality.residual_rms * 1000, 1) +
        " RMS, " + Fixed(f.quality.residual_max * 1000, 1) + " max (" + (jamming ? "mN/mm" : "µm") +
-       ").</p>\n";
+       ")" +
+       (run.compensator_choice.empty()
+            ? std::string()
+            : "; model chosen by fitting both: " + Escape(run.compensator_choice)) +
+       ".</p>\n";
   if (jamming) {
     h += "<p>Stiffness map: " + Escape(f.quality.protocol) + " protocol, " +
          std::to_string(f.quality.cycles) + " indentation cycles; cross-validated map error " +

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -54,7 +55,9 @@ bool ParseLineArgument(const std::string& arg, uint8_t line_count, std::pair<uin
                        std::string* error);
 /// A number with a unit suffix, e.g. "--duration 5" (seconds). False when not a finite number.
 bool ParseNumber(const std::string& text, double& out);
-/// "pi", "api", "pi:8": the compensator a calibration fits; operators 0 when not given.
-bool ParseCompensator(const std::string& text, protocol::CompensatorKind& kind, int& operators);
+/// "auto", "pi", "api", "pi:8": the compensator a calibration fits (auto: empty, the better of
+/// pi and api); operators 0 when not given.
+bool ParseCompensator(const std::string& text, std::optional<protocol::CompensatorKind>& kind,
+                      int& operators);
 
 }  // namespace palpa::cli

@@ -41,7 +41,7 @@ struct CalibrateArgs {
   double speed = 4;
   double target_pct = 2.5;
   int max_cycles = 18;
-  protocol::CompensatorKind compensator = protocol::CompensatorKind::kPrandtlIshlinskii;
+  std::optional<protocol::CompensatorKind> compensator;  ///< empty: the better of pi and api
   int operators = 0;     ///< 0: the protocol's default (16, or 8 with --quick)
   std::string previous;  ///< empty: DIR/SERIAL.json when there is one
 };
@@ -71,10 +71,13 @@ void ProgressBar(const cal::Progress& p, std::chrono::steady_clock::time_point s
 
 }  // namespace
 
-bool ParseCompensator(const std::string& text, protocol::CompensatorKind& kind, int& operators) {
+bool ParseCompensator(const std::string& text, std::optional<protocol::CompensatorKind>& kind,
+                      int& operators) {
   const size_t colon = text.find(':');
   const std::string name = text.substr(0, colon);
-  if (name == "pi") {
+  if (name == "auto") {
+    kind.reset();
+  } else if (name == "pi") {
     kind = protocol::CompensatorKind::kPrandtlIshlinskii;
   } else if (name == "api") {
     kind = protocol::CompensatorKind::kAsymmetricPi;
@@ -123,8 +126,9 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
       a.max_cycles = static_cast<int>(n);
     } else if (arg == "--compensator") {
       if (!value(v) || !ParseCompensator(v, a.compensator, a.operators))
-        return Usage("calibrate", "--compensator " + v +
-                                      ": expected pi or api, optionally :OPERATORS (1 to 32)");
+        return Usage(
+            "calibrate",
+            "--compensator " + v + ": expected auto, pi or api, optionally :OPERATORS (1 to 32)");
     } else if (arg == "--previous") {
       if (!value(a.previous)) return Usage("calibrate", "--previous needs a calibration file");
     } else if (arg == "--finger") {
@@ -313,6 +317,10 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
                       return !k.passed && flag.rfind(k.name + ": ", 0) == 0;
                     });
     if (!from_check) std::printf("  note: %s\n", flag.c_str());
+  }
+  if (!run.compensator_choice.empty()) {
+    std::printf("  model chosen (auto): %s (%s)\n", run.compensator_choice.c_str(),
+                run.file.kind == protocol::FingerKind::kJamming ? "mN/mm" : "um");
   }
   if (run.file.compensator == protocol::CompensatorKind::kNone) {
     std::printf("  compensator none: the static inverse alone (no model was fitted)\n");

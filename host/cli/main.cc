@@ -57,7 +57,7 @@ const std::map<std::string, Command>& Commands() {
       {"calibrate",
        {CmdCalibrate,
         "calibrate --rig FILE|sim --finger N --out DIR [--protocol thesis|adaptive] [--target PCT] "
-        "[--max-cycles N] [--compensator pi|api[:N]] [--previous FILE] [--resume] [--quick] "
+        "[--max-cycles N] [--compensator auto|pi|api[:N]] [--previous FILE] [--resume] [--quick] "
         "[--apply]",
         "Runs the thesis calibration of one finger on a rig: zero, regulator correction, then a\n"
         "deformation sweep (pneumatic) or the bias x vacuum indentation grid (jamming) and a\n"
@@ -67,8 +67,9 @@ const std::map<std::string, Command>& Commands() {
         "1-10,\n"
         "default 4); a rig FILE names the stage and force sensor (docs/calibration.md). A stopped\n"
         "run keeps DIR/SERIAL.journal.json: --resume continues it. --quick: short settings.\n"
-        "--compensator: the model fitted, pi (default) or api, with N operators (default 16, 8 "
-        "with\n--quick). --apply uploads the result to the finger (one staged change)."}},
+        "--compensator: the model fitted, pi or api with N operators (default 16, 8 with "
+        "--quick);\nauto (default) fits both and keeps api where it leaves at most 3/4 of pi's "
+        "residual.\n--apply uploads the result to the finger (one staged change)."}},
       {"flash",
        {CmdFlash,
         "flash PACKAGE [--resume] [--dry-run] [--reset-line CHIP:LINE] [--boot-line CHIP:LINE]",

@@ -62,7 +62,10 @@ TEST(ThesisProtocol, PneumaticFingerGivesAValidCalibrationCloseToTable54) {
   CHECK_TEXT(ph::SerializeCalibration(run.file, &error).has_value(), error.c_str());
   DOUBLES_EQUAL(0.0428, run.file.rising_fit->slope, 0.1 * 0.0428);
   DOUBLES_EQUAL(0.0475, run.file.falling_fit->slope, 0.1 * 0.0475);
-  CHECK(run.file.compensator == pp::CompensatorKind::kPrandtlIshlinskii);
+  // Left to choose, the protocol takes api on the film's loop, and says what it compared.
+  CHECK(run.file.compensator == pp::CompensatorKind::kAsymmetricPi);
+  CHECK_TEXT(run.compensator_choice.rfind("api: api(8) ", 0) == 0, run.compensator_choice.c_str());
+  CHECK(run.compensator_choice.find("against pi(8)") != std::string::npos);
   CHECK(run.csv.size() > run.sweep.size());
   CheckBoardAccepts(sim, 0, run.file);
 }
@@ -131,6 +134,10 @@ TEST(ThesisProtocol, JammingFingerRecommendsTheBiasWithTheSmallerLoop) {
   DOUBLES_EQUAL(1.3, run.file.grid[3].stiffness_mean, 0.15);
   std::string error;
   CHECK_TEXT(ph::SerializeCalibration(run.file, &error).has_value(), error.c_str());
+  // Whichever model it chose, it fitted one and said why.
+  CHECK(run.file.compensator == pp::CompensatorKind::kPrandtlIshlinskii ||
+        run.file.compensator == pp::CompensatorKind::kAsymmetricPi);
+  CHECK(!run.compensator_choice.empty());
   CheckBoardAccepts(sim, 3, run.file);
 }
 

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,8 +40,9 @@ struct ProtocolOptions {
   SweepPlan jamming_sweep{100000, 10000, 2};
   int correction_points = 8;
   /// The compensator fitted to the sweep, pi or api, with this many operators (both models'
-  /// residuals are in the finger's output unit, as the calibration file reports them).
-  protocol::CompensatorKind compensator = protocol::CompensatorKind::kPrandtlIshlinskii;
+  /// residuals are in the finger's output unit, as the calibration file reports them); empty:
+  /// the better of the two on this sweep (FitBetterPlayModel).
+  std::optional<protocol::CompensatorKind> compensator;
   int compensator_operators = 16;
 };
 
@@ -74,6 +76,7 @@ struct CalibrationRun {
   std::vector<PressCycle> presses;  ///< the force-depth readings of those taken in this session
   MapEstimate map_estimate;
   std::vector<SweepSample> sweep;
+  std::string compensator_choice;  ///< when the protocol chose the model: what it compared
 };
 
 /// Runs (or resumes) the protocol; on a safety stop returns its reason with everything safe,

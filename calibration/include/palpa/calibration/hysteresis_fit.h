@@ -40,6 +40,12 @@ HysteresisFit FitBranch(const std::vector<SweepSample>& sweep, int points);
 /// Dead zones of an `api` fit: four knots of S are what the evidence in docs/hysteresis.md used.
 constexpr int kApiDeadZones = 4;
 
+/// The better play model on this sweep: api when it fits and leaves at most three quarters of
+/// pi's RMS residual (its dead zones must earn their extra cost per step), else pi. `why` says
+/// what was compared ("api(16): 9.1 against pi(16): 58.7 um RMS").
+HysteresisFit FitBetterPlayModel(const std::vector<SweepSample>& sweep, int operators,
+                                 double drive_max, std::string* why);
+
 /// The fit of one compensator kind: `size` operators (pi, api) or curve points (branch); `none`
 /// is an empty parameter set.
 HysteresisFit FitCompensator(protocol::CompensatorKind kind, int size,
