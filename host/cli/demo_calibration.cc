@@ -111,9 +111,9 @@ std::optional<std::vector<host::CalibrationFile>> LoadCalibrations(
     const std::string& dir, const std::vector<std::string>& serials, std::string* error) {
   std::vector<host::CalibrationFile> files;
   for (const std::string& serial : serials) {
-    const std::string path = dir + "/" + serial + ".json";
-    if (access(path.c_str(), F_OK) != 0) continue;
-    auto file = host::LoadCalibration(path, error);
+    if (access(host::CalibrationPath(dir, serial).c_str(), F_OK) != 0) continue;
+    // The library's lookup also refuses a file whose actuator is another than its name says.
+    auto file = host::FindCalibration(dir, serial, error);
     if (!file) return std::nullopt;
     files.push_back(std::move(*file));
   }
@@ -177,6 +177,11 @@ bool ApplyCalibrations(host::Device& d, const PneumaticFingers& p,
                        const std::vector<host::CalibrationFile>& files, std::string* compensator) {
   for (const host::CalibrationFile& file : files) {
     const auto at = std::find(p.serials.begin(), p.serials.end(), file.actuator_serial);
+    if (at == p.serials.end()) {
+      std::fprintf(stderr, "palpa demo: no pneumatic finger carries %s\n",
+                   file.actuator_serial.c_str());
+      return false;
+    }
     const uint8_t finger =
         static_cast<uint8_t>(p.fingers[static_cast<size_t>(at - p.serials.begin())]);
     const host::Outcome o = d.ApplyCalibration(finger, file);
