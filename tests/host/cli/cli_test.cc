@@ -35,6 +35,14 @@ Run Palpa(const std::string& args) {
 
 bool Has(const Run& r, const std::string& text) { return r.output.find(text) != std::string::npos; }
 
+/// A refused command line: exit code 2 and the message naming what was wrong.
+Run ExpectUsage(const std::string& args, const std::string& message) {
+  const Run r = Palpa(args);
+  LONGS_EQUAL_TEXT(2, r.code, r.output.c_str());
+  CHECK_TEXT(Has(r, message), r.output.c_str());
+  return r;
+}
+
 /// A file name of this test process's own: two test runs at once must not share files.
 std::string OwnTempPath(const std::string& name) {
   return "/tmp/palpa-cli-" + std::to_string(getpid()) + "-" + name;
@@ -57,48 +65,25 @@ TEST(CliUsage, HelpForEveryCommand) {
 TEST(CliUsage, MalformedCommandLinesNameTheArgumentAndSendNothing) {
   // The device does not exist: a usage error must come before any attempt to open it.
   const std::string nowhere = "--device tcp:127.0.0.1:1 ";
-  Run r = Palpa(nowhere + "set 1=L2x");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "'1=L2x'"));
-  r = Palpa(nowhere + "set 9=L1");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "finger must be a number from 1 to 8"));
-  r = Palpa(nowhere + "set 2=1.7");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "normalised stiffness from 0 to 1"));
+  Run r = ExpectUsage(nowhere + "set 1=L2x", "'1=L2x'");
+  r = ExpectUsage(nowhere + "set 9=L1", "finger must be a number from 1 to 8");
+  r = ExpectUsage(nowhere + "set 2=1.7", "normalised stiffness from 0 to 1");
   r = Palpa(nowhere + "set 4=0.9N/m");
   LONGS_EQUAL(2, r.code);
-  r = Palpa(nowhere + "line 1=abc");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "'1=abc'"));
-  r = Palpa(nowhere + "monitor --rate fast");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "--rate"));
-  r = Palpa(nowhere + "record out.csv");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "--duration"));
-  r = Palpa(nowhere + "frobnicate");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "unknown command 'frobnicate'"));
+  r = ExpectUsage(nowhere + "line 1=abc", "'1=abc'");
+  r = ExpectUsage(nowhere + "monitor --rate fast", "--rate");
+  r = ExpectUsage(nowhere + "record out.csv", "--duration");
+  r = ExpectUsage(nowhere + "frobnicate", "unknown command 'frobnicate'");
   r = Palpa("--device");
   LONGS_EQUAL(2, r.code);
   // The demo's chart is written at its end: a place it cannot be written is refused first.
-  r = Palpa("demo --out /nonexistent-dir/chart.svg");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "/nonexistent-dir is not a directory"));
+  r = ExpectUsage("demo --out /nonexistent-dir/chart.svg", "/nonexistent-dir is not a directory");
   CHECK_FALSE(Has(r, "starting a simulated"));
-  r = Palpa("demo --out");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "--out needs a file name"));
-  r = Palpa("demo --speed 20");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "--speed needs a number from 0.1 to 10"));
-  r = Palpa("demo --calibration /nonexistent-dir");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "--calibration /nonexistent-dir: not a directory"));
-  r = Palpa("demo --nominal-only --calibration /tmp");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "exclude each other"));
+  r = ExpectUsage("demo --out", "--out needs a file name");
+  r = ExpectUsage("demo --speed 20", "--speed needs a number from 0.1 to 10");
+  r = ExpectUsage("demo --calibration /nonexistent-dir",
+                  "--calibration /nonexistent-dir: not a directory");
+  r = ExpectUsage("demo --nominal-only --calibration /tmp", "exclude each other");
   const std::string bad = OwnTempPath("bad.json");
   std::ofstream(bad) << "{\"board\": {\"host_timeout_us\": 1e3.5}";
   r = Palpa(nowhere + "config load " + bad);
@@ -162,9 +147,7 @@ TEST(CliBoard, ConfigSetIsValidatedThenAppliedAndShown) {
   LONGS_EQUAL(2, r.code);
   CHECK(Has(r, "line 4"));
   CHECK(Has(r, "nothing was sent"));
-  r = Palpa(device + "config set line2.no_such_field=1");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "no_such_field"));
+  r = ExpectUsage(device + "config set line2.no_such_field=1", "no_such_field");
 }
 
 TEST(CliBoard, MonitorRecordEstopClear) {
@@ -189,17 +172,12 @@ TEST_GROUP(CliCalibrate){};
 
 TEST(CliCalibrate, BadArgumentsAreNamedBeforeAnythingStarts) {
   const std::string nowhere = "--device tcp:127.0.0.1:1 ";
-  Run r = Palpa(nowhere + "calibrate --rig sim --finger 1");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "--out DIR"));
-  r = Palpa(nowhere + "calibrate --rig sim --finger 9 --out /tmp");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "--finger 9"));
+  Run r = ExpectUsage(nowhere + "calibrate --rig sim --finger 1", "--out DIR");
+  r = ExpectUsage(nowhere + "calibrate --rig sim --finger 9 --out /tmp", "--finger 9");
   // A refused command creates nothing, not even its output directory.
   const std::string never = OwnTempPath("never");
-  r = Palpa(nowhere + "calibrate --rig sim --finger 1 --out " + never);
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "--rig sim goes with a simulated device"));
+  r = ExpectUsage(nowhere + "calibrate --rig sim --finger 1 --out " + never,
+                  "--rig sim goes with a simulated device");
   CHECK(access(never.c_str(), F_OK) != 0);
   const std::string rig = OwnTempPath("rig.json");
   std::ofstream(rig) << "{\"name\": \"lab\", \"stage\": {\"driver\": \"modbus\"}}";
@@ -207,31 +185,24 @@ TEST(CliCalibrate, BadArgumentsAreNamedBeforeAnythingStarts) {
   std::remove(rig.c_str());
   LONGS_EQUAL(2, r.code);
   CHECK(Has(r, "stage.address: missing"));
-  r = Palpa("calibrate --rig sim --finger 1 --out " + never + " --resume");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "no journal"));
+  r = ExpectUsage("calibrate --rig sim --finger 1 --out " + never + " --resume", "no journal");
   CHECK(access(never.c_str(), F_OK) != 0);
-  r = Palpa(nowhere + "calibrate --rig sim --finger 4 --out /tmp --protocol fast");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "--protocol fast: expected thesis or adaptive"));
-  r = Palpa(nowhere + "calibrate --rig sim --finger 4 --out /tmp --protocol adaptive --target 0");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "--target 0"));
-  r = Palpa(nowhere + "calibrate --rig sim --finger 4 --out /tmp --max-cycles 3");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "--max-cycles 3: expected 6 to 200"));
-  r = Palpa(nowhere + "calibrate --rig sim --finger 1 --out /tmp --compensator branch");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "--compensator branch: expected auto, pi or api"));
-  r = Palpa(nowhere + "calibrate --rig sim --finger 1 --out /tmp --compensator api:40");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "--compensator api:40"));
-  r = Palpa(nowhere + "calibrate --rig sim --finger 1 --out /tmp --speed 20");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "--speed 20: expected 1 to 10"));
-  r = Palpa("calibrate --rig sim --finger 4 --out /tmp --previous /tmp/palpa-cli-no-such.json");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "palpa-cli-no-such.json"));
+  r = ExpectUsage(nowhere + "calibrate --rig sim --finger 4 --out /tmp --protocol fast",
+                  "--protocol fast: expected thesis or adaptive");
+  r = ExpectUsage(
+      nowhere + "calibrate --rig sim --finger 4 --out /tmp --protocol adaptive --target 0",
+      "--target 0");
+  r = ExpectUsage(nowhere + "calibrate --rig sim --finger 4 --out /tmp --max-cycles 3",
+                  "--max-cycles 3: expected 6 to 200");
+  r = ExpectUsage(nowhere + "calibrate --rig sim --finger 1 --out /tmp --compensator branch",
+                  "--compensator branch: expected auto, pi or api");
+  r = ExpectUsage(nowhere + "calibrate --rig sim --finger 1 --out /tmp --compensator api:40",
+                  "--compensator api:40");
+  r = ExpectUsage(nowhere + "calibrate --rig sim --finger 1 --out /tmp --speed 20",
+                  "--speed 20: expected 1 to 10");
+  r = ExpectUsage(
+      "calibrate --rig sim --finger 4 --out /tmp --previous /tmp/palpa-cli-no-such.json",
+      "palpa-cli-no-such.json");
 }
 
 TEST(CliCalibrate, QuickCalibrationOnTheSimulatedRigWritesAValidFileRawDataAndAReport) {
@@ -296,27 +267,18 @@ TEST(CliFlash, PackagesAreMadeCheckedAndFlashedOverTheLink) {
   LONGS_EQUAL(0, r.code);
   // Bad command lines and bad packages are named before anything is sent.
   const std::string nowhere = "--device tcp:127.0.0.1:1 ";
-  r = Palpa(nowhere + "flash");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "needs a PACKAGE"));
-  r = Palpa(nowhere + "flash " + dir + "/missing.palpa");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "cannot be read"));
+  r = ExpectUsage(nowhere + "flash", "needs a PACKAGE");
+  r = ExpectUsage(nowhere + "flash " + dir + "/missing.palpa", "cannot be read");
   std::ofstream(dir + "/text.palpa") << "hello";
-  r = Palpa(nowhere + "flash " + dir + "/text.palpa");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "not a palpa update package"));
+  r = ExpectUsage(nowhere + "flash " + dir + "/text.palpa", "not a palpa update package");
   {
     std::ifstream in(dir + "/new.palpa", std::ios::binary);
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     std::ofstream(dir + "/cut.palpa", std::ios::binary) << bytes.substr(0, bytes.size() / 2);
   }
-  r = Palpa(nowhere + "flash " + dir + "/cut.palpa");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "truncated"));
-  r = Palpa(nowhere + "flash " + dir + "/new.palpa --reset-line gpiochip9:1");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "--reset-line 'gpiochip9:1': no GPIO chip"));
+  r = ExpectUsage(nowhere + "flash " + dir + "/cut.palpa", "truncated");
+  r = ExpectUsage(nowhere + "flash " + dir + "/new.palpa --reset-line gpiochip9:1",
+                  "--reset-line 'gpiochip9:1': no GPIO chip");
   r = Palpa("package " + dir + "/a.bin --version 1 --counter 1 --out x");
   LONGS_EQUAL(2, r.code);
 
@@ -332,9 +294,8 @@ TEST(CliFlash, PackagesAreMadeCheckedAndFlashedOverTheLink) {
   r = Palpa(device + "info");
   CHECK(Has(r, "firmware      0.3.0"));
   CHECK(Has(r, "image slot    1, anti-rollback counter 3"));
-  r = Palpa(device + "flash " + dir + "/old.palpa");
-  LONGS_EQUAL(2, r.code);
-  CHECK(Has(r, "anti-rollback counter 0 is below the board's 3"));
+  r = ExpectUsage(device + "flash " + dir + "/old.palpa",
+                  "anti-rollback counter 0 is below the board's 3");
 }
 
 TEST_GROUP(CliDemo){};
