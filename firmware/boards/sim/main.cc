@@ -4,11 +4,13 @@
 #include <time.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
 
 #include "fd_link.h"
+#include "real_time_pacer.h"
 #include "rig_modbus_server.h"
 #include "rig_netft_server.h"
 #include "sim_board.h"
@@ -116,40 +118,32 @@ int main(int argc, char** argv) {
     });
   }
   const auto start = std::chrono::steady_clock::now();
-  constexpr uint64_t kMaxLagUs = 20000;  // virtual time the loop may fall behind before it slips
-  double slipped_us = 0;                 // real time given up to slips
+  palpa::sim::RealTimePacer pacer(cmd.speed);
+  std::vector<pollfd> fds;
   while (!g_stop) {
     const double wall_us =
         std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+    // Inputs once a wake: a host frame or rig request that arrives mid-batch wakes the next one.
     link.Pump();
     truth.Pump();
     rig_server.Pump();
-    // When the process fell behind (a busy machine, a fast --speed), virtual time slips instead of
-    // racing to catch up: racing would squeeze the host's real-time heartbeats out of the board's
-    // timeout window. Then one millisecond at a time, serving the host and the rig in between.
-    uint64_t target_us = static_cast<uint64_t>((wall_us - slipped_us) * cmd.speed);
-    if (target_us > sim->now_us() + kMaxLagUs) {
-      slipped_us += static_cast<double>(target_us - sim->now_us() - 1000) / cmd.speed;
-      target_us = sim->now_us() + 1000;
+    netft.Serve();
+    const uint64_t target_us = pacer.Target(wall_us, sim->now_us());
+    while (sim->now_us() + palpa::sim::RealTimePacer::kStepUs <= target_us && !g_stop) {
+      sim->AdvanceTo(sim->now_us() + palpa::sim::RealTimePacer::kStepUs);
+      netft.Stream();  // one record per board millisecond while streaming
     }
-    while (sim->now_us() + 1000 <= target_us && !g_stop) {
-      sim->AdvanceTo(sim->now_us() + 1000);
-      link.Pump();
-      rig_server.Pump();
-      netft.Pump();  // one record per millisecond while streaming
-    }
-    sim->AdvanceTo(target_us);
-    link.Pump();
+    sim->AdvanceTo(target_us);  // between steps: serves what the host sent without a tick
+    link.Pump();                // what the board wrote (the buffer holds far more than a batch)
 
-    // Sleep until the next 1 ms step is due, or until the host sends something.
-    const double next_step_wall_us =
-        static_cast<double>((sim->now_us() / 1000 + 1) * 1000) / cmd.speed + slipped_us;
-    const double wait_us = next_step_wall_us - wall_us;
-    std::vector<pollfd> fds;
+    // Sleep until the next batch of steps is due, or until the host or the rig sends something.
+    const double wait_us = pacer.WaitUs(wall_us, sim->now_us());
+    fds.clear();
     for (int fd : link.PollFds()) fds.push_back(pollfd{fd, POLLIN, 0});
     for (int fd : rig_server.PollFds()) fds.push_back(pollfd{fd, POLLIN, 0});
     if (netft.fd() >= 0) fds.push_back(pollfd{netft.fd(), POLLIN, 0});
-    const timespec timeout{0, wait_us > 0 ? static_cast<long>(wait_us * 1000) : 0};
+    const timespec timeout{static_cast<time_t>(wait_us / 1e6),
+                           static_cast<long>(std::fmod(wait_us, 1e6) * 1000)};
     ppoll(fds.data(), fds.size(), &timeout, nullptr);
   }
   if (stamps != nullptr) std::fclose(stamps);

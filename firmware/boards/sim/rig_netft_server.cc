@@ -61,7 +61,7 @@ void RigNetFtServer::Send() {
          sizeof(client_));
 }
 
-void RigNetFtServer::Pump() {
+void RigNetFtServer::Serve() {
   if (fd_ < 0) return;
   uint8_t request[8];
   sockaddr_in from{};
@@ -83,6 +83,9 @@ void RigNetFtServer::Pump() {
       remaining_ = count == 0 ? UINT32_MAX : count;
     }
   }
+}
+
+void RigNetFtServer::Stream() {
   if (has_client_ && remaining_ > 0) {
     Send();
     if (remaining_ != UINT32_MAX) --remaining_;

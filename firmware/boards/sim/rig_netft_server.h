@@ -22,8 +22,10 @@ class RigNetFtServer {
   bool Open(const std::string& spec, RigModel& rig, std::string* error);
   const std::string& address() const { return address_; }
   int fd() const { return fd_; }
-  /// Answers requests; streams one record per call while streaming (call once per 1 ms step).
-  void Pump();
+  /// Answers the requests that have arrived (start, stop, bias).
+  void Serve();
+  /// Sends one record while streaming: call once per 1 ms board step.
+  void Stream();
 
  private:
   void Send();

@@ -1,0 +1,52 @@
+// palpa-sim's real-time pacing: the virtual clock it targets, its slips and its batched wakes.
+#include "real_time_pacer.h"
+
+#include "CppUTest/TestHarness.h"
+
+using palpa::sim::RealTimePacer;
+
+TEST_GROUP(RealTimePacer){};
+
+TEST(RealTimePacer, WakesForEveryStepUpToRealTimeAndBatchesAbove) {
+  CHECK_EQUAL(1u, RealTimePacer(0.01).steps_per_wake());
+  CHECK_EQUAL(1u, RealTimePacer(1).steps_per_wake());
+  CHECK_EQUAL(2u, RealTimePacer(2.5).steps_per_wake());
+  CHECK_EQUAL(10u, RealTimePacer(10).steps_per_wake());
+  // Capped in virtual time: the board still reads the host every 10 board milliseconds.
+  CHECK_EQUAL(10u, RealTimePacer(100).steps_per_wake());
+}
+
+TEST(RealTimePacer, TargetsScaledRealTime) {
+  RealTimePacer pacer(10);
+  CHECK_EQUAL(0u, pacer.Target(0, 0));
+  CHECK_EQUAL(15000u, pacer.Target(1500, 0));  // 1.5 ms real at 10x, within the lag allowed
+  DOUBLES_EQUAL(0, pacer.slipped_us(), 0);
+}
+
+TEST(RealTimePacer, SlipsInsteadOfRacingWhenFarBehind) {
+  RealTimePacer pacer(1);
+  // 50 ms behind: one step further, and the other 49 ms of real time are given up.
+  CHECK_EQUAL(6000u, pacer.Target(55000, 5000));
+  DOUBLES_EQUAL(49000, pacer.slipped_us(), 1e-9);
+  // Afterwards virtual time follows real time from where it slipped to.
+  CHECK_EQUAL(7000u, pacer.Target(56000, 6000));
+  CHECK_EQUAL(6000u + RealTimePacer::kMaxLagUs,
+              pacer.Target(55000 + static_cast<double>(RealTimePacer::kMaxLagUs), 6000));
+}
+
+TEST(RealTimePacer, SleepsUntilABatchIsDue) {
+  RealTimePacer real_time(1);
+  DOUBLES_EQUAL(600, real_time.WaitUs(3400, 3000), 1e-9);  // the next step, at 4 ms
+  DOUBLES_EQUAL(0, real_time.WaitUs(4100, 3000), 0);       // already due: no sleep
+  RealTimePacer fast(10);
+  // Ten steps after board time 3 ms, i.e. board 13 ms = 1.3 ms real.
+  DOUBLES_EQUAL(900, fast.WaitUs(400, 3000), 1e-9);
+  RealTimePacer slow(0.5);
+  DOUBLES_EQUAL(2000, slow.WaitUs(6000, 3000), 1e-9);  // board 4 ms = 8 ms real
+}
+
+TEST(RealTimePacer, WaitsCountTheTimeGivenUpToSlips) {
+  RealTimePacer pacer(1);
+  pacer.Target(55000, 5000);  // slips 49 ms: board 6 ms now lines up with 55 ms real
+  DOUBLES_EQUAL(1000, pacer.WaitUs(55000, 6000), 1e-9);
+}
