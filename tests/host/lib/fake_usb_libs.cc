@@ -27,20 +27,53 @@ using palpa::testing::Hid;
 using palpa::testing::Usb;
 
 struct hid_device_ {
-  int unused;
+  int index;
 };
-static hid_device_ g_hid_device;
+static hid_device_ g_hid_devices[2] = {{0}, {1}};
+static char g_hid_path[] = "/dev/hidraw-fake";
+
+/// Notes which handle did what; a handle used both to read and to write is the race the
+/// transport must not have (see hid_transport.cc).
+static void UseHandle(const hid_device* device, bool write) {
+  int& mine = write ? Hid().write_handle : Hid().read_handle;
+  const int other = write ? Hid().read_handle : Hid().write_handle;
+  mine = device->index;
+  if (other == device->index) Hid().mixed_handles = true;
+}
 
 extern "C" {
 
 int hid_init(void) { return 0; }
 int hid_exit(void) { return 0; }
-hid_device* hid_open(unsigned short, unsigned short, const wchar_t*) {
-  return Hid().present ? &g_hid_device : nullptr;
+hid_device_info* hid_enumerate(unsigned short vendor, unsigned short product) {
+  if (!Hid().present || vendor != 0x1209 || product != 0x0001) return nullptr;
+  auto* info = new hid_device_info{};
+  info->path = g_hid_path;
+  info->vendor_id = vendor;
+  info->product_id = product;
+  info->serial_number = Hid().serial.data();
+  return info;
 }
-void hid_close(hid_device*) { Hid().closed = true; }
+void hid_free_enumeration(hid_device_info* devices) {
+  while (devices != nullptr) {
+    hid_device_info* next = devices->next;
+    delete devices;
+    devices = next;
+  }
+}
+hid_device* hid_open_path(const char* path) {
+  if (std::strcmp(path, g_hid_path) != 0 || Hid().opened >= 2 ||
+      Hid().opened == Hid().open_failures_after)
+    return nullptr;
+  return &g_hid_devices[Hid().opened++];
+}
+void hid_close(hid_device*) {
+  ++Hid().closed_handles;
+  Hid().closed = Hid().closed_handles == Hid().opened;
+}
 const wchar_t* hid_error(hid_device*) { return L"fake hidapi error"; }
-int hid_read_timeout(hid_device*, unsigned char* data, size_t length, int) {
+int hid_read_timeout(hid_device* device, unsigned char* data, size_t length, int) {
+  UseHandle(device, false);
   ++Hid().reads;
   if (Hid().disconnected) return -1;
   if (Hid().reports_in.empty()) {
@@ -53,7 +86,8 @@ int hid_read_timeout(hid_device*, unsigned char* data, size_t length, int) {
   std::memcpy(data, r.data(), n);
   return static_cast<int>(n);
 }
-int hid_write(hid_device*, const unsigned char* data, size_t length) {
+int hid_write(hid_device* device, const unsigned char* data, size_t length) {
+  UseHandle(device, true);
   if (Hid().disconnected) return -1;
   Hid().reports_out.emplace_back(data, data + length);
   return Hid().short_write_bytes >= 0 ? Hid().short_write_bytes : static_cast<int>(length);

@@ -3,14 +3,20 @@
 
 #include <cstdint>
 #include <deque>
+#include <string>
 #include <vector>
 
 namespace palpa::testing {
 
 struct FakeHid {
   bool present = true;
-  bool disconnected = false;                      ///< hid_read/hid_write fail as after an unplug
-  int short_write_bytes = -1;                     ///< >=0: hid_write reports that many bytes
+  std::wstring serial = L"ABC";  ///< the one device's serial number
+  int open_failures_after = -1;  ///< >=0: hid_open_path fails once that many opens succeeded
+  int opened = 0, closed_handles = 0;
+  int read_handle = -1, write_handle = -1;  ///< which handle (0, 1: order opened) last read, wrote
+  bool mixed_handles = false;               ///< a read and a write went through the same handle
+  bool disconnected = false;                ///< hid_read/hid_write fail as after an unplug
+  int short_write_bytes = -1;               ///< >=0: hid_write reports that many bytes
   std::vector<std::vector<uint8_t>> reports_in;   ///< what hid_read returns, one report per call
   std::vector<std::vector<uint8_t>> reports_out;  ///< what hid_write got
   int reads = 0, timeouts = 0;

@@ -66,6 +66,40 @@ TEST(HidTransport, UnplugIsADisconnectAndShortWritesAreErrors) {
   CHECK(Hid().closed);
 }
 
+TEST(HidTransport, ReadsAndWritesThroughHandlesOfTheirOwn) {
+  auto t = Open("hid:1209:0001:ABC");
+  LONGS_EQUAL(2, Hid().opened);  // the same node twice: hidapi's error string is per handle
+  uint8_t b[4] = {1, 2, 3, 0};
+  uint8_t buffer[64];
+  Hid().reports_in.push_back({0x22, 0x00});
+  for (int i = 0; i < 3; ++i) {
+    LONGS_EQUAL((int)pp::Status::kOk, (int)t->Write(b, sizeof(b)));
+    CHECK(t->Read(buffer, sizeof(buffer), 10).ok());
+  }
+  CHECK(Hid().read_handle >= 0 && Hid().write_handle >= 0);
+  CHECK_FALSE(Hid().mixed_handles);
+  t.reset();
+  LONGS_EQUAL(2, Hid().closed_handles);
+}
+
+TEST(HidTransport, ASecondHandleThatCannotBeOpenedClosesTheFirst) {
+  Hid().open_failures_after = 1;
+  std::string error;
+  auto t = ph::OpenTransport("hid:1209:0001", &error);
+  LONGS_EQUAL((int)pp::Status::kNotFound, (int)t.status);
+  CHECK(error.find("hid:1209:0001: cannot open /dev/hidraw-fake (fake hidapi error)") !=
+        std::string::npos);
+  LONGS_EQUAL(1, Hid().closed_handles);
+}
+
+TEST(HidTransport, OtherSerialNumbersAreNotOpened) {
+  std::string error;
+  auto t = ph::OpenTransport("hid:1209:0001:XYZ", &error);
+  LONGS_EQUAL((int)pp::Status::kNotFound, (int)t.status);
+  CHECK(error.find("hid:1209:0001:XYZ: no such device") != std::string::npos);
+  LONGS_EQUAL(0, Hid().opened);
+}
+
 TEST(HidTransport, MissingDeviceIsNamed) {
   Hid().present = false;
   std::string error;
