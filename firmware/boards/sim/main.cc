@@ -128,6 +128,11 @@ int main(int argc, char** argv) {
     truth.Pump();
     rig_server.Pump();
     netft.Serve();
+    const palpa::core::Board& board = sim->board();
+    pacer.HoldToRealTime(palpa::sim::HostNearSilenceTimeout(board.session_open(), sim->now_us(),
+                                                            board.last_host_frame_us(),
+                                                            board.config().board.host_timeout_us),
+                         wall_us, sim->now_us());
     const uint64_t target_us = pacer.Target(wall_us, sim->now_us());
     while (sim->now_us() + palpa::sim::RealTimePacer::kStepUs <= target_us && !g_stop) {
       sim->AdvanceTo(sim->now_us() + palpa::sim::RealTimePacer::kStepUs);

@@ -1,26 +1,56 @@
-// palpa-sim's real-time pacing: virtual time from real time, slips, and batched wakes.
+// palpa-sim's real-time pacing: virtual time from real time, slips, batched wakes and the hold
+// near the host-silence deadline.
 #include "real_time_pacer.h"
 
 namespace palpa::sim {
+namespace {
 
-RealTimePacer::RealTimePacer(double speed) : speed_(speed) {
-  const double fit = kWakeUs * speed / static_cast<double>(kStepUs);
-  const double cap = static_cast<double>(kMaxBatchUs / kStepUs);
-  steps_per_wake_ = fit < 1 ? 1 : static_cast<uint32_t>(fit < cap ? fit : cap);
+uint32_t StepsPerWake(double pace) {
+  const double fit = RealTimePacer::kWakeUs * pace / static_cast<double>(RealTimePacer::kStepUs);
+  const double cap = static_cast<double>(RealTimePacer::kMaxBatchUs / RealTimePacer::kStepUs);
+  return fit < 1 ? 1 : static_cast<uint32_t>(fit < cap ? fit : cap);
+}
+
+}  // namespace
+
+RealTimePacer::RealTimePacer(double speed)
+    : speed_(speed), pace_(speed), steps_per_wake_(StepsPerWake(speed)) {}
+
+void RealTimePacer::Rebase(double wall_us, uint64_t virtual_us) {
+  anchor_wall_us_ = wall_us;
+  anchor_virtual_us_ = virtual_us;
 }
 
 uint64_t RealTimePacer::Target(double wall_us, uint64_t now_us) {
-  const double scaled = (wall_us - slipped_us_) * speed_;
-  const uint64_t target = scaled > 0 ? static_cast<uint64_t>(scaled) : 0;
+  const double scaled = (wall_us - anchor_wall_us_) * pace_;
+  const uint64_t target = anchor_virtual_us_ + (scaled > 0 ? static_cast<uint64_t>(scaled) : 0);
   if (target <= now_us + kMaxLagUs) return target;
-  slipped_us_ += static_cast<double>(target - now_us - kStepUs) / speed_;
+  Rebase(wall_us, now_us + kStepUs);  // the slip
   return now_us + kStepUs;
 }
 
 double RealTimePacer::WaitUs(double wall_us, uint64_t now_us) const {
   const uint64_t due_us = (now_us / kStepUs + steps_per_wake_) * kStepUs;
-  const double wait = static_cast<double>(due_us) / speed_ + slipped_us_ - wall_us;
+  const double ahead =
+      due_us > anchor_virtual_us_ ? static_cast<double>(due_us - anchor_virtual_us_) : 0.0;
+  const double wait = anchor_wall_us_ + ahead / pace_ - wall_us;
   return wait > 0 ? wait : 0;
+}
+
+void RealTimePacer::HoldToRealTime(bool hold, double wall_us, uint64_t now_us) {
+  const double pace = hold && speed_ > 1 ? 1.0 : speed_;
+  if (pace == pace_) return;
+  // Continue from where the board is: virtual time neither jumps nor is repeated.
+  Rebase(wall_us, now_us);
+  pace_ = pace;
+  steps_per_wake_ = StepsPerWake(pace);
+}
+
+bool HostNearSilenceTimeout(bool session_open, uint64_t now_us, uint64_t last_host_frame_us,
+                            uint32_t host_timeout_us) {
+  if (!session_open || now_us < last_host_frame_us) return false;
+  const uint64_t silent_us = now_us - last_host_frame_us;
+  return silent_us > host_timeout_us / 2 && silent_us <= host_timeout_us;
 }
 
 }  // namespace palpa::sim

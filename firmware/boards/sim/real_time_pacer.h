@@ -1,5 +1,6 @@
 // palpa-sim's mapping from real time to the board's virtual time: scaled by --speed, slipping
-// instead of racing when the process falls behind, waking once per batch of steps.
+// instead of racing when the process falls behind, waking once per batch of steps, and back at
+// real time while a host that holds a session has been silent for half its timeout.
 #pragma once
 
 #include <cstdint>
@@ -20,6 +21,8 @@ class RealTimePacer {
   /// `speed`: virtual seconds per real second (> 0).
   explicit RealTimePacer(double speed);
 
+  /// The pace now: --speed, or at most 1 while held to real time.
+  double pace() const { return pace_; }
   /// Steps the loop lets fall due before it wakes: 1 up to real time, then as many as fit in
   /// kWakeUs of real time, at most kMaxBatchUs of virtual time.
   uint32_t steps_per_wake() const { return steps_per_wake_; }
@@ -34,13 +37,25 @@ class RealTimePacer {
   /// due after `now_us` (0 when they already are).
   double WaitUs(double wall_us, uint64_t now_us) const;
 
-  /// Real time given up to slips so far.
-  double slipped_us() const { return slipped_us_; }
+  /// Holds the pace to real time (when --speed is faster) from here on, or releases it. Faster
+  /// than real time the host's timeout shrinks in real time with the speed (10 ms at 10x), and a
+  /// host that is merely descheduled for that long would lose its session; a host that is gone
+  /// still meets the same timeout in board time.
+  void HoldToRealTime(bool hold, double wall_us, uint64_t now_us);
 
  private:
+  void Rebase(double wall_us, uint64_t virtual_us);
   double speed_;
-  uint32_t steps_per_wake_;
-  double slipped_us_ = 0;
+  double pace_;
+  uint32_t steps_per_wake_ = 1;
+  double anchor_wall_us_ = 0;  ///< real time at which virtual time was anchor_virtual_us_
+  uint64_t anchor_virtual_us_ = 0;
 };
+
+/// Whether palpa-sim should hold to real time: a session is open and the host has been silent
+/// for more than half its timeout, but not yet past it (then the board is safe and has no
+/// deadline left to protect).
+bool HostNearSilenceTimeout(bool session_open, uint64_t now_us, uint64_t last_host_frame_us,
+                            uint32_t host_timeout_us);
 
 }  // namespace palpa::sim

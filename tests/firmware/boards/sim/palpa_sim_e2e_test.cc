@@ -1,11 +1,14 @@
 // palpa-sim as a process, through TCP and a raw pty, driven by a minimal client on protocol/:
-// Hello, configuration, setpoints, telemetry, host silence → safe, garbage, clean exit.
+// Hello, configuration, setpoints, telemetry, host silence → safe, garbage, clean exit; a host
+// that stalls briefly at high speed.
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <string>
+#include <thread>
 
 #include "mini_client.h"
 #include "palpa/protocol/faults.h"
@@ -81,9 +84,54 @@ void ExerciseBoard(const std::string& address) {
   CHECK(safe);
 }
 
+/// Heartbeats every 2 ms of real time for `ms`; true when no telemetry frame showed the
+/// host-silence fault.
+bool HeartbeatsKeepTheSession(MiniClient& client, int ms, uint32_t& generation) {
+  bool silent = false;
+  for (int t = 0; t < ms; t += 2) {
+    client.Send(pp::Heartbeat{++generation});
+    for (const ReceivedFrame& f : client.Read(2)) {
+      if (f.Is<pp::Telemetry>())
+        silent |= (f.As<pp::Telemetry>().fault_bitmap & pp::FaultBit(pp::Fault::kHostSilence)) != 0;
+    }
+  }
+  return !silent;
+}
+
 }  // namespace
 
 TEST_GROUP(PalpaSimProcess){};
+
+// At 10x the board's 100 ms timeout is 10 ms of real time: a host descheduled that long would
+// lose its session to a simulator that a board would not. palpa-sim returns to real time once
+// the host has been silent for half the timeout; a host that is gone still meets the timeout.
+TEST(PalpaSimProcess, AtHighSpeedAStalledHostKeepsItsSessionAndAGoneOneDoesNot) {
+  SimProcess sim;
+  CHECK(sim.Start(
+      {"--config", "thesis-pneumatic-3", "--listen", "tcp:127.0.0.1:0", "--speed", "10"}));
+  MiniClient client;
+  CHECK_TEXT(Connect(client, sim.address()), sim.address().c_str());
+  const auto hello = client.Hello(0xBEEF);
+  CHECK(hello.ok());
+  pp::ConfigureBoard board{};
+  board.config_name = hello.value.config_name;
+  board.host_timeout_us = 100000;
+  board.telemetry_batch = 2;
+  LONGS_EQUAL((int)pp::Status::kOk, (int)client.Reliable(board));
+  uint32_t generation = 0;
+  CHECK(HeartbeatsKeepTheSession(client, 200, generation));
+  // 15 ms of real time without a frame: 150 board ms at 10x, were it not for the hold.
+  std::this_thread::sleep_for(std::chrono::milliseconds(15));
+  CHECK_TEXT(HeartbeatsKeepTheSession(client, 200, generation), "host silence after a 15 ms stall");
+  // Gone: the board goes safe on silence all the same.
+  bool safe = false;
+  for (const ReceivedFrame& f : client.Read(1000)) {
+    if (f.Is<pp::Telemetry>())
+      safe |= (f.As<pp::Telemetry>().fault_bitmap & pp::FaultBit(pp::Fault::kHostSilence)) != 0;
+  }
+  CHECK(safe);
+  LONGS_EQUAL(0, sim.Stop());
+}
 
 TEST(PalpaSimProcess, OverTcp) {
   SimProcess sim;

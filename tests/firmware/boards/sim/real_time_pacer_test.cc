@@ -1,8 +1,10 @@
-// palpa-sim's real-time pacing: the virtual clock it targets, its slips and its batched wakes.
+// palpa-sim's real-time pacing: the virtual clock it targets, its slips, its batched wakes and
+// its hold to real time near the host-silence deadline.
 #include "real_time_pacer.h"
 
 #include "CppUTest/TestHarness.h"
 
+using palpa::sim::HostNearSilenceTimeout;
 using palpa::sim::RealTimePacer;
 
 TEST_GROUP(RealTimePacer){};
@@ -20,18 +22,17 @@ TEST(RealTimePacer, TargetsScaledRealTime) {
   RealTimePacer pacer(10);
   CHECK_EQUAL(0u, pacer.Target(0, 0));
   CHECK_EQUAL(15000u, pacer.Target(1500, 0));  // 1.5 ms real at 10x, within the lag allowed
-  DOUBLES_EQUAL(0, pacer.slipped_us(), 0);
 }
 
 TEST(RealTimePacer, SlipsInsteadOfRacingWhenFarBehind) {
   RealTimePacer pacer(1);
   // 50 ms behind: one step further, and the other 49 ms of real time are given up.
   CHECK_EQUAL(6000u, pacer.Target(55000, 5000));
-  DOUBLES_EQUAL(49000, pacer.slipped_us(), 1e-9);
   // Afterwards virtual time follows real time from where it slipped to.
   CHECK_EQUAL(7000u, pacer.Target(56000, 6000));
   CHECK_EQUAL(6000u + RealTimePacer::kMaxLagUs,
               pacer.Target(55000 + static_cast<double>(RealTimePacer::kMaxLagUs), 6000));
+  DOUBLES_EQUAL(1000, pacer.WaitUs(55000, 6000), 1e-9);  // board 7 ms is due at 56 ms real
 }
 
 TEST(RealTimePacer, SleepsUntilABatchIsDue) {
@@ -45,8 +46,35 @@ TEST(RealTimePacer, SleepsUntilABatchIsDue) {
   DOUBLES_EQUAL(2000, slow.WaitUs(6000, 3000), 1e-9);  // board 4 ms = 8 ms real
 }
 
-TEST(RealTimePacer, WaitsCountTheTimeGivenUpToSlips) {
-  RealTimePacer pacer(1);
-  pacer.Target(55000, 5000);  // slips 49 ms: board 6 ms now lines up with 55 ms real
-  DOUBLES_EQUAL(1000, pacer.WaitUs(55000, 6000), 1e-9);
+TEST(RealTimePacer, HeldToRealTimeContinuesFromTheBoardsTimeAndReleasesToItsSpeed) {
+  RealTimePacer pacer(10);
+  CHECK_EQUAL(50000u, pacer.Target(5000, 50000));
+  pacer.HoldToRealTime(true, 5000, 50000);
+  DOUBLES_EQUAL(1, pacer.pace(), 0);
+  CHECK_EQUAL(1u, pacer.steps_per_wake());
+  CHECK_EQUAL(50000u, pacer.Target(5000, 50000));   // no jump at the change
+  CHECK_EQUAL(57000u, pacer.Target(12000, 50000));  // 7 ms real: 7 board ms, not 70
+  DOUBLES_EQUAL(1000, pacer.WaitUs(12000, 57000), 1e-9);
+  pacer.HoldToRealTime(true, 12000, 57000);  // holding again changes nothing
+  CHECK_EQUAL(58000u, pacer.Target(13000, 57000));
+  pacer.HoldToRealTime(false, 13000, 58000);
+  DOUBLES_EQUAL(10, pacer.pace(), 0);
+  CHECK_EQUAL(68000u, pacer.Target(14000, 58000));  // 10x again from there
+}
+
+TEST(RealTimePacer, ASlowerSpeedIsNotSpedUpByTheHold) {
+  RealTimePacer pacer(0.5);
+  pacer.HoldToRealTime(true, 1000, 0);
+  DOUBLES_EQUAL(0.5, pacer.pace(), 0);
+  CHECK_EQUAL(1000u, pacer.Target(2000, 0));
+}
+
+TEST(RealTimePacer, HoldsOnlyBetweenHalfTheHostTimeoutAndTheTimeout) {
+  const uint32_t timeout = 100000;
+  CHECK_FALSE(HostNearSilenceTimeout(true, 150000, 100000, timeout));  // 50 ms: not yet
+  CHECK(HostNearSilenceTimeout(true, 151000, 100000, timeout));
+  CHECK(HostNearSilenceTimeout(true, 200000, 100000, timeout));
+  CHECK_FALSE(HostNearSilenceTimeout(true, 201000, 100000, timeout));   // past it: board safe
+  CHECK_FALSE(HostNearSilenceTimeout(false, 170000, 100000, timeout));  // no session
+  CHECK_FALSE(HostNearSilenceTimeout(true, 90000, 100000, timeout));    // frame stamped ahead
 }

@@ -78,6 +78,7 @@ class Board {
   const TxQueue& tx() const { return tx_; }
   bool config_is_default() const { return config_is_default_; }
   uint64_t last_host_frame_us() const { return last_host_frame_us_; }
+  bool session_open() const { return session_.open(); }
   uint32_t applied_setpoint_generation() const { return session_.setpoints().applied(); }
   /// UpdateReboot was acknowledged: the shell resets the board once the Ack is sent.
   bool reboot_requested() const { return reboot_requested_; }
