@@ -1,4 +1,4 @@
-// The board through the host library, and scaled real time.
+// The board through the host library, and the board's clock from its telemetry.
 #include "palpa/calibration/device_rig.h"
 
 #include <chrono>
@@ -86,12 +86,41 @@ RigStatus DeviceBoardPort::VentAll() {
   return o.ok() ? RigStatus{} : RigStatus::Fail(o.message);
 }
 
-double ScaledTime::Now() {
-  return scale_ * std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+BoardTime::BoardTime(host::Device& device)
+    : device_(device), scale_(device.info().time_scale > 0 ? device.info().time_scale : 1.0) {
+  subscription_ = device_.Subscribe([this](const host::TelemetryFrame& f) {
+    const protocol::Telemetry& t = f.telemetry;
+    const uint64_t newest_us =
+        t.first_sample_us + (t.tick_count > 0 ? (t.tick_count - 1u) * t.sample_interval_us : 0);
+    std::lock_guard<std::mutex> lock(mutex_);
+    // A board that restarted counts from 0 again: time since the first frame goes on from there.
+    if (seen_ && newest_us > last_us_) elapsed_us_ += newest_us - last_us_;
+    seen_ = true;
+    last_us_ = newest_us;
+    advanced_.notify_all();
+  });
 }
 
-void ScaledTime::Wait(double seconds) {
-  std::this_thread::sleep_for(std::chrono::duration<double>(seconds / scale_));
+BoardTime::~BoardTime() { device_.Unsubscribe(subscription_); }
+
+double BoardTime::Now() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return static_cast<double>(elapsed_us_) / 1e6;
+}
+
+void BoardTime::Wait(double seconds) {
+  const auto real = std::chrono::duration<double>(seconds / scale_);
+  std::unique_lock<std::mutex> lock(mutex_);
+  if (!seen_) {
+    lock.unlock();
+    std::this_thread::sleep_for(real);
+    return;
+  }
+  const uint64_t until_us = elapsed_us_ + static_cast<uint64_t>(seconds * 1e6 + 0.5);
+  const auto give_up = std::chrono::steady_clock::now() +
+                       std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                           real + std::chrono::seconds(1));
+  advanced_.wait_until(lock, give_up, [&] { return elapsed_us_ >= until_us; });
 }
 
 }  // namespace palpa::calibration

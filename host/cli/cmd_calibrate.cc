@@ -217,7 +217,7 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
   }
 
   cal::DeviceBoardPort board(*device);
-  cal::ScaledTime time(device->info().time_scale);
+  cal::BoardTime time(*device);
   cal::Rig rig{*devices->stage,   *devices->force,           board, time, description->limits,
                description->name, description->force_noise_n};
   // Another run (of another finger) may have made it meanwhile: only a failure to have it counts.

@@ -59,7 +59,7 @@ bool CalibrateOne(const std::string& config, int finger, double speed,
       fc.value.actuator_serial.data(),
       strnlen(fc.value.actuator_serial.data(), fc.value.actuator_serial.size()));
   cal::DeviceBoardPort board(*sim->device);
-  cal::ScaledTime time(sim->device->info().time_scale);
+  cal::BoardTime time(*sim->device);
   cal::Rig rig{
       *sim->devices.stage,   *sim->devices.force,           board, time, sim->description.limits,
       sim->description.name, sim->description.force_noise_n};

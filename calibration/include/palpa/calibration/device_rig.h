@@ -1,10 +1,11 @@
 // The board and the clock of a rig on lab hardware (or palpa-sim in real time): the board through
-// the host library's Device, time from the steady clock scaled by the board's time scale.
+// the host library's Device, time from the board's clock in its telemetry.
 #pragma once
 
 #include <array>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <mutex>
 
 #include "palpa/calibration/rig.h"
@@ -37,17 +38,30 @@ class DeviceBoardPort final : public BoardPort {
   std::array<bool, protocol::kMaxLines> known_{};
 };
 
-/// Real time, scaled by the board's time scale (palpa-sim --speed; 1 on hardware).
-class ScaledTime final : public RigTime {
+/// The board's own clock, read from its telemetry: a wait lasts as long in board time as asked,
+/// whatever real time that takes. On hardware board time is real time; palpa-sim runs at its
+/// --speed but slips when the machine is busy and returns to real time while the host is near
+/// its silence timeout, and a dwell counted in scaled real time would then end early.
+class BoardTime final : public RigTime {
  public:
-  explicit ScaledTime(double scale)
-      : scale_(scale > 0 ? scale : 1), start_(std::chrono::steady_clock::now()) {}
+  explicit BoardTime(host::Device& device);
+  ~BoardTime() override;
+  /// Seconds of board time since the first telemetry frame (0 before it).
   double Now() override;
+  /// Until the board's clock has advanced `seconds`. Bounded in real time (the scaled duration
+  /// plus 1 s): the clock stops with the telemetry (link lost, board reset), and the rig's checks
+  /// then say why. Before the first frame: scaled real time.
   void Wait(double seconds) override;
 
  private:
+  host::Device& device_;
   double scale_;
-  std::chrono::steady_clock::time_point start_;
+  int subscription_ = 0;
+  std::mutex mutex_;
+  std::condition_variable advanced_;
+  bool seen_ = false;
+  uint64_t last_us_ = 0;     ///< the newest sample's board time
+  uint64_t elapsed_us_ = 0;  ///< board time since the first frame, across board resets
 };
 
 }  // namespace palpa::calibration
