@@ -97,7 +97,7 @@ BoardTime::BoardTime(host::Device& device)
     if (seen_ && newest_us > last_us_) elapsed_us_ += newest_us - last_us_;
     seen_ = true;
     last_us_ = newest_us;
-    advanced_.notify_all();
+    if (elapsed_us_ >= wake_at_us_) advanced_.notify_all();  // not for every frame: a few kHz
   });
 }
 
@@ -120,7 +120,9 @@ void BoardTime::Wait(double seconds) {
   const auto give_up = std::chrono::steady_clock::now() +
                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                            real + std::chrono::seconds(1));
+  wake_at_us_ = until_us;
   advanced_.wait_until(lock, give_up, [&] { return elapsed_us_ >= until_us; });
+  wake_at_us_ = UINT64_MAX;
 }
 
 }  // namespace palpa::calibration

@@ -60,8 +60,9 @@ class BoardTime final : public RigTime {
   std::mutex mutex_;
   std::condition_variable advanced_;
   bool seen_ = false;
-  uint64_t last_us_ = 0;     ///< the newest sample's board time
-  uint64_t elapsed_us_ = 0;  ///< board time since the first frame, across board resets
+  uint64_t last_us_ = 0;              ///< the newest sample's board time
+  uint64_t elapsed_us_ = 0;           ///< board time since the first frame, across board resets
+  uint64_t wake_at_us_ = UINT64_MAX;  ///< the waiting thread's end (one waiter: the procedure)
 };
 
 }  // namespace palpa::calibration
