@@ -177,9 +177,13 @@ void Link::OnTelemetry(const pp::Telemetry& t, double now) {  // mutex_ held
     offset_window_start_s_ = now;
   }
   if (offset < min_offset_s_) min_offset_s_ = offset;
-  setpoints_.applied = t.setpoint_generation;
-  targets_.applied = t.target_generation;
-  changed_.notify_all();
+  // Of what waiters on changed_ wait for, telemetry moves only the applied generations: waking
+  // every waiter (heartbeats, commands) for each frame cost thousands of wake-ups a second.
+  if (setpoints_.applied != t.setpoint_generation || targets_.applied != t.target_generation) {
+    setpoints_.applied = t.setpoint_generation;
+    targets_.applied = t.target_generation;
+    changed_.notify_all();
+  }
   if (subscribers_.empty()) return;
   if (queue_.size() >= options_.subscriber_queue) {
     queue_.pop_front();
