@@ -3,18 +3,14 @@
 #include "real_time_pacer.h"
 
 namespace palpa::sim {
-namespace {
 
-uint32_t StepsPerWake(double pace) {
-  const double fit = RealTimePacer::kWakeUs * pace / static_cast<double>(RealTimePacer::kStepUs);
-  const double cap = static_cast<double>(RealTimePacer::kMaxBatchUs / RealTimePacer::kStepUs);
+RealTimePacer::RealTimePacer(double speed) : speed_(speed), pace_(speed) {}
+
+uint32_t RealTimePacer::steps_per_wake() const {
+  const double fit = kWakeUs * pace_ / static_cast<double>(kStepUs);
+  const double cap = static_cast<double>(kMaxBatchUs / kStepUs);
   return fit < 1 ? 1 : static_cast<uint32_t>(fit < cap ? fit : cap);
 }
-
-}  // namespace
-
-RealTimePacer::RealTimePacer(double speed)
-    : speed_(speed), pace_(speed), steps_per_wake_(StepsPerWake(speed)) {}
 
 void RealTimePacer::Rebase(double wall_us, uint64_t virtual_us) {
   anchor_wall_us_ = wall_us;
@@ -30,7 +26,7 @@ uint64_t RealTimePacer::Target(double wall_us, uint64_t now_us) {
 }
 
 double RealTimePacer::WaitUs(double wall_us, uint64_t now_us) const {
-  const uint64_t due_us = (now_us / kStepUs + steps_per_wake_) * kStepUs;
+  const uint64_t due_us = (now_us / kStepUs + steps_per_wake()) * kStepUs;
   const double ahead =
       due_us > anchor_virtual_us_ ? static_cast<double>(due_us - anchor_virtual_us_) : 0.0;
   const double wait = anchor_wall_us_ + ahead / pace_ - wall_us;
@@ -43,7 +39,6 @@ void RealTimePacer::HoldToRealTime(bool hold, double wall_us, uint64_t now_us) {
   // Continue from where the board is: virtual time neither jumps nor is repeated.
   Rebase(wall_us, now_us);
   pace_ = pace;
-  steps_per_wake_ = StepsPerWake(pace);
 }
 
 bool HostNearSilenceTimeout(bool session_open, uint64_t now_us, uint64_t last_host_frame_us,

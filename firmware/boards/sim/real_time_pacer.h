@@ -25,7 +25,7 @@ class RealTimePacer {
   double pace() const { return pace_; }
   /// Steps the loop lets fall due before it wakes: 1 up to real time, then as many as fit in
   /// kWakeUs of real time, at most kMaxBatchUs of virtual time.
-  uint32_t steps_per_wake() const { return steps_per_wake_; }
+  uint32_t steps_per_wake() const;
 
   /// Virtual time to advance to at `wall_us` of real time (since the start) with the board at
   /// `now_us`. When that is more than kMaxLagUs ahead, the excess is given up (virtual time
@@ -47,7 +47,6 @@ class RealTimePacer {
   void Rebase(double wall_us, uint64_t virtual_us);
   double speed_;
   double pace_;
-  uint32_t steps_per_wake_ = 1;
   double anchor_wall_us_ = 0;  ///< real time at which virtual time was anchor_virtual_us_
   uint64_t anchor_virtual_us_ = 0;
 };
