@@ -13,17 +13,19 @@ namespace ls = protocol::line_status;
 
 /// DAC code for a commanded pressure; inlined into the step (a call per line per tick otherwise).
 [[gnu::always_inline]] inline uint32_t Counts(const LineParams& p, float command_pa) {
-  const float fraction = Clamp((command_pa - p.command_min_pa) / p.command_span_pa, 0.0f, 1.0f);
-  const float counts = p.counts_low + fraction * (p.counts_high - p.counts_low) + 0.5f;
-  return counts >= static_cast<float>(p.max_counts) ? p.max_counts : static_cast<uint32_t>(counts);
+  const float code = command_pa * p.counts_per_pa + p.counts_at_zero;
+  return static_cast<uint32_t>(Clamp(code, p.rounded_low, p.rounded_high));
 }
 
-/// Command that makes the regulator produce `pa`, from its measured static curve (rising or
-/// falling branch); the nominal scaling when the line has no correction.
-float FeedForward(const LineParams& p, float pa, bool rising) {
-  if (p.correction_count < 2) return pa;
-  const float* produced = rising ? p.correction_rising.data() : p.correction_falling.data();
-  return Interpolate(produced, p.correction_command.data(), p.correction_count, pa);
+/// Command that makes the regulator produce `slewed`, from its measured static curve: the rising
+/// branch while the setpoint's magnitude grows, the falling one while it shrinks (kept while
+/// steady). Only lines with a correction track the direction; it is read nowhere else.
+float FeedForward(const LineParams& p, LineState& s, float previous, float slewed) {
+  const float grown = Abs(slewed) - Abs(previous);
+  if (grown > 0) s.rising = true;
+  if (grown < 0) s.rising = false;
+  const float* produced = s.rising ? p.correction_rising.data() : p.correction_falling.data();
+  return Interpolate(produced, p.correction_command.data(), p.correction_count, slewed);
 }
 
 }  // namespace
@@ -50,14 +52,17 @@ LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us)
   p.max_step_pa = line.slew_pa_per_s > 0 ? static_cast<float>(line.slew_pa_per_s) * dt : kUnbounded;
   p.regulator_min_pa = static_cast<float>(line.regulator_min_pa);
   p.pump_below_pa = line.kind == protocol::LineKind::kVacuum ? -p.regulator_min_pa : -kUnbounded;
-  p.command_min_pa = static_cast<float>(line.command_min_pa);
-  p.command_span_pa = static_cast<float>(line.command_max_pa - line.command_min_pa);
-  p.max_counts = (1u << line.dac_bits) - 1u;
-  // A 4-20 mA output is a 0-20 mA DAC: 0 % of the signal is 4 mA, a fifth of full scale.
-  p.counts_low = line.dac_signal == protocol::SignalRange::kMilliamp4To20
-                     ? 0.2f * static_cast<float>(p.max_counts)
-                     : 0.0f;
-  p.counts_high = static_cast<float>(p.max_counts);
+  // 0 % to 100 % of the signal spans the command range; a 4-20 mA output is a 0-20 mA DAC, so
+  // 0 % of the signal is 4 mA, a fifth of full scale.
+  const float max_counts = static_cast<float>((1u << line.dac_bits) - 1u);
+  const float counts_low =
+      line.dac_signal == protocol::SignalRange::kMilliamp4To20 ? 0.2f * max_counts : 0.0f;
+  const float command_min = static_cast<float>(line.command_min_pa);
+  const float command_span = static_cast<float>(line.command_max_pa - line.command_min_pa);
+  p.counts_per_pa = command_span != 0 ? (max_counts - counts_low) / command_span : 0.0f;
+  p.counts_at_zero = counts_low - command_min * p.counts_per_pa + 0.5f;
+  p.rounded_low = counts_low + 0.5f;
+  p.rounded_high = max_counts;  // truncates to the top code like anything up to it + ½
   p.kp = line.trim_kp;
   p.ki_dt = line.trim_ki_per_s * dt;
   p.authority_pa = static_cast<float>(line.trim_authority_pa);
@@ -66,6 +71,7 @@ LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us)
   p.model_alpha = tau > 0 ? dt / (tau + dt) : 1.0f;
   const uint32_t dead = tick_us > 0 ? (line.model_dead_time_us + tick_us / 2) / tick_us : 0;
   p.dead_ticks = static_cast<uint8_t>(dead < kMaxDeadTicks ? dead : kMaxDeadTicks - 1);
+  p.delay_length = static_cast<uint8_t>(p.dead_ticks + 1);
   p.correction_count = line.correction_count;
   for (uint8_t i = 0; i < line.correction_count; ++i) {
     p.correction_command[i] = static_cast<float>(line.correction[i].command_pa);
@@ -81,10 +87,10 @@ void ResetLineState(const LineParams& p, LineState& s, float pa) {
   s.slewed_pa = pa;
   s.integrator_pa = 0;
   s.reference_pa = pa;
-  for (float& d : s.delay) d = pa;
+  // Only the line's own delay slots are read; the safe path runs this every tick.
+  for (uint8_t i = 0; i < p.delay_length; ++i) s.delay[i] = pa;
   s.delay_index = 0;
   s.rising = true;
-  (void)p;
 }
 
 uint32_t CountsFor(const LineParams& p, float command_pa) { return Counts(p, command_pa); }
@@ -97,61 +103,70 @@ void StepLine(const LineParams& p, LineState& s, const LineInput& in, LineOutput
     out.status = ls::kSafe | ls::kOpenLoop;
     return;
   }
-  out.status = 0;
+  uint8_t status = 0;
   // 1. Slew limit.
   const float target = Clamp(in.setpoint_pa, p.limit_min_pa, p.limit_max_pa);
-  float step = target - s.slewed_pa;
+  const float previous = s.slewed_pa;
+  float step = target - previous;
   if (Abs(step) > p.max_step_pa) {
     step = step > 0 ? p.max_step_pa : -p.max_step_pa;
-    out.status |= ls::kSlewing;
+    status = ls::kSlewing;
   }
-  const float previous = s.slewed_pa;
-  s.slewed_pa += step;
-  const float grown = Abs(s.slewed_pa) - Abs(previous);  // kept while steady
-  if (grown > 0) s.rising = true;
-  if (grown < 0) s.rising = false;
+  const float slewed = previous + step;
+  s.slewed_pa = slewed;
 
-  // 2. Regulator model (dead time + lag): the reference the trim compares the sensor with.
-  const float delayed = s.delay[s.delay_index];
-  s.delay[s.delay_index] = s.slewed_pa;
-  s.delay_index = static_cast<uint8_t>(s.delay_index + 1 >= p.dead_ticks ? 0 : s.delay_index + 1);
-  s.reference_pa += p.model_alpha * ((p.dead_ticks == 0 ? s.slewed_pa : delayed) - s.reference_pa);
+  // 2. Regulator model (dead time + lag): the reference the trim compares the sensor with. The
+  // slot after this tick's holds the setpoint of dead_ticks ticks ago (this tick's when none).
+  uint8_t next = static_cast<uint8_t>(s.delay_index + 1);
+  if (next >= p.delay_length) next = 0;
+  s.delay[s.delay_index] = slewed;
+  s.delay_index = next;
+  s.reference_pa += p.model_alpha * (s.delay[next] - s.reference_pa);
 
   // 3. Below the regulator's minimum set pressure: command 0, integrator off.
-  if (Abs(s.slewed_pa) < p.regulator_min_pa) {
+  if (Abs(slewed) < p.regulator_min_pa) {
     s.integrator_pa = 0;
     out.command_pa = 0;
     out.counts = p.zero_counts;
-    out.status |= ls::kOpenLoop;
+    out.status = status | ls::kOpenLoop;
     return;
   }
 
-  // 4. Feed-forward through the static correction, plus the PI trim where a sensor exists.
-  const float feed_forward = FeedForward(p, s.slewed_pa, s.rising);
-  float trim = 0;
+  // 4. Feed-forward through the static correction (the nominal scaling without one), plus the PI
+  // trim where a sensor reads.
+  float command = p.correction_count >= 2 ? FeedForward(p, s, previous, slewed) : slewed;
+  float integrator = s.integrator_pa;
   if (p.has_sensor && in.measured_valid) {
     const float error = s.reference_pa - in.measured_pa;
     const float effective = Abs(error) <= p.dead_band_pa ? 0.0f : error;
-    s.integrator_pa += p.ki_dt * effective;
-    const float unclamped = p.kp * effective + s.integrator_pa;
-    trim = Clamp(unclamped, -p.authority_pa, p.authority_pa);
-    if (trim != unclamped) {
-      s.integrator_pa += trim - unclamped;  // back-calculation at the authority clamp
-      out.status |= ls::kTrimClamped;
+    integrator += p.ki_dt * effective;
+    float trim = p.kp * effective + integrator;
+    // Back-calculation at the authority clamp: the integrator gives up what the clamp cut.
+    if (trim > p.authority_pa) {
+      integrator += p.authority_pa - trim;
+      trim = p.authority_pa;
+      status |= ls::kTrimClamped;
+    } else if (trim < -p.authority_pa) {
+      integrator += -p.authority_pa - trim;
+      trim = -p.authority_pa;
+      status |= ls::kTrimClamped;
     }
+    command += trim;
   } else {
-    out.status |= ls::kOpenLoop;
+    status |= ls::kOpenLoop;
   }
 
   // 5. Final clamp to the line's limits, with back-calculation into the integrator.
-  const float unclamped_command = feed_forward + trim;
-  out.command_pa = Clamp(unclamped_command, p.limit_min_pa, p.limit_max_pa);
-  if (out.command_pa != unclamped_command) {
-    s.integrator_pa = Clamp(s.integrator_pa + (out.command_pa - unclamped_command), -p.authority_pa,
-                            p.authority_pa);
-    out.status |= ls::kSaturated;
+  if (command < p.limit_min_pa || command > p.limit_max_pa) {
+    const float limit = command < p.limit_min_pa ? p.limit_min_pa : p.limit_max_pa;
+    integrator = Clamp(integrator + (limit - command), -p.authority_pa, p.authority_pa);
+    command = limit;
+    status |= ls::kSaturated;
   }
-  out.counts = Counts(p, out.command_pa);
+  s.integrator_pa = integrator;
+  out.command_pa = command;
+  out.counts = Counts(p, command);
+  out.status = status;
 }
 
 }  // namespace palpa::core

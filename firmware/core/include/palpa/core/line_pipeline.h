@@ -23,14 +23,17 @@ struct LineParams {
   float max_step_pa = 0;  ///< slew per tick; the largest float when none
   float regulator_min_pa = 0;
   float pump_below_pa = 0;  ///< commands below this need the vacuum pump (lowest float: never)
-  float command_min_pa = 0, command_span_pa = 1;  ///< pressure at 0 % and span to 100 %
-  float counts_low = 0, counts_high = 0;          ///< DAC codes at 0 % and 100 % of the signal
-  uint32_t max_counts = 0;
+  /// DAC scaling as one multiply-add: code + ½ = command × counts_per_pa + counts_at_zero, held
+  /// to [rounded_low, rounded_high] (the codes of 0 % and 100 % of the signal, ½ added) and
+  /// truncated. A command beyond the regulator's range stops at the DAC's ends.
+  float counts_per_pa = 0, counts_at_zero = 0;
+  float rounded_low = 0, rounded_high = 0;
   uint32_t safe_counts = 0, zero_counts = 0;  ///< DAC codes for safe_pa and for 0 Pa
   float kp = 0, ki_dt = 0;                    ///< ki already multiplied by the tick period
   float authority_pa = 0, dead_band_pa = 0;
   float model_alpha = 1;  ///< regulator-model lag per tick
   uint8_t dead_ticks = 0;
+  uint8_t delay_length = 1;  ///< dead_ticks + 1: the delay line holds this tick's setpoint too
   uint8_t correction_count = 0;
   std::array<float, protocol::kMaxCorrectionPoints> correction_command{};
   std::array<float, protocol::kMaxCorrectionPoints> correction_rising{};
@@ -43,9 +46,10 @@ struct LineState {
   float slewed_pa = 0;  ///< setpoint after the slew limiter
   float integrator_pa = 0;
   float reference_pa = 0;  ///< regulator-model output: where the pressure should be now
-  std::array<float, kMaxDeadTicks> delay{};  ///< slewed setpoints, oldest at delay_index
+  /// Slewed setpoints of the last dead_ticks + 1 ticks; the next one goes to delay_index.
+  std::array<float, kMaxDeadTicks> delay{};
   uint8_t delay_index = 0;
-  bool rising = true;  ///< direction for the correction branch, kept while steady
+  bool rising = true;  ///< direction for the correction branch, kept while steady (lines with one)
 };
 
 /// Resets the state to hold `pa` steadily (after configuration, or leaving the safe state).
