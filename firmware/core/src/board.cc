@@ -96,7 +96,7 @@ void Board::ApplyLive(uint64_t now_us) {
     if (i < live_.line_count) {
       const LineParams& p = line_params_[i] = MakeLineParams(live_.lines[i], kTickUs);
       ResetLineState(p, line_state_[i], p.safe_pa);
-      raw_setpoint_pa_[i] = p.safe_pa;
+      setpoint_pa_[i] = p.safe_pa;
       // What the supervisor sees of a line that the configuration fixes, once per configuration;
       // the rest follows each tick's step (open loop until the line has stepped).
       LineObservation& o = supervisor_input_.lines[i];
@@ -129,6 +129,17 @@ void Board::ApplyLive(uint64_t now_us) {
 void Board::Hold() {
   released_ = false;
   for (FingerState& f : finger_state_) RequireHoming(f);
+  RefreshLineFlags();
+}
+
+void Board::RefreshLineFlags() {
+  line_flags_ = {};
+  for (uint8_t f = 0; f < live_.finger_count; ++f) {
+    if (finger_state_[f].mode != protocol::FingerMode::kRaw) continue;
+    const FingerParams& p = finger_params_[f];
+    line_flags_[p.line_a] = protocol::line_status::kRaw;
+    if (p.line_b != kNoLine) line_flags_[p.line_b] = protocol::line_status::kRaw;
+  }
 }
 
 void Board::Tick(uint64_t now_us) {
@@ -149,18 +160,15 @@ void Board::Tick(uint64_t now_us) {
   safe_ = supervisor_.latched != 0 || !released_ || updating;
   if (safe_ && !was_safe) Hold();
 
-  // ComputeSetpoints writes every configured line's setpoint and the status its finger adds.
-  float setpoints[kMaxLines];
-  uint8_t finger_status[kMaxLines];
-  ComputeSetpoints(now_us, setpoints, finger_status);
+  ComputeSetpoints(now_us);
   // Walked by pointer: at -Os the compiler re-derives every array's address from the index.
   LineObservation* o = in.lines.data();
   const LineParams* p = line_params_.data();
   LineState* state = line_state_.data();
   LineOutput* out = line_out_.data();
   for (uint8_t i = 0; i < live_.line_count; ++i, ++o, ++p, ++state, ++out) {
-    StepLine(*p, *state, {setpoints[i], safe_, o->sensor_valid, o->measured_pa}, *out);
-    out->status |= finger_status[i];
+    StepLine(*p, *state, {setpoint_pa_[i], safe_, o->sensor_valid, o->measured_pa}, *out);
+    out->status |= line_flags_[i];
     if (p->has_sensor && !o->sensor_valid) out->status |= protocol::line_status::kSensorFault;
     // The supervisor compares the next reading with where this tick left the line.
     o->reference_pa = state->reference_pa;
@@ -199,29 +207,18 @@ void Board::ReadInputs(uint64_t now_us, SupervisorInput& in) {
   }
 }
 
-void Board::ComputeSetpoints(uint64_t now_us, float* setpoints, uint8_t* finger_status) {
-  for (uint8_t i = 0; i < live_.line_count; ++i) {
-    setpoints[i] = raw_setpoint_pa_[i];
-    finger_status[i] = 0;
-  }
+void Board::ComputeSetpoints(uint64_t now_us) {
+  if (safe_) return;  // the lines hold their safe values; fingers re-home when it ends
   const uint32_t dwell_us = static_cast<uint32_t>(live_.board.home_dwell_ms) * 1000;
   const FingerParams* p = finger_params_.data();
   FingerState* s = finger_state_.data();
   for (uint8_t f = 0; f < live_.finger_count; ++f, ++p, ++s) {
-    if (s->mode != protocol::FingerMode::kTarget) {  // raw: the host drives the lines directly
-      finger_status[p->line_a] = protocol::line_status::kRaw;
-      if (p->line_b != kNoLine) finger_status[p->line_b] = protocol::line_status::kRaw;
-      continue;
-    }
-    if (safe_) continue;
+    if (s->mode != protocol::FingerMode::kTarget) continue;  // raw: the host drives the lines
     // The compensator's memory follows what the driven line applied: the reading, or where the
     // regulator model has the pressure when there is no reading.
     const LineObservation& seen = supervisor_input_.lines[p->driven_line];
     const float applied = seen.sensor_valid ? seen.measured_pa : seen.reference_pa;
-    const FingerOutput out = StepFinger(*p, *s, now_us, dwell_us, applied);
-    setpoints[p->line_a] = out.setpoint_a;
-    if (p->line_b != kNoLine) setpoints[p->line_b] = out.setpoint_b;
-    if (out.saturated) finger_status[p->driven_line] = protocol::line_status::kSaturated;
+    StepFinger(*p, *s, now_us, dwell_us, applied, setpoint_pa_.data(), line_flags_.data());
   }
 }
 

@@ -136,7 +136,7 @@ Outcome BoardDispatch::Apply(const protocol::SetLineSetpoints& m, const protocol
   }
   b_.session_.setpoints().Accept(m.generation);
   for (uint8_t i = 0; i < m.entry_count; ++i) {
-    b_.raw_setpoint_pa_[m.entries[i].line] = static_cast<float>(m.entries[i].setpoint_pa);
+    b_.setpoint_pa_[m.entries[i].line] = static_cast<float>(m.entries[i].setpoint_pa);
   }
   b_.released_ = true;
   return {};
@@ -171,12 +171,13 @@ Outcome BoardDispatch::Apply(const protocol::SetFingerMode& m, const protocol::H
   const FingerParams& p = b_.finger_params_[m.finger];
   if (m.mode == protocol::FingerMode::kRaw) {
     // Raw setpoints start where the finger's lines are now, until the host sends its own.
-    b_.raw_setpoint_pa_[p.line_a] = b_.line_state_[p.line_a].slewed_pa;
+    b_.setpoint_pa_[p.line_a] = b_.line_state_[p.line_a].slewed_pa;
     if (p.line_b != protocol::kNoLine)
-      b_.raw_setpoint_pa_[p.line_b] = b_.line_state_[p.line_b].slewed_pa;
+      b_.setpoint_pa_[p.line_b] = b_.line_state_[p.line_b].slewed_pa;
   } else {
     RequireHoming(s);  // back to target mode: the compensator's memory is stale
   }
+  b_.RefreshLineFlags();
   return {};
 }
 

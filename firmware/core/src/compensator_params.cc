@@ -198,6 +198,7 @@ Compensator MakePlay(const protocol::ConfigureFinger& f, Compensator c) {
   const float* w = r + l.n;
   PlayTable& t = c.play;
   t.operators = l.n;
+  t.pairs = static_cast<uint8_t>((l.n + 1) / 2);
   t.dead_zones = l.m;
   t.offset = p[0];
   t.w0 = p[1];

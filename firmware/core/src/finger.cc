@@ -1,6 +1,7 @@
 // Fingers in target mode: homing, then the compensator maps targets to line setpoints.
 #include "palpa/core/finger.h"
 
+#include "compensator_step.h"
 #include "palpa/core/curve.h"
 
 namespace palpa::core {
@@ -11,7 +12,10 @@ FingerParams MakeFingerParams(const protocol::ConfigureFinger& finger, float dri
   p.compensator = finger.compensator;
   p.line_a = finger.line_a;
   p.line_b = finger.line_b;
+  const bool jamming = finger.kind == protocol::FingerKind::kJamming;
   p.driven_line = finger.line_b != protocol::kNoLine ? finger.line_b : finger.line_a;
+  p.bias_line = jamming ? finger.line_a : protocol::kNoLine;
+  p.drive_sign = jamming ? -1.0f : 1.0f;
   p.bias_pa = static_cast<float>(finger.bias_pa);
   p.inverse_count = finger.inverse_count;
   for (uint8_t i = 0; i < finger.inverse_count; ++i) {
@@ -33,45 +37,50 @@ float StaticInverse(const FingerParams& p, float target) {
   return Interpolate(p.inverse_output.data(), p.inverse_setpoint.data(), p.inverse_count, target);
 }
 
-FingerOutput StepFinger(const FingerParams& p, FingerState& s, uint64_t now_us,
-                        uint32_t home_dwell_us, float applied_pa) {
-  FingerOutput out;
-  const bool jamming = p.kind == protocol::FingerKind::kJamming;
+namespace {
+
+/// Before following targets: pneumatic fingers vented, jamming fingers with the vacuum released
+/// and the bias on, so the air cushion re-flattens the granules and the compensator starts from
+/// a known state. Out of line: the tick's common path is a homed finger.
+[[gnu::noinline]] void StepHoming(const FingerParams& p, FingerState& s, uint64_t now_us,
+                                  uint32_t home_dwell_us, float* setpoints, uint8_t* line_status) {
   if (s.phase == HomePhase::kNeedsHoming) {
     s.phase = HomePhase::kHoming;
     s.homed_at_us = now_us + home_dwell_us;
   }
-  // The drive domain is ≥ 0: chamber pressure, or vacuum magnitude on a jamming finger.
-  const float applied_drive = jamming ? -applied_pa : applied_pa;
-  if (s.phase == HomePhase::kHoming) {
-    // Pneumatic: vented. Jamming: vacuum released with the bias on, so the air cushion
-    // re-flattens the granules before the compensator starts from a known state.
-    out.setpoint_a = jamming ? p.bias_pa : 0.0f;
-    out.setpoint_b = 0;
-    out.homing = true;
-    if (now_us >= s.homed_at_us) {
-      s.phase = HomePhase::kHomed;
-      HomeCompensator(p.compensation, s.memory);
-    }
-    return out;
+  setpoints[p.driven_line] = 0;
+  line_status[p.driven_line] = 0;
+  if (p.bias_line != protocol::kNoLine) setpoints[p.bias_line] = p.bias_pa;
+  if (now_us >= s.homed_at_us) {
+    s.phase = HomePhase::kHomed;
+    HomeCompensator(p.compensation, s.memory);
   }
+}
+
+}  // namespace
+
+void StepFinger(const FingerParams& p, FingerState& s, uint64_t now_us, uint32_t home_dwell_us,
+                float applied_pa, float* setpoints, uint8_t* line_status) {
+  if (s.phase != HomePhase::kHomed)
+    return StepHoming(p, s, now_us, home_dwell_us, setpoints, line_status);
   float setpoint = 0;
+  uint8_t status = 0;
   if (p.compensator == protocol::CompensatorKind::kNone) {
-    setpoint = StaticInverse(p, s.target);
+    setpoint = StaticInverse(p, s.target);  // the curve holds line pressures, signs included
   } else {
     // Memory follows the applied drive every tick, also while the target is 0 (venting).
-    const CompensatorOutput c = StepCompensator(p.compensation, s.memory, s.target, applied_drive);
-    const float drive = s.target > 0 ? c.drive : 0.0f;  // "off" is 0 Pa whatever the model says
-    out.saturated = s.target > 0 && c.saturated;
-    setpoint = jamming ? -drive : drive;
+    const CompensatorOutput c =
+        StepCompensatorInline(p.compensation, s.memory, s.target, p.drive_sign * applied_pa);
+    float drive = 0;
+    if (s.target > 0) {  // "off" is 0 Pa whatever the model says
+      drive = c.drive;
+      if (c.saturated) status = protocol::line_status::kSaturated;
+    }
+    setpoint = p.drive_sign * drive;
   }
-  if (jamming) {
-    out.setpoint_a = p.bias_pa;
-    out.setpoint_b = setpoint;
-  } else {
-    out.setpoint_a = setpoint;
-  }
-  return out;
+  setpoints[p.driven_line] = setpoint;
+  line_status[p.driven_line] = status;
+  if (p.bias_line != protocol::kNoLine) setpoints[p.bias_line] = p.bias_pa;
 }
 
 }  // namespace palpa::core

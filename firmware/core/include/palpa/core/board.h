@@ -92,7 +92,10 @@ class Board {
   // Out of line so instruction counts can bracket a tick (tests/bench/qemu_insn_count.c).
   [[gnu::noinline]] void Tick(uint64_t now_us);
   void ReadInputs(uint64_t now_us, SupervisorInput& in);
-  void ComputeSetpoints(uint64_t now_us, float* setpoints, uint8_t* finger_status);
+  /// Fingers in target mode write their lines' setpoints and status bits (nothing while safe).
+  void ComputeSetpoints(uint64_t now_us);
+  /// line_flags_ from the fingers' modes (kRaw on a raw finger's lines; kSaturated cleared).
+  void RefreshLineFlags();
   void WriteOutputs();
   /// Writes their old line's safe code to the channels a configuration dropped that have not
   /// taken it yet; returns the first whose write failed, or kNoLine.
@@ -134,7 +137,12 @@ class Board {
   std::array<LineParams, protocol::kMaxLines> line_params_{};
   std::array<LineState, protocol::kMaxLines> line_state_{};
   std::array<LineOutput, protocol::kMaxLines> line_out_{};
-  std::array<float, protocol::kMaxLines> raw_setpoint_pa_{};
+  /// What each line steps towards: the host's raw setpoint, or what its finger in target mode
+  /// wrote this tick (the host cannot send raw setpoints for such a line).
+  std::array<float, protocol::kMaxLines> setpoint_pa_{};
+  /// Status bits a line's finger adds to it: kRaw while the finger is in raw mode, kSaturated
+  /// while its compensator is clamped (written by each step; cleared when the board goes safe).
+  std::array<uint8_t, protocol::kMaxLines> line_flags_{};
   std::array<FingerParams, protocol::kMaxFingers> finger_params_{};
   std::array<FingerState, protocol::kMaxFingers> finger_state_{};
   std::array<uint8_t, protocol::kMaxLines> line_owner_{};

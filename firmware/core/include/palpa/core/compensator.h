@@ -36,6 +36,7 @@ struct PlayPair {           // in this order: the ARMv7E-M loop loads the last t
 /// superposition of one-sided dead zones for `api` (loops that are not point-symmetric).
 struct PlayTable {
   uint8_t operators = 0;
+  uint8_t pairs = 0;  ///< (operators + 1) / 2 words of PlayPair and of memory
   uint8_t dead_zones = 0;
   float offset = 0;
   float w0 = 0;

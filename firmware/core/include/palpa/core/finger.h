@@ -17,6 +17,10 @@ struct FingerParams {
   uint8_t line_a = 0;
   uint8_t line_b = protocol::kNoLine;
   uint8_t driven_line = 0;  ///< the line the target drives: line_b on a jamming finger, else line_a
+  uint8_t bias_line = protocol::kNoLine;  ///< line_a on a jamming finger (held at bias_pa)
+  /// +1 where the drive is a pressure, −1 where it is a vacuum magnitude (jamming): the drive
+  /// domain of the compensators is ≥ 0, drive = sign × line pressure.
+  float drive_sign = 1;
   float bias_pa = 0;
   uint8_t inverse_count = 0;
   std::array<float, protocol::kMaxInversePoints> inverse_output{};
@@ -40,22 +44,18 @@ struct FingerState {
   CompensatorState memory;
 };
 
-struct FingerOutput {
-  float setpoint_a = 0;  ///< pressure (pneumatic) or bias (jamming) line
-  float setpoint_b = 0;  ///< vacuum line (jamming)
-  bool homing = false;
-  bool saturated = false;  ///< the compensator's drive was clamped to the line's range
-};
-
 /// The finger must re-home before following targets again (leaving the safe state, switching
 /// back to target mode, new configuration).
 inline void RequireHoming(FingerState& s) { s.phase = HomePhase::kNeedsHoming; }
 
-/// One tick in target mode. `applied_pa` is the pressure actually applied on the driven line
-/// (measured, or the regulator model where there is no sensor; negative on a vacuum line):
-/// compensators with memory update from it, not from what they asked for.
-FingerOutput StepFinger(const FingerParams& p, FingerState& s, uint64_t now_us,
-                        uint32_t home_dwell_us, float applied_pa);
+/// One tick in target mode: writes the setpoint of each of the finger's lines into
+/// `setpoints` and the status bit it adds to its driven line (line_status::kSaturated when the
+/// compensator's drive was clamped to the line's range, else 0) into `line_status`, both
+/// indexed by line. `applied_pa` is the pressure actually applied on the driven line (measured,
+/// or the regulator model where there is no sensor; negative on a vacuum line): compensators
+/// with memory update from it, not from what they asked for.
+void StepFinger(const FingerParams& p, FingerState& s, uint64_t now_us, uint32_t home_dwell_us,
+                float applied_pa, float* setpoints, uint8_t* line_status);
 
 /// The static inverse: output unit → line setpoint; target 0 → 0 Pa.
 float StaticInverse(const FingerParams& p, float target);

@@ -1,0 +1,83 @@
+// The compensator step, inlined into the finger step (a call and a struct return per finger per
+// tick otherwise): the play-operator path (pi, api) in full, the branch path by call.
+#pragma once
+
+#include "palpa/core/compensator.h"
+#include "play_lanes.h"
+#include "play_pairs.h"
+
+namespace palpa::core {
+namespace compensator_step {
+
+/// S⁻¹ of the `api` output map (identity when there are no dead zones).
+inline float OutputMapInverse(const PlayTable& t, float s) {
+  uint8_t k = t.dead_zones;
+  while (k > 0 && s < t.knot_out[k]) --k;
+  return t.knot_in[k] + (s - t.knot_out[k]) * t.inverse_slope[k];
+}
+
+// Where the inverse-domain sum starts is clamped to ±2³⁰ sum steps: the scales keep the
+// operators' shares and every inverse threshold within 2²⁹ (compensator_params.cc), so a
+// clamped start still puts each inverse state beyond its threshold (as the true one is) and no
+// sum leaves int32.
+constexpr float kStartLimit = 1073741824.0f;     // 2³⁰
+constexpr float kHalfUpperStep = 32768.0f;       // rounds the states' upper halves to nearest
+constexpr float kMaxAppliedSteps = 16777216.0f;  // 2²⁴: exact in float, far beyond any sensor
+
+/// Analytic PI inverse evaluated from the forward memory, two operators per word, top pair
+/// first. Each forward operator first follows the applied drive (its memory is kept relative
+/// to the last applied drive, so that is one saturating add and a clamp); then its
+/// inverse-domain state z'_i − v = (W_n a − v) + W_i c_i + Σ_{j>i} w_j c_j follows the target
+/// (a clamp to ±r'_i) and adds w'_i times itself to the drive. No inverse memory is kept that
+/// could drift away from what the chamber actually saw.
+inline float PlayStep(const PlayTable& t, CompensatorState& s, float v, float applied) {
+  const float a = applied * t.per_drive_step + 0.5f;
+  const int32_t applied_steps = static_cast<int32_t>(a < kMaxAppliedSteps ? a : kMaxAppliedSteps);
+  // Beyond ±32767 steps every operator ends on its clamp anyway (|r| ≤ 16383 steps).
+  const int32_t moved = lanes::Saturate(s.applied_steps - applied_steps);
+  s.applied_steps = applied_steps;
+  const uint32_t shift = lanes::Pack(moved, moved);
+  float start = t.applied_gain * static_cast<float>(applied_steps) - v * t.per_sum_step;
+  start = start < -kStartLimit ? -kStartLimit : (start > kStartLimit ? kStartLimit : start);
+  const int32_t later = static_cast<int32_t>(start + kHalfUpperStep);
+  const int32_t drive = PlayPairs(t.pair, s.play, t.pairs, shift, later);
+  return static_cast<float>(drive) * t.drive_gain + t.inverse_gain * v;
+}
+
+}  // namespace compensator_step
+
+/// `branch`: follows the applied drive, then the drive for `target`; `outside` when the target
+/// is beyond the curves' ends (compensator.cc).
+float StepBranch(const BranchTable& t, CompensatorState& s, float target, float applied,
+                 bool& outside);
+
+/// StepCompensator's body (compensator.h has the contract).
+[[gnu::always_inline]] inline CompensatorOutput StepCompensatorInline(const Compensator& c,
+                                                                      CompensatorState& s,
+                                                                      float target,
+                                                                      float applied_drive) {
+  const float applied = applied_drive > 0 ? applied_drive : 0.0f;
+  float drive = 0;
+  bool outside = false;  // beyond what the model was identified over
+  if (c.kind == protocol::CompensatorKind::kBranch) {
+    drive = StepBranch(c.branch, s, target, applied, outside);
+  } else {
+    const float v = compensator_step::OutputMapInverse(c.play, target - c.play.offset);
+    drive = compensator_step::PlayStep(c.play, s, v, applied);
+  }
+  CompensatorOutput out;
+  out.saturated = outside;
+  // A model asked for what the line cannot give (or for less than nothing): held at the limit,
+  // and said so. NaN cannot pass configuration, but the guard costs one compare.
+  if (!(drive >= 0)) {
+    out.saturated = out.saturated || drive < -1.0f || drive != drive;
+    drive = 0;
+  } else if (drive > c.drive_limit) {
+    out.saturated = true;
+    drive = c.drive_limit;
+  }
+  out.drive = drive;
+  return out;
+}
+
+}  // namespace palpa::core
