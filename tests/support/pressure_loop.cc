@@ -78,7 +78,7 @@ double SettledRipple(const LoopCase& c, int seconds) {
   const int ticks = seconds * 1000;
   for (int k = 0; k < ticks; ++k) {
     core::LineOutput out;
-    core::StepLine(p, s, core::LineInput{50000, false, true, static_cast<float>(chamber)}, out);
+    core::StepLine(p, s, 50000, core::LineReading{true, 0, static_cast<float>(chamber)}, out);
     const double command = 1.01 * out.command_pa + 300;  // the regulator's own static error
     if (command > held + band / 2) held = command - band / 2;
     if (command < held - band / 2) held = command + band / 2;

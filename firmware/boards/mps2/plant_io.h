@@ -46,6 +46,10 @@ class PlantIo final : public hal::AnalogOutput, public hal::AnalogInput {
     SetRegulatorCommand(channel, counts);
     return protocol::Status::kOk;
   }
+  uint8_t DoWriteAll(const uint32_t* codes, uint8_t count) override {
+    for (uint8_t i = 0; i < count && i < count_; ++i) SetRegulatorCommand(i, codes[i]);
+    return count <= count_ ? kAllWritten : count_;
+  }
   hal::AnalogOutputSpec DoSpec(uint8_t) const override { return {}; }
   protocol::Result<uint32_t> DoRead(uint8_t channel) override {
     if (channel >= count_) return protocol::Status::kNotFound;

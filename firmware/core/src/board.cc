@@ -91,21 +91,24 @@ void Board::ApplyLive(uint64_t now_us) {
   unparked_channels_ &= ~((1u << live_.line_count) - 1u);  // configured again: the tick writes it
   driven_lines_ = live_.line_count;
   ParkDroppedChannels();
+  const float tolerance = static_cast<float>(live_.board.sensor_tolerance_pa);
   for (uint8_t i = 0; i < kMaxLines; ++i) {
     line_owner_[i] = FingerOfLine(live_, i);
     if (i < live_.line_count) {
       const LineParams& p = line_params_[i] = MakeLineParams(live_.lines[i], kTickUs);
       ResetLineState(p, line_state_[i], p.safe_pa);
       setpoint_pa_[i] = p.safe_pa;
-      // What the supervisor sees of a line that the configuration fixes, once per configuration;
-      // the rest follows each tick's step (open loop until the line has stepped).
+      dac_codes_[i] = p.safe_counts;
+      line_out_[i] =
+          LineOutput{p.safe_pa, protocol::line_status::kSafe | protocol::line_status::kOpenLoop};
+      // What the supervisor sees of a line that the configuration fixes, once per configuration.
       LineObservation& o = supervisor_input_.lines[i];
       o.configured = true;
       o.has_sensor = p.has_sensor && io_.adc != nullptr;
-      o.limit_min_pa = p.limit_min_pa;
-      o.limit_max_pa = p.limit_max_pa;
-      o.reference_pa = line_state_[i].reference_pa;
-      o.setpoint_pa = line_state_[i].slewed_pa;
+      // A sensor with no ADC to read it never gives a pressure: open loop, reported as such.
+      o.reading.status = p.has_sensor && !o.has_sensor ? protocol::line_status::kSensorFault : 0;
+      o.alarm_below_pa = p.limit_min_pa - tolerance;
+      o.alarm_above_pa = p.limit_max_pa + tolerance;
     }
   }
   for (uint8_t f = 0; f < live_.finger_count; ++f) {
@@ -152,6 +155,7 @@ void Board::Tick(uint64_t now_us) {
     LatchFault(supervisor_, Fault::kEStopCommand, now_us, 0);
     estop_requested_ = false;
   }
+  ObserveSlowSlot();
   const uint32_t newly = Supervise(settings_, supervisor_, in);
   const bool was_safe = safe_;
   // Update mode keeps every line safe from Enter until the reboot or the next session (DESIGN §9).
@@ -161,21 +165,7 @@ void Board::Tick(uint64_t now_us) {
   if (safe_ && !was_safe) Hold();
 
   ComputeSetpoints(now_us);
-  // Walked by pointer: at -Os the compiler re-derives every array's address from the index.
-  LineObservation* o = in.lines.data();
-  const LineParams* p = line_params_.data();
-  LineState* state = line_state_.data();
-  LineOutput* out = line_out_.data();
-  for (uint8_t i = 0; i < live_.line_count; ++i, ++o, ++p, ++state, ++out) {
-    StepLine(*p, *state, {setpoint_pa_[i], safe_, o->sensor_valid, o->measured_pa}, *out);
-    out->status |= line_flags_[i];
-    if (p->has_sensor && !o->sensor_valid) out->status |= protocol::line_status::kSensorFault;
-    // The supervisor compares the next reading with where this tick left the line.
-    o->reference_pa = state->reference_pa;
-    o->setpoint_pa = state->slewed_pa;
-    o->closed_loop = (out->status & protocol::line_status::kOpenLoop) == 0;
-    o->vacuum_demand = out->command_pa < p->pump_below_pa;
-  }
+  StepLines();
   WriteOutputs();
   SampleTelemetry(now_us, newly != 0);
   pacer_.EndTick(io_.clock.NowMicros());
@@ -189,22 +179,32 @@ void Board::ReadInputs(uint64_t now_us, SupervisorInput& in) {
   in.safe = safe_;
   if (io_.adc == nullptr) return;
   uint32_t scan[kMaxLines];  // one scan of every configured line's channel
-  io_.adc->ReadAll(scan, live_.line_count);
+  const uint8_t count = live_.line_count;
+  io_.adc->ReadAll(scan, count);
   LineObservation* o = in.lines.data();
   const LineParams* p = line_params_.data();
-  for (uint8_t i = 0; i < live_.line_count; ++i, ++o, ++p) {
+  for (const uint32_t *counts = scan, *end = scan + count; counts != end; ++counts, ++o, ++p) {
     if (!o->has_sensor) continue;
-    const uint32_t counts = scan[i];
-    const bool converted = counts != hal::AnalogInput::kConversionFailed;
-    // Readings outside the sensor's output span (open or shorted wire) are not pressures.
-    o->sensor_valid =
-        converted && counts >= p->sensor_counts_low && counts <= p->sensor_counts_high;
-    if (o->sensor_valid) {
-      o->measured_pa = p->sensor_min_pa +
-                       (static_cast<float>(counts) - p->sensor_counts_min) * p->sensor_pa_per_count;
+    // Readings outside the sensor's output span (open or shorted wire) are not pressures; nor is
+    // a failed conversion (kConversionFailed lies above every span).
+    const bool valid = *counts >= p->sensor_counts_low && *counts <= p->sensor_counts_high;
+    o->reading.valid = valid;
+    o->reading.status = valid ? 0 : protocol::line_status::kSensorFault;
+    if (valid) {
+      o->reading.pa = p->sensor_min_pa +
+                      (static_cast<float>(*counts) - p->sensor_counts_min) * p->sensor_pa_per_count;
     }
-    o->raw_counts = converted ? counts : 0;
+    o->raw_counts = *counts;
   }
+}
+
+void Board::ObserveSlowSlot() {
+  const uint8_t slot = SlowSlot(supervisor_);
+  if (slot >= live_.line_count) return;
+  LineObservation& o = supervisor_input_.lines[slot];
+  o.reference_pa = line_state_[slot].reference_pa;
+  o.setpoint_pa = line_state_[slot].slewed_pa;
+  o.closed_loop = (line_out_[slot].status & protocol::line_status::kOpenLoop) == 0;
 }
 
 void Board::ComputeSetpoints(uint64_t now_us) {
@@ -216,24 +216,42 @@ void Board::ComputeSetpoints(uint64_t now_us) {
     if (s->mode != protocol::FingerMode::kTarget) continue;  // raw: the host drives the lines
     // The compensator's memory follows what the driven line applied: the reading, or where the
     // regulator model has the pressure when there is no reading.
-    const LineObservation& seen = supervisor_input_.lines[p->driven_line];
-    const float applied = seen.sensor_valid ? seen.measured_pa : seen.reference_pa;
+    const LineReading& seen = supervisor_input_.lines[p->driven_line].reading;
+    const float applied = seen.valid ? seen.pa : line_state_[p->driven_line].reference_pa;
     StepFinger(*p, *s, now_us, dwell_us, applied, setpoint_pa_.data(), line_flags_.data());
   }
 }
 
-void Board::WriteOutputs() {
-  uint8_t failed = kNoLine;  // the supervisor judges a failed write on the next tick
-  for (uint8_t i = 0; i < live_.line_count; ++i) {
-    if (safe_) line_out_[i].counts = line_params_[i].safe_counts;
-    if (io_.dac.Write(i, line_out_[i].counts) != protocol::Status::kOk && failed == kNoLine)
-      failed = i;
+void Board::StepLines() {
+  // Walked by pointer, with what the loop reads of the board in locals: the stores through the
+  // line pointers could alias the board's members, so they would be reloaded every line.
+  const LineParams* p = line_params_.data();
+  const LineParams* const end = p + live_.line_count;
+  LineState* state = line_state_.data();
+  LineOutput* out = line_out_.data();
+  const LineObservation* o = supervisor_input_.lines.data();
+  const float* setpoint = setpoint_pa_.data();
+  const uint8_t* flags = line_flags_.data();
+  uint32_t* code = dac_codes_.data();
+  const bool safe = safe_;
+  bool vacuum = false;
+  for (; p != end; ++p, ++state, ++out, ++o, ++setpoint, ++flags, ++code) {
+    *code = safe ? HoldLineSafe(*p, *state, o->reading, *out)
+                 : StepLine(*p, *state, *setpoint, o->reading, *out);
+    out->status |= *flags;
+    vacuum |= out->command_pa < p->pump_below_pa;
   }
+  supervisor_input_.vacuum_demand = vacuum;  // the pump follows on the next tick's supervision
+}
+
+void Board::WriteOutputs() {
+  // The supervisor judges a failed write on the next tick.
+  uint8_t failed = io_.dac.WriteAll(dac_codes_.data(), live_.line_count);
   if (unparked_channels_ != 0) {
     const uint8_t channel = ParkDroppedChannels();
-    if (failed == kNoLine) failed = channel;
+    if (failed == hal::AnalogOutput::kAllWritten) failed = channel;
   }
-  supervisor_input_.failed_output = failed;
+  supervisor_input_.failed_output = failed == hal::AnalogOutput::kAllWritten ? kNoLine : failed;
   // Critical for safety: valves and pump are held only while the board is not safe.
   supply_pulse_.Tick(!safe_);
   dump_pulse_.Tick(!safe_);

@@ -155,8 +155,8 @@ void Board::SampleTelemetry(uint64_t now_us, bool fault_report) {
       const LineObservation& seen = supervisor_input_.lines[i];
       batch_.samples[batch_.sample_count++] =
           protocol::LineSample{static_cast<int32_t>(line_state_[i].slewed_pa),
-                               seen.sensor_valid ? ClampReading(seen.measured_pa) : 0,
-                               static_cast<uint16_t>(o.counts), o.status};
+                               seen.reading.valid ? ClampReading(seen.reading.pa) : 0,
+                               static_cast<uint16_t>(dac_codes_[i]), o.status};
     }
     ++batch_.tick_count;
   }

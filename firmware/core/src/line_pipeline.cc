@@ -95,22 +95,25 @@ void ResetLineState(const LineParams& p, LineState& s, float pa) {
 
 uint32_t CountsFor(const LineParams& p, float command_pa) { return Counts(p, command_pa); }
 
-void StepLine(const LineParams& p, LineState& s, const LineInput& in, LineOutput& out) {
-  if (in.safe) {  // Critical for safety: the shutdown bypasses slew, trim and model.
-    ResetLineState(p, s, p.safe_pa);
-    out.command_pa = p.safe_pa;
-    out.counts = p.safe_counts;
-    out.status = ls::kSafe | ls::kOpenLoop;
-    return;
-  }
-  uint8_t status = 0;
+uint32_t HoldLineSafe(const LineParams& p, LineState& s, const LineReading& reading,
+                      LineOutput& out) {
+  // Critical for safety: the shutdown bypasses slew, trim and model.
+  ResetLineState(p, s, p.safe_pa);
+  out.command_pa = p.safe_pa;
+  out.status = ls::kSafe | ls::kOpenLoop | reading.status;
+  return p.safe_counts;
+}
+
+uint32_t StepLine(const LineParams& p, LineState& s, float setpoint_pa, const LineReading& reading,
+                  LineOutput& out) {
+  uint8_t status = reading.status;
   // 1. Slew limit.
-  const float target = Clamp(in.setpoint_pa, p.limit_min_pa, p.limit_max_pa);
+  const float target = Clamp(setpoint_pa, p.limit_min_pa, p.limit_max_pa);
   const float previous = s.slewed_pa;
   float step = target - previous;
   if (Abs(step) > p.max_step_pa) {
     step = step > 0 ? p.max_step_pa : -p.max_step_pa;
-    status = ls::kSlewing;
+    status |= ls::kSlewing;
   }
   const float slewed = previous + step;
   s.slewed_pa = slewed;
@@ -127,17 +130,16 @@ void StepLine(const LineParams& p, LineState& s, const LineInput& in, LineOutput
   if (Abs(slewed) < p.regulator_min_pa) {
     s.integrator_pa = 0;
     out.command_pa = 0;
-    out.counts = p.zero_counts;
     out.status = status | ls::kOpenLoop;
-    return;
+    return p.zero_counts;
   }
 
   // 4. Feed-forward through the static correction (the nominal scaling without one), plus the PI
   // trim where a sensor reads.
   float command = p.correction_count >= 2 ? FeedForward(p, s, previous, slewed) : slewed;
   float integrator = s.integrator_pa;
-  if (p.has_sensor && in.measured_valid) {
-    const float error = s.reference_pa - in.measured_pa;
+  if (p.has_sensor && reading.valid) {
+    const float error = s.reference_pa - reading.pa;
     const float effective = Abs(error) <= p.dead_band_pa ? 0.0f : error;
     integrator += p.ki_dt * effective;
     float trim = p.kp * effective + integrator;
@@ -165,8 +167,8 @@ void StepLine(const LineParams& p, LineState& s, const LineInput& in, LineOutput
   }
   s.integrator_pa = integrator;
   out.command_pa = command;
-  out.counts = Counts(p, command);
   out.status = status;
+  return Counts(p, command);
 }
 
 }  // namespace palpa::core

@@ -66,30 +66,27 @@ uint32_t Supervise(const SupervisorSettings& settings, SupervisorState& s,
   if (in.failed_output != protocol::kNoLine) raise(Fault::kOutputWrite, in.failed_output);
 
   // Every tick, every line: a reading that is no pressure, or one beyond the limits.
-  const float tol = settings.tolerance_pa;
-  bool pump_wanted = false;
   for (uint8_t i = 0; i < protocol::kMaxLines; ++i) {
     const LineObservation& o = in.lines[i];
-    if (!o.configured) continue;
-    pump_wanted |= o.vacuum_demand;
-    if (!o.has_sensor) continue;
-    if (!o.sensor_valid) {
+    if (!o.configured || !o.has_sensor) continue;
+    if (!o.reading.valid) {
       raise(Fault::kImplausibleSensor, i);
-    } else if (o.measured_pa > o.limit_max_pa + tol || o.measured_pa < o.limit_min_pa - tol) {
-      raise(Fault::kOverLimit, static_cast<int32_t>(o.measured_pa));
+    } else if (o.reading.pa > o.alarm_above_pa || o.reading.pa < o.alarm_below_pa) {
+      raise(Fault::kOverLimit, static_cast<int32_t>(o.reading.pa));
     }
   }
-  pump_wanted = pump_wanted && !in.safe;
+  const float tol = settings.tolerance_pa;
+  const bool pump_wanted = in.vacuum_demand && !in.safe;
 
   // The slow monitors judge conditions held for seconds: one line slot a tick, so each line
   // every kMaxLines ticks (8 ms). A condition is then seen as held when it holds at each visit.
   const uint8_t slot = s.slow_slot;
   s.slow_slot = static_cast<uint8_t>((slot + 1) % protocol::kMaxLines);
   const LineObservation& o = in.lines[slot];
-  if (o.configured && o.has_sensor && o.sensor_valid) {
+  if (o.configured && o.has_sensor && o.reading.valid) {
     LineMonitor& m = s.lines[slot];
     // More pressure than the regulator was told to make, for longer than the chamber settles.
-    const bool beyond_model = Abs(o.measured_pa) > Abs(o.reference_pa) + tol;
+    const bool beyond_model = Abs(o.reading.pa) > Abs(o.reference_pa) + tol;
     if (HeldFor(beyond_model, m.implausible_timing, m.implausible_since, in.now_us,
                 settings.sensor_window_us)) {
       raise(Fault::kImplausibleSensor, slot);
@@ -106,7 +103,7 @@ uint32_t Supervise(const SupervisorSettings& settings, SupervisorState& s,
     // Leak: the model has settled on the setpoint but the chamber stays short of it.
     const bool short_of_setpoint = o.closed_loop && !in.safe &&
                                    Abs(o.reference_pa - o.setpoint_pa) < tol &&
-                                   Abs(o.measured_pa) < Abs(o.setpoint_pa) - tol;
+                                   Abs(o.reading.pa) < Abs(o.setpoint_pa) - tol;
     if (HeldFor(short_of_setpoint, m.leak_timing, m.leak_since, in.now_us,
                 settings.leak_timeout_us)) {
       raise(Fault::kLeak, slot);

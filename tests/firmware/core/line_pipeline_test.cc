@@ -31,10 +31,17 @@ pp::ConfigureLine PressureLine() {
   return c;
 }
 
-pc::LineOutput Step(const pc::LineParams& p, pc::LineState& s, float setpoint,
-                    bool measured_valid = false, float measured = 0, bool safe = false) {
-  pc::LineOutput out;
-  pc::StepLine(p, s, pc::LineInput{setpoint, safe, measured_valid, measured}, out);
+/// A line step's output with the DAC code it returned.
+struct Stepped : pc::LineOutput {
+  uint32_t counts = 0;
+};
+
+Stepped Step(const pc::LineParams& p, pc::LineState& s, float setpoint, bool measured_valid = false,
+             float measured = 0, bool safe = false) {
+  Stepped out;
+  const pc::LineReading reading{measured_valid, 0, measured};
+  out.counts =
+      safe ? pc::HoldLineSafe(p, s, reading, out) : pc::StepLine(p, s, setpoint, reading, out);
   return out;
 }
 

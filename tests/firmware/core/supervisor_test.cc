@@ -25,9 +25,9 @@ struct Fixture {
     settings.tolerance_pa = 5000;
     in.session_open = true;
     pc::LineObservation& o = in.lines[0];
-    o.configured = o.has_sensor = o.sensor_valid = o.closed_loop = true;
-    o.limit_min_pa = 0;
-    o.limit_max_pa = 100000;
+    o.configured = o.has_sensor = o.reading.valid = o.closed_loop = true;
+    o.alarm_below_pa = 0 - settings.tolerance_pa;  // limits 0..100 kPa
+    o.alarm_above_pa = 100000 + settings.tolerance_pa;
   }
   uint32_t At(uint64_t now_us) {
     in.now_us = now_us;
@@ -42,7 +42,7 @@ struct Fixture {
     pc::LineObservation& o = in.lines[0];
     o.setpoint_pa = setpoint;
     o.reference_pa = reference;
-    o.measured_pa = measured;
+    o.reading.pa = measured;
     o.raw_counts = counts;
   }
 };
@@ -78,16 +78,16 @@ TEST(Supervisor, OverLimitReadingLatchesAtOnce) {
 
 TEST(Supervisor, ReadingOutsideTheSensorSpanIsImplausibleAtOnce) {
   Fixture f;
-  f.in.lines[0].sensor_valid = false;
+  f.in.lines[0].reading.valid = false;
   LONGS_EQUAL(FaultBit(Fault::kImplausibleSensor), f.At(1000));
 }
 
 TEST(Supervisor, OverLimitAndInvalidReadingsAreSeenOnEveryLineAtTheFirstTick) {
   Fixture f;
   for (uint8_t i = 1; i < pp::kMaxLines; ++i) f.in.lines[i] = f.in.lines[0];
-  f.in.lines[6].measured_pa = 105001;
+  f.in.lines[6].reading.pa = 105001;
   LONGS_EQUAL(FaultBit(Fault::kOverLimit), f.At(1000));
-  f.in.lines[3].sensor_valid = false;
+  f.in.lines[3].reading.valid = false;
   LONGS_EQUAL(FaultBit(Fault::kImplausibleSensor), f.At(2000));
   pp::FaultRecord records[pp::kMaxFaultRecords];
   LONGS_EQUAL(2, pc::FaultHistory(f.state, records));
@@ -144,7 +144,7 @@ TEST(Supervisor, TheSlowMonitorsVisitEveryLineInTurn) {
   f.in.lines[0].configured = false;
   pc::LineObservation& o = f.in.lines[7];  // short of its settled setpoint: a leak
   o.setpoint_pa = o.reference_pa = 50000;
-  o.measured_pa = 30000;
+  o.reading.pa = 30000;
   uint64_t t = 0;
   uint32_t newly = 0;
   for (; newly == 0 && t <= 6000000; t += kTick) {
@@ -194,7 +194,7 @@ TEST(Supervisor, ConfigCrcFailureLatches) {
 
 TEST(Supervisor, PumpRunsOnlyOnDemandAndNeverLongerThanAllowed) {
   Fixture f;
-  f.in.lines[0].vacuum_demand = true;
+  f.in.vacuum_demand = true;
   f.At(1);
   CHECK(f.state.pump_on);
   for (uint64_t t = 1; t < 60000000; t += 1000000) {

@@ -18,7 +18,7 @@ echo "$first" | awk '
     if (tick < 1000) { print "tick count implausibly small: " tick; exit 1 }
     n = 0
     for (s in stage) { n++; if (stage[s] + 0 <= 0 || stage[s] + 0 > tick + 0) { print s " out of range: " stage[s]; exit 1 } }
-    if (n != 11) { print "expected 10 stages and the control tick, got " n; exit 1 }
+    if (n != 12) { print "expected 11 stages and the control tick, got " n; exit 1 }
     plant = mean["plant_adc"] + mean["plant_dac"]
     inside = mean["sensors"] + mean["supervisor"] + mean["fingers"] + mean["lines"] + mean["outputs"] - plant
     parts = mean["control"] + mean["telemetry"] + mean["config_check"] + plant

@@ -72,6 +72,7 @@ class Board {
   uint32_t active_conditions() const { return supervisor_.active; }
   bool safe() const { return safe_; }
   const LineOutput& line_output(uint8_t line) const { return line_out_[line]; }
+  uint32_t dac_code(uint8_t line) const { return dac_codes_[line]; }
   const LineState& line_state(uint8_t line) const { return line_state_[line]; }
   const TickStats& tick_stats() const { return pacer_.stats(); }
   const protocol::FramingCounters& rx_counters() const { return decoder_.counters(); }
@@ -92,10 +93,14 @@ class Board {
   // Out of line so instruction counts can bracket a tick (tests/bench/qemu_insn_count.c).
   [[gnu::noinline]] void Tick(uint64_t now_us);
   void ReadInputs(uint64_t now_us, SupervisorInput& in);
+  /// The slow monitors' view of the line they visit this tick: where the last tick left it.
+  void ObserveSlowSlot();
   /// Fingers in target mode write their lines' setpoints and status bits (nothing while safe).
   void ComputeSetpoints(uint64_t now_us);
   /// line_flags_ from the fingers' modes (kRaw on a raw finger's lines; kSaturated cleared).
   void RefreshLineFlags();
+  /// Every line one step (or held safe), DAC codes into dac_codes_.
+  void StepLines();
   void WriteOutputs();
   /// Writes their old line's safe code to the channels a configuration dropped that have not
   /// taken it yet; returns the first whose write failed, or kNoLine.
@@ -137,6 +142,8 @@ class Board {
   std::array<LineParams, protocol::kMaxLines> line_params_{};
   std::array<LineState, protocol::kMaxLines> line_state_{};
   std::array<LineOutput, protocol::kMaxLines> line_out_{};
+  /// What the DAC is given each tick, one scan of the configured lines (safe codes until a tick).
+  std::array<uint32_t, protocol::kMaxLines> dac_codes_{};
   /// What each line steps towards: the host's raw setpoint, or what its finger in target mode
   /// wrote this tick (the host cannot send raw setpoints for such a line).
   std::array<float, protocol::kMaxLines> setpoint_pa_{};

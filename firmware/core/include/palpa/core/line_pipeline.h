@@ -55,21 +55,30 @@ struct LineState {
 /// Resets the state to hold `pa` steadily (after configuration, or leaving the safe state).
 void ResetLineState(const LineParams& p, LineState& s, float pa);
 
-struct LineInput {
-  float setpoint_pa = 0;
-  bool safe = false;  ///< shutdown: write the safe value now, bypassing the slew
-  bool measured_valid = false;
-  float measured_pa = 0;
+/// What the line's pressure sensor read this tick (the board's sensing stage fills it).
+struct LineReading {
+  bool valid = false;  ///< converted, and inside the sensor's span: a pressure
+  /// line_status::kSensorFault when the line has a sensor whose reading is no pressure: the
+  /// status reports it in and out of the safe state.
+  uint8_t status = 0;
+  float pa = 0;
 };
 
 struct LineOutput {
-  uint32_t counts = 0;
   float command_pa = 0;  ///< pressure the regulator is commanded to (after trim and clamp)
   uint8_t status = 0;    ///< protocol::line_status bits
 };
 
-/// One tick of one line; writes every field of `out`.
-void StepLine(const LineParams& p, LineState& s, const LineInput& in, LineOutput& out);
+/// One tick of one line outside the safe state: returns the DAC code to write and fills every
+/// field of `out`. The trim closes the loop only when the line has a sensor and `reading` is
+/// valid.
+uint32_t StepLine(const LineParams& p, LineState& s, float setpoint_pa, const LineReading& reading,
+                  LineOutput& out);
+
+/// One tick of one line in the safe state: the safe value at once, bypassing slew, trim and
+/// model, with the state reset to hold it. Returns the safe DAC code; fills every field of `out`.
+uint32_t HoldLineSafe(const LineParams& p, LineState& s, const LineReading& reading,
+                      LineOutput& out);
 
 /// DAC code for a commanded pressure (clamped to the DAC's range).
 uint32_t CountsFor(const LineParams& p, float command_pa);

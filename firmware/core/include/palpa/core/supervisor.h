@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdint>
 
+#include "palpa/core/line_pipeline.h"
 #include "palpa/protocol/faults.h"
 #include "palpa/protocol/messages_config.h"
 #include "palpa/protocol/messages_report.h"
@@ -24,15 +25,17 @@ SupervisorSettings MakeSupervisorSettings(const protocol::ConfigureBoard& board)
 /// What the tick saw on one line.
 struct LineObservation {
   bool configured = false;
-  bool closed_loop = false;  ///< last tick commanded pressure with the trim on (outside safe)
   bool has_sensor = false;
-  bool sensor_valid = false;  ///< conversion succeeded and the counts are inside the sensor's span
-  uint32_t raw_counts = 0;
-  float measured_pa = 0;
-  float reference_pa = 0;  ///< regulator-model output
+  LineReading reading;      ///< this tick's sensor reading
+  uint32_t raw_counts = 0;  ///< this tick's ADC counts (looked at only while the reading is valid)
+  /// Readings below or above these are over-limit: the line's limits widened by the sensor
+  /// tolerance (fixed per configuration, so not recomputed every tick).
+  float alarm_below_pa = 0, alarm_above_pa = 0;
+  // The slow monitors' view, filled by the board for the line they visit this tick (SlowSlot):
+  // where the last tick left the line.
+  bool closed_loop = false;  ///< commanded pressure with the trim on (outside safe)
+  float reference_pa = 0;    ///< regulator-model output
   float setpoint_pa = 0;
-  float limit_min_pa = 0, limit_max_pa = 0;
-  bool vacuum_demand = false;  ///< the pump is needed for this line
 };
 
 struct SupervisorInput {
@@ -40,8 +43,9 @@ struct SupervisorInput {
   bool session_open = false;
   uint64_t last_host_frame_us = 0;
   bool estop_pin = false;
-  bool config_intact = true;  ///< the periodic CRC of the live configuration matched
-  bool safe = false;          ///< outputs are in the safe state this tick
+  bool config_intact = true;   ///< the periodic CRC of the live configuration matched
+  bool safe = false;           ///< outputs are in the safe state this tick
+  bool vacuum_demand = false;  ///< a line commanded vacuum beyond its regulator's minimum
   uint8_t failed_output = protocol::kNoLine;  ///< first DAC channel whose last write failed
   std::array<LineObservation, protocol::kMaxLines> lines{};
 };
@@ -67,6 +71,10 @@ struct SupervisorState {
   uint8_t history_count = 0;
   uint8_t history_next = 0;
 };
+
+/// The line slot the slow monitors (implausible against the model, stuck, leak) visit at the
+/// next Supervise: one a tick, each slot every kMaxLines ticks.
+inline uint8_t SlowSlot(const SupervisorState& s) { return s.slow_slot; }
 
 /// Latches a fault (and records it) — the single entry into the safe state.
 void LatchFault(SupervisorState& s, protocol::Fault fault, uint64_t now_us, int32_t detail);
