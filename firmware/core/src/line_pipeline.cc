@@ -11,10 +11,9 @@ namespace {
 
 namespace ls = protocol::line_status;
 
-/// DAC code for a commanded pressure; inlined into the step (a call per line per tick otherwise).
-[[gnu::always_inline]] inline uint32_t Counts(const LineParams& p, float command_pa) {
-  const float code = command_pa * p.counts_per_pa + p.counts_at_zero;
-  return static_cast<uint32_t>(Clamp(code, p.rounded_low, p.rounded_high));
+/// DAC code + ½ for a commanded pressure (truncation rounds it).
+[[gnu::always_inline]] inline float Code(const LineParams& p, float command_pa) {
+  return command_pa * p.counts_per_pa + p.counts_at_zero;
 }
 
 /// Command that makes the regulator produce `slewed`, from its measured static curve: the rising
@@ -43,10 +42,17 @@ LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us)
   p.sensor_counts_min = static_cast<float>(line.sensor_counts_min);
   p.sensor_pa_per_count = static_cast<float>(line.sensor_max_pa - line.sensor_min_pa) /
                           static_cast<float>(line.sensor_counts_max - line.sensor_counts_min);
-  p.limit_min_pa =
-      static_cast<float>(line.limit_min_pa > ceiling.min_pa ? line.limit_min_pa : ceiling.min_pa);
-  p.limit_max_pa =
-      static_cast<float>(line.limit_max_pa < ceiling.max_pa ? line.limit_max_pa : ceiling.max_pa);
+  // The limits within the hard ceiling and within the regulator's command range (validation
+  // refuses limits beyond either; intersected here too, because the step converts a command held
+  // to the limits into a DAC code without a clamp of its own).
+  const int32_t command_lo =
+      line.command_min_pa < line.command_max_pa ? line.command_min_pa : line.command_max_pa;
+  const int32_t command_hi =
+      line.command_min_pa < line.command_max_pa ? line.command_max_pa : line.command_min_pa;
+  const int32_t floor = ceiling.min_pa > command_lo ? ceiling.min_pa : command_lo;
+  const int32_t top = ceiling.max_pa < command_hi ? ceiling.max_pa : command_hi;
+  p.limit_min_pa = static_cast<float>(line.limit_min_pa > floor ? line.limit_min_pa : floor);
+  p.limit_max_pa = static_cast<float>(line.limit_max_pa < top ? line.limit_max_pa : top);
   p.safe_pa = Clamp(static_cast<float>(line.safe_pa), p.limit_min_pa, p.limit_max_pa);
   // No slew limit is a step no setpoint change can exceed (one compare a tick instead of two).
   p.max_step_pa = line.slew_pa_per_s > 0 ? static_cast<float>(line.slew_pa_per_s) * dt : kUnbounded;
@@ -93,7 +99,9 @@ void ResetLineState(const LineParams& p, LineState& s, float pa) {
   s.rising = true;
 }
 
-uint32_t CountsFor(const LineParams& p, float command_pa) { return Counts(p, command_pa); }
+uint32_t CountsFor(const LineParams& p, float command_pa) {
+  return static_cast<uint32_t>(Clamp(Code(p, command_pa), p.rounded_low, p.rounded_high));
+}
 
 uint32_t HoldLineSafe(const LineParams& p, LineState& s, const LineReading& reading,
                       LineOutput& out) {
@@ -138,7 +146,7 @@ uint32_t StepLine(const LineParams& p, LineState& s, float setpoint_pa, const Li
   // trim where a sensor reads.
   float command = p.correction_count >= 2 ? FeedForward(p, s, previous, slewed) : slewed;
   float integrator = s.integrator_pa;
-  if (p.has_sensor && reading.valid) {
+  if (reading.valid) {
     const float error = s.reference_pa - reading.pa;
     const float effective = Abs(error) <= p.dead_band_pa ? 0.0f : error;
     integrator += p.ki_dt * effective;
@@ -168,7 +176,8 @@ uint32_t StepLine(const LineParams& p, LineState& s, float setpoint_pa, const Li
   s.integrator_pa = integrator;
   out.command_pa = command;
   out.status = status;
-  return Counts(p, command);
+  // Within the limits, so within the command range: a code between the signal's ends.
+  return static_cast<uint32_t>(Code(p, command));
 }
 
 }  // namespace palpa::core

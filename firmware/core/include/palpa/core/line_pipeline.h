@@ -18,14 +18,16 @@ struct LineParams {
   /// shorted wire, not a pressure. Counts convert as sensor_min_pa + (counts − counts_min) × scale.
   uint32_t sensor_counts_low = 0, sensor_counts_high = 0;
   float sensor_min_pa = 0, sensor_counts_min = 0, sensor_pa_per_count = 0;
-  float limit_min_pa = 0, limit_max_pa = 0;  ///< already intersected with the hard ceiling
+  /// Already intersected with the hard ceiling and the regulator's command range.
+  float limit_min_pa = 0, limit_max_pa = 0;
   float safe_pa = 0;
   float max_step_pa = 0;  ///< slew per tick; the largest float when none
   float regulator_min_pa = 0;
   float pump_below_pa = 0;  ///< commands below this need the vacuum pump (lowest float: never)
-  /// DAC scaling as one multiply-add: code + ½ = command × counts_per_pa + counts_at_zero, held
-  /// to [rounded_low, rounded_high] (the codes of 0 % and 100 % of the signal, ½ added) and
-  /// truncated. A command beyond the regulator's range stops at the DAC's ends.
+  /// DAC scaling as one multiply-add: code + ½ = command × counts_per_pa + counts_at_zero,
+  /// truncated. The step's commands lie within the limits, so within the command range; CountsFor
+  /// also holds other pressures to [rounded_low, rounded_high] (0 % and 100 % of the signal, ½
+  /// added), the DAC's ends.
   float counts_per_pa = 0, counts_at_zero = 0;
   float rounded_low = 0, rounded_high = 0;
   uint32_t safe_counts = 0, zero_counts = 0;  ///< DAC codes for safe_pa and for 0 Pa
@@ -57,7 +59,7 @@ void ResetLineState(const LineParams& p, LineState& s, float pa);
 
 /// What the line's pressure sensor read this tick (the board's sensing stage fills it).
 struct LineReading {
-  bool valid = false;  ///< converted, and inside the sensor's span: a pressure
+  bool valid = false;  ///< the line's sensor read a pressure (never set without a sensor)
   /// line_status::kSensorFault when the line has a sensor whose reading is no pressure: the
   /// status reports it in and out of the safe state.
   uint8_t status = 0;
@@ -70,8 +72,7 @@ struct LineOutput {
 };
 
 /// One tick of one line outside the safe state: returns the DAC code to write and fills every
-/// field of `out`. The trim closes the loop only when the line has a sensor and `reading` is
-/// valid.
+/// field of `out`. The trim closes the loop while `reading` is valid.
 uint32_t StepLine(const LineParams& p, LineState& s, float setpoint_pa, const LineReading& reading,
                   LineOutput& out);
 
