@@ -121,6 +121,7 @@ bool BuildPlayOperators(const float* r, const float* w, uint8_t n, PlayTable& t)
     pair.threshold = lanes::Pack(lane[0][0], lane[1][0]);
     pair.negative_threshold = lanes::Pack(-lane[0][0], -lane[1][0]);
     pair.cumulative = lanes::Pack(lane[0][1], lane[1][1]);
+    pair.mixed = lanes::Pack(lane[0][1], lane[1][2]);
     pair.weight = lanes::Pack(lane[0][2], lane[1][2]);
     pair.inverse_threshold = lanes::Pack(lane[0][3], lane[1][3]);
     pair.negative_inverse_threshold = lanes::Pack(-lane[0][3], -lane[1][3]);

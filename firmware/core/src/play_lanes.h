@@ -40,6 +40,30 @@ inline uint32_t SaturatingAdd(uint32_t a, uint32_t b) {
 #endif
 }
 
+/// Each lane of v held to at most `bound` (SSUB16 sets GE where v ≥ bound; SEL takes the bound).
+inline uint32_t Min(uint32_t v, uint32_t bound) {
+#ifdef PALPA_PLAY_LANES_DSP
+  (void)__ssub16(static_cast<int16x2_t>(v), static_cast<int16x2_t>(bound));
+  return __sel(bound, v);
+#else
+  auto min = [](int32_t x, int32_t hi) { return x >= hi ? hi : x; };
+  return Pack(min(Low(v), Low(bound)), min(High(v), High(bound)));
+#endif
+}
+
+/// Each lane of v held to at least −bound; `negative` holds −bound. bound ≥ 0. (SADD16 sets GE
+/// where v ≥ −bound; SEL keeps v there.)
+inline uint32_t Max(uint32_t v, uint32_t bound, uint32_t negative) {
+#ifdef PALPA_PLAY_LANES_DSP
+  (void)__sadd16(static_cast<int16x2_t>(v), static_cast<int16x2_t>(bound));
+  return __sel(v, negative);
+#else
+  (void)bound;
+  auto max = [](int32_t x, int32_t lo) { return x >= lo ? x : lo; };
+  return Pack(max(Low(v), Low(negative)), max(High(v), High(negative)));
+#endif
+}
+
 /// Each lane of v clamped to [−bound, bound]; `negative` holds −bound. bound ≥ 0.
 inline uint32_t Clamp(uint32_t v, uint32_t bound, uint32_t negative) {
 #ifdef PALPA_PLAY_LANES_DSP

@@ -24,6 +24,7 @@ inline constexpr uint8_t kMaxBranchPoints = 24;
 /// inverse states, after dropping the sums' low 16 bits, in 2¹⁶ · `sum_step`.
 struct PlayPair {           // in this order: the ARMv7E-M loop loads the last two words first
   uint32_t cumulative = 0;  ///< W_i = w0 + Σ_{j≤i} w_j (sum steps per drive step)
+  uint32_t mixed = 0;       ///< W_2k low, w_2k+1 high: the lower operator's state in one SMLAD
   uint32_t weight = 0;      ///< w_i (sum steps per drive step)
   uint32_t inverse_threshold = 0;  ///< r'_i = W_i r_i − Σ_{j≤i} w_j r_j (inverse-state steps)
   uint32_t negative_inverse_threshold = 0;
