@@ -209,16 +209,17 @@ void Board::ObserveSlowSlot() {
 
 void Board::ComputeSetpoints(uint64_t now_us) {
   if (safe_) return;  // the lines hold their safe values; fingers re-home when it ends
-  const uint32_t dwell_us = static_cast<uint32_t>(live_.board.home_dwell_ms) * 1000;
+  const FingerTick tick{now_us, static_cast<uint32_t>(live_.board.home_dwell_ms) * 1000,
+                        setpoint_pa_.data(), line_flags_.data()};
   const FingerParams* p = finger_params_.data();
+  const FingerParams* const end = p + live_.finger_count;
   FingerState* s = finger_state_.data();
-  for (uint8_t f = 0; f < live_.finger_count; ++f, ++p, ++s) {
+  for (; p != end; ++p, ++s) {
     if (s->mode != protocol::FingerMode::kTarget) continue;  // raw: the host drives the lines
     // The compensator's memory follows what the driven line applied: the reading, or where the
     // regulator model has the pressure when there is no reading.
     const LineReading& seen = supervisor_input_.lines[p->driven_line].reading;
-    const float applied = seen.valid ? seen.pa : line_state_[p->driven_line].reference_pa;
-    StepFinger(*p, *s, now_us, dwell_us, applied, setpoint_pa_.data(), line_flags_.data());
+    StepFinger(*p, *s, seen.valid ? seen.pa : line_state_[p->driven_line].reference_pa, tick);
   }
 }
 

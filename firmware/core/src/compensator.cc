@@ -57,7 +57,16 @@ void HomeCompensator(const Compensator& c, CompensatorState& s) {
 
 CompensatorOutput StepCompensator(const Compensator& c, CompensatorState& s, float target,
                                   float applied_drive) {
-  return StepCompensatorInline(c, s, target, applied_drive);
+  CompensatorOutput out;
+  if (c.kind == CompensatorKind::kBranch) {
+    const float applied = applied_drive > 0 ? applied_drive : 0.0f;
+    out.saturated = false;  // set when the target lies beyond the curves' ends
+    out.drive =
+        HoldDrive(c, StepBranch(c.branch, s, target, applied, out.saturated), out.saturated);
+  } else {
+    out.drive = StepPlayInline(c, s, target, applied_drive, out.saturated);
+  }
+  return out;
 }
 
 float StepBranch(const BranchTable& t, CompensatorState& s, float target, float applied,

@@ -51,33 +51,33 @@ inline float PlayStep(const PlayTable& t, CompensatorState& s, float v, float ap
 float StepBranch(const BranchTable& t, CompensatorState& s, float target, float applied,
                  bool& outside);
 
-/// StepCompensator's body (compensator.h has the contract).
-[[gnu::always_inline]] inline CompensatorOutput StepCompensatorInline(const Compensator& c,
-                                                                      CompensatorState& s,
-                                                                      float target,
-                                                                      float applied_drive) {
-  const float applied = applied_drive > 0 ? applied_drive : 0.0f;
-  float drive = 0;
-  bool outside = false;  // beyond what the model was identified over
-  if (c.kind == protocol::CompensatorKind::kBranch) {
-    drive = StepBranch(c.branch, s, target, applied, outside);
-  } else {
-    const float v = compensator_step::OutputMapInverse(c.play, target - c.play.offset);
-    drive = compensator_step::PlayStep(c.play, s, v, applied);
-  }
-  CompensatorOutput out;
-  out.saturated = outside;
-  // A model asked for what the line cannot give (or for less than nothing): held at the limit,
-  // and said so. NaN cannot pass configuration, but the guard costs one compare.
+/// The drive a model asked for, held to [0, drive_limit]: a model asked for what the line cannot
+/// give (or for less than nothing), held at the limit, and said so in `saturated`. NaN cannot
+/// pass configuration, but the guard costs one compare.
+[[gnu::always_inline]] inline float HoldDrive(const Compensator& c, float drive, bool& saturated) {
   if (!(drive >= 0)) {
-    out.saturated = out.saturated || drive < -1.0f || drive != drive;
-    drive = 0;
-  } else if (drive > c.drive_limit) {
-    out.saturated = true;
-    drive = c.drive_limit;
+    saturated = saturated || drive < -1.0f || drive != drive;
+    return 0;
   }
-  out.drive = drive;
-  return out;
+  if (drive > c.drive_limit) {
+    saturated = true;
+    return c.drive_limit;
+  }
+  return drive;
+}
+
+/// The `pi` / `api` step (StepCompensator's contract): the drive, held to [0, drive_limit], and
+/// `saturated` when it was held. Inlined into the finger step.
+[[gnu::always_inline]] inline float StepPlayInline(const Compensator& c, CompensatorState& s,
+                                                   float target, float applied_drive,
+                                                   bool& saturated) {
+  const float applied = applied_drive > 0 ? applied_drive : 0.0f;
+  const float shifted = target - c.play.offset;
+  // Without dead zones S⁻¹ is the identity (pi, and api fitted without them).
+  const float v =
+      c.play.dead_zones == 0 ? shifted : compensator_step::OutputMapInverse(c.play, shifted);
+  saturated = false;
+  return HoldDrive(c, compensator_step::PlayStep(c.play, s, v, applied), saturated);
 }
 
 }  // namespace palpa::core

@@ -42,16 +42,15 @@ namespace {
 /// Before following targets: pneumatic fingers vented, jamming fingers with the vacuum released
 /// and the bias on, so the air cushion re-flattens the granules and the compensator starts from
 /// a known state. Out of line: the tick's common path is a homed finger.
-[[gnu::noinline]] void StepHoming(const FingerParams& p, FingerState& s, uint64_t now_us,
-                                  uint32_t home_dwell_us, float* setpoints, uint8_t* line_status) {
+[[gnu::noinline]] void StepHoming(const FingerParams& p, FingerState& s, const FingerTick& tick) {
   if (s.phase == HomePhase::kNeedsHoming) {
     s.phase = HomePhase::kHoming;
-    s.homed_at_us = now_us + home_dwell_us;
+    s.homed_at_us = tick.now_us + tick.home_dwell_us;
   }
-  setpoints[p.driven_line] = 0;
-  line_status[p.driven_line] = 0;
-  if (p.bias_line != protocol::kNoLine) setpoints[p.bias_line] = p.bias_pa;
-  if (now_us >= s.homed_at_us) {
+  tick.setpoints[p.driven_line] = 0;
+  tick.line_status[p.driven_line] = 0;
+  if (p.bias_line != protocol::kNoLine) tick.setpoints[p.bias_line] = p.bias_pa;
+  if (tick.now_us >= s.homed_at_us) {
     s.phase = HomePhase::kHomed;
     HomeCompensator(p.compensation, s.memory);
   }
@@ -59,28 +58,35 @@ namespace {
 
 }  // namespace
 
-void StepFinger(const FingerParams& p, FingerState& s, uint64_t now_us, uint32_t home_dwell_us,
-                float applied_pa, float* setpoints, uint8_t* line_status) {
-  if (s.phase != HomePhase::kHomed)
-    return StepHoming(p, s, now_us, home_dwell_us, setpoints, line_status);
+void StepFinger(const FingerParams& p, FingerState& s, float applied_pa, const FingerTick& tick) {
+  if (s.phase != HomePhase::kHomed) return StepHoming(p, s, tick);
   float setpoint = 0;
   uint8_t status = 0;
   if (p.compensator == protocol::CompensatorKind::kNone) {
     setpoint = StaticInverse(p, s.target);  // the curve holds line pressures, signs included
   } else {
-    // Memory follows the applied drive every tick, also while the target is 0 (venting).
-    const CompensatorOutput c =
-        StepCompensatorInline(p.compensation, s.memory, s.target, p.drive_sign * applied_pa);
+    // Memory follows the applied drive every tick, also while the target is 0 (venting). The
+    // play models (pi, api) run inline: they are the loop-rate cost of a compensated finger.
+    const float applied = p.drive_sign * applied_pa;
+    bool saturated = false;
     float drive = 0;
-    if (s.target > 0) {  // "off" is 0 Pa whatever the model says
+    if (p.compensator == protocol::CompensatorKind::kBranch) {
+      const CompensatorOutput c = StepCompensator(p.compensation, s.memory, s.target, applied);
       drive = c.drive;
-      if (c.saturated) status = protocol::line_status::kSaturated;
+      saturated = c.saturated;
+    } else {
+      drive = StepPlayInline(p.compensation, s.memory, s.target, applied, saturated);
     }
-    setpoint = p.drive_sign * drive;
+    if (s.target > 0) {  // "off" is 0 Pa whatever the model says
+      setpoint = p.drive_sign * drive;
+      if (saturated) status = protocol::line_status::kSaturated;
+    } else {
+      setpoint = p.drive_sign * 0.0f;
+    }
   }
-  setpoints[p.driven_line] = setpoint;
-  line_status[p.driven_line] = status;
-  if (p.bias_line != protocol::kNoLine) setpoints[p.bias_line] = p.bias_pa;
+  tick.setpoints[p.driven_line] = setpoint;
+  tick.line_status[p.driven_line] = status;
+  if (p.bias_line != protocol::kNoLine) tick.setpoints[p.bias_line] = p.bias_pa;
 }
 
 }  // namespace palpa::core

@@ -34,7 +34,7 @@ struct Step {
   Step(const pc::FingerParams& p, pc::FingerState& s, uint64_t now_us, float applied = 0) {
     for (float& v : setpoints) v = __builtin_nanf("");
     for (uint8_t& v : status) v = 0xFF;
-    pc::StepFinger(p, s, now_us, 300000, applied, setpoints, status);
+    pc::StepFinger(p, s, applied, pc::FingerTick{now_us, 300000, setpoints, status});
   }
 };
 

@@ -48,14 +48,21 @@ struct FingerState {
 /// back to target mode, new configuration).
 inline void RequireHoming(FingerState& s) { s.phase = HomePhase::kNeedsHoming; }
 
-/// One tick in target mode: writes the setpoint of each of the finger's lines into
-/// `setpoints` and the status bit it adds to its driven line (line_status::kSaturated when the
-/// compensator's drive was clamped to the line's range, else 0) into `line_status`, both
-/// indexed by line. `applied_pa` is the pressure actually applied on the driven line (measured,
-/// or the regulator model where there is no sensor; negative on a vacuum line): compensators
-/// with memory update from it, not from what they asked for.
-void StepFinger(const FingerParams& p, FingerState& s, uint64_t now_us, uint32_t home_dwell_us,
-                float applied_pa, float* setpoints, uint8_t* line_status);
+/// What every finger's step shares in a tick: the time, the homing dwell, and where the
+/// setpoints and status bits of the lines go (indexed by line).
+struct FingerTick {
+  uint64_t now_us = 0;
+  uint32_t home_dwell_us = 0;
+  float* setpoints = nullptr;
+  uint8_t* line_status = nullptr;
+};
+
+/// One tick in target mode: writes the setpoint of each of the finger's lines and the status bit
+/// it adds to its driven line (line_status::kSaturated when the compensator's drive was clamped
+/// to the line's range, else 0). `applied_pa` is the pressure actually applied on the driven
+/// line (measured, or the regulator model where there is no sensor; negative on a vacuum line):
+/// compensators with memory update from it, not from what they asked for.
+void StepFinger(const FingerParams& p, FingerState& s, float applied_pa, const FingerTick& tick);
 
 /// The static inverse: output unit → line setpoint; target 0 → 0 Pa.
 float StaticInverse(const FingerParams& p, float target);
