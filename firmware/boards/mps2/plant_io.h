@@ -14,6 +14,10 @@ namespace palpa::boards::mps2 {
 
 namespace params = palpa::sim::params;
 
+/// The converters as a board with real ones has them: DAC codes land in registers that the
+/// regulators follow, and the ADC's scan leaves its results in a buffer (as DMA would) that the
+/// tick copies. The conversions themselves (code → regulator command, pressure → counts) are the
+/// plant's side and run in its millisecond step, outside the control tick.
 class PlantIo final : public hal::AnalogOutput, public hal::AnalogInput {
  public:
   /// Regulators wired as the configuration says (no static errors: an ideal unit).
@@ -31,46 +35,51 @@ class PlantIo final : public hal::AnalogOutput, public hal::AnalogInput {
                             ? params::kChamberVacuumTauS
                             : params::kChamberPneumaticTauS;
       lines_[i] = sim::RegulatorLine(s, 0.001f);
-      command_[i] = 0;
+      codes_[i] = 0;
+      scan_[i] = SensorCounts(i);
     }
   }
-  /// One millisecond of plant time; `vented` while the board holds no valves.
+  /// One millisecond of plant time; `vented` while the board holds no valves. The regulators
+  /// follow the codes in the DAC's registers; the scan buffer then holds what the sensors read.
   void Step(bool vented) {
-    for (uint8_t i = 0; i < count_; ++i) lines_[i].Step(command_[i], vented);
+    for (uint8_t i = 0; i < count_; ++i) lines_[i].Step(RegulatorCommand(i), vented);
+    for (uint8_t i = 0; i < count_; ++i) scan_[i] = SensorCounts(i);
   }
   float chamber_pa(uint8_t line) const { return lines_[line].chamber_pa(); }
 
  private:
   protocol::Status DoWrite(uint8_t channel, uint32_t counts) override {
     if (channel >= count_) return protocol::Status::kNotFound;
-    SetRegulatorCommand(channel, counts);
+    codes_[channel] = counts;
     return protocol::Status::kOk;
   }
   uint8_t DoWriteAll(const uint32_t* codes, uint8_t count) override {
-    for (uint8_t i = 0; i < count && i < count_; ++i) SetRegulatorCommand(i, codes[i]);
+    const uint8_t n = count < count_ ? count : count_;
+    for (uint8_t i = 0; i < n; ++i) codes_[i] = codes[i];
     return count <= count_ ? kAllWritten : count_;
   }
   hal::AnalogOutputSpec DoSpec(uint8_t) const override { return {}; }
   protocol::Result<uint32_t> DoRead(uint8_t channel) override {
     if (channel >= count_) return protocol::Status::kNotFound;
-    return SensorCounts(channel);
+    return scan_[channel];
   }
   void DoReadAll(uint32_t* counts, uint8_t count) override {
-    for (uint8_t i = 0; i < count; ++i)
-      counts[i] = i < count_ ? SensorCounts(i) : kConversionFailed;
+    const uint8_t n = count < count_ ? count : count_;
+    for (uint8_t i = 0; i < n; ++i) counts[i] = scan_[i];
+    for (uint8_t i = n; i < count; ++i) counts[i] = kConversionFailed;
   }
   uint8_t DoBits() const override { return 14; }
 
-  // The plant's side of the DAC and the ADC: what a register write and a conversion result are on
-  // a board with real converters. Out of line so that the tick benchmark can count them apart
-  // (tests/bench/mps2.sh): they are simulation, not firmware.
-  [[gnu::noinline]] void SetRegulatorCommand(uint8_t channel, uint32_t counts) {
+  /// What the regulator on `channel` is told by the code in its DAC register.
+  float RegulatorCommand(uint8_t channel) const {
     const protocol::ConfigureLine& c = config_[channel];
-    const float fraction = static_cast<float>(counts) / static_cast<float>((1u << c.dac_bits) - 1u);
-    command_[channel] = (c.kind == protocol::LineKind::kVacuum ? -1.0f : 1.0f) * fraction *
-                        params::kRegulatorFullScalePa;
+    const float fraction =
+        static_cast<float>(codes_[channel]) / static_cast<float>((1u << c.dac_bits) - 1u);
+    return (c.kind == protocol::LineKind::kVacuum ? -1.0f : 1.0f) * fraction *
+           params::kRegulatorFullScalePa;
   }
-  [[gnu::noinline]] uint32_t SensorCounts(uint8_t channel) const {
+  /// What the ADC converts the sensor on `channel` to.
+  uint32_t SensorCounts(uint8_t channel) const {
     const protocol::ConfigureLine& c = config_[channel];
     const float pa = lines_[channel].outlet_pa();
     const float fraction = (pa - static_cast<float>(c.sensor_min_pa)) /
@@ -83,7 +92,8 @@ class PlantIo final : public hal::AnalogOutput, public hal::AnalogInput {
   uint8_t count_ = 0;
   protocol::ConfigureLine config_[protocol::kMaxLines] = {};
   sim::RegulatorLine lines_[protocol::kMaxLines];
-  float command_[protocol::kMaxLines] = {};
+  uint32_t codes_[protocol::kMaxLines] = {};  ///< the DAC's registers
+  uint32_t scan_[protocol::kMaxLines] = {};   ///< the ADC's last scan
 };
 
 }  // namespace palpa::boards::mps2

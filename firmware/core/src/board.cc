@@ -92,6 +92,7 @@ void Board::ApplyLive(uint64_t now_us) {
   driven_lines_ = live_.line_count;
   ParkDroppedChannels();
   const float tolerance = static_cast<float>(live_.board.sensor_tolerance_pa);
+  vacuum_line_count_ = 0;
   for (uint8_t i = 0; i < kMaxLines; ++i) {
     line_owner_[i] = FingerOfLine(live_, i);
     if (i < live_.line_count) {
@@ -99,6 +100,8 @@ void Board::ApplyLive(uint64_t now_us) {
       ResetLineState(p, line_state_[i], p.safe_pa);
       setpoint_pa_[i] = p.safe_pa;
       dac_codes_[i] = p.safe_counts;
+      if (live_.lines[i].kind == protocol::LineKind::kVacuum)
+        vacuum_lines_[vacuum_line_count_++] = i;
       line_out_[i] =
           LineOutput{p.safe_pa, protocol::line_status::kSafe | protocol::line_status::kOpenLoop};
       // What the supervisor sees of a line that the configuration fixes, once per configuration.
@@ -183,19 +186,24 @@ void Board::ReadInputs(uint64_t now_us, SupervisorInput& in) {
   io_.adc->ReadAll(scan, count);
   LineObservation* o = in.lines.data();
   const LineParams* p = line_params_.data();
-  for (const uint32_t *counts = scan, *end = scan + count; counts != end; ++counts, ++o, ++p) {
+  ReadingSummary summary;
+  for (uint8_t i = 0; i < count; ++i, ++o, ++p) {
     if (!o->has_sensor) continue;
+    const uint32_t counts = scan[i];
     // Readings outside the sensor's output span (open or shorted wire) are not pressures; nor is
     // a failed conversion (kConversionFailed lies above every span).
-    const bool valid = *counts >= p->sensor_counts_low && *counts <= p->sensor_counts_high;
-    o->reading.valid = valid;
-    o->reading.status = valid ? 0 : protocol::line_status::kSensorFault;
-    if (valid) {
-      o->reading.pa = p->sensor_min_pa +
-                      (static_cast<float>(*counts) - p->sensor_counts_min) * p->sensor_pa_per_count;
-    }
-    o->raw_counts = *counts;
+    LineReading reading;
+    reading.valid = counts >= p->sensor_counts_low && counts <= p->sensor_counts_high;
+    reading.status = reading.valid ? 0 : protocol::line_status::kSensorFault;
+    reading.pa = reading.valid
+                     ? p->sensor_min_pa + (static_cast<float>(counts) - p->sensor_counts_min) *
+                                              p->sensor_pa_per_count
+                     : o->reading.pa;  // an invalid reading keeps the last pressure
+    o->reading = reading;
+    o->raw_counts = counts;
+    NoteReading(summary, i, reading, *o);
   }
+  in.readings = summary;
 }
 
 void Board::ObserveSlowSlot() {
@@ -235,14 +243,19 @@ void Board::StepLines() {
   const uint8_t* flags = line_flags_.data();
   uint32_t* code = dac_codes_.data();
   const bool safe = safe_;
-  bool vacuum = false;
   for (; p != end; ++p, ++state, ++out, ++o, ++setpoint, ++flags, ++code) {
     *code = safe ? HoldLineSafe(*p, *state, o->reading, *out)
                  : StepLine(*p, *state, *setpoint, o->reading, *out);
     out->status |= *flags;
-    vacuum |= out->command_pa < p->pump_below_pa;
   }
-  supervisor_input_.vacuum_demand = vacuum;  // the pump follows on the next tick's supervision
+  // The pump follows on the next tick's supervision: needed while a vacuum line commands more
+  // vacuum than its regulator's minimum.
+  bool vacuum = false;
+  for (uint8_t k = 0; k < vacuum_line_count_; ++k) {
+    const uint8_t i = vacuum_lines_[k];
+    vacuum |= line_out_[i].command_pa < line_params_[i].pump_below_pa;
+  }
+  supervisor_input_.vacuum_demand = vacuum;
 }
 
 void Board::WriteOutputs() {

@@ -66,15 +66,10 @@ uint32_t Supervise(const SupervisorSettings& settings, SupervisorState& s,
   if (in.failed_output != protocol::kNoLine) raise(Fault::kOutputWrite, in.failed_output);
 
   // Every tick, every line: a reading that is no pressure, or one beyond the limits.
-  for (uint8_t i = 0; i < protocol::kMaxLines; ++i) {
-    const LineObservation& o = in.lines[i];
-    if (!o.configured || !o.has_sensor) continue;
-    if (!o.reading.valid) {
-      raise(Fault::kImplausibleSensor, i);
-    } else if (o.reading.pa > o.alarm_above_pa || o.reading.pa < o.alarm_below_pa) {
-      raise(Fault::kOverLimit, static_cast<int32_t>(o.reading.pa));
-    }
-  }
+  if (in.readings.first_invalid != protocol::kNoLine)
+    raise(Fault::kImplausibleSensor, in.readings.first_invalid);
+  if (in.readings.first_beyond != protocol::kNoLine)
+    raise(Fault::kOverLimit, static_cast<int32_t>(in.readings.beyond_pa));
   const float tol = settings.tolerance_pa;
   const bool pump_wanted = in.vacuum_demand && !in.safe;
 

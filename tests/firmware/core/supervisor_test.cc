@@ -29,8 +29,14 @@ struct Fixture {
     o.alarm_below_pa = 0 - settings.tolerance_pa;  // limits 0..100 kPa
     o.alarm_above_pa = 100000 + settings.tolerance_pa;
   }
+  /// A tick at `now_us`: the readings summarised as the board's sensing stage does, then judged.
   uint32_t At(uint64_t now_us) {
     in.now_us = now_us;
+    in.readings = {};
+    for (uint8_t i = 0; i < pp::kMaxLines; ++i) {
+      if (in.lines[i].configured && in.lines[i].has_sensor)
+        pc::NoteReading(in.readings, i, in.lines[i].reading, in.lines[i]);
+    }
     return pc::Supervise(settings, state, in);
   }
   /// One tick of a live session: the host's heartbeat has just arrived.

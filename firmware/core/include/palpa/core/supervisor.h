@@ -38,6 +38,29 @@ struct LineObservation {
   float setpoint_pa = 0;
 };
 
+/// The sensing stage's summary of a tick's readings, built line by line with NoteReading where
+/// each reading is converted, so the supervisor judges every line every tick without visiting
+/// them all again.
+struct ReadingSummary {
+  uint8_t first_invalid = protocol::kNoLine;  ///< first line whose sensor read no pressure
+  uint8_t first_beyond = protocol::kNoLine;   ///< first line reading beyond its alarm bounds
+  float beyond_pa = 0;                        ///< that line's reading
+};
+
+/// Adds line `line`'s reading, `reading` as just converted (a line with a sensor; lines in
+/// increasing order; `o` for its alarm bounds).
+inline void NoteReading(ReadingSummary& summary, uint8_t line, LineReading reading,
+                        const LineObservation& o) {
+  if (!reading.valid) {
+    if (summary.first_invalid == protocol::kNoLine) summary.first_invalid = line;
+  } else if (reading.pa > o.alarm_above_pa || reading.pa < o.alarm_below_pa) {
+    if (summary.first_beyond == protocol::kNoLine) {
+      summary.first_beyond = line;
+      summary.beyond_pa = reading.pa;
+    }
+  }
+}
+
 struct SupervisorInput {
   uint64_t now_us = 0;
   bool session_open = false;
@@ -47,6 +70,7 @@ struct SupervisorInput {
   bool safe = false;           ///< outputs are in the safe state this tick
   bool vacuum_demand = false;  ///< a line commanded vacuum beyond its regulator's minimum
   uint8_t failed_output = protocol::kNoLine;  ///< first DAC channel whose last write failed
+  ReadingSummary readings;                    ///< every sensor line's reading this tick
   std::array<LineObservation, protocol::kMaxLines> lines{};
 };
 
