@@ -1,8 +1,13 @@
 // PI play-operator check on the Cortex-M4F under QEMU: the hand-scheduled ARMv7E-M pass against
 // the C++ one for every operator count, random parameter sets, memories, drive changes (up to
-// saturation) and starts (up to the ±2³⁰ clamp). Exits through semihosting: 0 when every result
-// and every memory word matched, 1 with the failing case printed.
+// saturation) and starts (up to the ±2³⁰ clamp); and the PI step's saturating conversions (one
+// VCVT, one SSAT) against their portable forms at the edges and at random. Exits through
+// semihosting: 0 when every result and every memory word matched, 1 with the failing case
+// printed.
+#include <cstring>
+
 #include "check_random.h"
+#include "float_ops.h"
 #include "palpa/core/compensator.h"
 #include "play_lanes.h"
 #include "play_pairs.h"
@@ -67,12 +72,42 @@ int32_t RandomStart() {
   }
 }
 
+/// The saturating conversions against their portable forms: 0 when all agree.
+uint32_t CheckConversions() {
+  const uint32_t edges[] = {0x00000000u, 0x80000000u, 0x3F000000u, 0xBF000000u, 0x3F7FFFFFu,
+                            0xBF7FFFFFu, 0x4EFFFFFFu, 0x4F000000u, 0xCF000000u, 0xCF000001u,
+                            0x7F800000u, 0xFF800000u, 0x7FC00000u, 0xFFC00000u, 0x7F7FFFFFu,
+                            0x4E800000u, 0xCE800000u, 0x00000001u};
+  uint32_t checked = 0;
+  auto check = [&checked](uint32_t bits) {
+    float v;
+    std::memcpy(&v, &bits, sizeof(v));
+    const int32_t i = pc::TruncateSaturating(v);
+    ++checked;
+    return i == pc::TruncateSaturatingPortable(v) &&
+           pc::lanes::Saturate31(i) == pc::lanes::Saturate31Portable(i);
+  };
+  for (uint32_t bits : edges) {
+    if (!check(bits)) return bits | 1u;
+  }
+  for (int k = 0; k < 20000; ++k) {
+    const uint32_t bits = NextRandom();
+    if (!check(bits)) return bits | 1u;
+  }
+  return checked > 20000 ? 0 : 1;
+}
+
 uint32_t g_fast[pc::kMaxPlayOperators / 2];
 uint32_t g_reference[pc::kMaxPlayOperators / 2];
 
 }  // namespace
 
 int main() {
+  if (const uint32_t bits = CheckConversions()) {
+    mps2::SemihostPrintNumber("float bits", bits);
+    mps2::SemihostPrint("play check: a saturating conversion differs from its portable form\n");
+    mps2::SemihostExit(1);
+  }
   uint32_t passes = 0;
   for (uint8_t n = 1; n <= pc::kMaxPlayOperators; ++n) {
     for (int set = 0; set < 8; ++set) {

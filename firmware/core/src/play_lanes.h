@@ -31,6 +31,20 @@ inline int32_t Saturate(int32_t v) {
 #endif
 }
 
+/// Saturate31's portable form.
+inline int32_t Saturate31Portable(int32_t v) {
+  return v > 1073741823 ? 1073741823 : (v < -1073741824 ? -1073741824 : v);
+}
+
+/// v saturated to [−2³⁰, 2³⁰ − 1] (SSAT #31).
+inline int32_t Saturate31(int32_t v) {
+#ifdef PALPA_PLAY_LANES_DSP
+  return __ssat(v, 31);
+#else
+  return Saturate31Portable(v);
+#endif
+}
+
 /// Both lanes of a + b, each saturated to int16 (QADD16).
 inline uint32_t SaturatingAdd(uint32_t a, uint32_t b) {
 #ifdef PALPA_PLAY_LANES_DSP
