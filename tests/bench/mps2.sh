@@ -30,7 +30,7 @@ for image in "$@"; do
   if [ "${image%-pi16.elf}" != "$image" ]; then  # the image with a PI(16) compensator on every finger
     args="$args,$(span play_passes palpa_play_pairs_v7em "$image")"
   fi
-  args="$args,$(span lines palpa::core::StepLine "$image")"
+  args="$args,$(span lines palpa::core::Board::StepLines "$image")"  # line steps inlined
   args="$args,$(span outputs palpa::core::Board::WriteOutputs "$image")"
   args="$args,$(span telemetry palpa::core::Board::SampleTelemetry "$image")"
   args="$args,$(span framing palpa::protocol::EncodeFrameInPlace "$image")"

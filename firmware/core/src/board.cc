@@ -3,6 +3,7 @@
 
 #include <cstring>
 
+#include "line_step.h"
 #include "palpa/core/update_engine.h"
 #include "palpa/protocol/crc32.h"
 
@@ -245,7 +246,7 @@ void Board::StepLines() {
   const bool safe = safe_;
   for (; p != end; ++p, ++state, ++out, ++o, ++setpoint, ++flags, ++code) {
     *code = safe ? HoldLineSafe(*p, *state, o->reading, *out)
-                 : StepLine(*p, *state, *setpoint, o->reading, *out);
+                 : StepLineInline(*p, *state, *setpoint, o->reading, *out);
     out->status |= *flags;
   }
   // The pump follows on the next tick's supervision: needed while a vacuum line commands more

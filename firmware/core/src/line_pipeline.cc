@@ -2,32 +2,21 @@
 #include "palpa/core/line_pipeline.h"
 
 #include "float_ops.h"
+#include "line_step.h"
 #include "palpa/core/ceilings.h"
 #include "palpa/core/curve.h"
 #include "palpa/protocol/enums.h"
 
 namespace palpa::core {
-namespace {
-
 namespace ls = protocol::line_status;
 
-/// DAC code + ½ for a commanded pressure (truncation rounds it).
-[[gnu::always_inline]] inline float Code(const LineParams& p, float command_pa) {
-  return command_pa * p.counts_per_pa + p.counts_at_zero;
-}
-
-/// Command that makes the regulator produce `slewed`, from its measured static curve: the rising
-/// branch while the setpoint's magnitude grows, the falling one while it shrinks (kept while
-/// steady). Only lines with a correction track the direction; it is read nowhere else.
-float FeedForward(const LineParams& p, LineState& s, float previous, float slewed) {
+float line_step::FeedForward(const LineParams& p, LineState& s, float previous, float slewed) {
   const float grown = Abs(slewed) - Abs(previous);
   if (grown > 0) s.rising = true;
   if (grown < 0) s.rising = false;
   const float* produced = s.rising ? p.correction_rising.data() : p.correction_falling.data();
   return Interpolate(produced, p.correction_command.data(), p.correction_count, slewed);
 }
-
-}  // namespace
 
 LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us) {
   LineParams p;
@@ -100,7 +89,8 @@ void ResetLineState(const LineParams& p, LineState& s, float pa) {
 }
 
 uint32_t CountsFor(const LineParams& p, float command_pa) {
-  return static_cast<uint32_t>(Clamp(Code(p, command_pa), p.rounded_low, p.rounded_high));
+  return static_cast<uint32_t>(
+      Clamp(line_step::Code(p, command_pa), p.rounded_low, p.rounded_high));
 }
 
 uint32_t HoldLineSafe(const LineParams& p, LineState& s, const LineReading& reading,
@@ -114,70 +104,7 @@ uint32_t HoldLineSafe(const LineParams& p, LineState& s, const LineReading& read
 
 uint32_t StepLine(const LineParams& p, LineState& s, float setpoint_pa, const LineReading& reading,
                   LineOutput& out) {
-  uint8_t status = reading.status;
-  // 1. Slew limit.
-  const float target = Clamp(setpoint_pa, p.limit_min_pa, p.limit_max_pa);
-  const float previous = s.slewed_pa;
-  float step = target - previous;
-  if (Abs(step) > p.max_step_pa) {
-    step = step > 0 ? p.max_step_pa : -p.max_step_pa;
-    status |= ls::kSlewing;
-  }
-  const float slewed = previous + step;
-  s.slewed_pa = slewed;
-
-  // 2. Regulator model (dead time + lag): the reference the trim compares the sensor with. The
-  // slot after this tick's holds the setpoint of dead_ticks ticks ago (this tick's when none).
-  uint8_t next = static_cast<uint8_t>(s.delay_index + 1);
-  if (next >= p.delay_length) next = 0;
-  s.delay[s.delay_index] = slewed;
-  s.delay_index = next;
-  s.reference_pa += p.model_alpha * (s.delay[next] - s.reference_pa);
-
-  // 3. Below the regulator's minimum set pressure: command 0, integrator off.
-  if (Abs(slewed) < p.regulator_min_pa) {
-    s.integrator_pa = 0;
-    out.command_pa = 0;
-    out.status = status | ls::kOpenLoop;
-    return p.zero_counts;
-  }
-
-  // 4. Feed-forward through the static correction (the nominal scaling without one), plus the PI
-  // trim where a sensor reads.
-  float command = p.correction_count >= 2 ? FeedForward(p, s, previous, slewed) : slewed;
-  float integrator = s.integrator_pa;
-  if (reading.valid) {
-    const float error = s.reference_pa - reading.pa;
-    const float effective = Abs(error) <= p.dead_band_pa ? 0.0f : error;
-    integrator += p.ki_dt * effective;
-    float trim = p.kp * effective + integrator;
-    // Back-calculation at the authority clamp: the integrator gives up what the clamp cut.
-    if (trim > p.authority_pa) {
-      integrator += p.authority_pa - trim;
-      trim = p.authority_pa;
-      status |= ls::kTrimClamped;
-    } else if (trim < -p.authority_pa) {
-      integrator += -p.authority_pa - trim;
-      trim = -p.authority_pa;
-      status |= ls::kTrimClamped;
-    }
-    command += trim;
-  } else {
-    status |= ls::kOpenLoop;
-  }
-
-  // 5. Final clamp to the line's limits, with back-calculation into the integrator.
-  if (command < p.limit_min_pa || command > p.limit_max_pa) {
-    const float limit = command < p.limit_min_pa ? p.limit_min_pa : p.limit_max_pa;
-    integrator = Clamp(integrator + (limit - command), -p.authority_pa, p.authority_pa);
-    command = limit;
-    status |= ls::kSaturated;
-  }
-  s.integrator_pa = integrator;
-  out.command_pa = command;
-  out.status = status;
-  // Within the limits, so within the command range: a code between the signal's ends.
-  return static_cast<uint32_t>(Code(p, command));
+  return StepLineInline(p, s, setpoint_pa, reading, out);
 }
 
 }  // namespace palpa::core

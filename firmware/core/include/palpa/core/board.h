@@ -99,8 +99,9 @@ class Board {
   void ComputeSetpoints(uint64_t now_us);
   /// line_flags_ from the fingers' modes (kRaw on a raw finger's lines; kSaturated cleared).
   void RefreshLineFlags();
-  /// Every line one step (or held safe), DAC codes into dac_codes_.
-  void StepLines();
+  /// Every line one step (or held safe), DAC codes into dac_codes_. Out of line, so instruction
+  /// counts can bracket the line stage (its steps are inlined).
+  [[gnu::noinline]] void StepLines();
   void WriteOutputs();
   /// Writes their old line's safe code to the channels a configuration dropped that have not
   /// taken it yet; returns the first whose write failed, or kNoLine.
