@@ -26,7 +26,6 @@ for image in "$@"; do
   args="$args,$(span config_check palpa::core::Board::CheckConfigIntegrity "$image")"
   args="$args,$(span supervisor palpa::core::Supervise "$image")"
   args="$args,$(span fingers palpa::core::Board::ComputeSetpoints "$image")"
-  args="$args,$(span finger_steps palpa::core::StepFinger "$image")"  # each finger, compensator inlined
   if [ "${image%-pi16.elf}" != "$image" ]; then  # the image with a PI(16) compensator on every finger
     args="$args,$(span play_passes palpa_play_pairs_v7em "$image")"
   fi

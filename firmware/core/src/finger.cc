@@ -1,7 +1,7 @@
 // Fingers in target mode: homing, then the compensator maps targets to line setpoints.
 #include "palpa/core/finger.h"
 
-#include "compensator_step.h"
+#include "finger_step.h"
 #include "palpa/core/curve.h"
 
 namespace palpa::core {
@@ -37,12 +37,7 @@ float StaticInverse(const FingerParams& p, float target) {
   return Interpolate(p.inverse_output.data(), p.inverse_setpoint.data(), p.inverse_count, target);
 }
 
-namespace {
-
-/// Before following targets: pneumatic fingers vented, jamming fingers with the vacuum released
-/// and the bias on, so the air cushion re-flattens the granules and the compensator starts from
-/// a known state. Out of line: the tick's common path is a homed finger.
-[[gnu::noinline]] void StepHoming(const FingerParams& p, FingerState& s, const FingerTick& tick) {
+void finger_step::StepHoming(const FingerParams& p, FingerState& s, const FingerTick& tick) {
   if (s.phase == HomePhase::kNeedsHoming) {
     s.phase = HomePhase::kHoming;
     s.homed_at_us = tick.now_us + tick.home_dwell_us;
@@ -56,37 +51,8 @@ namespace {
   }
 }
 
-}  // namespace
-
 void StepFinger(const FingerParams& p, FingerState& s, float applied_pa, const FingerTick& tick) {
-  if (s.phase != HomePhase::kHomed) return StepHoming(p, s, tick);
-  float setpoint = 0;
-  uint8_t status = 0;
-  if (p.compensator == protocol::CompensatorKind::kNone) {
-    setpoint = StaticInverse(p, s.target);  // the curve holds line pressures, signs included
-  } else {
-    // Memory follows the applied drive every tick, also while the target is 0 (venting). The
-    // play models (pi, api) run inline: they are the loop-rate cost of a compensated finger.
-    const float applied = p.drive_sign * applied_pa;
-    bool saturated = false;
-    float drive = 0;
-    if (p.compensator == protocol::CompensatorKind::kBranch) {
-      const CompensatorOutput c = StepCompensator(p.compensation, s.memory, s.target, applied);
-      drive = c.drive;
-      saturated = c.saturated;
-    } else {
-      drive = StepPlayInline(p.compensation, s.memory, s.target, applied, saturated);
-    }
-    if (s.target > 0) {  // "off" is 0 Pa whatever the model says
-      setpoint = p.drive_sign * drive;
-      if (saturated) status = protocol::line_status::kSaturated;
-    } else {
-      setpoint = p.drive_sign * 0.0f;
-    }
-  }
-  tick.setpoints[p.driven_line] = setpoint;
-  tick.line_status[p.driven_line] = status;
-  if (p.bias_line != protocol::kNoLine) tick.setpoints[p.bias_line] = p.bias_pa;
+  StepFingerInline(p, s, applied_pa, tick);
 }
 
 }  // namespace palpa::core

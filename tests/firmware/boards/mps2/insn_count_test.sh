@@ -17,7 +17,7 @@ echo "$first" | awk '
     if (tick < 1000) { print "tick count implausibly small: " tick; exit 1 }
     n = 0
     for (s in stage) { n++; if (stage[s] + 0 <= 0 || stage[s] + 0 > tick + 0) { print s " out of range: " stage[s]; exit 1 } }
-    if (n != 10) { print "expected 9 stages and the control tick, got " n; exit 1 }
+    if (n != 9) { print "expected 8 stages and the control tick, got " n; exit 1 }
     inside = mean["sensors"] + mean["supervisor"] + mean["fingers"] + mean["lines"] + mean["outputs"]
     parts = mean["control"] + mean["telemetry"] + mean["config_check"]
     if (mean["control"] + 0 < inside || parts - tick_mean > 0.5 || tick_mean - parts > 0.5) {

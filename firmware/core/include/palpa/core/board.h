@@ -96,7 +96,8 @@ class Board {
   /// The slow monitors' view of the line they visit this tick: where the last tick left it.
   void ObserveSlowSlot();
   /// Fingers in target mode write their lines' setpoints and status bits (nothing while safe).
-  void ComputeSetpoints(uint64_t now_us);
+  /// Out of line, so instruction counts can bracket the finger stage (its steps are inlined).
+  [[gnu::noinline]] void ComputeSetpoints(uint64_t now_us);
   /// line_flags_ from the fingers' modes (kRaw on a raw finger's lines; kSaturated cleared).
   void RefreshLineFlags();
   /// Every line one step (or held safe), DAC codes into dac_codes_. Out of line, so instruction
