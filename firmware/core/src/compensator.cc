@@ -59,22 +59,14 @@ CompensatorOutput StepCompensator(const Compensator& c, CompensatorState& s, flo
                                   float applied_drive) {
   CompensatorOutput out;
   if (c.kind == CompensatorKind::kBranch) {
-    const float applied = applied_drive > 0 ? applied_drive : 0.0f;
-    out.saturated = false;  // set when the target lies beyond the curves' ends
-    out.drive =
-        HoldDrive(c, StepBranch(c.branch, s, target, applied, out.saturated), out.saturated);
+    FollowBranch(c.branch, s, applied_drive > 0 ? applied_drive : 0.0f);
+    // Beyond its curves' ends.
+    out.saturated = target > c.branch.output[c.branch.points - 1] || target < c.branch.output[0];
+    out.drive = HoldDrive(c, BranchDrive(c.branch, s, target), out.saturated);
   } else {
     out.drive = StepPlayInline(c, s, target, applied_drive, out.saturated);
   }
   return out;
-}
-
-float StepBranch(const BranchTable& t, CompensatorState& s, float target, float applied,
-                 bool& outside) {
-  FollowBranch(t, s, applied);
-  // Beyond its curves' ends.
-  outside = target > t.output[t.points - 1] || target < t.output[0];
-  return BranchDrive(t, s, target);
 }
 
 float PlayState(const Compensator& c, const CompensatorState& s, uint8_t i) {

@@ -48,11 +48,6 @@ inline float PlayStep(const PlayTable& t, CompensatorState& s, float v, float ap
 
 }  // namespace compensator_step
 
-/// `branch`: follows the applied drive, then the drive for `target`; `outside` when the target
-/// is beyond the curves' ends (compensator.cc).
-float StepBranch(const BranchTable& t, CompensatorState& s, float target, float applied,
-                 bool& outside);
-
 /// The drive a model asked for, held to [0, drive_limit]: a model asked for what the line cannot
 /// give (or for less than nothing), held at the limit, and said so in `saturated`. NaN cannot
 /// pass configuration, but the guard costs one compare.
