@@ -78,20 +78,10 @@ inline uint32_t Max(uint32_t v, uint32_t bound, uint32_t negative) {
 #endif
 }
 
-/// Each lane of v clamped to [−bound, bound]; `negative` holds −bound. bound ≥ 0.
+/// Each lane of v clamped to [−bound, bound]; `negative` holds −bound. bound ≥ 0. (SSUB16 and
+/// SEL, then SADD16 and SEL: the GE flags come from the exact 17-bit results.)
 inline uint32_t Clamp(uint32_t v, uint32_t bound, uint32_t negative) {
-#ifdef PALPA_PLAY_LANES_DSP
-  // SSUB16 sets GE where v ≥ bound (exact, from the 17-bit difference): SEL takes the bound
-  // there. SADD16 then sets GE where v ≥ −bound: SEL keeps v there and takes −bound elsewhere.
-  (void)__ssub16(static_cast<int16x2_t>(v), static_cast<int16x2_t>(bound));
-  const uint32_t below = __sel(bound, v);
-  (void)__sadd16(static_cast<int16x2_t>(below), static_cast<int16x2_t>(bound));
-  return __sel(below, negative);
-#else
-  auto clamp = [](int32_t x, int32_t hi, int32_t lo) { return x >= hi ? hi : (x >= lo ? x : lo); };
-  return Pack(clamp(Low(v), Low(bound), Low(negative)),
-              clamp(High(v), High(bound), High(negative)));
-#endif
+  return Max(Min(v, bound), bound, negative);
 }
 
 /// acc + low(a)·low(b), wrapping like SMLABB (the scales keep the true sums in range).
