@@ -140,6 +140,31 @@ TEST(BoardSetpoints, OlderGenerationsAreDropped) {
   DOUBLES_EQUAL(20000, h.board->line_state(0).slewed_pa, 1);
 }
 
+TEST(BoardSetpoints, ARawFingersLinesSayRawInAndOutOfTheSafeStateUntilItReturns) {
+  namespace ls = pp::line_status;
+  h.Run(2, true);  // safe: no setpoints yet
+  CHECK(h.board->line_output(0).status & ls::kSafe);
+  CHECK(h.board->line_output(0).status & ls::kRaw);
+  CHECK(h.board->line_output(3).status & ls::kRaw);  // finger 3's bias and vacuum lines
+  CHECK(h.board->line_output(5).status & ls::kRaw);
+  CHECK_FALSE(h.board->line_output(1).status & ls::kRaw);  // finger 1 is in target mode
+  h.Send(Setpoints(1, {{0, 10000}}));
+  h.Run(2, true);
+  CHECK_FALSE(h.board->safe());
+  CHECK(h.board->line_output(0).status & ls::kRaw);
+  h.Send(pp::SetFingerMode{0, pp::FingerMode::kTarget});
+  h.Run(2, true);
+  CHECK_FALSE(h.board->line_output(0).status & ls::kRaw);
+  CHECK(h.board->line_output(5).status & ls::kRaw);
+  // A new configuration keeps the modes, and with them the bits.
+  h.Send(h.board->config().lines[2]);
+  LONGS_EQUAL((int)pp::Status::kOk,
+              (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kConfigureLine));
+  h.Run(2, true);
+  CHECK(h.board->line_output(3).status & ls::kRaw);
+  CHECK_FALSE(h.board->line_output(0).status & ls::kRaw);
+}
+
 TEST_GROUP(BoardTargets) {
   BoardHarness h;
   void setup() override {
@@ -220,6 +245,11 @@ TEST(BoardTargets, PiCompensatorDrivesTheLineAndSaysWhenItSaturates) {
   run(1500);
   CHECK(h.board->line_output(0).status & pp::line_status::kSaturated);
   CHECK(h.board->line_state(0).slewed_pa <= h.board->config().lines[0].limit_max_pa);
+  // Safe, the line no longer follows the compensator and stops saying it saturates.
+  h.Send(pp::EStop{});
+  h.Run(2, true);
+  CHECK(h.board->line_output(0).status & pp::line_status::kSafe);
+  CHECK_FALSE(h.board->line_output(0).status & pp::line_status::kSaturated);
 }
 
 TEST(BoardTargets, CompensatorParametersThatCannotBeInvertedAreNackedAndNothingChanges) {
