@@ -34,6 +34,28 @@ TEST(Procedures, ZeroAndSurfaceHeightsFollowTheFilm) {
   CHECK(truth > 1.0);
 }
 
+TEST(Procedures, AFastApproachFindsTheSurfaceAsASlowOneDoesWhenReadingsArriveLate) {
+  // The quick protocol's 1 mm/s approach, with each force reading arriving 30 ms late (a busy
+  // host): the stage is 30 µm deeper by the time the host sees contact, and with the position read
+  // after it, 30–60 µm. The last stretch is crept at 0.1 mm/s, where the same lateness costs a
+  // tenth: the surface stays within the sensor's noise and 6 µm of lateness of the prompt one.
+  cal::ContactOptions o;
+  o.speed_mm_s = 1.0;
+  auto surface = [&o](double latency_s, double kpa) {
+    pt::SimRig sim({"thesis-5finger", 0, 1, 3});
+    cal::Rig rig = sim.rig();
+    double zero = 0, found = 0;
+    CHECK(cal::ZeroOnVentedSurface(rig, 0, o, &zero).ok);
+    CHECK(sim.SetDrive(0, kpa, 0).ok);
+    sim.Wait(3);
+    sim.force_latency_s = latency_s;
+    const cal::RigStatus s = cal::FindSurface(rig, zero, o, &found);
+    CHECK_TEXT(s.ok, s.error.c_str());
+    return found;
+  };
+  for (double kpa : {0.0, 40.0}) DOUBLES_EQUAL(surface(0, kpa), surface(0.03, kpa), 0.02);
+}
+
 TEST(Procedures, RegulatorCorrectionShowsTheStaticErrorAndTheBoardTakesIt) {
   pt::SimRig sim({"thesis-5finger", 0, 1, 4});
   cal::Rig rig = sim.rig();

@@ -53,6 +53,7 @@ RigStatus SimRig::Read(double* newtons) {
   if (force_extra_noise_n > 0) {
     *newtons += std::normal_distribution<double>(0, force_extra_noise_n)(noise_rng_);
   }
+  if (force_latency_s > 0) Wait(force_latency_s);  // the reading arrives late, the stage moves on
   return {};
 }
 

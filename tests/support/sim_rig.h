@@ -36,6 +36,9 @@ class SimRig final : public calibration::RigTime,
   bool stage_lost = false;
   double force_drift_n_per_s = 0;  ///< the force sensor's zero walks away from its tare
   double force_extra_noise_n = 0;  ///< RMS noise on top of the sensor's own (a worse sensor)
+  /// Time that passes before each force reading reaches the host (a busy or slow host): the
+  /// stage keeps moving meanwhile.
+  double force_latency_s = 0;
   /// The actuator under the indenter changed by this factor since its last calibration.
   void ScaleActuator(float factor);
   /// A line of the board leaks (RegulatorLine::set_leak).

@@ -28,7 +28,9 @@ RigStatus GuardedMove(Rig& rig, double mm, double speed_mm_s, double poll_s = 0.
 RigStatus AbortSafe(Rig& rig, const std::string& why);
 
 /// Approaches from `expected_mm` + approach and creeps down until contact; returns the encoder
-/// position at contact (the surface height), then lifts clear by the approach distance.
+/// position at contact (the surface height), then lifts clear by the approach distance. A creep
+/// faster than 0.1 mm/s only locates the surface: the last stretch is crept again at 0.1 mm/s from
+/// above it, so a host that sees contact late costs a tenth of the depth.
 RigStatus FindSurface(Rig& rig, double expected_mm, const ContactOptions& o, double* surface_mm);
 
 /// Tares the force sensor clear of the finger, vents it and finds the vented surface (the zero).
