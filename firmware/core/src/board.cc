@@ -92,7 +92,6 @@ void Board::ApplyLive(uint64_t now_us) {
   driven_lines_ = live_.line_count;
   ParkDroppedChannels();
   const float tolerance = static_cast<float>(live_.board.sensor_tolerance_pa);
-  vacuum_line_count_ = 0;
   for (uint8_t i = 0; i < kMaxLines; ++i) {
     line_owner_[i] = FingerOfLine(live_, i);
     if (i < live_.line_count) {
@@ -100,8 +99,6 @@ void Board::ApplyLive(uint64_t now_us) {
       ResetLineState(p, line_state_[i], p.safe_pa);
       setpoint_pa_[i] = p.safe_pa;
       dac_codes_[i] = p.safe_counts;
-      if (live_.lines[i].kind == protocol::LineKind::kVacuum)
-        vacuum_lines_[vacuum_line_count_++] = i;
       line_out_[i] =
           LineOutput{p.safe_pa, protocol::line_status::kSafe | protocol::line_status::kOpenLoop};
       // What the supervisor sees of a line that the configuration fixes, once per configuration.

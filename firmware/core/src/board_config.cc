@@ -74,12 +74,9 @@ Status ValidateLine(const protocol::ConfigureLine& line, ConfigError* error) {
   if (line.command_min_pa == line.command_max_pa) {
     return Fail(error, ConfigSection::kLine, i, "command range is empty", Status::kBadValue);
   }
-  const int32_t command_lo =
-      line.command_min_pa < line.command_max_pa ? line.command_min_pa : line.command_max_pa;
-  const int32_t command_hi =
-      line.command_min_pa < line.command_max_pa ? line.command_max_pa : line.command_min_pa;
-  if (!Within(line.limit_min_pa, command_lo, command_hi) ||
-      !Within(line.limit_max_pa, command_lo, command_hi)) {
+  const Ceiling command = CommandRange(line.command_min_pa, line.command_max_pa);
+  if (!Within(line.limit_min_pa, command.min_pa, command.max_pa) ||
+      !Within(line.limit_max_pa, command.min_pa, command.max_pa)) {
     return Fail(error, ConfigSection::kLine, i, "limits outside the regulator's command range");
   }
   if (line.sensor == protocol::SensorKind::kAnalog) {

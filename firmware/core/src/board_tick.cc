@@ -105,29 +105,25 @@ void Board::StepLines() {
   const uint8_t* flags = line_flags_.data();
   uint32_t* code = dac_codes_.data();
   const bool safe = safe_;
+  bool vacuum = false;  // a vacuum line commands more than its regulator's minimum: the pump runs
   for (; p != end; ++p, ++state, ++out, ++o, ++setpoint, ++flags, ++code) {
     *code = safe ? HoldLineSafe(*p, *state, o->reading, *out)
                  : StepLineInline(*p, *state, *setpoint, o->reading, *out);
     out->status |= *flags;
+    vacuum |= out->command_pa < p->pump_below_pa;
   }
-  // The pump follows on the next tick's supervision: needed while a vacuum line commands more
-  // vacuum than its regulator's minimum.
-  bool vacuum = false;
-  for (uint8_t k = 0; k < vacuum_line_count_; ++k) {
-    const uint8_t i = vacuum_lines_[k];
-    vacuum |= line_out_[i].command_pa < line_params_[i].pump_below_pa;
-  }
-  supervisor_input_.vacuum_demand = vacuum;
+  supervisor_input_.vacuum_demand = vacuum;  // the pump follows on the next tick's supervision
 }
 
 void Board::WriteOutputs() {
   // The supervisor judges a failed write on the next tick.
   uint8_t failed = io_.dac.WriteAll(dac_codes_.data(), live_.line_count);
+  if (failed == hal::AnalogOutput::kAllWritten) failed = kNoLine;
   if (unparked_channels_ != 0) {
     const uint8_t channel = ParkDroppedChannels();
-    if (failed == hal::AnalogOutput::kAllWritten) failed = channel;
+    if (failed == kNoLine) failed = channel;
   }
-  supervisor_input_.failed_output = failed == hal::AnalogOutput::kAllWritten ? kNoLine : failed;
+  supervisor_input_.failed_output = failed;
   // Critical for safety: valves and pump are held only while the board is not safe.
   supply_pulse_.Tick(!safe_);
   dump_pulse_.Tick(!safe_);

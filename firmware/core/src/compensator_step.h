@@ -1,5 +1,5 @@
-// The compensator step, inlined into the finger step (a call and a struct return per finger per
-// tick otherwise): the play-operator path (pi, api) in full, the branch path by call.
+// The play-operator compensators' step (pi, api), inlined into the finger step (a call and a
+// struct return per finger per tick otherwise); the branch model's stays in compensator.cc.
 #pragma once
 
 #include "float_ops.h"
@@ -17,10 +17,6 @@ inline float OutputMapInverse(const PlayTable& t, float s) {
   return t.knot_in[k] + (s - t.knot_out[k]) * t.inverse_slope[k];
 }
 
-// Where the inverse-domain sum starts is held to ±2³⁰ sum steps: the scales keep the operators'
-// shares and every inverse threshold within 2²⁹ (compensator_params.cc), so a start held there
-// still puts each inverse state beyond its threshold (as the true one is) and no sum leaves
-// int32.
 constexpr float kHalfUpperStep = 32768.0f;     // rounds the states' upper halves to nearest
 constexpr int32_t kMaxAppliedSteps = 1 << 24;  // exact in float, far beyond any sensor
 
@@ -40,6 +36,10 @@ inline float PlayStep(const PlayTable& t, CompensatorState& s, float v, float ap
   const int32_t moved = lanes::Saturate(s.applied_steps - applied_steps);
   s.applied_steps = applied_steps;
   const uint32_t shift = lanes::Pack(moved, moved);
+  // Where the inverse-domain sum starts is held to ±2³⁰ sum steps: the scales keep the operators'
+  // shares and every inverse threshold within 2²⁹ (compensator_params.cc), so a start held there
+  // still puts each inverse state beyond its threshold (as the true one is) and no sum leaves
+  // int32.
   const float start = t.applied_gain * static_cast<float>(applied_steps) - v * t.per_sum_step;
   const int32_t later = lanes::Saturate31(TruncateSaturating(start + kHalfUpperStep));
   const int32_t drive = PlayPairs(t.pair, s.play, t.pairs, shift, later);

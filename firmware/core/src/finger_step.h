@@ -40,7 +40,7 @@ namespace finger_step {
       setpoint = p.drive_sign * drive;
       if (saturated) status = protocol::line_status::kSaturated;
     } else {
-      setpoint = p.drive_sign * 0.0f;
+      setpoint = p.drive_sign * 0.0f;  // signed like the drive would be (−0 on a vacuum line)
     }
   }
   tick.setpoints[p.driven_line] = setpoint;

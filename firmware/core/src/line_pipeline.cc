@@ -34,12 +34,9 @@ LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us)
   // The limits within the hard ceiling and within the regulator's command range (validation
   // refuses limits beyond either; intersected here too, because the step converts a command held
   // to the limits into a DAC code without a clamp of its own).
-  const int32_t command_lo =
-      line.command_min_pa < line.command_max_pa ? line.command_min_pa : line.command_max_pa;
-  const int32_t command_hi =
-      line.command_min_pa < line.command_max_pa ? line.command_max_pa : line.command_min_pa;
-  const int32_t floor = ceiling.min_pa > command_lo ? ceiling.min_pa : command_lo;
-  const int32_t top = ceiling.max_pa < command_hi ? ceiling.max_pa : command_hi;
+  const Ceiling command = CommandRange(line.command_min_pa, line.command_max_pa);
+  const int32_t floor = ceiling.min_pa > command.min_pa ? ceiling.min_pa : command.min_pa;
+  const int32_t top = ceiling.max_pa < command.max_pa ? ceiling.max_pa : command.max_pa;
   p.limit_min_pa = static_cast<float>(line.limit_min_pa > floor ? line.limit_min_pa : floor);
   p.limit_max_pa = static_cast<float>(line.limit_max_pa < top ? line.limit_max_pa : top);
   p.safe_pa = Clamp(static_cast<float>(line.safe_pa), p.limit_min_pa, p.limit_max_pa);
@@ -65,8 +62,7 @@ LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us)
   const float tau = static_cast<float>(line.model_tau_us) * 1e-6f;
   p.model_alpha = tau > 0 ? dt / (tau + dt) : 1.0f;
   const uint32_t dead = tick_us > 0 ? (line.model_dead_time_us + tick_us / 2) / tick_us : 0;
-  p.dead_ticks = static_cast<uint8_t>(dead < kMaxDeadTicks ? dead : kMaxDeadTicks - 1);
-  p.delay_length = static_cast<uint8_t>(p.dead_ticks + 1);
+  p.delay_length = static_cast<uint8_t>((dead < kMaxDeadTicks ? dead : kMaxDeadTicks - 1) + 1);
   p.correction_count = line.correction_count;
   for (uint8_t i = 0; i < line.correction_count; ++i) {
     p.correction_command[i] = static_cast<float>(line.correction[i].command_pa);

@@ -40,7 +40,7 @@ float FeedForward(const LineParams& p, LineState& s, float previous, float slewe
   s.slewed_pa = slewed;
 
   // 2. Regulator model (dead time + lag): the reference the trim compares the sensor with. The
-  // slot after this tick's holds the setpoint of dead_ticks ticks ago (this tick's when none).
+  // slot after this tick's holds the setpoint of the dead time ago (this tick's when none).
   uint8_t next = static_cast<uint8_t>(s.delay_index + 1);
   if (next >= p.delay_length) next = 0;
   s.delay[s.delay_index] = slewed;

@@ -155,9 +155,6 @@ class Board {
   std::array<FingerParams, protocol::kMaxFingers> finger_params_{};
   std::array<FingerState, protocol::kMaxFingers> finger_state_{};
   std::array<uint8_t, protocol::kMaxLines> line_owner_{};
-  /// The vacuum lines, whose commands decide the pump (no other line's can).
-  std::array<uint8_t, protocol::kMaxLines> vacuum_lines_{};
-  uint8_t vacuum_line_count_ = 0;
   uint8_t driven_lines_ = 0;        ///< DAC channels the live configuration's lines write each tick
   uint32_t unparked_channels_ = 0;  ///< dropped channels whose safe code is not written yet
 

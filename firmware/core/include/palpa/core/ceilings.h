@@ -41,4 +41,11 @@ constexpr Ceiling CeilingFor(protocol::LineKind kind) {
   }
 }
 
+/// A line's command range, lowest first (a vacuum line's runs downwards, from 0 % to 100 % of the
+/// signal): what its regulator can be told. Validation keeps the limits inside it.
+constexpr Ceiling CommandRange(int32_t command_min_pa, int32_t command_max_pa) {
+  return command_min_pa < command_max_pa ? Ceiling{command_min_pa, command_max_pa}
+                                         : Ceiling{command_max_pa, command_min_pa};
+}
+
 }  // namespace palpa::core

@@ -34,8 +34,9 @@ struct LineParams {
   float kp = 0, ki_dt = 0;                    ///< ki already multiplied by the tick period
   float authority_pa = 0, dead_band_pa = 0;
   float model_alpha = 1;  ///< regulator-model lag per tick
-  uint8_t dead_ticks = 0;
-  uint8_t delay_length = 1;  ///< dead_ticks + 1: the delay line holds this tick's setpoint too
+  /// The regulator model's dead time in ticks, plus one: the delay line holds this tick's setpoint
+  /// too.
+  uint8_t delay_length = 1;
   uint8_t correction_count = 0;
   std::array<float, protocol::kMaxCorrectionPoints> correction_command{};
   std::array<float, protocol::kMaxCorrectionPoints> correction_rising{};
@@ -48,7 +49,7 @@ struct LineState {
   float slewed_pa = 0;  ///< setpoint after the slew limiter
   float integrator_pa = 0;
   float reference_pa = 0;  ///< regulator-model output: where the pressure should be now
-  /// Slewed setpoints of the last dead_ticks + 1 ticks; the next one goes to delay_index.
+  /// Slewed setpoints of the last delay_length ticks; the next one goes to delay_index.
   std::array<float, kMaxDeadTicks> delay{};
   uint8_t delay_index = 0;
   bool rising = true;  ///< direction for the correction branch, kept while steady (lines with one)
