@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "fd_link.h"
+#include "palpa/hal/linux/atomic_file.h"
 #include "real_time_pacer.h"
 #include "rig_modbus_server.h"
 #include "rig_netft_server.h"
@@ -59,19 +60,22 @@ int main(int argc, char** argv) {
   sigaction(SIGTERM, &action, nullptr);
   signal(SIGPIPE, SIG_IGN);
 
-  FILE* stamps = nullptr;
+  // Written whole (like every file palpa writes): it appears complete when palpa-sim stops.
+  palpa::hal::linux_files::AtomicFile stamps;
   if (!cmd.stamp_file.empty()) {
-    stamps = std::fopen(cmd.stamp_file.c_str(), "w");
-    if (stamps == nullptr) {
-      std::fprintf(stderr, "palpa-sim: --stamp %s: cannot write\n", cmd.stamp_file.c_str());
+    if (!stamps.Open(cmd.stamp_file, &error)) {
+      std::fprintf(stderr, "palpa-sim: --stamp %s\n", error.c_str());
       return 1;
     }
     // One monotonic clock for host and simulator: CLOCK_MONOTONIC nanoseconds.
-    sim->OnSetpointGeneration([stamps](uint32_t generation, bool dac) {
+    sim->OnSetpointGeneration([&stamps](uint32_t generation, bool dac) {
       timespec now;
       clock_gettime(CLOCK_MONOTONIC, &now);
-      std::fprintf(stamps, "%u %s %lld\n", generation, dac ? "dac" : "applied",
-                   static_cast<long long>(now.tv_sec) * 1000000000LL + now.tv_nsec);
+      char line[64];
+      const int n =
+          std::snprintf(line, sizeof(line), "%u %s %lld\n", generation, dac ? "dac" : "applied",
+                        static_cast<long long>(now.tv_sec) * 1000000000LL + now.tv_nsec);
+      stamps.Write(std::string_view(line, static_cast<size_t>(n)));
     });
   }
   std::unique_ptr<palpa::sim::RigModel> rig;
@@ -151,7 +155,15 @@ int main(int argc, char** argv) {
                            static_cast<long>(std::fmod(wait_us, 1e6) * 1000)};
     ppoll(fds.data(), fds.size(), &timeout, nullptr);
   }
-  if (stamps != nullptr) std::fclose(stamps);
+  int status = 0;
+  if (stamps.is_open() && !stamps.Commit(&error)) {
+    std::fprintf(stderr, "palpa-sim: --stamp %s\n", error.c_str());
+    status = 1;
+  }
+  if (!truth.Close(&error)) {
+    std::fprintf(stderr, "palpa-sim: %s\n", error.c_str());
+    status = 1;
+  }
   std::printf("palpa-sim: stopped\n");
-  return 0;
+  return status;
 }

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 
 #include "tcp_listener.h"
@@ -12,16 +13,15 @@
 namespace palpa::sim {
 
 TruthStream::~TruthStream() {
-  if (file_ != nullptr) fclose(file_);
   if (client_fd_ >= 0) close(client_fd_);
   if (listen_fd_ >= 0) close(listen_fd_);
 }
 
 bool TruthStream::Open(const std::string& spec, std::string* error) {
   if (spec.rfind("file:", 0) == 0) {
-    file_ = fopen(spec.substr(5).c_str(), "w");
-    if (file_ == nullptr) {
-      *error = "--truth " + spec + ": " + std::strerror(errno);
+    std::string why;
+    if (!file_.Open(spec.substr(5), &why)) {
+      *error = "--truth " + why;
       return false;
     }
     address_ = spec;
@@ -29,6 +29,14 @@ bool TruthStream::Open(const std::string& spec, std::string* error) {
   }
   listen_fd_ = ListenTcp(spec, "--truth", &address_, error);
   return listen_fd_ >= 0;
+}
+
+bool TruthStream::Close(std::string* error) {
+  if (!file_.is_open()) return true;
+  std::string why;
+  if (file_.Commit(&why)) return true;
+  *error = "--truth " + why;
+  return false;
 }
 
 void TruthStream::Pump() {
@@ -68,7 +76,7 @@ std::string TruthStream::Format(const PlantTruth& truth, uint64_t board_time_us,
 
 void TruthStream::Write(const PlantTruth& truth, uint64_t board_time_us, const BoardFacts& board) {
   const std::string line = Format(truth, board_time_us, board) + "\n";
-  if (file_ != nullptr) fputs(line.c_str(), file_);
+  if (file_.is_open()) file_.Write(line);
   if (client_fd_ >= 0) {
     const ssize_t n = send(client_fd_, line.data(), line.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
     if (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK) {

@@ -3,9 +3,9 @@
 #pragma once
 
 #include <cstdint>
-#include <cstdio>
 #include <string>
 
+#include "palpa/hal/linux/atomic_file.h"
 #include "palpa/hal/sim/plant.h"
 
 namespace palpa::sim {
@@ -13,8 +13,11 @@ namespace palpa::sim {
 class TruthStream {
  public:
   ~TruthStream();
-  /// "file:PATH" or "tcp:HOST:PORT" (one reader at a time; nothing is kept while none is there).
+  /// "file:PATH" (written whole: the file appears complete when Close puts it in place) or
+  /// "tcp:HOST:PORT" (one reader at a time; nothing is kept while none is there).
   bool Open(const std::string& spec, std::string* error);
+  /// Puts a file in place; false with *error when it could not be written.
+  bool Close(std::string* error);
   const std::string& address() const { return address_; }
   /// Board-side facts for tests that judge the safe state from outside.
   struct BoardFacts {
@@ -31,7 +34,7 @@ class TruthStream {
                             const BoardFacts& board);
 
  private:
-  FILE* file_ = nullptr;
+  hal::linux_files::AtomicFile file_;
   int listen_fd_ = -1;
   int client_fd_ = -1;
   std::string address_;

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <type_traits>
 
+#include "palpa/hal/linux/atomic_file.h"
 #include "palpa/host/calibration_file.h"
 
 namespace palpa::host {

@@ -3,15 +3,18 @@
 
 #include <nlohmann/json.hpp>
 
+#include "palpa/hal/linux/atomic_file.h"
 #include "palpa/host/device.h"
 
 namespace palpa::host {
 
 Outcome Device::StartRecording(const std::string& path) {
   std::lock_guard<std::mutex> lock(record_mutex_);
-  if (record_.is_open()) return Outcome{Status::kBusy, "already recording to " + record_path_, {}};
-  record_.open(path + ".part");
-  if (!record_) return Outcome{Status::kIoError, path + ": cannot write", {}};
+  if (record_) return Outcome{Status::kBusy, "already recording to " + record_path_, {}};
+  auto file = std::make_unique<hal::linux_files::AtomicFile>();
+  std::string error;
+  if (!file->Open(path, &error)) return Outcome{Status::kIoError, error, {}};
+  record_ = std::move(file);
   record_path_ = path;
   const pp::HelloReply b = link_->board();
   nlohmann::ordered_json header;
@@ -41,11 +44,11 @@ Outcome Device::StartRecording(const std::string& path) {
                      {"status", "line status bits (docs/protocol.md)"}};
   header["clock"] = {{"host_time_s", "board_time_us / 1e6 / time_scale + offset_s"},
                      {"offset_s", link_->BoardToHostSeconds(0)}};
-  record_ << "# " << header.dump() << "\n";
-  record_ << "host_time_s,board_time_us,line,setpoint_pa,measured_pa,command_counts,status\n";
+  record_->Write("# " + header.dump() + "\n");
+  record_->Write("host_time_s,board_time_us,line,setpoint_pa,measured_pa,command_counts,status\n");
   record_subscription_ = link_->Subscribe([this](const TelemetryFrame& f) {
     std::lock_guard<std::mutex> guard(record_mutex_);
-    if (!record_.is_open()) return;
+    if (!record_) return;
     const pp::Telemetry& t = f.telemetry;
     char row[160];
     for (uint8_t tick = 0; tick < t.tick_count; ++tick) {
@@ -57,7 +60,7 @@ Outcome Device::StartRecording(const std::string& path) {
                       link_->BoardToHostSeconds(board_us),
                       static_cast<unsigned long long>(board_us), line, s.setpoint_pa, s.measured_pa,
                       s.command_counts, s.status);
-        record_ << row;
+        record_->Write(row);
       }
     }
   });
@@ -68,16 +71,15 @@ Outcome Device::StopRecording() {
   int subscription = 0;
   {
     std::lock_guard<std::mutex> lock(record_mutex_);
-    if (!record_.is_open()) return {};
+    if (!record_) return {};
     subscription = record_subscription_;
   }
   link_->Unsubscribe(subscription);
   std::lock_guard<std::mutex> lock(record_mutex_);
-  record_.close();
-  const bool ok = static_cast<bool>(record_) &&
-                  std::rename((record_path_ + ".part").c_str(), record_path_.c_str()) == 0;
-  record_ = std::ofstream();
-  return ok ? Outcome{} : Outcome{Status::kIoError, record_path_ + ": could not be completed", {}};
+  std::string error;
+  const bool ok = record_->Commit(&error);
+  record_.reset();
+  return ok ? Outcome{} : Outcome{Status::kIoError, error, {}};
 }
 
 }  // namespace palpa::host

@@ -1,8 +1,11 @@
 // Files written whole or not at all: new, replaced, and a failed write that leaves the old file
-// and no temporary behind.
+// and no temporary behind; never through a symlink planted beside the target, with the mode of
+// the file replaced, and flushed to disk with the directory that names it.
 #include "palpa/host/file_write.h"
 
+#include <dlfcn.h>
 #include <stdlib.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -22,7 +25,23 @@ std::string ReadAll(const fs::path& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+/// What fsync was called on while recording: 'f' a regular file, 'd' a directory (a plain array:
+/// the leak checker would count a container's storage).
+bool g_record_fsyncs = false;
+char g_fsynced[8];
+size_t g_fsync_count = 0;
+
 }  // namespace
+
+// A link-time seam: the library's calls to fsync land here first, then in the C library.
+extern "C" int fsync(int fd) {
+  using Fsync = int (*)(int);
+  static const auto real = reinterpret_cast<Fsync>(dlsym(RTLD_NEXT, "fsync"));
+  struct stat st;
+  if (g_record_fsyncs && g_fsync_count < sizeof(g_fsynced) && fstat(fd, &st) == 0)
+    g_fsynced[g_fsync_count++] = S_ISDIR(st.st_mode) ? 'd' : S_ISREG(st.st_mode) ? 'f' : '?';
+  return real(fd);
+}
 
 TEST_GROUP(FileWrite) {
   fs::path dir;
@@ -31,7 +50,11 @@ TEST_GROUP(FileWrite) {
     CHECK(mkdtemp(pattern.data()) != nullptr);
     dir = pattern;
   }
-  void teardown() override { fs::remove_all(dir); }
+  void teardown() override {
+    g_record_fsyncs = false;
+    g_fsync_count = 0;
+    fs::remove_all(dir);
+  }
   size_t Entries() const {
     return static_cast<size_t>(
         std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
@@ -57,12 +80,69 @@ TEST(FileWrite, AFailedWriteNamesTheFileAndLeavesNothing) {
   CHECK_FALSE(ph::WriteFileWhole(missing.string(), "data", &error));
   CHECK(error.find(missing.string()) != std::string::npos);
   CHECK(error.find("No such file") != std::string::npos);
-  // The target is a directory: the temporary is written, the rename fails, and is cleaned up.
+  // The target is a directory: refused, and nothing is left behind.
   const fs::path taken = dir / "taken";
   fs::create_directory(taken);
-  fs::create_directory(taken / "inside");  // not empty: rename cannot replace it
+  fs::create_directory(taken / "inside");
   CHECK_FALSE(ph::WriteFileWhole(taken.string(), "data", &error));
-  CHECK(error.find("cannot replace") != std::string::npos);
+  CHECK_TEXT(error.find("is a directory") != std::string::npos, error.c_str());
   CHECK(fs::is_directory(taken / "inside"));
   LONGS_EQUAL(1, Entries());
+}
+
+TEST(FileWrite, ASymlinkPlantedWhereTheTemporaryMightGoIsNeverFollowed) {
+  // Whatever name a writer might pick beside the target, a link planted there to a victim file
+  // must not redirect the write: the victim keeps its contents and the target gets the bytes.
+  const fs::path victim = dir / "victim";
+  std::ofstream(victim) << "precious";
+  const fs::path out = dir / "out.pkg";
+  for (const std::string& name : {"out.pkg.part" + std::to_string(getpid()),
+                                  std::string("out.pkg.part"), std::string("out.pkg.tmp")}) {
+    fs::create_symlink(victim, dir / name);
+  }
+  std::string error;
+  CHECK_TEXT(ph::WriteFileWhole(out.string(), "package", &error), error.c_str());
+  STRCMP_EQUAL("precious", ReadAll(victim).c_str());
+  STRCMP_EQUAL("package", ReadAll(out).c_str());
+  CHECK(fs::is_symlink(dir / "out.pkg.part"));  // planted links are left as they were
+}
+
+TEST(FileWrite, ASymlinkAtTheTargetIsRefusedNotFollowedOrReplaced) {
+  const fs::path victim = dir / "victim";
+  std::ofstream(victim) << "precious";
+  const fs::path out = dir / "calibration.json";
+  fs::create_symlink(victim, out);
+  std::string error;
+  CHECK_FALSE(ph::WriteFileWhole(out.string(), "{}", &error));
+  CHECK_TEXT(error.find("symbolic link") != std::string::npos, error.c_str());
+  STRCMP_EQUAL("precious", ReadAll(victim).c_str());
+  CHECK(fs::is_symlink(out));
+  LONGS_EQUAL(2, Entries());
+}
+
+TEST(FileWrite, TheReplacedFileKeepsItsMode) {
+  const fs::path file = dir / "private.json";
+  CHECK(ph::WriteFileWhole(file.string(), "one"));
+  chmod(file.c_str(), 0600);
+  CHECK(ph::WriteFileWhole(file.string(), "two"));
+  LONGS_EQUAL(0600, fs::status(file).permissions() & fs::perms::all);
+  chmod(file.c_str(), 0640);
+  CHECK(ph::WriteFileWhole(file.string(), "three"));
+  LONGS_EQUAL(0640, fs::status(file).permissions() & fs::perms::all);
+  // A new file gets the usual mode for the process's umask.
+  const mode_t mask = umask(022);
+  const fs::path fresh = dir / "fresh.json";
+  CHECK(ph::WriteFileWhole(fresh.string(), "new"));
+  umask(mask);
+  LONGS_EQUAL(0644, fs::status(fresh).permissions() & fs::perms::all);
+}
+
+TEST(FileWrite, TheFileAndThenItsDirectoryReachTheDisk) {
+  g_record_fsyncs = true;
+  CHECK(ph::WriteFileWhole((dir / "out.csv").string(), "data"));
+  g_record_fsyncs = false;
+  // The contents before the rename, the directory entry after it.
+  CHECK_EQUAL(2u, g_fsync_count);
+  CHECK_EQUAL('f', g_fsynced[0]);
+  CHECK_EQUAL('d', g_fsynced[1]);
 }

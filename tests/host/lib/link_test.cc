@@ -1,9 +1,13 @@
 // The link against a test board behind a fault-injecting transport, and against palpa-sim:
 // exactly-once commands under loss and corruption, board restarts, streams, slow subscribers,
 // catalog mismatch.
+#include <unistd.h>
+
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <fstream>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -295,6 +299,10 @@ TEST(LinkSim, DeviceConfiguresReadsBackAndRecords) {
   LONGS_EQUAL(66, d.ReadFinger(1).value.param_count);
   CHECK(d.Set({{0, {ph::TargetKind::kStiffnessNPerMm, 1.1}}}).ok());
   const std::string path = "/tmp/palpa-record-" + std::to_string(getpid()) + ".csv";
+  // A link planted where a recording's temporary might go must not redirect it.
+  const std::string victim = path + ".victim";
+  std::ofstream(victim) << "precious";
+  CHECK(symlink(victim.c_str(), (path + ".part").c_str()) == 0);
   CHECK(d.StartRecording(path).ok());
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   CHECK(access(path.c_str(), F_OK) != 0);  // not there until complete
@@ -309,6 +317,12 @@ TEST(LinkSim, DeviceConfiguresReadsBackAndRecords) {
   fclose(f);
   remove(path.c_str());
   CHECK(rows > 4 * 100);
+  std::ifstream kept(victim);
+  std::string contents;
+  std::getline(kept, contents);
+  STRCMP_EQUAL("precious", contents.c_str());
+  remove(victim.c_str());
+  remove((path + ".part").c_str());
 }
 
 TEST(LinkSim, OverARealPtyWithSerialSettings) {

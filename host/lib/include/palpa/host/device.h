@@ -3,7 +3,6 @@
 #pragma once
 
 #include <cstdint>
-#include <fstream>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -12,6 +11,10 @@
 
 #include "palpa/host/link.h"
 #include "palpa/host/stiffness_map.h"
+
+namespace palpa::hal::linux_files {
+class AtomicFile;
+}
 
 namespace palpa::host {
 
@@ -81,8 +84,8 @@ class Device {
   void Unsubscribe(int id) { link_->Unsubscribe(id); }
 
   /// Records telemetry to a CSV file whose first line is a JSON header (board, configuration,
-  /// units, clock mapping). Written to PATH.part and renamed on StopRecording, so a file at PATH
-  /// is always complete.
+  /// units, clock mapping). Written whole or not at all (file_write.h): to a temporary beside
+  /// PATH, put in its place by StopRecording, so a file at PATH is always complete.
   Outcome StartRecording(const std::string& path);
   Outcome StopRecording();
 
@@ -120,7 +123,7 @@ class Device {
   void AttachCalibrations();  ///< once per device
   // Recording.
   std::mutex record_mutex_;
-  std::ofstream record_;
+  std::unique_ptr<hal::linux_files::AtomicFile> record_;  ///< null when not recording
   std::string record_path_;
   int record_subscription_ = 0;
 };

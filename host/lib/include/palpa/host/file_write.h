@@ -1,4 +1,6 @@
-// Files written whole or not at all: a temporary beside the target, flushed, renamed over it.
+// Files written whole or not at all: every file palpa writes goes through one writer (a fresh
+// temporary created exclusively beside the target, the replaced file's mode, flushed, renamed over
+// it, the directory flushed); see hal/linux/atomic_file.h for the rules.
 #pragma once
 
 #include <string>
@@ -7,8 +9,10 @@
 namespace palpa::host {
 
 /// Writes `bytes` to `path` so that a reader finds the old file or the whole new one, never a
-/// part, even across a crash or power cut; on failure the temporary is removed, the old file is
-/// untouched and `error` (when given) names the file and the reason.
+/// part, even across a crash or power cut. The temporary is never written through a link planted
+/// beside the target; a target that is a link, a directory or anything but a regular file is
+/// refused. On failure the temporary is removed, the old file is untouched and `error` (when
+/// given) names the file and the reason.
 bool WriteFileWhole(const std::string& path, std::string_view bytes, std::string* error = nullptr);
 
 }  // namespace palpa::host

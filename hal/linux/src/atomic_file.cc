@@ -1,0 +1,160 @@
+// Files written whole or not at all (see atomic_file.h).
+#include "palpa/hal/linux/atomic_file.h"
+
+#include <fcntl.h>
+#include <sys/random.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+
+namespace palpa::hal::linux_files {
+namespace {
+
+constexpr size_t kBufferSize = 64 * 1024;
+
+std::string Reason() { return std::strerror(errno); }
+
+/// Six characters from the kernel's random source: a name nobody can plant ahead of time.
+std::string RandomSuffix() {
+  static constexpr char kAlphabet[] =
+      "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
+  unsigned char bytes[6] = {};
+  if (getrandom(bytes, sizeof(bytes), 0) != static_cast<ssize_t>(sizeof(bytes))) {
+    // Only without a random source; O_EXCL still refuses whatever is already there.
+    for (unsigned char& b : bytes) b = static_cast<unsigned char>(std::rand());
+  }
+  std::string s;
+  for (unsigned char b : bytes) s.push_back(kAlphabet[b % (sizeof(kAlphabet) - 1)]);
+  return s;
+}
+
+const char* Kind(mode_t mode) {
+  if (S_ISDIR(mode)) return "is a directory";
+  if (S_ISLNK(mode)) return "is a symbolic link (palpa neither follows nor replaces links)";
+  return "is not a regular file";
+}
+
+}  // namespace
+
+AtomicFile::~AtomicFile() { Abandon(); }
+
+bool AtomicFile::Open(const std::string& path, std::string* error) {
+  Abandon();
+  path_ = path;
+  failure_.clear();
+  struct stat old;
+  const bool replacing = lstat(path.c_str(), &old) == 0;
+  if (replacing && !S_ISREG(old.st_mode)) {
+    if (error != nullptr) *error = path + ": " + Kind(old.st_mode);
+    return false;
+  }
+  const size_t slash = path.rfind('/');
+  const std::string dir = slash == std::string::npos ? "" : path.substr(0, slash + 1);
+  const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  // A new file is created as open(2) would create it (0666 less the umask); one that replaces
+  // another starts private and takes the old file's permissions before anything is written.
+  const mode_t create_mode = replacing ? 0600 : 0666;
+  for (int attempt = 0; attempt < 100 && fd_ < 0; ++attempt) {
+    temporary_ = dir + "." + name + "." + RandomSuffix() + ".part";
+    fd_ =
+        open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, create_mode);
+    if (fd_ < 0 && errno != EEXIST) break;
+  }
+  if (fd_ < 0) {
+    if (error != nullptr) *error = path + ": cannot be created: " + Reason();
+    temporary_.clear();
+    return false;
+  }
+  if (replacing && fchmod(fd_, old.st_mode & 0777) != 0) {
+    if (error != nullptr) *error = path + ": cannot keep its mode: " + Reason();
+    Abandon();
+    return false;
+  }
+  return true;
+}
+
+void AtomicFile::Fail(const std::string& what) {
+  if (failure_.empty()) failure_ = path_ + ": " + what + ": " + Reason();
+}
+
+void AtomicFile::Flush() {
+  size_t written = 0;
+  while (written < buffer_.size() && failure_.empty()) {
+    const ssize_t n = write(fd_, buffer_.data() + written, buffer_.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      if (n == 0) errno = EIO;
+      Fail("write failed");
+      break;
+    }
+    written += static_cast<size_t>(n);
+  }
+  buffer_.clear();
+}
+
+void AtomicFile::Write(std::string_view bytes) {
+  if (fd_ < 0 || !failure_.empty()) return;
+  buffer_.append(bytes);
+  if (buffer_.size() >= kBufferSize) Flush();
+}
+
+bool AtomicFile::Commit(std::string* error) {
+  if (fd_ < 0) {
+    if (error != nullptr) *error = path_ + ": not open for writing";
+    return false;
+  }
+  Flush();
+  // On disk before the rename: otherwise a power cut can leave the new name with no contents.
+  if (failure_.empty() && fsync(fd_) != 0) Fail("flush failed");
+  if (close(fd_) != 0) Fail("write failed");
+  fd_ = -1;
+  if (failure_.empty() && std::rename(temporary_.c_str(), path_.c_str()) != 0)
+    Fail("cannot replace it");
+  if (!failure_.empty()) {
+    unlink(temporary_.c_str());
+    temporary_.clear();
+    if (error != nullptr) *error = failure_;
+    return false;
+  }
+  temporary_.clear();
+  // The rename lives in the directory: flush it too, or a power cut may undo it.
+  const size_t slash = path_.rfind('/');
+  const std::string dir = slash == std::string::npos ? "." : path_.substr(0, slash + 1);
+  int flush_errno = 0;
+  const int dir_fd = open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dir_fd < 0) {
+    flush_errno = errno;
+  } else {
+    // EINVAL: this file system has no directory flush; there is nothing to wait for.
+    if (fsync(dir_fd) != 0 && errno != EINVAL) flush_errno = errno;
+    close(dir_fd);
+  }
+  if (flush_errno != 0) {
+    if (error != nullptr) {
+      *error =
+          path_ + ": written, but its directory was not flushed: " + std::strerror(flush_errno);
+    }
+    return false;
+  }
+  return true;
+}
+
+void AtomicFile::Abandon() {
+  if (fd_ >= 0) close(fd_);
+  fd_ = -1;
+  if (!temporary_.empty()) unlink(temporary_.c_str());
+  temporary_.clear();
+  buffer_.clear();
+}
+
+bool WriteFileWhole(const std::string& path, std::string_view bytes, std::string* error) {
+  AtomicFile file;
+  if (!file.Open(path, error)) return false;
+  file.Write(bytes);
+  return file.Commit(error);
+}
+
+}  // namespace palpa::hal::linux_files
