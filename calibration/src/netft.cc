@@ -15,7 +15,7 @@ namespace palpa::calibration {
 
 std::optional<NetFtConfig> ParseNetFtAddress(const std::string& uri, std::string* error) {
   std::smatch m;
-  if (!std::regex_match(uri, m, std::regex(R"(netft://([^:/]+)(:(\d+))?)"))) {
+  if (!std::regex_match(uri, m, std::regex(R"(netft://([^:/]+)(:(\d{1,6}))?)"))) {
     if (error != nullptr) *error = "'" + uri + "' is not netft://HOST[:PORT]";
     return std::nullopt;
   }

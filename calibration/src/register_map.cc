@@ -16,13 +16,14 @@ const std::vector<std::string> kForceRegisters = {"force"};
 std::optional<ModbusAddress> ParseModbusAddress(const std::string& uri, std::string* error) {
   std::smatch m;
   ModbusAddress a;
-  if (std::regex_match(uri, m, std::regex(R"(modbus-tcp://([^:/]+):(\d+)/(\d+))"))) {
+  // Bounded digit counts: every number then fits an int, and the ranges below judge it.
+  if (std::regex_match(uri, m, std::regex(R"(modbus-tcp://([^:/]+):(\d{1,6})/(\d{1,6}))"))) {
     a.tcp = true;
     a.host = m[1];
     a.port = std::stoi(m[2]);
     a.unit = std::stoi(m[3]);
-  } else if (std::regex_match(uri, m,
-                              std::regex(R"(modbus-rtu:(/[^?]+)\?baud=(\d+)&unit=(\d+))"))) {
+  } else if (std::regex_match(
+                 uri, m, std::regex(R"(modbus-rtu:(/[^?]+)\?baud=(\d{1,8})&unit=(\d{1,6}))"))) {
     a.tcp = false;
     a.host = m[1];
     a.baud = std::stoi(m[2]);

@@ -1,9 +1,6 @@
 // Rig description files and opening their devices.
 #include "palpa/calibration/rig_file.h"
 
-#include <fstream>
-#include <sstream>
-
 #include "palpa/calibration/modbus_devices.h"
 #include "palpa/calibration/netft.h"
 #include "palpa/host/json_check.h"
@@ -15,10 +12,19 @@ using host::JsonInvalid;
 using host::JsonObject;
 using nlohmann::json;
 
-RegisterMap Device(const JsonObject& o, const char* key, const std::vector<std::string>& required) {
-  json device = o.At(key);
+/// The device's "driver" ("" when absent), checked to be a string.
+std::string Driver(const JsonObject& o, const char* key) {
+  const json& device = o.At(key);
   if (!device.is_object()) throw JsonInvalid(o.Join(key) + ": must be an object");
-  const std::string driver = device.value("driver", "");
+  if (!device.contains("driver")) return "";
+  if (!device.at("driver").is_string())
+    throw JsonInvalid(o.Join(key) + ".driver: must be a string (modbus or netft)");
+  return device.at("driver").get<std::string>();
+}
+
+RegisterMap Device(const JsonObject& o, const char* key, const std::vector<std::string>& required) {
+  const std::string driver = Driver(o, key);
+  json device = o.At(key);
   if (driver != "modbus") {
     throw JsonInvalid(o.Join(key) + ".driver: \"" + driver +
                       "\" is not a driver this build has (modbus)");
@@ -44,15 +50,17 @@ RigDescription SimRigDescription(const std::string& modbus_uri) {
 }
 
 std::optional<RigDescription> ParseRigDescription(const std::string& text, std::string* error) {
+  const auto parsed = host::ParseJson(text, error);
+  if (!parsed) return std::nullopt;
   try {
-    const json j = json::parse(text);
+    const json& j = *parsed;
     JsonObject o(j, "", {"name", "comment", "stage", "force_sensor", "force_noise_n", "limits"});
     RigDescription rig;
     rig.name = o.Text("name");
     if (o.Has("force_noise_n")) rig.force_noise_n = o.Number("force_noise_n", 1e-6, 10);
     rig.stage = Device(o, "stage", kStageRegisters);
-    const json& force = o.At("force_sensor");
-    if (force.is_object() && force.value("driver", "") == "netft") {
+    if (Driver(o, "force_sensor") == "netft") {
+      const json& force = o.At("force_sensor");
       JsonObject f(force, "force_sensor",
                    {"driver", "address", "counts_per_force", "axis", "sign", "timeout_ms"});
       std::string why;
@@ -86,21 +94,14 @@ std::optional<RigDescription> ParseRigDescription(const std::string& text, std::
       }
     }
     return rig;
-  } catch (const json::parse_error& e) {
-    if (error != nullptr) *error = std::string("not JSON: ") + e.what();
-  } catch (const JsonInvalid& e) {
+  } catch (const std::exception& e) {  // JsonInvalid names the field
     if (error != nullptr) *error = e.what();
   }
   return std::nullopt;
 }
 
 std::optional<RigDescription> LoadRigDescription(const std::string& path, std::string* error) {
-  const auto text = host::ReadTextFile(path, error);
-  if (!text) return std::nullopt;
-  std::string why;
-  auto rig = ParseRigDescription(*text, &why);
-  if (!rig && error != nullptr) *error = path + ": " + why;
-  return rig;
+  return host::ReadAndParse(path, kRigFileLimits, ParseRigDescription, error);
 }
 
 std::optional<RigDevices> OpenRigDevices(const RigDescription& rig, std::string* error) {

@@ -21,6 +21,7 @@ enum Exit : int {
 struct Context {
   std::string device_uri;
   bool json = false;
+  host::DeviceOptions options;  ///< how Device() opens it
   /// Opens the device on first use; prints the error and returns nullptr when it cannot.
   host::Device* Device();
   std::unique_ptr<host::Device> device;

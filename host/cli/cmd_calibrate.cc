@@ -11,7 +11,6 @@
 #include <cstdio>
 #include <cstring>
 #include <ctime>
-#include <fstream>
 #include <sstream>
 
 #include "cli.h"
@@ -230,14 +229,13 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
   const std::string base = a.out + "/" + serial;
   cal::Journal journal;
   if (a.resume) {
-    std::ifstream in(base + ".journal.json");
-    if (!in) return Usage("calibrate", "--resume: no journal " + base + ".journal.json");
-    try {
-      in >> journal.state;
-    } catch (const std::exception& e) {
-      return Usage("calibrate",
-                   "--resume: " + base + ".journal.json is not a journal (" + e.what() + ")");
-    }
+    const std::string path = base + ".journal.json";
+    struct stat journal_stat;
+    if (lstat(path.c_str(), &journal_stat) != 0)
+      return Usage("calibrate", "--resume: no journal " + path);
+    auto state = cal::LoadJournal(path, &error);
+    if (!state) return Usage("calibrate", "--resume: " + error + " (nothing was started)");
+    journal.state = std::move(*state);
   }
   journal.save = [&base](const cal::Journal& j) {
     std::string why;

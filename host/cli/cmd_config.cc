@@ -1,11 +1,11 @@
 // palpa config show|set|load|save|factory-reset: read, change and persist the configuration.
 // Changes are checked locally with the firmware's own validation, then sent staged (atomic).
 #include <cstdio>
-#include <fstream>
 
 #include "cli.h"
 #include "palpa/core/board_config.h"
 #include "palpa/host/config_json.h"
+#include "palpa/host/json_check.h"
 #include "palpa/host/json_fields.h"
 
 namespace palpa::cli {
@@ -116,13 +116,10 @@ int CmdConfig(Context& c, const std::vector<std::string>& args) {
   json file;
   if (what == "load") {  // the file is read and parsed before anything is sent
     if (rest.size() != 1) return Usage("config", "load takes one FILE");
-    std::ifstream in(rest[0]);
-    if (!in) return Usage("config", rest[0] + ": cannot open");
-    try {
-      file = json::parse(in);
-    } catch (const json::parse_error& e) {
-      return Usage("config", rest[0] + ": not valid JSON (" + std::string(e.what()) + ")");
-    }
+    std::string error;
+    auto read = host::ReadJsonFile(rest[0], host::kConfigFileLimits, &error);
+    if (!read) return Usage("config", error + " (nothing was sent)");
+    file = std::move(*read);
   } else if (what == "set") {
     if (rest.empty()) return Usage("config", "set takes SECTION.FIELD=VALUE ...");
   } else if (what == "show" || what == "save" || what == "factory-reset") {

@@ -3,8 +3,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <iterator>
 #include <memory>
 #include <thread>
 
@@ -20,10 +18,12 @@ namespace {
 
 namespace pp = protocol;
 
-bool ReadBytes(const std::string& path, std::vector<uint8_t>* out) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  out->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+/// A whole file within its kind's limit; false with *error naming the file and the reason.
+bool ReadBytes(const std::string& path, const host::FileLimits& limits, std::vector<uint8_t>* out,
+               std::string* error) {
+  const auto bytes = host::ReadFileWhole(path, limits, error);
+  if (!bytes) return false;
+  out->assign(bytes->begin(), bytes->end());
   return true;
 }
 
@@ -83,8 +83,9 @@ int CmdFlash(Context& c, const std::vector<std::string>& args) {
   }
   if (package_path.empty()) return Usage("flash", "needs a PACKAGE (made by palpa package)");
   std::vector<uint8_t> bytes;
-  if (!ReadBytes(package_path, &bytes)) return Usage("flash", package_path + ": cannot be read");
   std::string error;
+  if (!ReadBytes(package_path, host::kPackageFileLimits, &bytes, &error))
+    return Usage("flash", error);
   const auto package = host::ReadPackage(bytes, &error);
   if (!package) return Usage("flash", package_path + ": " + error);
 
@@ -186,8 +187,9 @@ int CmdPackage(Context&, const std::vector<std::string>& args) {
   host::UpdatePackage package;
   const core::FlashLayout& layout = core::kDefaultLayout;
   for (uint8_t slot = 0; slot < 2; ++slot) {
-    if (!ReadBytes(bodies[slot], &spec.body))
-      return Usage("package", bodies[slot] + ": cannot be read");
+    std::string error;
+    if (!ReadBytes(bodies[slot], host::kSlotBinaryLimits, &spec.body, &error))
+      return Usage("package", error);
     if (pp::ImageSize(static_cast<uint32_t>(spec.body.size()), spec.header_size) >
         layout.slot_size) {
       return Usage("package", bodies[slot] + ": " + std::to_string(spec.body.size()) +

@@ -1,4 +1,5 @@
 // palpa set, palpa line: fingers in people's terms, raw line setpoints.
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -48,6 +49,11 @@ int CmdSet(Context& c, const std::vector<std::string>& given) {
   double hold_s = 0;
   std::string hold_error;
   if (!TakeHold(args, hold_s, &hold_error)) return Usage("set", hold_error);
+  const auto strict = std::find(args.begin(), args.end(), "--strict-calibration");
+  if (strict != args.end()) {
+    c.options.invalid_calibration_is_error = true;
+    args.erase(strict);
+  }
   if (args.empty())
     return Usage("set", "expected at least one F=VALUE, e.g. palpa set 1=L2 4=0.9N/mm");
   std::vector<host::FingerRequest> requests;

@@ -1,8 +1,6 @@
 // The demo's calibration step: the pneumatic fingers calibrated on simulated rigs, in parallel.
 #include "demo_calibration.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -111,11 +109,11 @@ std::optional<std::vector<host::CalibrationFile>> LoadCalibrations(
     const std::string& dir, const std::vector<std::string>& serials, std::string* error) {
   std::vector<host::CalibrationFile> files;
   for (const std::string& serial : serials) {
-    if (access(host::CalibrationPath(dir, serial).c_str(), F_OK) != 0) continue;
     // The library's lookup also refuses a file whose actuator is another than its name says.
     auto file = host::FindCalibration(dir, serial, error);
-    if (!file) return std::nullopt;
-    files.push_back(std::move(*file));
+    if (file.status == pp::Status::kNotFound) continue;
+    if (!file.ok()) return std::nullopt;
+    files.push_back(std::move(file.value));
   }
   return files;
 }

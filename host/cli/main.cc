@@ -37,10 +37,13 @@ const std::map<std::string, Command>& Commands() {
         "     validated as a whole and applied atomically.\n"
         "save: persist the live configuration. factory-reset: back to the compiled-in one."}},
       {"set",
-       {CmdSet, "set F=VALUE ... [--hold S]",
+       {CmdSet, "set F=VALUE ... [--hold S] [--strict-calibration]",
         "Fingers (numbered from 1): L2 (level), 0.5 (0..1), 1.2mm (pneumatic), 0.9N/mm (jamming),\n"
         "-10kPa (raw pressure or vacuum). Units are checked per finger kind. Example on\n"
-        "thesis-5finger: palpa set 1=L2 2=0.5 3=1.2mm 4=0.9N/mm 5=-10kPa"}},
+        "thesis-5finger: palpa set 1=L2 2=0.5 3=1.2mm 4=0.9N/mm 5=-10kPa\n"
+        "A finger whose calibration file exists but cannot be used falls back to the nominal\n"
+        "curves and the reason is printed; --strict-calibration makes that an error (nothing "
+        "sent)."}},
       {"line",
        {CmdLine, "line L=VALUE ... [--hold S]",
         "Raw setpoints in kPa for lines (numbered from 1): palpa line 1=30 6=-40"}},
@@ -121,7 +124,7 @@ void PrintUsage(FILE* out) {
 host::Device* Context::Device() {
   if (device) return device.get();
   std::string error;
-  auto opened = host::Device::Open(device_uri, host::DeviceOptions{}, &error);
+  auto opened = host::Device::Open(device_uri, options, &error);
   if (!opened.ok()) {
     std::fprintf(stderr, "palpa: cannot open %s: %s\n", device_uri.c_str(), error.c_str());
     return nullptr;

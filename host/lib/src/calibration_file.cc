@@ -1,7 +1,7 @@
 // Calibration files: writing the JSON schema, loading (checks in calibration_read.cc), atomic save.
 #include "palpa/host/calibration_file.h"
 
-#include <unistd.h>
+#include <sys/stat.h>
 
 #include <cstdlib>
 
@@ -17,8 +17,6 @@ namespace {
 
 using nlohmann::json;
 namespace pp = protocol;
-
-using Invalid = JsonInvalid;
 
 json FitJson(const LineFit& f) {
   return {{"slope", f.slope}, {"intercept", f.intercept}, {"r2", f.r2}};
@@ -109,25 +107,18 @@ bool ValidSerial(const std::string& serial) {
 }
 
 std::optional<CalibrationFile> ParseCalibration(const std::string& text, std::string* error) {
+  const auto j = ParseJson(text, error);
+  if (!j) return std::nullopt;
   try {
-    return CalibrationFromJson(json::parse(text));
-  } catch (const json::parse_error& e) {
-    if (error != nullptr) *error = std::string("not JSON: ") + e.what();
-  } catch (const Invalid& e) {
-    if (error != nullptr) *error = e.what();
-  } catch (const json::exception& e) {
+    return CalibrationFromJson(*j);
+  } catch (const std::exception& e) {  // JsonInvalid names the field
     if (error != nullptr) *error = e.what();
   }
   return std::nullopt;
 }
 
 std::optional<CalibrationFile> LoadCalibration(const std::string& path, std::string* error) {
-  const auto text = ReadTextFile(path, error);
-  if (!text) return std::nullopt;
-  std::string why;
-  auto c = ParseCalibration(*text, &why);
-  if (!c && error != nullptr) *error = path + ": " + why;
-  return c;
+  return ReadAndParse(path, kCalibrationFileLimits, ParseCalibration, error);
 }
 
 std::optional<std::string> SerializeCalibration(const CalibrationFile& c, std::string* error) {
@@ -169,25 +160,27 @@ std::string CalibrationPath(const std::string& dir, const std::string& serial) {
   return dir + "/" + serial + ".json";
 }
 
-std::optional<CalibrationFile> FindCalibration(const std::string& dir, const std::string& serial,
-                                               std::string* error) {
+pp::Result<CalibrationFile> FindCalibration(const std::string& dir, const std::string& serial,
+                                            std::string* error) {
   if (!ValidSerial(serial)) {
     if (error != nullptr)
       *error = "actuator serial '" + serial + "' cannot name a calibration file";
-    return std::nullopt;
+    return pp::Status::kNotFound;
   }
   const std::string path = CalibrationPath(dir, serial);
-  if (access(path.c_str(), F_OK) != 0) {
+  struct stat st;
+  if (lstat(path.c_str(), &st) != 0) {
     if (error != nullptr) *error = "no calibration for " + serial + " in " + dir;
-    return std::nullopt;
+    return pp::Status::kNotFound;
   }
   auto c = LoadCalibration(path, error);
-  if (c && c->actuator_serial != serial) {
+  if (!c) return pp::Status::kBadValue;
+  if (c->actuator_serial != serial) {
     if (error != nullptr)
       *error = path + ": actuator_serial is " + c->actuator_serial + ", not " + serial;
-    return std::nullopt;
+    return pp::Status::kBadValue;
   }
-  return c;
+  return std::move(*c);
 }
 
 std::string CompensatorLabel(const CalibrationFile& c) {

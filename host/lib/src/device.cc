@@ -17,6 +17,7 @@ Device::Device(std::unique_ptr<Link> link, DeviceOptions options)
   for (uint8_t f = 0; f < b.finger_count; ++f) modes_.push_back(b.fingers[f].mode);
   curves_.resize(b.finger_count);
   calibration_notes_.resize(b.finger_count);
+  calibration_problems_.resize(b.finger_count);
 }
 
 void Device::AttachCalibrations() {
@@ -41,16 +42,18 @@ void Device::AttachCalibrations() {
         finger.value.actuator_serial.data(),
         strnlen(finger.value.actuator_serial.data(), finger.value.actuator_serial.size()));
     const auto c = FindCalibration(dir, serial, &error);
-    if (!c) {
-      note += "nominal curves (" + error + ")";
+    if (c.ok() && c.value.kind != finger.value.kind) {
+      error = CalibrationPath(dir, serial) + ": the calibration of " + serial +
+              " is for another finger kind";
+    } else if (c.ok()) {
+      curves_[f] = CurvesFromCalibration(c.value);
+      note += curves_[f].source;
       continue;
     }
-    if (c->kind != finger.value.kind) {
-      note += "nominal curves (the calibration of " + serial + " is for another finger kind)";
-      continue;
-    }
-    curves_[f] = CurvesFromCalibration(*c);
-    note += curves_[f].source;
+    // Every request through these curves says why they are the nominal ones.
+    note += "nominal curves (" + error + ")";
+    curves_[f].source = "nominal thesis curves (" + error + ")";
+    if (c.status != Status::kNotFound) calibration_problems_[f] = error;  // a file, unusable
   }
 }
 
@@ -115,6 +118,7 @@ Outcome Device::ApplyCalibration(uint8_t finger, const CalibrationFile& c) {
     return o;
   }
   curves_[finger] = CurvesFromCalibration(c);
+  calibration_problems_[finger].clear();
   calibration_notes_[finger] =
       "finger " + std::to_string(finger + 1) + ": " + curves_[finger].source;
   return o;
@@ -171,6 +175,14 @@ Outcome Device::Set(const std::vector<FingerRequest>& requests, bool wait) {
       return Outcome{Status::kNotFound,
                      "finger " + std::to_string(r.finger + 1) + " does not exist (this board has " +
                          std::to_string(b.finger_count) + ")",
+                     {}};
+    }
+    // Raw pressures do not go through the curves; everything else does.
+    if (options_.invalid_calibration_is_error && r.request.kind != TargetKind::kPressureKpa &&
+        !calibration_problems_[r.finger].empty()) {
+      return Outcome{Status::kBadValue,
+                     "finger " + std::to_string(r.finger + 1) + ": " +
+                         calibration_problems_[r.finger] + " (nothing was sent)",
                      {}};
     }
     mapped.push_back(MapRequest(b.fingers[r.finger], options_.levels, curves_[r.finger], r.request,

@@ -3,8 +3,8 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
+#include <functional>
+#include <vector>
 
 namespace palpa::host {
 namespace {
@@ -15,17 +15,97 @@ std::string Num(double v) {
   return b;
 }
 
+/// Follows the parser through the document so that a value it refuses is named by its path,
+/// and stops it at kMaxJsonDepth.
+class PathTracker {
+ public:
+  struct TooDeep {};
+
+  bool operator()(int depth, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+    using Event = nlohmann::json::parse_event_t;
+    switch (event) {
+      case Event::object_start:
+      case Event::array_start:
+        if (depth >= kMaxJsonDepth) throw TooDeep{};
+        levels_.push_back(Level{event == Event::array_start, "", 0});
+        break;
+      case Event::key:
+        levels_.back().key = parsed.get<std::string>();
+        break;
+      case Event::object_end:
+      case Event::array_end:
+        levels_.pop_back();
+        Next();
+        break;
+      case Event::value:
+        Next();
+        break;
+    }
+    return true;
+  }
+
+  /// "board.host_timeout_us", "curve[2].kpa"; empty at the top.
+  std::string Path() const {
+    std::string path;
+    for (const Level& l : levels_) {
+      if (l.array) {
+        path += "[" + std::to_string(l.index) + "]";
+      } else if (!l.key.empty()) {
+        path += (path.empty() ? "" : ".") + l.key;
+      }
+    }
+    return path;
+  }
+
+ private:
+  struct Level {
+    bool array;
+    std::string key;  ///< object: the key of the value being read
+    size_t index;     ///< array: the index of the value being read
+  };
+  void Next() {
+    if (!levels_.empty() && levels_.back().array) ++levels_.back().index;
+  }
+  std::vector<Level> levels_;
+};
+
+/// nlohmann's message without its "[json.exception.parse_error.101] " code.
+std::string Words(const std::exception& e) {
+  const std::string what = e.what();
+  const size_t code_end = what.rfind("] ", what.find(' '));
+  return code_end == std::string::npos ? what : what.substr(code_end + 2);
+}
+
 }  // namespace
 
-std::optional<std::string> ReadTextFile(const std::string& path, std::string* error) {
-  std::ifstream in(path);
-  if (!in) {
-    if (error != nullptr) *error = path + ": cannot be read";
+std::optional<nlohmann::json> ParseJson(const std::string& text, std::string* error) {
+  PathTracker tracker;
+  auto fail = [&](const std::string& why) -> std::optional<nlohmann::json> {
+    const std::string path = tracker.Path();
+    if (error != nullptr) *error = (path.empty() ? "" : path + ": ") + why;
     return std::nullopt;
+  };
+  try {
+    return nlohmann::json::parse(text, std::ref(tracker));
+  } catch (const PathTracker::TooDeep&) {
+    return fail("nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+  } catch (const nlohmann::json::out_of_range& e) {
+    if (e.id == 406) {  // "number overflow parsing '1e400'"
+      const std::string what = e.what();
+      const size_t quote = what.find('\'');
+      const std::string number =
+          quote == std::string::npos ? "" : what.substr(quote, what.rfind('\'') - quote + 1);
+      return fail("the number " + number + " is beyond the range of a double");
+    }
+    return fail("not valid JSON: " + Words(e));
+  } catch (const nlohmann::json::exception& e) {
+    return fail("not valid JSON: " + Words(e));
   }
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
+}
+
+std::optional<nlohmann::json> ReadJsonFile(const std::string& path, const FileLimits& limits,
+                                           std::string* error) {
+  return ReadAndParse(path, limits, ParseJson, error);
 }
 
 JsonObject::JsonObject(const nlohmann::json& j, std::string path, std::set<std::string> known)

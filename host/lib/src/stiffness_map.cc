@@ -3,9 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 
 #include <nlohmann/json.hpp>
+
+#include "palpa/host/json_check.h"
 
 namespace palpa::host {
 namespace {
@@ -69,26 +70,36 @@ double StiffnessAt(const FingerCurves& c, double vacuum_kpa) {
   return c.stiffness_at_0 + (c.stiffness_at_full_vacuum - c.stiffness_at_0) * (-vacuum_kpa / 100.0);
 }
 
+/// One table of levels: 1 to 32 pressures within [lo, hi] kPa.
+std::vector<double> Levels(const JsonObject& o, double lo, double hi) {
+  const nlohmann::json& list = o.List("levels_kpa", 1, 32);
+  std::vector<double> levels;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string where = o.Item("levels_kpa", i);
+    if (!list[i].is_number()) throw JsonInvalid(where + ": must be a number");
+    const double v = list[i].get<double>();
+    if (v < lo || v > hi)
+      throw JsonInvalid(where + ": " + Num(v) + " is outside " + Num(lo) + " … " + Num(hi) +
+                        " kPa");
+    levels.push_back(v);
+  }
+  return levels;
+}
+
 bool ParseTables(const nlohmann::json& j, LevelTables& out, std::string* error) {
   try {
+    JsonObject o(j, "", {"comment", "pneumatic", "jamming"});
     LevelTables t;
-    t.pneumatic_kpa = j.at("pneumatic").at("levels_kpa").get<std::vector<double>>();
-    t.jamming_kpa = j.at("jamming").at("levels_kpa").get<std::vector<double>>();
-    t.jamming_bias_kpa = j.at("jamming").at("bias_kpa").get<double>();
-    t.jamming_alternative_middle_kpa = j.at("jamming").value("alternative_middle_kpa", -30.0);
-    for (double v : t.pneumatic_kpa) {
-      if (v < 0 || v > 100)
-        throw std::runtime_error("pneumatic.levels_kpa: " + Num(v) + " is outside 0 … 100 kPa");
-    }
-    for (double v : t.jamming_kpa) {
-      if (v > 0 || v < -100)
-        throw std::runtime_error("jamming.levels_kpa: " + Num(v) + " is outside -100 … 0 kPa");
-    }
-    if (t.pneumatic_kpa.empty() || t.jamming_kpa.empty())
-      throw std::runtime_error("a level table is empty");
+    t.pneumatic_kpa = Levels(JsonObject(o.At("pneumatic"), "pneumatic", {"levels_kpa"}), 0, 100);
+    JsonObject jam(o.At("jamming"), "jamming",
+                   {"levels_kpa", "bias_kpa", "alternative_middle_kpa"});
+    t.jamming_kpa = Levels(jam, -100, 0);
+    t.jamming_bias_kpa = jam.Number("bias_kpa", 0, 100);
+    if (jam.Has("alternative_middle_kpa"))
+      t.jamming_alternative_middle_kpa = jam.Number("alternative_middle_kpa", -100, 0);
     out = t;
     return true;
-  } catch (const std::exception& e) {
+  } catch (const std::exception& e) {  // JsonInvalid names the field
     if (error != nullptr) *error = e.what();
     return false;
   }
@@ -103,18 +114,10 @@ LevelTables LevelTables::Shipped() {
 }
 
 bool LevelTables::Load(const std::string& path, LevelTables& out, std::string* error) {
-  std::ifstream in(path);
-  if (!in) {
-    if (error != nullptr) *error = path + ": cannot open";
-    return false;
-  }
-  nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
-  if (j.is_discarded()) {
-    if (error != nullptr) *error = path + ": not valid JSON";
-    return false;
-  }
+  const auto j = ReadJsonFile(path, kLevelsFileLimits, error);
+  if (!j) return false;
   std::string why;
-  if (!ParseTables(j, out, &why)) {
+  if (!ParseTables(*j, out, &why)) {
     if (error != nullptr) *error = path + ": " + why;
     return false;
   }

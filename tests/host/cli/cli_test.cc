@@ -1,6 +1,5 @@
 // The palpa command line as a person uses it: exit codes, named errors, nothing sent on a bad
 // command line, and the commands against palpa-sim.
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -11,44 +10,16 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli_run.h"
 #include "mini_client.h"
 
 #include "CppUTest/TestHarness.h"
 
-namespace {
-
-struct Run {
-  int code;
-  std::string output;  ///< stdout and stderr
-};
-
-Run Palpa(const std::string& args) {
-  const std::string command = std::string(PALPA_CLI_PATH) + " " + args + " 2>&1";
-  FILE* p = popen(command.c_str(), "r");
-  std::string out;
-  char buffer[4096];
-  size_t n;
-  while ((n = fread(buffer, 1, sizeof(buffer), p)) > 0) out.append(buffer, n);
-  const int status = pclose(p);
-  return Run{WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
-
-bool Has(const Run& r, const std::string& text) { return r.output.find(text) != std::string::npos; }
-
-/// A refused command line: exit code 2 and the message naming what was wrong.
-Run ExpectUsage(const std::string& args, const std::string& message) {
-  const Run r = Palpa(args);
-  LONGS_EQUAL_TEXT(2, r.code, r.output.c_str());
-  CHECK_TEXT(Has(r, message), r.output.c_str());
-  return r;
-}
-
-/// A file name of this test process's own: two test runs at once must not share files.
-std::string OwnTempPath(const std::string& name) {
-  return "/tmp/palpa-cli-" + std::to_string(getpid()) + "-" + name;
-}
-
-}  // namespace
+using palpa::testing::ExpectUsage;
+using palpa::testing::Has;
+using palpa::testing::OwnTempPath;
+using palpa::testing::Palpa;
+using palpa::testing::Run;
 
 TEST_GROUP(CliUsage){};
 

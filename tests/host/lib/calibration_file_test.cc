@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <functional>
 #include <sstream>
@@ -47,8 +48,9 @@ TEST(CalibrationFile, SavesAtomicallyAndReadsBackEveryField) {
   std::string error;
   CHECK_TEXT(ph::SaveCalibration(Example(), ph::CalibrationPath(dir, "PN-1"), &error),
              error.c_str());
-  const auto back = ph::FindCalibration(dir, "PN-1", &error);
-  CHECK_TEXT(back.has_value(), error.c_str());
+  const auto found = ph::FindCalibration(dir, "PN-1", &error);
+  CHECK_TEXT(found.ok(), error.c_str());
+  const ph::CalibrationFile* back = &found.value;
   STRCMP_EQUAL("PN-1", back->actuator_serial.c_str());
   LONGS_EQUAL(5, back->curve.size());
   DOUBLES_EQUAL(1.2, back->curve[2].output, 1e-12);
@@ -66,19 +68,21 @@ TEST(CalibrationFile, SavesAtomicallyAndReadsBackEveryField) {
   CHECK_FALSE(back->quality.checks[1].passed);
   DOUBLES_EQUAL(1.7, back->quality.checks[1].value, 1e-12);
   // Only the file itself is in the directory: the temporary was renamed over it.
-  LONGS_EQUAL(0,
-              access((ph::CalibrationPath(dir, "PN-1") + ".tmp" + std::to_string(getpid())).c_str(),
-                     F_OK) == 0);
+  LONGS_EQUAL(0, std::system(("test \"$(ls -A " + dir + ")\" = PN-1.json").c_str()));
   // An invalid calibration writes nothing, and the good file stays as it was.
   ph::CalibrationFile bad = Example();
   bad.static_inverse[1].setpoint_pa = 50000;  // no longer increasing
   CHECK_FALSE(ph::SaveCalibration(bad, ph::CalibrationPath(dir, "PN-1"), &error));
   CHECK(error.find("static_inverse.setpoint_pa[2]") != std::string::npos);
-  CHECK(ph::FindCalibration(dir, "PN-1", &error).has_value());
-  CHECK_FALSE(ph::FindCalibration(dir, "PN-2", &error).has_value());
+  CHECK(ph::FindCalibration(dir, "PN-1", &error).ok());
+  LONGS_EQUAL((int)pp::Status::kNotFound, (int)ph::FindCalibration(dir, "PN-2", &error).status);
   CHECK(error.find("no calibration for PN-2") != std::string::npos);
-  CHECK_FALSE(ph::FindCalibration(dir, "../etc", &error).has_value());
+  LONGS_EQUAL((int)pp::Status::kNotFound, (int)ph::FindCalibration(dir, "../etc", &error).status);
   CHECK(error.find("cannot name") != std::string::npos);
+  // A file that is there but invalid is told apart from no file.
+  std::ofstream(ph::CalibrationPath(dir, "PN-3")) << "{}";
+  LONGS_EQUAL((int)pp::Status::kBadValue, (int)ph::FindCalibration(dir, "PN-3", &error).status);
+  CHECK(error.find("PN-3.json: schema: missing") != std::string::npos);
 }
 
 TEST(CalibrationFile, EveryBadFieldIsNamedByItsPath) {
@@ -131,7 +135,7 @@ TEST(CalibrationFile, EveryBadFieldIsNamedByItsPath) {
   }
   std::string error;
   CHECK_FALSE(ph::ParseCalibration("{not json", &error).has_value());
-  CHECK(error.find("not JSON") != std::string::npos);
+  CHECK(error.find("not valid JSON") != std::string::npos);
 }
 
 TEST(CalibrationFile, TheStiffnessMapReadsTheCalibratedCurveAndNeverExtrapolates) {

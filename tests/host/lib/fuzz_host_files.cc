@@ -1,17 +1,16 @@
-// libFuzzer target: the files the host library reads — calibration files, update packages and
-// configuration files.
+// libFuzzer target: the files the host reads — calibration files, configuration files, rig
+// files, calibration journals and update packages.
 //
-// Whatever the bytes, a parser must return a result or an error that says what is wrong (never
-// throw, crash or invoke undefined behaviour), and what it accepts must survive a round trip:
-// a calibration serialises, parses back and serialises to the same text; a package writes and
-// reads back to the same images; a configuration prints and reads back to the same one. Input byte
-// 0 picks the mode:
-//   0  raw text as a calibration file;
-//   1  a valid calibration file with one JSON value replaced (any field, any type or magnitude);
-//   2  a valid calibration file with bytes overwritten or cut short;
-//   3  raw bytes as an update package;
-//   4  a valid update package with bytes overwritten or cut short;
-//   5  a compiled-in configuration as `palpa config show` prints it, one value replaced or removed.
+// Whatever the bytes, a reader must return a result or an error that says what is wrong and
+// where (never throw, crash or invoke undefined behaviour, and never hand on a JSON library's own
+// "[json.exception..." message: that would be a value used without its type checked), and what it
+// accepts must survive a round trip where the kind has one: a calibration serialises, parses back
+// and serialises to the same text; a package writes and reads back to the same images; a
+// configuration prints and reads back to the same one. Input byte 0 picks the kind (calibration,
+// configuration, rig, journal, package) and how its valid reference is changed:
+//   raw bytes; one JSON value replaced by any type or magnitude, or removed; one number in the
+//   text replaced by a literal no double holds or no integer fits ("1e400", "-1e999",
+//   "99999999999999999999", ...); bytes overwritten or the text cut short.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -24,11 +23,15 @@
 
 #include "example_calibration.h"
 #include "fuzz_input.h"
+#include "palpa/calibration/calibration_protocol.h"
+#include "palpa/calibration/rig_file.h"
 #include "palpa/core/board_configs.h"
 #include "palpa/host/calibration_file.h"
 #include "palpa/host/config_json.h"
 #include "palpa/host/firmware_image.h"
+#include "palpa/host/json_check.h"
 
+namespace cal = palpa::calibration;
 namespace pc = palpa::core;
 namespace ph = palpa::host;
 namespace pp = palpa::protocol;
@@ -41,6 +44,15 @@ using Bytes = palpa::testing::FuzzInput;
 [[noreturn]] void Fail(const char* what, const std::string& detail) {
   std::fprintf(stderr, "host files fuzz: %s: %s\n", what, detail.c_str());
   std::abort();
+}
+
+/// A refusal must say what and where in words: not empty, not the JSON library's own message.
+void CheckReason(const char* kind, const std::string& error, const std::string& text) {
+  if (error.empty())
+    Fail((std::string("a refused ") + kind + " came without a reason").c_str(),
+         text.substr(0, 200));
+  if (error.find("[json.exception") != std::string::npos)
+    Fail((std::string("a ") + kind + " was refused with the library's message").c_str(), error);
 }
 
 const std::string& ValidCalibrationText() {
@@ -58,7 +70,7 @@ void CheckCalibration(const std::string& text) {
   std::string error;
   const auto parsed = ph::ParseCalibration(text, &error);
   if (!parsed) {
-    if (error.empty()) Fail("a refused calibration came without a reason", text.substr(0, 200));
+    CheckReason("calibration", error, text);
     return;
   }
   const auto written = ph::SerializeCalibration(*parsed, &error);
@@ -119,16 +131,21 @@ void EditOneLeaf(Bytes& in, json& j) {
   }
 }
 
-/// A configuration file onto a compiled-in configuration, as `palpa config load` applies it:
-/// refused with the field's path, or accepted and then printed and read back unchanged; the
-/// firmware's validation must then judge it without crashing.
-void CheckConfigJson(const pc::BoardConfig& base, const json& file) {
+/// A configuration file onto a compiled-in configuration, as `palpa config load` reads and
+/// applies it: refused with the field's path, or accepted and then printed and read back
+/// unchanged; the firmware's validation must then judge it without crashing.
+void CheckConfigText(const pc::BoardConfig& base, const std::string& text) {
+  std::string error;
+  const auto file = ph::ParseJson(text, &error);
+  if (!file) {
+    CheckReason("configuration", error, text);
+    return;
+  }
   pc::BoardConfig applied = base;
   try {
-    ph::ApplyConfigJson(file, applied);
+    ph::ApplyConfigJson(*file, applied);
   } catch (const std::exception& e) {
-    if (std::strlen(e.what()) == 0)
-      Fail("a refused configuration came without a reason", file.dump());
+    CheckReason("configuration", e.what(), text);
     return;
   }
   const json printed = ph::ConfigToJson(applied);
@@ -136,8 +153,36 @@ void CheckConfigJson(const pc::BoardConfig& base, const json& file) {
   ph::ApplyConfigJson(printed, again);
   if (ph::ConfigToJson(again) != printed)
     Fail("a configuration changes when printed and read back", printed.dump());
-  pc::ConfigError error;
-  (void)pc::ValidateConfig(applied, &error);
+  pc::ConfigError config_error;
+  (void)pc::ValidateConfig(applied, &config_error);
+}
+
+const char kSimRigText[] =
+#include "sim_rig_json.inc"
+    ;
+
+/// A rig file: refused with the field named, or accepted.
+void CheckRig(const std::string& text) {
+  std::string error;
+  if (!cal::ParseRigDescription(text, &error)) CheckReason("rig file", error, text);
+}
+
+const std::string& ValidJournalText() {
+  static const std::string text =
+      json{{"rig_time_s", 12.5},
+           {"corrections", {{"0", {{0, 0, 0}, {50000, 50600, 49500}}}}},
+           {"sweep", {{0, 0}, {10000, 300}}},
+           {"map",
+            {{"grid_done", 1},
+             {"presses", {{0, 0, 0.1, 0.2, 1.1, 0.3, 0.99, 0.01, 0.002, 120, 1.5}}}}}}
+          .dump(1);
+  return text;
+}
+
+/// A journal: refused with the field named, or accepted.
+void CheckJournal(const std::string& text) {
+  std::string error;
+  if (!cal::ParseJournal(text, &error)) CheckReason("journal", error, text);
 }
 
 void CheckPackage(const std::vector<uint8_t>& bytes) {
@@ -170,6 +215,42 @@ const std::vector<uint8_t>& ValidPackage() {
   return bytes;
 }
 
+/// One number in JSON text (outside strings) replaced by a literal no double holds, no integer
+/// fits, or that is otherwise at an edge.
+void ReplaceNumber(Bytes& in, std::string& text) {
+  static const char* const kLiterals[] = {"1e400",
+                                          "-1e999",
+                                          "1e-400",
+                                          "99999999999999999999",
+                                          "-99999999999999999999",
+                                          "18446744073709551616",
+                                          "-0",
+                                          "4294967296",
+                                          "2147483648",
+                                          "1.7976931348623157e308"};
+  std::vector<std::pair<size_t, size_t>> numbers;  // start, length
+  bool in_string = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char ch = text[i];
+    if (in_string) {
+      if (ch == '\\') ++i;
+      if (ch == '"') in_string = false;
+      continue;
+    }
+    if (ch == '"') {
+      in_string = true;
+    } else if (ch == '-' || (ch >= '0' && ch <= '9')) {
+      size_t end = i + 1;
+      while (end < text.size() && std::strchr("0123456789.eE+-", text[end]) != nullptr) ++end;
+      numbers.push_back({i, end - i});
+      i = end - 1;
+    }
+  }
+  if (numbers.empty()) return;
+  const auto [at, length] = numbers[in.Word() % numbers.size()];
+  text.replace(at, length, kLiterals[in.Byte() % (sizeof(kLiterals) / sizeof(kLiterals[0]))]);
+}
+
 /// Overwrites a few bytes at chosen places and may cut the end off.
 template <class Container>
 void Damage(Bytes& in, Container& c) {
@@ -181,42 +262,60 @@ void Damage(Bytes& in, Container& c) {
   if (cut < 32 && !c.empty()) c.resize(c.size() * cut / 32);
 }
 
+/// The reference text of a JSON kind changed as `variant` says (see the top of this file).
+std::string Changed(Bytes& in, int variant, const std::string& valid) {
+  switch (variant) {
+    case 0:
+      return in.Rest();
+    case 1: {
+      json j = json::parse(valid);
+      EditOneLeaf(in, j);
+      // Invalid UTF-8 in a string value becomes U+FFFD (raw bytes reach the parser in variant 0).
+      return j.dump(-1, ' ', false, json::error_handler_t::replace);
+    }
+    case 2: {
+      std::string text = valid;
+      ReplaceNumber(in, text);
+      return text;
+    }
+    default: {
+      std::string text = valid;
+      Damage(in, text);
+      return text;
+    }
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   Bytes in(data, size);
-  switch (in.Byte() % 6) {
+  const uint8_t mode = in.Byte();
+  const int variant = mode / 5 % 4;
+  switch (mode % 5) {
     case 0:
-      CheckCalibration(in.Rest());
+      CheckCalibration(Changed(in, variant, ValidCalibrationText()));
       break;
     case 1: {
-      json j = json::parse(ValidCalibrationText());
-      EditOneLeaf(in, j);
-      // Invalid UTF-8 in a string value becomes U+FFFD (raw bytes reach the parser in mode 0).
-      CheckCalibration(j.dump(-1, ' ', false, json::error_handler_t::replace));
-      break;
-    }
-    case 2: {
-      std::string text = ValidCalibrationText();
-      Damage(in, text);
-      CheckCalibration(text);
-      break;
-    }
-    case 3: {
-      const std::string rest = in.Rest();
-      CheckPackage(std::vector<uint8_t>(rest.begin(), rest.end()));
-      break;
-    }
-    case 5: {
       const pc::BoardConfig& base = *pc::kBoardConfigs[in.Byte() % pc::kBoardConfigCount].config;
-      json file = ph::ConfigToJson(base);
-      EditOneLeaf(in, file);
-      CheckConfigJson(base, file);
+      CheckConfigText(base, Changed(in, variant, ph::ConfigToJson(base).dump(1)));
       break;
     }
+    case 2:
+      CheckRig(Changed(in, variant, kSimRigText));
+      break;
+    case 3:
+      CheckJournal(Changed(in, variant, ValidJournalText()));
+      break;
     default: {
-      std::vector<uint8_t> bytes = ValidPackage();
-      Damage(in, bytes);
+      std::vector<uint8_t> bytes;
+      if (variant == 0) {
+        const std::string rest = in.Rest();
+        bytes.assign(rest.begin(), rest.end());
+      } else {
+        bytes = ValidPackage();
+        Damage(in, bytes);
+      }
       CheckPackage(bytes);
       break;
     }

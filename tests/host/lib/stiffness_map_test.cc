@@ -78,7 +78,7 @@ TEST(StiffnessMap, LevelFilesAreValidated) {
   ph::LevelTables t;
   std::string error;
   CHECK_FALSE(ph::LevelTables::Load("/nonexistent.json", t, &error));
-  CHECK(error.find("cannot open") != std::string::npos);
+  CHECK(error.find("/nonexistent.json: cannot be read: No such file") != std::string::npos);
   const std::string path = "/tmp/palpa-levels-test-" + std::to_string(getpid()) + ".json";
   FILE* f = fopen(path.c_str(), "w");
   fputs(

@@ -55,6 +55,16 @@ struct Journal {
   std::function<void(const Journal&)> save;  ///< called after every finished step
 };
 
+/// A journal holds a few hundred presses at most: a few hundred KiB.
+inline constexpr host::FileLimits kJournalLimits{"calibration journal", 16 * 1024 * 1024};
+
+/// A journal's state as a stopped run left it, every field the protocol reads back checked (a
+/// damaged journal is refused naming the field, e.g. "sweep[3][0]: must be a number", before
+/// anything moves); nullopt with *error otherwise. LoadJournal reads the file within
+/// kJournalLimits and names it in the error.
+std::optional<nlohmann::json> ParseJournal(const std::string& text, std::string* error);
+std::optional<nlohmann::json> LoadJournal(const std::string& path, std::string* error);
+
 struct Progress {
   int done = 0, total = 0;
   std::string step;

@@ -9,6 +9,7 @@
 #include "palpa/calibration/netft.h"
 #include "palpa/calibration/register_map.h"
 #include "palpa/calibration/rig.h"
+#include "palpa/host/file_read.h"
 
 namespace palpa::calibration {
 
@@ -20,6 +21,9 @@ struct RigDescription {
   SafetyLimits limits;
   double force_noise_n = kNano17NoiseN;  ///< the force sensor's class: RMS noise of one reading
 };
+
+/// A rig file is a few KiB.
+inline constexpr host::FileLimits kRigFileLimits{"rig file", 64 * 1024};
 
 std::optional<RigDescription> ParseRigDescription(const std::string& text, std::string* error);
 std::optional<RigDescription> LoadRigDescription(const std::string& path, std::string* error);

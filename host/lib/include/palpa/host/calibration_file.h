@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "palpa/host/file_read.h"
 #include "palpa/host/stiffness_map.h"
 #include "palpa/protocol/enums.h"
 #include "palpa/protocol/messages_config.h"
@@ -14,6 +15,9 @@
 namespace palpa::host {
 
 inline constexpr int kCalibrationSchemaVersion = 1;
+/// The largest valid calibration (1024 grid points, 256 curve points, every optional part,
+/// pretty-printed) is about 310 KiB.
+inline constexpr FileLimits kCalibrationFileLimits{"calibration file", 1024 * 1024};
 
 /// One point of the calibrated output curve: the output (mm, or N/mm) the actuator gives at a
 /// drive (kPa; negative for vacuum), on the mid-line between the rising and falling branches.
@@ -113,10 +117,11 @@ std::string DefaultCalibrationDir();
 /// DIR/SERIAL.json.
 std::string CalibrationPath(const std::string& dir, const std::string& serial);
 
-/// Loads the calibration of an actuator from `dir`; nullopt with *error when there is none or it
-/// is invalid (the two are told apart in the message).
-std::optional<CalibrationFile> FindCalibration(const std::string& dir, const std::string& serial,
-                                               std::string* error);
+/// Loads the calibration of an actuator from `dir`. Status kNotFound with *error when there is
+/// none (no file, or a serial that cannot name one); kBadValue with *error ("PATH: field: rule")
+/// when there is a file but it is invalid, not a regular file, too large, or for another actuator.
+protocol::Result<CalibrationFile> FindCalibration(const std::string& dir, const std::string& serial,
+                                                  std::string* error);
 
 /// The curves a calibration gives the stiffness map: its measured curve and its range.
 FingerCurves CurvesFromCalibration(const CalibrationFile& c);

@@ -4,8 +4,13 @@
 #include <nlohmann/json.hpp>
 
 #include "palpa/core/board_config.h"
+#include "palpa/host/file_read.h"
 
 namespace palpa::host {
+
+/// `palpa config show` of the largest board (eight lines, eight fingers with 80-parameter
+/// compensators) prints about 30 KiB.
+inline constexpr FileLimits kConfigFileLimits{"configuration file", 256 * 1024};
 
 /// Every configured section as its Configure* message's fields: {board, lines[], fingers[]}.
 nlohmann::json ConfigToJson(const core::BoardConfig& config);

@@ -26,6 +26,11 @@ struct DeviceOptions {
   /// opens; empty: DefaultCalibrationDir(). Set use_calibrations = false for nominal curves.
   std::string calibration_dir;
   bool use_calibrations = true;
+  /// A finger whose calibration file is there but cannot be used (invalid, not a regular file,
+  /// for another actuator or finger kind) falls back to the nominal curves, and every request
+  /// for it says why in its notes; true makes such a request an error instead (kBadValue,
+  /// nothing sent). A finger with no file is never an error.
+  bool invalid_calibration_is_error = false;
 };
 
 /// The outcome of an operation: a shared status code plus words for a person.
@@ -119,6 +124,8 @@ class Device {
   std::vector<pp::FingerMode> modes_;
   std::vector<FingerCurves> curves_;
   std::vector<std::string> calibration_notes_;
+  /// Per finger: why its calibration file could not be used (empty: used, or there is none).
+  std::vector<std::string> calibration_problems_;
   bool calibrations_attached_ = false;
   void AttachCalibrations();  ///< once per device
   // Recording.

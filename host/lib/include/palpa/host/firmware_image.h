@@ -8,9 +8,15 @@
 #include <string>
 #include <vector>
 
+#include "palpa/host/file_read.h"
 #include "palpa/protocol/image.h"
 
 namespace palpa::host {
+
+/// No board's slot is near this (the simulated and MPS2 boards' are 192 KiB): an update package
+/// holds two slot images, `palpa package` reads one binary per slot.
+inline constexpr FileLimits kPackageFileLimits{"update package", 16 * 1024 * 1024};
+inline constexpr FileLimits kSlotBinaryLimits{"slot binary", 8 * 1024 * 1024};
 
 /// An image to build: its fields (header_size padded for an MCU's vector table, load_address
 /// where the slot appears in the board's address map) and the body.

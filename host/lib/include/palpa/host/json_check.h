@@ -1,5 +1,6 @@
-// Validation of JSON documents that names the failing field by its path ("curve[2].kpa: ...").
-// Used by calibration files, rig descriptions and register maps.
+// Reading and validating JSON documents so that every failure names the field by its path
+// ("curve[2].kpa: ..."): parsing with a nesting cap and the path of a value the parser refuses,
+// and getters that check type and range. Used by every JSON file palpa reads.
 #pragma once
 
 #include <optional>
@@ -9,10 +10,23 @@
 
 #include <nlohmann/json.hpp>
 
+#include "palpa/host/file_read.h"
+
 namespace palpa::host {
 
-/// A whole text file, or nullopt with "PATH: cannot be read" in *error.
-std::optional<std::string> ReadTextFile(const std::string& path, std::string* error);
+/// No file palpa reads nests deeper than a few levels; past this a document is refused before
+/// it is built (nesting costs memory and recursion elsewhere).
+inline constexpr int kMaxJsonDepth = 16;
+
+/// Parses JSON text. Nullopt with *error on anything the parser refuses, named by the path of
+/// the value it was reading: a syntax error ("not valid JSON at line 3, column 7: ..."), a number
+/// no double holds ("board.host_timeout_us: the number 1e400 is beyond a double's range"), or
+/// nesting deeper than kMaxJsonDepth.
+std::optional<nlohmann::json> ParseJson(const std::string& text, std::string* error);
+
+/// ReadFileWhole within `limits`, then ParseJson; errors start with "PATH: ".
+std::optional<nlohmann::json> ReadJsonFile(const std::string& path, const FileLimits& limits,
+                                           std::string* error);
 
 /// A validation failure; what() starts with the JSON path of the field.
 struct JsonInvalid : std::runtime_error {

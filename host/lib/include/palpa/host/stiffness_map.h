@@ -7,10 +7,13 @@
 #include <utility>
 #include <vector>
 
+#include "palpa/host/file_read.h"
 #include "palpa/protocol/messages_bootstrap.h"
 #include "palpa/protocol/status.h"
 
 namespace palpa::host {
+
+inline constexpr FileLimits kLevelsFileLimits{"level table file", 64 * 1024};
 
 /// Level tables: per finger kind, the pressure (pneumatic) or vacuum (jamming) of each level.
 struct LevelTables {

@@ -1,0 +1,39 @@
+// Files read whole within limits: only regular files, each kind with a size cap, so a FIFO, a
+// device or a giant file named like one of palpa's files is refused instead of waited on or
+// swallowed. Every file palpa reads comes through here (docs/threat_model.md lists the caps).
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+
+namespace palpa::host {
+
+/// What palpa accepts of one kind of file.
+struct FileLimits {
+  const char* kind;  ///< for errors: "calibration file", "update package", ...
+  size_t max_bytes;
+};
+
+/// The whole of a regular file of at most limits.max_bytes. Nullopt with "PATH: reason" in
+/// *error when it cannot be opened, is not a regular file (never waited on: a FIFO is opened
+/// without blocking and refused), or is larger than the limit (named, with the kind of file).
+std::optional<std::string> ReadFileWhole(const std::string& path, const FileLimits& limits,
+                                         std::string* error);
+
+/// ReadFileWhole, then `parse(text, &why)` (returning an optional); any error starts "PATH: ".
+template <class Parse>
+auto ReadAndParse(const std::string& path, const FileLimits& limits, Parse parse,
+                  std::string* error) -> decltype(parse(std::string(), error)) {
+  const auto text = ReadFileWhole(path, limits, error);
+  if (!text) return std::nullopt;
+  std::string why;
+  auto parsed = parse(*text, &why);
+  if (!parsed && error != nullptr) *error = path + ": " + why;
+  return parsed;
+}
+
+/// "1 MiB", "64 KiB", "300 bytes": a size for people.
+std::string SizeText(size_t bytes);
+
+}  // namespace palpa::host

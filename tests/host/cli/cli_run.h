@@ -1,0 +1,49 @@
+// Running the palpa command line from a test: its exit code and everything it printed.
+#pragma once
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <string>
+
+#include "CppUTest/TestHarness.h"
+
+namespace palpa::testing {
+
+struct Run {
+  int code;
+  std::string output;  ///< stdout and stderr
+};
+
+/// `palpa ARGS` through the shell (so ARGS may start with VAR=VALUE settings for it).
+inline Run Palpa(const std::string& args, const std::string& environment = "") {
+  const std::string command =
+      environment + (environment.empty() ? "" : " ") + PALPA_CLI_PATH + " " + args + " 2>&1";
+  FILE* p = popen(command.c_str(), "r");
+  std::string out;
+  char buffer[4096];
+  size_t n;
+  while ((n = fread(buffer, 1, sizeof(buffer), p)) > 0) out.append(buffer, n);
+  const int status = pclose(p);
+  return Run{WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+inline bool Has(const Run& r, const std::string& text) {
+  return r.output.find(text) != std::string::npos;
+}
+
+/// A refused command line: exit code 2 and the message naming what was wrong.
+inline Run ExpectUsage(const std::string& args, const std::string& message) {
+  const Run r = Palpa(args);
+  LONGS_EQUAL_TEXT(2, r.code, r.output.c_str());
+  CHECK_TEXT(Has(r, message), r.output.c_str());
+  return r;
+}
+
+/// A file name of this test process's own: two test runs at once must not share files.
+inline std::string OwnTempPath(const std::string& name) {
+  return "/tmp/palpa-cli-" + std::to_string(getpid()) + "-" + name;
+}
+
+}  // namespace palpa::testing

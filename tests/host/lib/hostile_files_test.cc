@@ -1,0 +1,174 @@
+// Files that try to hurt the host library: a FIFO or a device named like a calibration, files far
+// larger or deeper than any real one, numbers JSON cannot hold, and a calibration that exists but
+// is invalid — each refused with what and where, never waited on, crashed on or silently replaced
+// by a fallback.
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <string>
+#include <thread>
+
+#include "example_calibration.h"
+#include "palpa/host/calibration_file.h"
+#include "palpa/host/device.h"
+#include "palpa/host/stiffness_map.h"
+
+#include "CppUTest/TestHarness.h"
+
+namespace ph = palpa::host;
+namespace pp = palpa::protocol;
+
+namespace {
+
+std::string TempDir() {
+  char pattern[] = "/tmp/palpa-hostile-XXXXXX";
+  return mkdtemp(pattern);
+}
+
+std::string ValidText() {
+  std::string error;
+  return *ph::SerializeCalibration(palpa::testing::ExampleCalibration(), &error);
+}
+
+/// `text` with the first `from` replaced by `to`.
+std::string Replaced(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  CHECK_TEXT(at != std::string::npos, from.c_str());
+  return text.replace(at, from.size(), to);
+}
+
+bool Contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+}  // namespace
+
+TEST_GROUP(HostileFiles) {
+  std::string dir;
+  void setup() override { dir = TempDir(); }
+  void teardown() override { std::system(("rm -rf " + dir).c_str()); }
+  std::string Write(const std::string& name, const std::string& text) {
+    const std::string path = dir + "/" + name;
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+  }
+};
+
+TEST(HostileFiles, AFifoNamedLikeACalibrationIsRefusedNotWaitedOn) {
+  const std::string path = dir + "/PN-1.json";
+  CHECK(mkfifo(path.c_str(), 0600) == 0);
+  // Were the reader to open the FIFO and wait for a writer, this one lets it go after a while
+  // (so the test fails rather than hangs).
+  std::thread writer([&path] {
+    for (int i = 0; i < 300; ++i) {
+      const int fd = open(path.c_str(), O_WRONLY | O_NONBLOCK);
+      if (fd >= 0) {
+        close(fd);
+        return;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+  });
+  std::string error;
+  const auto c = ph::LoadCalibration(path, &error);
+  writer.join();
+  CHECK_FALSE(c.has_value());
+  CHECK_TEXT(Contains(error, path + ": not a regular file"), error.c_str());
+  CHECK_FALSE(ph::LoadCalibration("/dev/null", &error).has_value());
+  CHECK_TEXT(Contains(error, "/dev/null: not a regular file"), error.c_str());
+}
+
+TEST(HostileFiles, AFileLargerThanItsKindAllowsIsRefusedNamingTheLimit) {
+  // A valid calibration padded far beyond any real one: refused before it is read into memory.
+  const std::string path = Write("PN-1.json", ValidText() + std::string(3 << 20, ' '));
+  std::string error;
+  CHECK_FALSE(ph::LoadCalibration(path, &error).has_value());
+  CHECK_TEXT(Contains(error, path + ": larger than the"), error.c_str());
+  CHECK_TEXT(Contains(error, "limit for a calibration file"), error.c_str());
+}
+
+TEST(HostileFiles, DeepNestingIsRefusedNamingTheLimit) {
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  std::string error;
+  CHECK_FALSE(ph::ParseCalibration(deep, &error).has_value());
+  CHECK_TEXT(Contains(error, "nested deeper than"), error.c_str());
+  // Within a level file's size limit, nesting alone is refused.
+  const std::string path = Write(
+      "levels.json", "{\"pneumatic\": " + std::string(20000, '[') + std::string(20000, ']') + "}");
+  ph::LevelTables t;
+  CHECK_FALSE(ph::LevelTables::Load(path, t, &error));
+  CHECK_TEXT(Contains(error, path + ": pneumatic"), error.c_str());
+  CHECK_TEXT(Contains(error, "nested deeper than"), error.c_str());
+}
+
+TEST(HostileFiles, NumbersJsonCannotHoldAreNamedByTheirField) {
+  std::string error;
+  CHECK_FALSE(ph::ParseCalibration(
+                  Replaced(ValidText(), "\"speed_mm_s\": 0.1", "\"speed_mm_s\": 1e400"), &error)
+                  .has_value());
+  CHECK_TEXT(Contains(error, "conditions.speed_mm_s: "), error.c_str());
+  CHECK_TEXT(Contains(error, "1e400"), error.c_str());
+  CHECK_FALSE(Contains(error, "[json.exception"));  // words for people, not the library's codes
+  const std::string curve = Replaced(ValidText(), "\"output\": 0.3", "\"output\": -1e999");
+  CHECK_FALSE(ph::ParseCalibration(curve, &error).has_value());
+  CHECK_TEXT(Contains(error, "curve[1].output: "), error.c_str());
+}
+
+TEST(HostileFiles, LevelFilesNameTheFieldOfEveryMistake) {
+  ph::LevelTables t;
+  std::string error;
+  std::string path =
+      Write("levels.json",
+            "{\"pneumatic\": {\"levels_kpa\": \"high\"}, \"jamming\": {\"bias_kpa\": "
+            "20, \"levels_kpa\": [0]}}");
+  CHECK_FALSE(ph::LevelTables::Load(path, t, &error));
+  CHECK_TEXT(Contains(error, path + ": pneumatic.levels_kpa: must be an array"), error.c_str());
+  path = Write("levels.json",
+               "{\"pneumatic\": {\"levels_kpa\": [0, 10]}, \"jamming\": {\"bias_kpa\": 1e400, "
+               "\"levels_kpa\": [0]}}");
+  CHECK_FALSE(ph::LevelTables::Load(path, t, &error));
+  CHECK_TEXT(Contains(error, path + ": jamming.bias_kpa: "), error.c_str());
+  path = Write("levels.json", "{\"pneumatic\": {\"levels_kpa\": [0, 10]}}");
+  CHECK_FALSE(ph::LevelTables::Load(path, t, &error));
+  CHECK_TEXT(Contains(error, path + ": jamming: missing"), error.c_str());
+}
+
+TEST_GROUP(HostileCalibrations) {
+  std::string dir;
+  void setup() override { dir = TempDir(); }
+  void teardown() override { std::system(("rm -rf " + dir).c_str()); }
+  std::unique_ptr<ph::Device> Open(bool strict) {
+    ph::DeviceOptions options;
+    options.calibration_dir = dir;
+    options.invalid_calibration_is_error = strict;
+    std::string error;
+    auto opened = ph::Device::Open("sim:thesis-5finger", options, &error);
+    CHECK_TEXT(opened.ok(), error.c_str());
+    return std::move(opened.value);
+  }
+};
+
+TEST(HostileCalibrations, AnInvalidCalibrationIsNamedWithItsReasonOrRefusedWhenAsked) {
+  // PN-1's file exists but a field is out of range: the fallback to the nominal curves says why.
+  const std::string path = dir + "/PN-1.json";
+  std::ofstream(path) << Replaced(ValidText(), "\"speed_mm_s\": 0.1", "\"speed_mm_s\": 99");
+  auto d = Open(false);
+  ph::Outcome o = d->Set({{0, {ph::TargetKind::kLevel, 1}}});
+  CHECK_TEXT(o.ok(), o.message.c_str());
+  CHECK_TEXT(Contains(o.notes[0], "nominal thesis curves"), o.notes[0].c_str());
+  CHECK_TEXT(Contains(o.notes[0], path + ": conditions.speed_mm_s: 99 is outside"),
+             o.notes[0].c_str());
+  // A finger without a file is no error either way.
+  o = d->Set({{1, {ph::TargetKind::kLevel, 1}}});
+  CHECK_TEXT(Contains(o.notes[0], "no calibration for PN-2"), o.notes[0].c_str());
+  d.reset();
+  d = Open(true);
+  o = d->Set({{1, {ph::TargetKind::kLevel, 1}}, {0, {ph::TargetKind::kLevel, 1}}});
+  LONGS_EQUAL((int)pp::Status::kBadValue, (int)o.status);
+  CHECK_TEXT(Contains(o.message, "finger 1: " + path + ": conditions.speed_mm_s"),
+             o.message.c_str());
+  CHECK(d->Set({{1, {ph::TargetKind::kLevel, 1}}}).ok());
+}
