@@ -242,6 +242,11 @@ Outcome Device::SetLines(const std::vector<std::pair<uint8_t, double>>& kpa, boo
     if (line >= b.line_count)
       return Outcome{Status::kNotFound, "line " + std::to_string(line + 1) + " does not exist", {}};
     const double pa = value * 1000;
+    if (!std::isfinite(value)) {
+      char text[96];
+      std::snprintf(text, sizeof(text), "line %u: %g kPa is not a finite number", line + 1u, value);
+      return Outcome{Status::kOutOfRange, text, {}};
+    }
     if (pa < b.lines[line].limit_min_pa || pa > b.lines[line].limit_max_pa) {
       char text[160];
       std::snprintf(text, sizeof(text), "line %u: %g kPa is outside its limits %g … %g kPa",

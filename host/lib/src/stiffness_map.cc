@@ -31,9 +31,14 @@ std::string Num(double v) {
   return b;
 }
 
-/// Keeps v in [lo, hi] under the policy; false (with *error) when refused.
+/// Keeps v in [lo, hi] under the policy; false (with *error) when refused. A value that is not
+/// a finite number has no place in any range: refused under every policy.
 bool InRange(double& v, double lo, double hi, RangePolicy policy, const std::string& what,
              std::string* note, std::string* error) {
+  if (!std::isfinite(v)) {
+    *error = what + " " + Num(v) + " is not a finite number";
+    return false;
+  }
   if (v >= lo && v <= hi) return true;
   if (policy == RangePolicy::kRefuse) {
     *error = what + " " + Num(v) + " is outside the calibrated range " + Num(lo) + " … " + Num(hi);
@@ -135,6 +140,7 @@ Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& leve
     case TargetKind::kLevel: {
       const auto& table = jamming ? levels.jamming_kpa : levels.pneumatic_kpa;
       const double level = request.value;
+      if (!std::isfinite(level)) return Refuse("level " + Num(level) + " is not a finite number");
       if (level != std::floor(level) || level < 0 || level >= static_cast<double>(table.size())) {
         return Refuse("level " + Num(level) + " does not exist: this finger has levels 0 … " +
                       std::to_string(table.size() - 1));

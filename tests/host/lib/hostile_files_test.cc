@@ -1,13 +1,15 @@
-// Files that try to hurt the host library: a FIFO or a device named like a calibration, files far
-// larger or deeper than any real one, numbers JSON cannot hold, and a calibration that exists but
-// is invalid — each refused with what and where, never waited on, crashed on or silently replaced
-// by a fallback.
+// Files and values that try to hurt the host library: a FIFO or a device named like a calibration,
+// files far larger or deeper than any real one, numbers JSON cannot hold, NaN targets, and a
+// calibration that exists but is invalid — each refused with what and where, never waited on,
+// crashed on or silently replaced by a fallback.
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <thread>
 
@@ -136,6 +138,31 @@ TEST(HostileFiles, LevelFilesNameTheFieldOfEveryMistake) {
   CHECK_TEXT(Contains(error, path + ": jamming: missing"), error.c_str());
 }
 
+TEST_GROUP(HostileValues) {
+  pp::FingerSummary pneumatic{pp::FingerKind::kPneumatic, pp::FingerMode::kTarget, 0, pp::kNoLine};
+  pp::FingerSummary jamming{pp::FingerKind::kJamming, pp::FingerMode::kTarget, 3, 5};
+  ph::LevelTables levels = ph::LevelTables::Shipped();
+  ph::FingerCurves curves;
+};
+
+TEST(HostileValues, NotANumberIsRefusedUnderEveryPolicy) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  for (ph::RangePolicy policy : {ph::RangePolicy::kRefuse, ph::RangePolicy::kClamp}) {
+    for (double bad : {nan, inf, -inf}) {
+      for (ph::TargetKind kind : {ph::TargetKind::kNormalized, ph::TargetKind::kDeformationMm,
+                                  ph::TargetKind::kPressureKpa, ph::TargetKind::kLevel}) {
+        const ph::Mapped m = ph::MapRequest(pneumatic, levels, curves, {kind, bad}, policy);
+        CHECK_TEXT(m.status != pp::Status::kOk, m.note.c_str());
+        CHECK_TEXT(Contains(m.error, "not a finite number"), m.error.c_str());
+      }
+      const ph::Mapped m =
+          ph::MapRequest(jamming, levels, curves, {ph::TargetKind::kStiffnessNPerMm, bad}, policy);
+      CHECK_TEXT(m.status != pp::Status::kOk, m.note.c_str());
+    }
+  }
+}
+
 TEST_GROUP(HostileCalibrations) {
   std::string dir;
   void setup() override { dir = TempDir(); }
@@ -171,4 +198,11 @@ TEST(HostileCalibrations, AnInvalidCalibrationIsNamedWithItsReasonOrRefusedWhenA
   CHECK_TEXT(Contains(o.message, "finger 1: " + path + ": conditions.speed_mm_s"),
              o.message.c_str());
   CHECK(d->Set({{1, {ph::TargetKind::kLevel, 1}}}).ok());
+}
+
+TEST(HostileCalibrations, RawSetpointsThatAreNotNumbersAreRefused) {
+  auto d = Open(false);
+  const ph::Outcome o = d->SetLines({{0, std::numeric_limits<double>::quiet_NaN()}});
+  LONGS_EQUAL((int)pp::Status::kOutOfRange, (int)o.status);
+  CHECK_TEXT(Contains(o.message, "line 1: nan kPa is not a finite number"), o.message.c_str());
 }
