@@ -151,6 +151,7 @@ bool SimProcess::Start(const std::vector<std::string>& args) {
   if (pid_ == 0) {
     prctl(PR_SET_PDEATHSIG, SIGTERM);  // never outlive the process that started it
     dup2(out[1], STDOUT_FILENO);
+    dup2(out[1], STDERR_FILENO);
     close(out[0]);
     std::vector<char*> argv;
     argv.push_back(const_cast<char*>(PALPA_SIM_PATH));
@@ -161,7 +162,8 @@ bool SimProcess::Start(const std::vector<std::string>& args) {
   }
   close(out[1]);
   out_fd_ = out[0];
-  std::string text;
+  std::string& text = output_;
+  text.clear();
   const int64_t deadline = NowMs() + 5000;
   while (NowMs() < deadline) {
     pollfd p{out_fd_, POLLIN, 0};

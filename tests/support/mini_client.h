@@ -70,6 +70,9 @@ class SimProcess {
     return netft_address_;
   }  ///< when --rig-netft was given
   int pid() const { return pid_; }
+  /// What it printed (stdout and stderr) until Start returned: its addresses, its warnings, or
+  /// why it refused to start.
+  const std::string& output() const { return output_; }
 
  private:
   int pid_ = -1;
@@ -78,6 +81,7 @@ class SimProcess {
   std::string truth_address_;
   std::string rig_address_;
   std::string netft_address_;
+  std::string output_;
 };
 
 }  // namespace palpa::testing

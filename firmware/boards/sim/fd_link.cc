@@ -6,6 +6,7 @@
 #include <netinet/tcp.h>
 #include <pty.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <termios.h>
 #include <unistd.h>
 
@@ -19,13 +20,39 @@ namespace {
 
 void NonBlocking(int fd) { fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) | O_NONBLOCK); }
 
+/// Where the link at `path` points ("" when it is not a link).
+std::string LinkTarget(const std::string& path) {
+  char target[256];
+  const ssize_t n = readlink(path.c_str(), target, sizeof(target) - 1);
+  return n > 0 ? std::string(target, static_cast<size_t>(n)) : std::string();
+}
+
 }  // namespace
 
 FdLink::~FdLink() {
   Disconnect();
   if (listen_fd_ >= 0) close(listen_fd_);
   if (pty_slave_ >= 0) close(pty_slave_);
-  if (!symlink_.empty()) unlink(symlink_.c_str());
+  // Only the link this process made: whatever someone put there meanwhile stays.
+  if (!symlink_.empty() && LinkTarget(symlink_) == pty_name_) unlink(symlink_.c_str());
+}
+
+bool FdLink::MayReplace(const std::string& spec, std::string* error) const {
+  struct stat st;
+  if (lstat(symlink_.c_str(), &st) != 0) return true;  // nothing there
+  const std::string target = S_ISLNK(st.st_mode) ? LinkTarget(symlink_) : "";
+  if (target.rfind("/dev/pts/", 0) != 0) {
+    *error = "--listen " + spec + ": " + symlink_ +
+             " exists and is not a pty link (palpa-sim replaces only a link to a pty that is "
+             "gone; remove it or choose another path)";
+    return false;
+  }
+  if (stat(symlink_.c_str(), &st) == 0) {
+    *error = "--listen " + spec + ": " + symlink_ + " links to " + target +
+             ", a pty in use (another palpa-sim?)";
+    return false;
+  }
+  return true;  // a link left by a palpa-sim that was killed
 }
 
 bool FdLink::Open(const std::string& spec, std::string* error) {
@@ -39,17 +66,23 @@ bool FdLink::Open(const std::string& spec, std::string* error) {
       *error = "--listen " + spec + ": expected pty:PATH";
       return false;
     }
+    if (!MayReplace(spec, error)) {
+      symlink_.clear();
+      return false;
+    }
     int master = -1;
     char name[256];
     if (openpty(&master, &pty_slave_, name, nullptr, nullptr) != 0) {
       *error = std::string("--listen ") + spec + ": openpty: " + std::strerror(errno);
+      symlink_.clear();
       return false;
     }
+    pty_name_ = name;
     termios raw{};
     tcgetattr(pty_slave_, &raw);
     cfmakeraw(&raw);
     tcsetattr(pty_slave_, TCSANOW, &raw);
-    unlink(symlink_.c_str());
+    unlink(symlink_.c_str());  // a stale pty link, checked above; symlink() then never clobbers
     if (symlink(name, symlink_.c_str()) != 0) {
       *error = "--listen " + spec + ": cannot create the symlink: " + std::strerror(errno);
       symlink_.clear();
@@ -86,7 +119,8 @@ void FdLink::Pump() {
   }
   if (io_fd_ < 0) return;
   uint8_t buffer[4096];
-  for (;;) {
+  // Bounded: a host that sends faster than the board reads waits (TCP and the pty push back).
+  while (rx_.size() - rx_read_ < kRxCapacity) {
     const ssize_t n = read(io_fd_, buffer, sizeof(buffer));
     if (n > 0) {
       rx_.insert(rx_.end(), buffer, buffer + n);

@@ -14,8 +14,10 @@ class FdLink final : public hal::ByteLink {
  public:
   ~FdLink();
 
-  /// "tcp:HOST:PORT" (PORT 0 picks a free port) or "pty:PATH" (creates a pty and a symlink at
-  /// PATH). Returns false with *error on failure.
+  /// "tcp:HOST:PORT" (PORT 0 picks a free port) or "pty:PATH" (creates a pty and a symlink to
+  /// it at PATH; something already at PATH is replaced only when it is a link to a pty that is
+  /// gone, and on exit only the link this process made is removed). Returns false with *error on
+  /// failure.
   bool Open(const std::string& spec, std::string* error);
   /// Where a host connects: "tcp:127.0.0.1:40123" or "serial:/path/to/link".
   const std::string& address() const { return address_; }
@@ -31,13 +33,16 @@ class FdLink final : public hal::ByteLink {
   size_t DoWrite(const uint8_t* data, size_t size) override;
   size_t DoWriteSpace() const override;
   void Disconnect();
+  bool MayReplace(const std::string& spec, std::string* error) const;
 
   static constexpr size_t kTxCapacity = 64 * 1024;
+  static constexpr size_t kRxCapacity = 64 * 1024;
   int listen_fd_ = -1;
   int io_fd_ = -1;      ///< TCP client, or the pty master
   int pty_slave_ = -1;  ///< kept open so the master never sees a hang-up between clients
   bool is_pty_ = false;
   std::string symlink_;
+  std::string pty_name_;  ///< /dev/pts/N, where symlink_ points
   std::string address_;
   std::vector<uint8_t> rx_;
   size_t rx_read_ = 0;

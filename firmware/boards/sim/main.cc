@@ -39,6 +39,8 @@ int main(int argc, char** argv) {
     std::fputs(palpa::sim::kSimUsage, stdout);
     return 0;
   }
+  for (const std::string& warning : cmd.warnings)
+    std::fprintf(stderr, "palpa-sim: warning: %s\n", warning.c_str());
   palpa::sim::FdLink link;
   if (!link.Open(cmd.listen, &error)) {
     std::fprintf(stderr, "palpa-sim: %s\n", error.c_str());

@@ -37,7 +37,7 @@ bool Readable(int fd) {
 
 RigModbusServer::~RigModbusServer() {
   if (!rtu_) {
-    for (int fd : clients_) close(fd);
+    for (const Client& c : clients_) close(c.fd);
   }
   if (listen_fd_ >= 0) close(listen_fd_);
   if (map_ != nullptr) modbus_mapping_free(map_);
@@ -76,7 +76,7 @@ bool RigModbusServer::Open(const std::string& spec, RigModel& rig, std::string* 
       *error = "--rig-modbus " + spec + ": cannot open (" + modbus_strerror(errno) + ")";
       return false;
     }
-    clients_.push_back(modbus_get_socket(ctx_));
+    clients_.push_back(Client{modbus_get_socket(ctx_), {}});
     address_ = spec;
   } else {
     *error = "--rig-modbus " + spec + ": expected tcp:HOST:PORT or rtu:PATH";
@@ -87,7 +87,8 @@ bool RigModbusServer::Open(const std::string& spec, RigModel& rig, std::string* 
 }
 
 std::vector<int> RigModbusServer::PollFds() const {
-  std::vector<int> fds = clients_;
+  std::vector<int> fds;
+  for (const Client& c : clients_) fds.push_back(c.fd);
   if (listen_fd_ >= 0) fds.push_back(listen_fd_);
   return fds;
 }
@@ -116,34 +117,61 @@ void RigModbusServer::TakeWrites() {
   h[kTare] = 0;
 }
 
+void RigModbusServer::Answer(int fd, const uint8_t* request, int size) {
+  modbus_set_socket(ctx_, fd);
+  Refresh();
+  modbus_reply(ctx_, request, size, map_);
+  TakeWrites();
+}
+
+bool RigModbusServer::PumpTcp(Client& c) {
+  // A request is the MBAP header (transaction, protocol, length, unit) and the PDU: 6 bytes and
+  // then `length` more. Read what has come, answer what is whole, keep the rest for later.
+  uint8_t buffer[MODBUS_TCP_MAX_ADU_LENGTH];
+  const size_t room = sizeof(buffer) - c.pending.size();
+  const ssize_t n = recv(c.fd, buffer, room, MSG_DONTWAIT);
+  if (n == 0 || (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)) return false;
+  if (n > 0) c.pending.insert(c.pending.end(), buffer, buffer + n);
+  while (c.pending.size() >= 7) {
+    const size_t length = static_cast<size_t>(c.pending[4]) << 8 | c.pending[5];
+    if (length < 2 || 6 + length > MODBUS_TCP_MAX_ADU_LENGTH) return false;  // not Modbus TCP
+    if (c.pending.size() < 6 + length) break;
+    Answer(c.fd, c.pending.data(), static_cast<int>(6 + length));
+    c.pending.erase(c.pending.begin(), c.pending.begin() + static_cast<long>(6 + length));
+  }
+  return true;
+}
+
+void RigModbusServer::PumpRtu(int fd) {
+  while (Readable(fd)) {
+    modbus_set_socket(ctx_, fd);
+    uint8_t query[MODBUS_RTU_MAX_ADU_LENGTH];
+    const int n = modbus_receive(ctx_, query);
+    if (n < 0) break;                 // noise on the line, or a request cut short
+    if (n > 0) Answer(fd, query, n);  // 0: a request for another unit
+  }
+}
+
 void RigModbusServer::Pump() {
   if (ctx_ == nullptr) return;
-  if (!rtu_ && Readable(listen_fd_)) {
-    int listening = listen_fd_;
-    const int fd = modbus_tcp_accept(ctx_, &listening);
-    if (fd >= 0) clients_.push_back(fd);
+  if (rtu_) {
+    PumpRtu(clients_.front().fd);
+    return;
+  }
+  if (Readable(listen_fd_)) {
+    const int fd = accept(listen_fd_, nullptr, nullptr);
+    if (fd >= 0 && clients_.size() >= kMaxClients) {
+      close(fd);  // full: closed at once rather than left waiting unanswered
+    } else if (fd >= 0) {
+      clients_.push_back(Client{fd, {}});
+    }
   }
   for (size_t i = 0; i < clients_.size();) {
-    const int fd = clients_[i];
-    bool closed = false;
-    while (Readable(fd)) {
-      modbus_set_socket(ctx_, fd);
-      uint8_t query[MODBUS_TCP_MAX_ADU_LENGTH];
-      const int n = modbus_receive(ctx_, query);
-      if (n == 0) continue;  // a request for another unit (RTU): not ours
-      if (n < 0) {
-        closed = !rtu_;  // a TCP client went away; a serial line stays
-        break;
-      }
-      Refresh();
-      modbus_reply(ctx_, query, n, map_);
-      TakeWrites();
-    }
-    if (closed) {
-      close(fd);
-      clients_.erase(clients_.begin() + static_cast<long>(i));
-    } else {
+    if (PumpTcp(clients_[i])) {
       ++i;
+    } else {
+      close(clients_[i].fd);
+      clients_.erase(clients_.begin() + static_cast<long>(i));
     }
   }
 }

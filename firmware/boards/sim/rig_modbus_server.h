@@ -10,6 +10,8 @@
 //   holding 30   tare: write 1 to tare (reads back 0 once taken)
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -22,23 +24,34 @@ namespace palpa::sim {
 
 class RigModbusServer {
  public:
+  /// TCP clients served at once (a calibration uses one or two); more are closed on arrival.
+  static constexpr size_t kMaxClients = 4;
   ~RigModbusServer();
   /// "tcp:HOST:PORT" (0 = any free port) or "rtu:PATH" (a serial device or pty, 115200 8N1).
   bool Open(const std::string& spec, RigModel& rig, std::string* error);
   const std::string& address() const { return address_; }
   std::vector<int> PollFds() const;
-  /// Accepts clients, answers any request waiting. Never blocks for longer than one request.
+  /// Accepts clients (up to kMaxClients), answers the requests waiting. Over TCP it never
+  /// blocks: a request is answered once all its bytes have arrived, and a client sending faster
+  /// than it is answered waits for the next pass; over RTU it waits at most for one request.
   void Pump();
 
  private:
+  struct Client {
+    int fd;
+    std::vector<uint8_t> pending;  ///< TCP: bytes of a request not yet whole
+  };
   void Refresh();
   void TakeWrites();
+  void Answer(int fd, const uint8_t* request, int size);
+  bool PumpTcp(Client& client);  ///< false when the client is gone or broke the framing
+  void PumpRtu(int fd);
 
   RigModel* rig_ = nullptr;
   modbus_t* ctx_ = nullptr;
   modbus_mapping_t* map_ = nullptr;
   int listen_fd_ = -1;
-  std::vector<int> clients_;  ///< TCP: one per connected device driver; RTU: the serial line
+  std::vector<Client> clients_;  ///< TCP: one per connected device driver; RTU: the serial line
   bool rtu_ = false;
   std::string address_;
 };

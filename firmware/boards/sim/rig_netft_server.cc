@@ -73,14 +73,16 @@ void RigNetFtServer::Serve() {
     const uint16_t command = static_cast<uint16_t>(request[2] << 8 | request[3]);
     const uint32_t count =
         static_cast<uint32_t>(request[4]) << 24 | request[5] << 16 | request[6] << 8 | request[7];
-    client_ = from;
-    has_client_ = true;
+    const bool from_client = has_client_ && from.sin_addr.s_addr == client_.sin_addr.s_addr &&
+                             from.sin_port == client_.sin_port;
     if (command == 0x0042) {
       bias_n_ = rig_->ReadForceN();
     } else if (command == 0) {
-      remaining_ = 0;
+      if (from_client) remaining_ = 0;  // only who asked for the stream can stop it
     } else {
-      remaining_ = count == 0 ? UINT32_MAX : count;
+      client_ = from;  // the stream goes to who asked for it, and to nobody else
+      has_client_ = true;
+      remaining_ = count == 0 || count > kMaxStreamRecords ? kMaxStreamRecords : count;
     }
   }
 }
@@ -88,7 +90,7 @@ void RigNetFtServer::Serve() {
 void RigNetFtServer::Stream() {
   if (has_client_ && remaining_ > 0) {
     Send();
-    if (remaining_ != UINT32_MAX) --remaining_;
+    --remaining_;
   }
 }
 

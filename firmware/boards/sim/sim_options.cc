@@ -1,8 +1,11 @@
 // Parsing of palpa-sim's arguments, with an error that names the argument at fault.
 #include "sim_options.h"
 
+#include <arpa/inet.h>
+
 #include <cstdio>
 #include <cstdlib>
+#include <utility>
 
 namespace palpa::sim {
 
@@ -13,7 +16,9 @@ const char* const kSimUsage =
     "\n"
     "  --config NAME        board configuration: thesis-pneumatic-3, thesis-jamming-2,\n"
     "                       thesis-5finger, full-8\n"
-    "  --listen SPEC        tcp:127.0.0.1:PORT (0 = any free port) or pty:PATH (a symlink)\n"
+    "  --listen SPEC        tcp:127.0.0.1:PORT (0 = any free port) or pty:PATH (a symlink to\n"
+    "                       the pty; an existing PATH is replaced only if it is a link to a pty\n"
+    "                       that is gone)\n"
     "  --unit N             simulated actuator unit (0 = nominal; others differ as real units do)\n"
     "  --seed N             regulator and sensor units, noise (default 1)\n"
     "  --speed X            virtual seconds per real second, 0.01 to 100 (default 1)\n"
@@ -27,6 +32,7 @@ const char* const kSimUsage =
     "  --stamp file:PATH    write CLOCK_MONOTONIC stamps when a setpoint generation is applied "
     "and\n"
     "                       when it first reaches the DAC (latency benchmark)\n"
+    "                       (file outputs are written whole: they appear when palpa-sim stops)\n"
     "  --rig-modbus SPEC    serve the calibration rig (linear stage and force sensor over the "
     "same\n"
     "                       plant and clock) by Modbus on tcp:127.0.0.1:PORT (0 = any free port)\n"
@@ -34,7 +40,12 @@ const char* const kSimUsage =
     "  --rig-netft SPEC     serve the rig's force sensor as an ATI Net F/T (RDT over UDP) on\n"
     "                       udp:127.0.0.1:PORT (0 = any free port)\n"
     "  --rig-finger N       the finger under the rig's indenter (default 0)\n"
-    "  --help               this text\n";
+    "  --allow-remote       let --listen, --truth, --rig-modbus and --rig-netft bind addresses\n"
+    "                       other than loopback (127.0.0.0/8); nothing palpa-sim serves is\n"
+    "                       authenticated, so anyone who reaches such a port can use it\n"
+    "  --help               this text\n"
+    "\n"
+    "A network address is HOST:PORT with an IPv4 HOST, or PORT alone for 127.0.0.1.\n";
 
 namespace {
 
@@ -76,6 +87,42 @@ bool ParseEffects(const std::string& list, Effects& effects, std::string* error)
   return true;
 }
 
+/// "tcp:HOST:PORT" / "udp:HOST:PORT" (or just the PORT: loopback) checked and written out in
+/// full; a host outside 127.0.0.0/8 only with --allow-remote, and then with a warning.
+bool CheckNetworkAddress(const std::string& option, std::string& spec, bool allow_remote,
+                         std::vector<std::string>& warnings, std::string* error) {
+  const size_t scheme = spec.find(':') + 1;
+  const std::string rest = spec.substr(scheme);
+  const size_t colon = rest.rfind(':');
+  const std::string host = colon == std::string::npos ? "127.0.0.1" : rest.substr(0, colon);
+  const std::string port = colon == std::string::npos ? rest : rest.substr(colon + 1);
+  const std::string where = option + " " + spec + ": ";
+  char* end = nullptr;
+  const long n = std::strtol(port.c_str(), &end, 10);
+  if (port.empty() || *end != '\0' || n < 0 || n > 65535) {
+    *error = where + "the port must be a number from 0 to 65535";
+    return false;
+  }
+  in_addr address{};
+  if (inet_pton(AF_INET, host.c_str(), &address) != 1) {
+    *error = where + "'" + host + "' is not an IPv4 address";
+    return false;
+  }
+  if ((ntohl(address.s_addr) >> 24) != 127) {
+    if (!allow_remote) {
+      *error = where + host +
+               " is not a loopback address: other hosts could reach it, and nothing palpa-sim "
+               "serves is authenticated (--allow-remote serves it anyway)";
+      return false;
+    }
+    warnings.push_back(option + " " + spec +
+                       " is reachable from other hosts: anyone who reaches it can use it, nothing "
+                       "there is authenticated");
+  }
+  spec = spec.substr(0, scheme) + host + ":" + port;
+  return true;
+}
+
 }  // namespace
 
 bool ParseSimCommandLine(const std::vector<std::string>& args, SimCommandLine& out,
@@ -88,6 +135,10 @@ bool ParseSimCommandLine(const std::vector<std::string>& args, SimCommandLine& o
     }
     if (arg == "--no-static-errors") {
       out.board.plant.static_errors = false;
+      continue;
+    }
+    if (arg == "--allow-remote") {
+      out.allow_remote = true;
       continue;
     }
     if (arg.rfind("--", 0) != 0) {
@@ -162,6 +213,16 @@ bool ParseSimCommandLine(const std::vector<std::string>& args, SimCommandLine& o
   if (out.listen.empty()) {
     *error = "--listen is required (tcp:127.0.0.1:PORT or pty:PATH)";
     return false;
+  }
+  const std::pair<const char*, std::string*> addresses[] = {{"--listen", &out.listen},
+                                                            {"--truth", &out.truth},
+                                                            {"--rig-modbus", &out.rig_modbus},
+                                                            {"--rig-netft", &out.rig_netft}};
+  for (const auto& [option, spec] : addresses) {
+    if ((spec->rfind("tcp:", 0) == 0 || spec->rfind("udp:", 0) == 0) &&
+        !CheckNetworkAddress(option, *spec, out.allow_remote, out.warnings, error)) {
+      return false;
+    }
   }
   out.board.time_scale = out.speed;
   return true;
