@@ -25,15 +25,7 @@ class PlantIo final : public hal::AnalogOutput, public hal::AnalogInput {
     count_ = config.line_count;
     for (uint8_t i = 0; i < count_; ++i) {
       config_[i] = config.lines[i];
-      sim::RegulatorSetup s;
-      s.sign = config.lines[i].kind == protocol::LineKind::kVacuum ? -1.0f : 1.0f;
-      s.full_scale_pa = params::kRegulatorFullScalePa;
-      s.min_set_pa = params::kRegulatorMinSetPa;
-      s.lag_tau_s = params::kRegulatorLagTauS;
-      s.dead_time_s = params::kRegulatorDeadTimeS;
-      s.chamber_tau_s = config.lines[i].kind == protocol::LineKind::kVacuum
-                            ? params::kChamberVacuumTauS
-                            : params::kChamberPneumaticTauS;
+      const sim::RegulatorSetup s = sim::NominalRegulatorSetup(config.lines[i].kind);
       lines_[i] = sim::RegulatorLine(s, 0.001f);
       codes_[i] = 0;
       scan_[i] = SensorCounts(i);

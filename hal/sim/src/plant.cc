@@ -25,17 +25,6 @@ RegulatorErrors DrawErrors(std::mt19937& rng) {
   return e;
 }
 
-float ChamberTau(protocol::LineKind kind) {
-  switch (kind) {
-    case protocol::LineKind::kVacuum:
-      return p::kChamberVacuumTauS;
-    case protocol::LineKind::kBias:
-      return p::kChamberBiasTauS;
-    default:
-      return p::kChamberPneumaticTauS;
-  }
-}
-
 }  // namespace
 
 Plant::Plant(const protocol::ConfigureLine* lines, uint8_t line_count,
@@ -45,13 +34,8 @@ Plant::Plant(const protocol::ConfigureLine* lines, uint8_t line_count,
   for (uint8_t i = 0; i < line_count; ++i) {
     Line line;
     line.config = lines[i];
-    RegulatorSetup setup;
-    setup.sign = lines[i].kind == protocol::LineKind::kVacuum ? -1.0f : 1.0f;
-    setup.full_scale_pa = p::kRegulatorFullScalePa;
-    setup.min_set_pa = options.level >= 1 ? p::kRegulatorMinSetPa : 0.0f;
-    setup.lag_tau_s = p::kRegulatorLagTauS;
-    setup.dead_time_s = p::kRegulatorDeadTimeS;
-    setup.chamber_tau_s = ChamberTau(lines[i].kind);
+    RegulatorSetup setup = NominalRegulatorSetup(lines[i].kind);
+    if (options.level < 1) setup.min_set_pa = 0.0f;
     setup.dynamics = options.level >= 1;
     const RegulatorErrors drawn = DrawErrors(rng);
     if (options.level >= 1 && options.static_errors) setup.errors = drawn;

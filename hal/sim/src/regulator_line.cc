@@ -1,18 +1,66 @@
-// Regulator and chamber: static map with play, dead time, first-order lags. Float only.
+// Regulator: static map with play, dead time, the pilot stage's lag; the line behind it flows
+// (line_flow.cc). Float only.
 #include "palpa/hal/sim/regulator_line.h"
 
+#include "palpa/hal/sim/plant_params.h"
+
 namespace palpa::sim {
+namespace p = params;
 namespace {
 
 float Clamp(float v, float lo, float hi) { return v < lo ? lo : (v > hi ? hi : v); }
 
+constexpr float kPi = 3.14159265f;
+constexpr float kLitresPerMinute = 1.0f / 60000.0f;  // → m³/s
+constexpr float kMillilitre = 1e-6f;                 // → m³
+
 }  // namespace
 
-RegulatorLine::RegulatorLine(const RegulatorSetup& setup, float step_s) : setup_(setup) {
+RegulatorSetup NominalRegulatorSetup(protocol::LineKind kind, FlowAssumptions a) {
+  RegulatorSetup s;
+  const bool vacuum = kind == protocol::LineKind::kVacuum;
+  s.sign = vacuum ? -1.0f : 1.0f;
+  s.full_scale_pa = p::kRegulatorFullScalePa;
+  s.min_set_pa = p::kRegulatorMinSetPa;
+  s.lag_tau_s = p::kRegulatorLagTauS;
+  s.dead_time_s = p::kRegulatorDeadTimeS;
+  LineFlowSetup& f = s.flow;
+  const float atm = p::kFlowAtmospherePa;
+  f.sign = s.sign;
+  f.atmosphere_pa = atm;
+  f.critical_ratio = p::kFlowCriticalRatio;
+  f.band_pa = p::kFlowValveBandPa * a.band;
+  // Conductances from the full flows: the pressure class choked from its supply into an outlet
+  // at atmosphere, the vacuum class choked from an outlet at atmosphere into the pump.
+  if (vacuum) {
+    f.supply_abs_pa = p::kFlowPumpAbsPa;
+    f.main_conductance = a.flow * p::kFlowVacuumFlowLMinAnr * kLitresPerMinute / atm;
+  } else {
+    f.supply_abs_pa = p::kFlowSupplyPa + atm;
+    f.main_conductance =
+        a.flow * p::kFlowPressureFlowLMinAnr * kLitresPerMinute /
+        (f.supply_abs_pa * OrificeFlowFactor(atm / f.supply_abs_pa, f.critical_ratio));
+  }
+  f.exhaust_conductance = f.main_conductance * p::kFlowExhaustShare;
+  const float dump_from = atm + 100000.0f;
+  f.dump_conductance = a.flow * p::kFlowDumpFlowLMinAnr * kLitresPerMinute /
+                       (dump_from * OrificeFlowFactor(atm / dump_from, f.critical_ratio));
+  const float bore_m = 1e-3f * (vacuum ? p::kLineVacuumBoreMm : p::kLinePressureBoreMm);
+  const float r = 0.5f * bore_m;
+  const float length = p::kLineLengthM * a.tube;
+  const float tube_volume = kPi * r * r * length;
+  f.tube_conductance = kPi * r * r * r * r / (8.0f * p::kFlowAirViscosityPaS * length);
+  const float chamber_ml = vacuum                              ? p::kLineJammingChamberMl
+                           : kind == protocol::LineKind::kBias ? p::kLineBiasChamberMl
+                                                               : p::kLinePneumaticChamberMl;
+  f.outlet_volume_m3 = p::kLineRegulatorOutletMl * kMillilitre + 0.5f * tube_volume;
+  f.chamber_volume_m3 = chamber_ml * a.chamber * kMillilitre + 0.5f * tube_volume;
+  return s;
+}
+
+RegulatorLine::RegulatorLine(const RegulatorSetup& setup, float step_s)
+    : setup_(setup), flow_(setup.flow, step_s) {
   lag_alpha_ = setup.lag_tau_s > 0 ? step_s / (setup.lag_tau_s + step_s) : 1.0f;
-  chamber_alpha_ = setup.chamber_tau_s > 0 ? step_s / (setup.chamber_tau_s + step_s) : 1.0f;
-  constexpr float kDumpTauS = 0.05f;  // the dump valve vents the chamber directly
-  vent_alpha_ = step_s / (kDumpTauS + step_s);
   const float steps = step_s > 0 ? setup.dead_time_s / step_s + 0.5f : 0.0f;
   delay_steps_ =
       static_cast<uint8_t>(steps >= kMaxRegulatorDelaySteps ? kMaxRegulatorDelaySteps - 1 : steps);
@@ -29,9 +77,16 @@ float RegulatorLine::StaticOutput(float magnitude) const {
 
 void RegulatorLine::Step(float command_pa, bool vented) {
   if (vented) {
-    outlet_ += vent_alpha_ * (0.0f - outlet_);
-    chamber_ += vent_alpha_ * (0.0f - chamber_);
+    // The supply is shut and the dump valve open; the regulator's pilot decays with its command.
+    pilot_ += lag_alpha_ * (0.0f - pilot_);
     for (float& d : delay_) d = 0;
+    if (setup_.dynamics) {
+      flow_.Step(pilot_, true);
+      outlet_ = flow_.outlet_pa();
+      chamber_ = flow_.chamber_pa();
+    } else {
+      outlet_ = chamber_ = 0;
+    }
     return;
   }
   // The regulator only makes pressure of its own sign; a command the other way means 0.
@@ -43,7 +98,7 @@ void RegulatorLine::Step(float command_pa, bool vented) {
   float target = magnitude < setup_.min_set_pa ? 0.0f : StaticOutput(play_ < 0 ? 0 : play_);
   target *= setup_.sign;
   if (!setup_.dynamics) {
-    outlet_ = chamber_ = target;
+    pilot_ = outlet_ = chamber_ = target;
     return;
   }
   float delayed = target;
@@ -52,15 +107,10 @@ void RegulatorLine::Step(float command_pa, bool vented) {
     delay_[delay_index_] = target;
     delay_index_ = static_cast<uint8_t>((delay_index_ + 1) % delay_steps_);
   }
-  if (leak_ > 0) {
-    // Outlet droop of one tubing-flow unit per unit (an assumption: the regulator's output
-    // resistance is about the tubing's); the leak drains the chamber toward 0.
-    outlet_ += lag_alpha_ * (delayed - (outlet_ - chamber_) - outlet_);
-    chamber_ += chamber_alpha_ * (outlet_ - chamber_) - chamber_alpha_ * leak_ * chamber_;
-    return;
-  }
-  outlet_ += lag_alpha_ * (delayed - outlet_);
-  chamber_ += chamber_alpha_ * (outlet_ - chamber_);
+  pilot_ += lag_alpha_ * (delayed - pilot_);
+  flow_.Step(pilot_, false);
+  outlet_ = flow_.outlet_pa();
+  chamber_ = flow_.chamber_pa();
 }
 
 }  // namespace palpa::sim

@@ -16,7 +16,8 @@
 namespace palpa::sim {
 
 /// Levels are cumulative: 0 ideal; 1 regulator dynamics, static errors, minimum set pressure,
-/// chamber lag; 2 actuator hysteresis (and creep/rate when enabled); 3 real sensors and rig.
+/// flow into tube and chamber; 2 actuator hysteresis (and creep/rate when enabled); 3 real sensors
+/// and rig.
 struct PlantOptions {
   int level = 3;
   uint32_t unit = 0;          ///< actuator unit: 0 nominal, others drawn with the thesis's spread
