@@ -113,7 +113,8 @@ class Describer {
   }
   template <size_t N>
   void Text(const char* name, const std::array<char, N>&) {
-    Row(name, std::to_string(N) + " chars", "printable ASCII, NUL-padded");
+    Row(name, std::to_string(N) + " chars",
+        "at most " + std::to_string(N - 1) + " printable ASCII, NUL-terminated and padded");
     Add(N, N);
   }
 

@@ -152,6 +152,23 @@ TEST(Codec, TextMustBePrintableAndNulPadded) {
   CheckError(EncodeError(f), pp::Status::kBadValue, "actuator_serial");
 }
 
+TEST(Codec, TextIsAlwaysTerminated) {
+  // A name filling all 24 bytes has no NUL: a reader printing it as a C string would run into the
+  // next field. Neither side lets one through, so every decoded text is a C string.
+  pp::ConfigureBoard b{};
+  b.config_name.fill('x');
+  CheckError(EncodeError(b), pp::Status::kBadValue, "config_name");
+  b.config_name[23] = '\0';  // 23 characters and the terminator: fine
+  std::vector<uint8_t> body = Body(b);
+  LONGS_EQUAL(0, static_cast<int>(DecodeError<pp::ConfigureBoard>(body).status));
+  body[23] = 'x';  // the same body with the terminator overwritten, as another sender might
+  CheckError(DecodeError<pp::ConfigureBoard>(body), pp::Status::kBadValue, "config_name");
+  pp::HelloReply r{};
+  r.rx_buffer_bytes = 1024;
+  r.config_name.fill('y');
+  CheckError(EncodeError(r), pp::Status::kBadValue, "config_name");
+}
+
 TEST(Codec, ShortBodyNamesTheFieldThatIsCutOff) {
   auto body = Body(TwoSetpoints());
   body.resize(8);

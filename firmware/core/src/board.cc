@@ -39,6 +39,8 @@ void Board::Start() {
     std::memcpy(&live_, &factory_, sizeof(live_));
     config_is_default_ = true;
   }
+  config_saved_ = !config_is_default_;
+  config_unsaved_ = false;
   ApplyLive(now);
   WriteOutputs();
   switch (identity_.reset_cause) {

@@ -15,6 +15,7 @@ Outcome BoardDispatch::Commit() {
   // Between two ticks (dispatch never runs inside one): the whole configuration changes at once.
   std::memcpy(&b_.live_, &b_.candidate_, sizeof(b_.live_));
   b_.config_is_default_ = false;
+  b_.config_unsaved_ = true;
   b_.ApplyLive(now_us_);
   return {};
 }
@@ -81,7 +82,12 @@ Outcome BoardDispatch::Apply(const protocol::GetConfig& m, const protocol::Heade
 }
 
 Outcome BoardDispatch::Apply(const protocol::SaveConfig&, const protocol::Header&) {
-  return {b_.store_.Save(b_.live_)};
+  const Status saved = b_.store_.Save(b_.live_);
+  if (saved == Status::kOk) {
+    b_.config_saved_ = true;
+    b_.config_unsaved_ = false;
+  }
+  return {saved};
 }
 
 Outcome BoardDispatch::Apply(const protocol::FactoryReset&, const protocol::Header&) {
@@ -89,6 +95,8 @@ Outcome BoardDispatch::Apply(const protocol::FactoryReset&, const protocol::Head
   if (erased != Status::kOk && erased != Status::kUnavailable) return {erased};
   std::memcpy(&b_.live_, &b_.factory_, sizeof(b_.live_));
   b_.config_is_default_ = true;
+  b_.config_saved_ = false;  // erased, or nothing persists on this board
+  b_.config_unsaved_ = false;
   b_.ApplyLive(now_us_);
   return {};
 }

@@ -94,6 +94,8 @@ void BoardReports::Diagnostics(Board& b, uint8_t seq) {
   d.fault_bitmap = b.supervisor_.latched;
   d.active_conditions = b.supervisor_.active;
   d.uptime_us = b.io_.clock.NowMicros();
+  d.config_saved = b.config_saved_;
+  d.config_unsaved = b.config_unsaved_;
   d.history_count = FaultHistory(b.supervisor_, d.history.data());
   QueueAnswer(b.tx_, d, seq, BoardFlags(b, flags::kReliable));
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <random>
 #include <string>
+#include <utility>
 
 #include "board_harness.h"
 #include "palpa/protocol/crc32.h"
@@ -284,6 +285,48 @@ TEST(BoardBoot, SavedConfigurationSurvivesARebootAndFactoryResetForgetsIt) {
   }
   BoardHarness h("thesis-5finger", pp::ResetCause::kPowerOn, &flash);
   CHECK(h.Connect().config_is_default);
+}
+
+namespace {
+
+/// The board's Diagnostics: (saved, unsaved) — what the next boot loads, and whether the live
+/// configuration differs from it.
+std::pair<bool, bool> ConfigState(BoardHarness& h) {
+  h.Send(pp::GetDiagnostics{});
+  for (const BoardFrame& f : h.Drain()) {
+    if (f.Is<pp::Diagnostics>()) {
+      const auto d = f.As<pp::Diagnostics>();
+      return {d.config_saved, d.config_unsaved};
+    }
+  }
+  FAIL("no Diagnostics");
+  return {};
+}
+
+}  // namespace
+
+TEST(BoardBoot, DiagnosticsSayWhetherTheLiveConfigurationIsSaved) {
+  // What `palpa info` reports: "(saved)" only when a reset would come back to this configuration.
+  palpa::hal::fake::SimulatedNorFlash flash{64 * 1024, 8 * 1024};
+  BoardHarness h("thesis-5finger", pp::ResetCause::kPowerOn, &flash);
+  h.Connect();
+  CHECK(ConfigState(h) == std::make_pair(false, false));  // factory, nothing saved
+  pp::ConfigureBoard board = h.board->config().board;
+  board.host_timeout_us = 250000;
+  h.Send(board);
+  CHECK(ConfigState(h) == std::make_pair(false, true));  // changed, a reset would lose it
+  h.Send(pp::SaveConfig{});
+  CHECK(ConfigState(h) == std::make_pair(true, false));
+  board.host_timeout_us = 300000;
+  h.Send(board);
+  CHECK(ConfigState(h) == std::make_pair(true, true));  // a reset returns to the saved one
+  h.Send(pp::FactoryReset{});
+  CHECK(ConfigState(h) == std::make_pair(false, false));
+  h.Send(board);  // factory reset, then set: changed, and nothing saved behind it
+  CHECK(ConfigState(h) == std::make_pair(false, true));
+  BoardHarness rebooted("thesis-5finger", pp::ResetCause::kPowerOn, &flash);
+  rebooted.Connect();
+  CHECK(ConfigState(rebooted) == std::make_pair(false, false));
 }
 
 TEST(BoardBoot, ASavedConfigurationForAnotherDacFallsBackToTheFactoryOne) {

@@ -88,7 +88,8 @@ class BodyEncoder {
   void Fixed(const char* name, const std::array<uint8_t, N>& data) {
     PutBytes(data.data(), N, name);
   }
-  /// Fixed-width printable ASCII, NUL-padded.
+  /// Fixed-width printable ASCII, NUL-terminated and NUL-padded: at most N-1 characters, so a
+  /// reader may always treat it as a C string.
   template <size_t N>
   void Text(const char* name, const std::array<char, N>& text) {
     if (!TextValid(text.data(), N)) return Fail(Status::kBadValue, name);
@@ -99,6 +100,7 @@ class BodyEncoder {
   size_t size() const { return size_; }
   const FieldError& error() const { return error_; }
 
+  /// Printable ASCII up to a NUL, NULs after it; a field with no NUL at all is refused.
   static bool TextValid(const char* text, size_t n) {
     bool ended = false;
     for (size_t i = 0; i < n; ++i) {
@@ -109,7 +111,7 @@ class BodyEncoder {
         return false;
       }
     }
-    return true;
+    return ended;
   }
 
  private:

@@ -117,13 +117,16 @@ struct FaultRecord {
 struct Diagnostics {
   static constexpr MessageInfo kInfo{MessageType::kDiagnostics, "Diagnostics", Sender::kBoard,
                                      Delivery::kResponse,
-                                     "reset cause, faults latched and active, fault history"};
+                                     "reset cause, faults latched and active, whether the "
+                                     "configuration is saved, fault history"};
   uint32_t boot_nonce = 0;
   ResetCause reset_cause = ResetCause::kPowerOn;
   uint32_t boot_count = 0;
   uint32_t fault_bitmap = 0;       ///< latched
   uint32_t active_conditions = 0;  ///< causes present now
   uint64_t uptime_us = 0;
+  bool config_saved = false;    ///< a saved configuration is what the next boot loads
+  bool config_unsaved = false;  ///< the live configuration differs from what the next boot loads
   uint8_t history_count = 0;
   std::array<FaultRecord, kMaxFaultRecords> history{};  ///< oldest first
   template <class V, class M>
@@ -134,6 +137,8 @@ struct Diagnostics {
     v.Field("fault_bitmap", m.fault_bitmap);
     v.Field("active_conditions", m.active_conditions);
     v.Field("uptime_us", m.uptime_us);
+    v.Flag("config_saved", m.config_saved);
+    v.Flag("config_unsaved", m.config_unsaved);
     v.Array("history", m.history, m.history_count);
   }
 };

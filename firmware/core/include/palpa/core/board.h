@@ -78,6 +78,8 @@ class Board {
   const protocol::FramingCounters& rx_counters() const { return decoder_.counters(); }
   const TxQueue& tx() const { return tx_; }
   bool config_is_default() const { return config_is_default_; }
+  bool config_saved() const { return config_saved_; }
+  bool config_unsaved() const { return config_unsaved_; }
   uint64_t last_host_frame_us() const { return last_host_frame_us_; }
   bool session_open() const { return session_.open(); }
   uint32_t applied_setpoint_generation() const { return session_.setpoints().applied(); }
@@ -123,6 +125,8 @@ class Board {
   BoardConfig candidate_{};  ///< configuration being validated before it replaces live_
   ConfigStore store_;
   bool config_is_default_ = true;
+  bool config_saved_ = false;    ///< a saved copy is what the next boot loads
+  bool config_unsaved_ = false;  ///< the live configuration differs from what the next boot loads
 
   protocol::BoardSession session_;
   protocol::OwningFrameDecoder decoder_;

@@ -145,7 +145,7 @@ class JsonReader {
     const json& j = At(name);
     if (!j.is_string()) Fail(name, "expected a string");
     const std::string s = j.get<std::string>();
-    if (s.size() > N) Fail(name, "longer than " + std::to_string(N) + " characters");
+    if (s.size() >= N) Fail(name, "longer than " + std::to_string(N - 1) + " characters");
     text.fill('\0');
     std::copy(s.begin(), s.end(), text.begin());
   }
