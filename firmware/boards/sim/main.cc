@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -51,9 +52,13 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "palpa-sim: %s\n", error.c_str());
     return 1;
   }
+  if (!cmd.board.flash_file.empty() && cmd.board.boot_nonce == 0) {
+    // A board with a past: each start is a new boot, and a host must see a new boot nonce.
+    cmd.board.boot_nonce = std::random_device{}() | 1u;
+  }
   auto sim = palpa::sim::SimBoard::Create(cmd.board, link, &error);
   if (!sim) {
-    std::fprintf(stderr, "palpa-sim: --config %s\n", error.c_str());
+    std::fprintf(stderr, "palpa-sim: %s\n", error.c_str());
     return 2;
   }
   struct sigaction action {};
@@ -100,6 +105,10 @@ int main(int argc, char** argv) {
   std::printf("palpa-sim: %s, plant level %d, unit %u, seed %u, speed %gx\n",
               cmd.board.config.c_str(), cmd.board.plant.level, cmd.board.plant.unit,
               cmd.board.plant.seed, static_cast<double>(cmd.speed));
+  if (!cmd.board.flash_file.empty()) {
+    std::printf("palpa-sim: flash in %s (%s)\n", cmd.board.flash_file.c_str(),
+                sim->board().config_is_default() ? "factory configuration" : "saved configuration");
+  }
   std::printf("palpa-sim: listening on %s\n", link.address().c_str());
   if (!cmd.truth.empty()) std::printf("palpa-sim: truth on %s\n", truth.address().c_str());
   if (!cmd.rig_modbus.empty()) {

@@ -10,7 +10,7 @@ std::unique_ptr<SimBoard> SimBoard::Create(const SimBoardOptions& options, hal::
   const core::BoardConfig* config = core::FindBoardConfig(options.config.c_str());
   if (config == nullptr) {
     if (error != nullptr) {
-      *error = "unknown board configuration '" + options.config + "' (known:";
+      *error = "--config " + options.config + ": unknown board configuration (known:";
       for (uint8_t i = 0; i < core::kBoardConfigCount; ++i)
         *error += std::string(" ") + core::kBoardConfigs[i].name;
       *error += ")";
@@ -51,6 +51,16 @@ std::unique_ptr<SimBoard> SimBoard::Create(const SimBoardOptions& options, hal::
   const uint32_t size = protocol::WriteImage(f, reinterpret_cast<const uint8_t*>(kBody),
                                              sizeof(kBody), image, sizeof(image));
   sim->flash_->Program(layout.slot_offset[0], image, size);
+  sim->storage_ = sim->flash_.get();
+  if (!options.flash_file.empty()) {  // the flash as the last run left it, kept from now on
+    sim->flash_file_ = std::make_unique<FlashFile>(*sim->flash_);
+    std::string why;
+    if (!sim->flash_file_->Open(options.flash_file, options.config, &why)) {
+      if (error != nullptr) *error = why;
+      return nullptr;
+    }
+    sim->storage_ = sim->flash_file_.get();
+  }
   sim->BootBoard(protocol::ResetCause::kPowerOn);
   return sim;
 }
@@ -58,7 +68,7 @@ std::unique_ptr<SimBoard> SimBoard::Create(const SimBoardOptions& options, hal::
 void SimBoard::BootBoard(protocol::ResetCause cause) {
   const core::FlashLayout& layout = core::kDefaultLayout;
   core::SlotImage slots[2];
-  last_boot_ = core::Boot(*flash_, layout, protocol::BoardKind::kSim, slots);
+  last_boot_ = core::Boot(*storage_, layout, protocol::BoardKind::kSim, slots);
   ++boots_;
   core::BoardIdentity id = identity_;
   id.reset_cause = cause;
@@ -71,12 +81,13 @@ void SimBoard::BootBoard(protocol::ResetCause cause) {
     id.firmware_patch = static_cast<uint8_t>(info.version_revision);
     id.active_slot = last_boot_.slot;
   }
-  id.rollback_counter = core::BootStore(flash_.get(), layout).Load().rollback_floor;
-  update_ = std::make_unique<core::UpdateEngine>(flash_.get(), layout, protocol::BoardKind::kSim,
+  id.rollback_counter = core::BootStore(storage_, layout).Load().rollback_floor;
+  update_ = std::make_unique<core::UpdateEngine>(storage_, layout, protocol::BoardKind::kSim,
                                                  last_boot_.slot);
   if (id.recovery) id.active_slot = static_cast<uint8_t>(1 - update_->inactive_slot());
-  core::BoardIo io{clock_,  *dac_,  adc_.get(), supply_, dump_,        pump_,
-                   nullptr, *link_, nullptr,    0,       update_.get()};
+  // The configuration is saved where a real board keeps it: two sectors of the same flash.
+  core::BoardIo io{clock_, *dac_,    adc_.get(),           supply_,      dump_, pump_, nullptr,
+                   *link_, storage_, layout.config_offset, update_.get()};
   board_ = std::make_unique<core::Board>(*config_, io, id);
   board_->Start();
 }

@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "flash_file.h"
 #include "palpa/core/board.h"
 #include "palpa/core/boot_state.h"
 #include "palpa/core/update_engine.h"
@@ -25,6 +26,8 @@ struct SimBoardOptions {
   float time_scale = 1.0f;  ///< reported in Hello (palpa-sim --speed)
   uint32_t board_id = 1;
   uint32_t boot_nonce = 0;  ///< 0: derived from the seed
+  /// Where the board's flash is kept between runs (palpa-sim --flash); empty: in memory only.
+  std::string flash_file;
 };
 
 /// A valve driver held by a pulsing enable: it stays energised only while the line toggles.
@@ -49,7 +52,8 @@ class PulsedValve final : public hal::DigitalOutput {
 
 class SimBoard {
  public:
-  /// Returns nullptr (and sets *error) when the configuration name is unknown.
+  /// Returns nullptr (and sets *error) when the configuration name is unknown or the flash file
+  /// cannot be used.
   static std::unique_ptr<SimBoard> Create(const SimBoardOptions& options, hal::ByteLink& link,
                                           std::string* error);
 
@@ -62,7 +66,8 @@ class SimBoard {
   core::Board& board() { return *board_; }
   const core::Board& board() const { return *board_; }
 
-  /// The board's flash (bootloader, two image slots, boot state) and what its last boot chose.
+  /// The board's flash (bootloader, two image slots, boot state, saved configuration) and what
+  /// its last boot chose.
   hal::fake::SimulatedNorFlash& flash() { return *flash_; }
   const core::BootDecision& last_boot() const { return last_boot_; }
   uint32_t boots() const { return boots_; }
@@ -114,6 +119,8 @@ class SimBoard {
   hal::ByteLink* link_ = nullptr;
   core::BoardIdentity identity_{};
   std::unique_ptr<hal::fake::SimulatedNorFlash> flash_;
+  std::unique_ptr<FlashFile> flash_file_;
+  hal::Flash* storage_ = nullptr;  ///< what the board writes through: the flash, or its file
   std::unique_ptr<core::UpdateEngine> update_;
   core::BootDecision last_boot_{};
   uint32_t boots_ = 0;

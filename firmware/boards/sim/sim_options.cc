@@ -40,6 +40,10 @@ const char* const kSimUsage =
     "  --rig-netft SPEC     serve the rig's force sensor as an ATI Net F/T (RDT over UDP) on\n"
     "                       udp:127.0.0.1:PORT (0 = any free port)\n"
     "  --rig-finger N       the finger under the rig's indenter (default 0)\n"
+    "  --flash FILE         keep the board's flash in FILE (created when missing): its saved\n"
+    "                       configuration, boot state and firmware slots survive a restart, as\n"
+    "                       a board's do a power cycle (palpa sim start uses one per "
+    "configuration)\n"
     "  --allow-remote       let --listen, --truth, --rig-modbus and --rig-netft bind addresses\n"
     "                       other than loopback (127.0.0.0/8); nothing palpa-sim serves is\n"
     "                       authenticated, so anyone who reaches such a port can use it\n"
@@ -202,6 +206,12 @@ bool ParseSimCommandLine(const std::vector<std::string>& args, SimCommandLine& o
         return false;
       }
       out.rig_finger = static_cast<uint8_t>(n);
+    } else if (arg == "--flash") {
+      if (value.empty()) {
+        *error = "--flash: expected a file";
+        return false;
+      }
+      out.board.flash_file = value;
     } else if (arg == "--truth-every-ms") {
       if (!Number(arg, value, 1, 10000, n, error)) return false;
       out.truth_every_ms = static_cast<uint32_t>(n);

@@ -49,6 +49,12 @@ Status SimulatedNorFlash::DoProgram(uint32_t offset, const uint8_t* data, size_t
   return Status::kOk;
 }
 
+bool SimulatedNorFlash::Restore(const uint8_t* data, size_t size) {
+  if (size != memory_.size()) return false;
+  std::memcpy(memory_.data(), data, size);
+  return true;
+}
+
 Status SimulatedNorFlash::DoRead(uint32_t offset, uint8_t* out, size_t size) {
   if (!powered_) return Status::kIoError;
   if (offset > memory_.size() || size > memory_.size() - offset) return Status::kOutOfRange;

@@ -24,6 +24,9 @@ class SimulatedNorFlash final : public Flash {
   }
   bool powered() const { return powered_; }
   const std::vector<uint8_t>& contents() const { return memory_; }
+  /// Replaces every byte, as a chip that kept them while it was off (palpa-sim --flash FILE);
+  /// false when `size` is not the flash's size.
+  bool Restore(const uint8_t* data, size_t size);
   uint32_t erases() const { return erases_; }
   /// Bytes erased or programmed so far: the scale CutPowerAfter counts in.
   uint64_t bytes_touched() const { return touched_; }
