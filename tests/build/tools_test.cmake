@@ -1,0 +1,55 @@
+# A program a test needs, missing then installed: named when configuring, a failing tools_missing
+# test meanwhile, a stop under PALPA_REQUIRE_TOOLS, and found by the next build without anyone
+# re-running CMake (what ./run demo followed by ./run test does with QEMU and the ARM toolchain).
+# -DMODULES=<cmake dir> -DWORK=<scratch dir>
+file(REMOVE_RECURSE ${WORK})
+file(MAKE_DIRECTORY ${WORK}/src ${WORK}/bin)
+file(WRITE ${WORK}/src/CMakeLists.txt "cmake_minimum_required(VERSION 3.25)
+project(probe NONE)
+list(APPEND CMAKE_MODULE_PATH ${MODULES})
+include(PalpaTools)
+enable_testing()
+palpa_find_tool(PROBE palpa-probe-tool \"the probe test\")
+if(PROBE)
+  add_test(NAME probe COMMAND \${PROBE})
+endif()
+palpa_add_tools_test()
+")
+set(path "${WORK}/bin:$ENV{PATH}")
+
+function(run expect_ok what)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env "PATH=${path}" ${ARGN}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  set(out "${out}${err}" PARENT_SCOPE)
+  if(expect_ok AND NOT rc EQUAL 0)
+    message(FATAL_ERROR "${what} failed (${rc}):\n${out}${err}")
+  elseif(NOT expect_ok AND rc EQUAL 0)
+    message(FATAL_ERROR "${what} succeeded where it must fail:\n${out}${err}")
+  endif()
+endfunction()
+
+run(TRUE "configuring without the tool" ${CMAKE_COMMAND} -S ${WORK}/src -B ${WORK}/b -G Ninja)
+if(NOT out MATCHES "palpa-probe-tool is missing: the probe test cannot run")
+  message(FATAL_ERROR "the missing tool is not named:\n${out}")
+endif()
+run(FALSE "ctest with the tool missing" ctest --test-dir ${WORK}/b)
+if(NOT out MATCHES "tools_missing")
+  message(FATAL_ERROR "no failing tools_missing test:\n${out}")
+endif()
+run(FALSE "configuring with PALPA_REQUIRE_TOOLS" ${CMAKE_COMMAND} -S ${WORK}/src -B ${WORK}/strict
+    -G Ninja -DPALPA_REQUIRE_TOOLS=ON)
+if(NOT out MATCHES "palpa-probe-tool is missing")
+  message(FATAL_ERROR "the strict configuration does not name the tool:\n${out}")
+endif()
+
+# The tool arrives (a second later, so the directory's time is newer than the build files').
+execute_process(COMMAND ${CMAKE_COMMAND} -E sleep 1)
+file(WRITE ${WORK}/bin/palpa-probe-tool "#!/bin/sh\nexit 0\n")
+file(CHMOD ${WORK}/bin/palpa-probe-tool PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE)
+run(TRUE "building after installing the tool" ${CMAKE_COMMAND} --build ${WORK}/b)
+run(TRUE "ctest once the tool is there" ctest --test-dir ${WORK}/b)
+if(NOT out MATCHES "probe" OR out MATCHES "tools_missing")
+  message(FATAL_ERROR "the build did not re-configure with the tool:\n${out}")
+endif()
+file(REMOVE_RECURSE ${WORK})
+message(STATUS "a missing tool is named, fails ctest, stops a strict configuration, and is found once installed")
