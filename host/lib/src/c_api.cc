@@ -1,6 +1,7 @@
 // The C ABI over the device API: opaque handles, status codes, messages kept per handle.
 #include "palpa/c/palpa.h"
 
+#include <algorithm>
 #include <chrono>
 #include <condition_variable>
 #include <cstring>
@@ -8,25 +9,68 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <vector>
 
 #include "palpa/host/device.h"
+#include "palpa/host/field_text.h"
+#include "palpa/protocol/faults.h"
 
 namespace ph = palpa::host;
 namespace pp = palpa::protocol;
 
+// The header's constants are the protocol's values, spelled out for C.
+static_assert(PALPA_STATUS_NO_SESSION == static_cast<int>(pp::Status::kNoSession));
+static_assert(PALPA_STATUS_OUT_OF_RANGE == static_cast<int>(pp::Status::kOutOfRange));
+static_assert(PALPA_STATUS_BAD_VALUE == static_cast<int>(pp::Status::kBadValue));
+static_assert(PALPA_STATUS_FAULTED == static_cast<int>(pp::Status::kFaulted));
+static_assert(PALPA_STATUS_CONDITION_PERSISTS == static_cast<int>(pp::Status::kConditionPersists));
+static_assert(PALPA_STATUS_CATALOG_MISMATCH == static_cast<int>(pp::Status::kCatalogMismatch));
+static_assert(PALPA_STATUS_TIMEOUT == static_cast<int>(pp::Status::kTimeout));
+static_assert(PALPA_STATUS_OUTCOME_UNKNOWN == static_cast<int>(pp::Status::kOutcomeUnknown));
+static_assert(PALPA_STATUS_NOT_FOUND == static_cast<int>(pp::Status::kNotFound));
+static_assert(PALPA_STATUS_IO_ERROR == static_cast<int>(pp::Status::kIoError));
+static_assert(PALPA_STATUS_UNAVAILABLE == static_cast<int>(pp::Status::kUnavailable));
+static_assert(PALPA_STATUS_BUSY == static_cast<int>(pp::Status::kBusy));
+static_assert(PALPA_STATUS_DISCONNECTED == static_cast<int>(pp::Status::kDisconnected));
+static_assert(PALPA_STATUS_INVALID_ARGUMENT == static_cast<int>(pp::Status::kInvalidArgument));
+static_assert(PALPA_STATUS_INVALID_ARGUMENT + 1 == static_cast<int>(pp::Status::kCount),
+              "a status code without a PALPA_STATUS_ constant");
+static_assert(PALPA_LINE_SAFE == pp::line_status::kSafe);
+static_assert(PALPA_LINE_SLEWING == pp::line_status::kSlewing);
+static_assert(PALPA_LINE_TRIM_CLAMPED == pp::line_status::kTrimClamped);
+static_assert(PALPA_LINE_SATURATED == pp::line_status::kSaturated);
+static_assert(PALPA_LINE_OPEN_LOOP == pp::line_status::kOpenLoop);
+static_assert(PALPA_LINE_RAW == pp::line_status::kRaw);
+static_assert(PALPA_LINE_SENSOR_FAULT == pp::line_status::kSensorFault);
+static_assert(PALPA_FAULT_HOST_SILENCE == pp::FaultBit(pp::Fault::kHostSilence));
+static_assert(PALPA_FAULT_OVER_LIMIT == pp::FaultBit(pp::Fault::kOverLimit));
+static_assert(PALPA_FAULT_IMPLAUSIBLE_SENSOR == pp::FaultBit(pp::Fault::kImplausibleSensor));
+static_assert(PALPA_FAULT_CONFIG_CRC == pp::FaultBit(pp::Fault::kConfigCrc));
+static_assert(PALPA_FAULT_UNEXPECTED_RESET == pp::FaultBit(pp::Fault::kUnexpectedReset));
+static_assert(PALPA_FAULT_LEAK == pp::FaultBit(pp::Fault::kLeak));
+static_assert(PALPA_FAULT_ESTOP_COMMAND == pp::FaultBit(pp::Fault::kEStopCommand));
+static_assert(PALPA_FAULT_ESTOP_PIN == pp::FaultBit(pp::Fault::kEStopPin));
+static_assert(PALPA_FAULT_PUMP_RUN_TIME == pp::FaultBit(pp::Fault::kPumpRunTime));
+static_assert(PALPA_FAULT_OUTPUT_WRITE == pp::FaultBit(pp::Fault::kOutputWrite));
+static_assert(PALPA_FAULT_OUTPUT_WRITE << 1 == pp::FaultBit(pp::Fault::kCount),
+              "a fault without a PALPA_FAULT_ constant");
+static_assert(PALPA_FINGER_JAMMING == static_cast<int>(pp::FingerKind::kJamming));
+
 struct palpa_device {
   std::unique_ptr<ph::Device> device;
   std::string error;
-  std::mutex mutex;
+  mutable std::mutex mutex;
   std::condition_variable arrived;
   std::deque<palpa_sample> samples;
+  uint64_t dropped = 0;
   int subscription = 0;
+  std::vector<ph::FingerCurves> curves;  ///< for the samples' finger outputs, taken on opening
 };
 
 namespace {
 
 thread_local std::string g_open_error;
-constexpr size_t kMaxQueuedSamples = 65536;
+constexpr size_t kMaxQueuedSamples = PALPA_SAMPLE_QUEUE_LIMIT;
 
 int Report(palpa_device* d, const ph::Outcome& o) {
   if (!o.ok()) d->error = o.message;
@@ -56,7 +100,9 @@ int palpa_open(const char* uri, palpa_device** out) {
   }
   auto* d = new palpa_device();
   d->device = std::move(device.value);
-  d->subscription = d->device->Subscribe([d](const ph::TelemetryFrame& f) {
+  const pp::HelloReply board = d->device->info();
+  for (uint8_t f = 0; f < board.finger_count; ++f) d->curves.push_back(d->device->curves(f));
+  d->subscription = d->device->Subscribe([d, board](const ph::TelemetryFrame& f) {
     std::lock_guard<std::mutex> lock(d->mutex);
     const pp::Telemetry& t = f.telemetry;
     for (uint8_t tick = 0; tick < t.tick_count; ++tick) {
@@ -65,14 +111,26 @@ int palpa_open(const char* uri, palpa_device** out) {
       s.host_time_s = f.host_time_s + static_cast<double>(tick) * t.sample_interval_us / 1e6;
       s.line_count = t.line_count;
       s.fault_bitmap = t.fault_bitmap;
+      const pp::LineSample* lines = &t.samples[tick * t.line_count];
       for (uint8_t i = 0; i < t.line_count && i < PALPA_MAX_LINES; ++i) {
-        const pp::LineSample& l = t.samples[tick * t.line_count + i];
-        s.setpoint_pa[i] = l.setpoint_pa;
-        s.measured_pa[i] = l.measured_pa;
-        s.command_counts[i] = l.command_counts;
-        s.status[i] = l.status;
+        s.setpoint_pa[i] = lines[i].setpoint_pa;
+        s.measured_pa[i] = lines[i].measured_pa;
+        s.command_counts[i] = lines[i].command_counts;
+        s.status[i] = lines[i].status;
       }
-      if (d->samples.size() >= kMaxQueuedSamples) d->samples.pop_front();
+      if (t.line_count == board.line_count) {
+        const std::vector<double> outputs = ph::EstimateFingerOutputs(board, d->curves, lines);
+        s.finger_count = static_cast<uint8_t>(outputs.size());
+        for (uint8_t i = 0; i < s.finger_count && i < PALPA_MAX_FINGERS; ++i) {
+          s.finger_output[i] = outputs[i];
+          s.finger_unit[i] = board.fingers[i].kind == pp::FingerKind::kJamming ? PALPA_UNIT_N_PER_MM
+                                                                               : PALPA_UNIT_MM;
+        }
+      }
+      if (d->samples.size() >= kMaxQueuedSamples) {
+        d->samples.pop_front();
+        ++d->dropped;
+      }
       d->samples.push_back(s);
     }
     d->arrived.notify_all();
@@ -109,7 +167,8 @@ int palpa_get_info(palpa_device* d, palpa_info* info) {
   info->catalog_matches = d->device->link().catalog_matches() ? 1 : 0;
   info->plant_simulated = b.plant_simulated ? 1 : 0;
   info->time_scale = b.time_scale;
-  std::memcpy(info->config_name, b.config_name.data(), b.config_name.size());
+  const std::string name = ph::FieldText(b.config_name);
+  std::memcpy(info->config_name, name.data(), std::min(name.size(), sizeof(info->config_name) - 1));
   info->line_count = b.line_count;
   info->finger_count = b.finger_count;
   for (uint8_t f = 0; f < b.finger_count; ++f)
@@ -144,17 +203,25 @@ int palpa_clear_fault(palpa_device* d) {
 }
 
 int palpa_read_samples(palpa_device* d, palpa_sample* out, int capacity, int timeout_ms) {
-  if (d == nullptr || out == nullptr || capacity <= 0)
+  if (d == nullptr || out == nullptr || capacity <= 0 || timeout_ms < 0)
     return -static_cast<int>(pp::Status::kInvalidArgument);
   std::unique_lock<std::mutex> lock(d->mutex);
-  d->arrived.wait_for(lock, std::chrono::milliseconds(timeout_ms),
-                      [&] { return !d->samples.empty(); });
+  if (timeout_ms > 0) {
+    d->arrived.wait_for(lock, std::chrono::milliseconds(timeout_ms),
+                        [&] { return !d->samples.empty(); });
+  }
   int n = 0;
   while (n < capacity && !d->samples.empty()) {
     out[n++] = d->samples.front();
     d->samples.pop_front();
   }
   return n;
+}
+
+uint64_t palpa_samples_dropped(const palpa_device* d) {
+  if (d == nullptr) return 0;
+  std::lock_guard<std::mutex> lock(d->mutex);
+  return d->dropped;
 }
 
 int palpa_record_start(palpa_device* d, const char* path) {

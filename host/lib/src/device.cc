@@ -8,6 +8,7 @@
 
 #include "palpa/hal/linux/atomic_file.h"
 #include "palpa/host/calibration_file.h"
+#include "palpa/host/field_text.h"
 
 namespace palpa::host {
 
@@ -27,7 +28,7 @@ void Device::AttachCalibrations() {
       options_.calibration_dir.empty() ? DefaultCalibrationDir() : options_.calibration_dir;
   for (uint8_t f = 0; f < curves_.size(); ++f) {
     std::string& note = calibration_notes_[f];
-    note = "finger " + std::to_string(f + 1) + ": ";
+    note = FingerName(f) + ": ";
     if (!options_.use_calibrations) {
       note += "nominal curves (calibrations not used)";
       continue;
@@ -38,9 +39,7 @@ void Device::AttachCalibrations() {
       note += "nominal curves (configuration not readable: " + error + ")";
       continue;
     }
-    const std::string serial(
-        finger.value.actuator_serial.data(),
-        strnlen(finger.value.actuator_serial.data(), finger.value.actuator_serial.size()));
+    const std::string serial = FieldText(finger.value.actuator_serial);
     const auto c = FindCalibration(dir, serial, &error);
     if (c.ok() && c.value.kind != finger.value.kind) {
       error = CalibrationPath(dir, serial) + ": the calibration of " + serial +
@@ -63,12 +62,11 @@ Outcome Device::ApplyCalibration(uint8_t finger, const CalibrationFile& c) {
   const auto current = ReadFinger(finger, &error);
   if (!current.ok()) return Outcome{current.status, "apply calibration: " + error, {}};
   pp::ConfigureFinger f = current.value;
-  const std::string serial(f.actuator_serial.data(),
-                           strnlen(f.actuator_serial.data(), f.actuator_serial.size()));
+  const std::string serial = FieldText(f.actuator_serial);
   if (serial != c.actuator_serial) {
     return Outcome{Status::kBadValue,
-                   "apply calibration: finger " + std::to_string(finger + 1) + " is actuator '" +
-                       serial + "', the calibration is for '" + c.actuator_serial + "'",
+                   "apply calibration: " + FingerName(finger) + " is actuator '" + serial +
+                       "', the calibration is for '" + c.actuator_serial + "'",
                    {}};
   }
   if (f.kind != c.kind)
@@ -100,8 +98,8 @@ Outcome Device::ApplyCalibration(uint8_t finger, const CalibrationFile& c) {
   for (const RegulatorCorrection& rc : c.regulator_corrections) {
     if (rc.line != f.line_a && rc.line != f.line_b) {
       return Outcome{Status::kBadValue,
-                     "apply calibration: a regulator correction is for line " +
-                         std::to_string(rc.line + 1) + ", which is not one of this finger's",
+                     "apply calibration: a regulator correction is for " + LineName(rc.line) +
+                         ", which is not one of this finger's",
                      {}};
     }
     const auto line = ReadLine(rc.line, &error);
@@ -119,12 +117,19 @@ Outcome Device::ApplyCalibration(uint8_t finger, const CalibrationFile& c) {
   }
   curves_[finger] = CurvesFromCalibration(c);
   calibration_problems_[finger].clear();
-  calibration_notes_[finger] =
-      "finger " + std::to_string(finger + 1) + ": " + curves_[finger].source;
+  calibration_notes_[finger] = FingerName(finger) + ": " + curves_[finger].source;
   return o;
 }
 
 Device::~Device() { StopRecording(); }
+
+std::string Device::FingerName(uint8_t finger) const {
+  return "finger " + std::to_string(finger + options_.number_from);
+}
+
+std::string Device::LineName(uint8_t line) const {
+  return "line " + std::to_string(line + options_.number_from);
+}
 
 Result<std::unique_ptr<Device>> Device::Attach(std::unique_ptr<Transport> transport,
                                                DeviceOptions options, std::string* error) {
@@ -154,15 +159,15 @@ Outcome Device::FromCommand(const CommandResult& r, const char* what) {
 
 Outcome Device::EnsureMode(uint8_t finger, pp::FingerMode mode) {
   if (finger >= modes_.size())
-    return Outcome{
-        Status::kNotFound, "finger " + std::to_string(finger + 1) + " does not exist", {}};
+    return Outcome{Status::kNotFound, FingerName(finger) + " does not exist", {}};
   if (modes_[finger] == mode) return {};
   const Outcome o = FromCommand(link_->Command(pp::SetFingerMode{finger, mode}), "set finger mode");
   if (o.ok()) modes_[finger] = mode;
   return o;
 }
 
-Outcome Device::Set(const std::vector<FingerRequest>& requests, bool wait) {
+Outcome Device::Set(const std::vector<FingerRequest>& requests, bool wait,
+                    std::vector<Applied>* applied) {
   AttachCalibrations();  // the curves requests are mapped through
   const pp::HelloReply b = link_->board();
   pp::SetFingerTargets targets{};
@@ -173,30 +178,37 @@ Outcome Device::Set(const std::vector<FingerRequest>& requests, bool wait) {
   for (const FingerRequest& r : requests) {
     if (r.finger >= b.finger_count) {
       return Outcome{Status::kNotFound,
-                     "finger " + std::to_string(r.finger + 1) + " does not exist (this board has " +
-                         std::to_string(b.finger_count) + ")",
+                     FingerName(r.finger) + " does not exist (this board has fingers " +
+                         std::to_string(options_.number_from) + " to " +
+                         std::to_string(b.finger_count - 1 + options_.number_from) + ")",
                      {}};
     }
     // Raw pressures do not go through the curves; everything else does.
     if (options_.invalid_calibration_is_error && r.request.kind != TargetKind::kPressureKpa &&
         !calibration_problems_[r.finger].empty()) {
-      return Outcome{Status::kBadValue,
-                     "finger " + std::to_string(r.finger + 1) + ": " +
-                         calibration_problems_[r.finger] + " (nothing was sent)",
-                     {}};
+      return Outcome{
+          Status::kBadValue,
+          FingerName(r.finger) + ": " + calibration_problems_[r.finger] + " (nothing was sent)",
+          {}};
     }
     mapped.push_back(MapRequest(b.fingers[r.finger], options_.levels, curves_[r.finger], r.request,
                                 options_.range_policy));
     if (mapped.back().status != Status::kOk) {
-      return Outcome{mapped.back().status,
-                     "finger " + std::to_string(r.finger + 1) + ": " + mapped.back().error,
-                     {}};
+      return Outcome{mapped.back().status, FingerName(r.finger) + ": " + mapped.back().error, {}};
     }
   }
   for (size_t i = 0; i < requests.size(); ++i) {
     const FingerRequest& r = requests[i];
     const Mapped& m = mapped[i];
-    out.notes.push_back("finger " + std::to_string(r.finger + 1) + ": " + m.note);
+    std::string map = m.note;
+    while (!map.empty() && (map.back() == ' ' || map.back() == ';')) map.pop_back();
+    out.notes.push_back(FingerName(r.finger) + ": " + map);
+    if (applied != nullptr) {
+      const pp::FingerSummary& f = b.fingers[r.finger];
+      applied->push_back(Applied{r.finger, r.request, m.raw, m.target / 1000.0,
+                                 OutputUnitName(f.kind), m.from_table, m.table_kpa, f.line_a,
+                                 f.line_b, m.line_a_pa, m.line_b_pa, map});
+    }
     if (m.raw) {
       const Outcome mode = EnsureMode(r.finger, pp::FingerMode::kRaw);
       if (!mode.ok()) return mode;
@@ -240,17 +252,18 @@ Outcome Device::SetLines(const std::vector<std::pair<uint8_t, double>>& kpa, boo
   pp::SetLineSetpoints lines{};
   for (const auto& [line, value] : kpa) {
     if (line >= b.line_count)
-      return Outcome{Status::kNotFound, "line " + std::to_string(line + 1) + " does not exist", {}};
+      return Outcome{Status::kNotFound, LineName(line) + " does not exist", {}};
     const double pa = value * 1000;
     if (!std::isfinite(value)) {
       char text[96];
-      std::snprintf(text, sizeof(text), "line %u: %g kPa is not a finite number", line + 1u, value);
+      std::snprintf(text, sizeof(text), "%s: %g kPa is not a finite number", LineName(line).c_str(),
+                    value);
       return Outcome{Status::kOutOfRange, text, {}};
     }
     if (pa < b.lines[line].limit_min_pa || pa > b.lines[line].limit_max_pa) {
       char text[160];
-      std::snprintf(text, sizeof(text), "line %u: %g kPa is outside its limits %g … %g kPa",
-                    line + 1u, value, b.lines[line].limit_min_pa / 1000.0,
+      std::snprintf(text, sizeof(text), "%s: %g kPa is outside its limits %g … %g kPa",
+                    LineName(line).c_str(), value, b.lines[line].limit_min_pa / 1000.0,
                     b.lines[line].limit_max_pa / 1000.0);
       return Outcome{Status::kOutOfRange, text, {}};
     }

@@ -72,7 +72,7 @@ Outcome Device::ConfigureStaged(const uint8_t* records, size_t size) {
   const uint32_t section = r.detail >> 8;
   if (record_refused && section < static_cast<uint32_t>(pp::ConfigSection::kCount)) {
     o.message += " (" + std::string(pp::EnumNames(pp::ConfigSection{})[section]) + " " +
-                 std::to_string((r.detail & 0xFFu) + 1) + ")";
+                 std::to_string((r.detail & 0xFFu) + options_.number_from) + ")";
   }
   return o;
 }

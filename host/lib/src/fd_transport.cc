@@ -1,6 +1,7 @@
 // Serial, TCP and simulator transports on POSIX file descriptors.
 #include "fd_transport.h"
 
+#include <dlfcn.h>
 #include <fcntl.h>
 #include <netdb.h>
 #include <netinet/in.h>
@@ -187,6 +188,19 @@ std::string FindPalpaSim() {
       if (access(candidate.c_str(), X_OK) == 0) return candidate;
     }
   }
+#ifdef PALPA_SIM_FROM_LIBDIR
+  // An installed libpalpa loaded by another program (python3, an application): palpa-sim is
+  // installed with it, at the same place relative to the library.
+  Dl_info library{};
+  if (dladdr(reinterpret_cast<void*>(&FindPalpaSim), &library) != 0 && library.dli_fname) {
+    std::string dir(library.dli_fname);
+    if (dir.find('/') != std::string::npos) {
+      dir = dir.substr(0, dir.rfind('/'));
+      const std::string candidate = dir + "/" PALPA_SIM_FROM_LIBDIR;
+      if (access(candidate.c_str(), X_OK) == 0) return candidate;
+    }
+  }
+#endif
 #ifdef PALPA_SIM_BUILD_PATH
   if (access(PALPA_SIM_BUILD_PATH, X_OK) == 0) return PALPA_SIM_BUILD_PATH;
 #endif

@@ -40,7 +40,4 @@ Result<std::unique_ptr<Transport>> OpenSim(const DeviceUri& uri, std::string* er
 Result<std::unique_ptr<Transport>> OpenHid(const DeviceUri& uri, std::string* error);
 Result<std::unique_ptr<Transport>> OpenUsb(const DeviceUri& uri, std::string* error);
 
-/// Where palpa-sim is: $PALPA_SIM, next to the running executable, the build tree, or PATH.
-std::string FindPalpaSim();
-
 }  // namespace palpa::host

@@ -1,14 +1,15 @@
 // Recording telemetry to CSV with a JSON header; the file appears complete or not at all.
+#include <chrono>
 #include <cstdio>
-
-#include <nlohmann/json.hpp>
 
 #include "palpa/hal/linux/atomic_file.h"
 #include "palpa/host/device.h"
+#include "recording_format.h"
 
 namespace palpa::host {
 
-Outcome Device::StartRecording(const std::string& path) {
+Outcome Device::StartRecording(const std::string& path, RecordLayout layout) {
+  AttachCalibrations();  // the curves each finger's output is estimated through
   std::lock_guard<std::mutex> lock(record_mutex_);
   if (record_) return Outcome{Status::kBusy, "already recording to " + record_path_, {}};
   auto file = std::make_unique<hal::linux_files::AtomicFile>();
@@ -16,53 +17,31 @@ Outcome Device::StartRecording(const std::string& path) {
   if (!file->Open(path, &error)) return Outcome{Status::kIoError, error, {}};
   record_ = std::move(file);
   record_path_ = path;
+  record_layout_ = layout;
+  record_curves_ = curves_;
+  const auto seconds = [](auto now) {
+    return std::chrono::duration<double>(now.time_since_epoch()).count();
+  };
+  record_wall_minus_steady_s_ =
+      seconds(std::chrono::system_clock::now()) - seconds(std::chrono::steady_clock::now());
   const pp::HelloReply b = link_->board();
-  nlohmann::ordered_json header;
-  header["format"] = "palpa recording 1";
-  header["board"] = {
-      {"kind", pp::kBoardKindNames[static_cast<int>(b.board_kind)]},
-      {"id", b.board_id},
-      {"firmware", std::to_string(b.firmware_major) + "." + std::to_string(b.firmware_minor) + "." +
-                       std::to_string(b.firmware_patch)},
-      {"catalog_hash", b.catalog_hash},
-      {"plant_simulated", b.plant_simulated},
-      {"time_scale", b.time_scale}};
-  header["configuration"] = std::string(b.config_name.data());
-  nlohmann::ordered_json lines = nlohmann::ordered_json::array();
-  for (uint8_t i = 0; i < b.line_count; ++i) {
-    lines.push_back({{"line", i},
-                     {"kind", pp::kLineKindNames[static_cast<int>(b.lines[i].kind)]},
-                     {"limit_min_pa", b.lines[i].limit_min_pa},
-                     {"limit_max_pa", b.lines[i].limit_max_pa}});
-  }
-  header["lines"] = lines;
-  header["units"] = {{"host_time_s", "s, host steady clock"},
-                     {"board_time_us", "us, board clock"},
-                     {"setpoint_pa", "Pa"},
-                     {"measured_pa", "Pa"},
-                     {"command_counts", "DAC counts"},
-                     {"status", "line status bits (docs/protocol.md)"}};
-  header["clock"] = {{"host_time_s", "board_time_us / 1e6 / time_scale + offset_s"},
-                     {"offset_s", link_->BoardToHostSeconds(0)}};
-  record_->Write("# " + header.dump() + "\n");
-  record_->Write("host_time_s,board_time_us,line,setpoint_pa,measured_pa,command_counts,status\n");
-  record_subscription_ = link_->Subscribe([this](const TelemetryFrame& f) {
+  record_->Write("# " + recording::Header(b, layout, record_curves_).dump() + "\n");
+  record_->Write(recording::Columns(b, layout) + "\n");
+  record_subscription_ = link_->Subscribe([this, b](const TelemetryFrame& f) {
     std::lock_guard<std::mutex> guard(record_mutex_);
     if (!record_) return;
     const pp::Telemetry& t = f.telemetry;
-    char row[160];
+    if (t.line_count != b.line_count) return;  // not this configuration's telemetry
+    std::string rows;
     for (uint8_t tick = 0; tick < t.tick_count; ++tick) {
       const uint64_t board_us =
           t.first_sample_us + static_cast<uint64_t>(tick) * t.sample_interval_us;
-      for (uint8_t line = 0; line < t.line_count; ++line) {
-        const pp::LineSample& s = t.samples[tick * t.line_count + line];
-        std::snprintf(row, sizeof(row), "%.6f,%llu,%u,%d,%d,%u,%u\n",
-                      link_->BoardToHostSeconds(board_us),
-                      static_cast<unsigned long long>(board_us), line, s.setpoint_pa, s.measured_pa,
-                      s.command_counts, s.status);
-        record_->Write(row);
-      }
+      recording::AppendRows(rows, b, record_layout_,
+                            link_->BoardToHostSeconds(board_us) + record_wall_minus_steady_s_,
+                            board_us, t.fault_bitmap, &t.samples[tick * t.line_count],
+                            record_curves_);
     }
+    record_->Write(rows);
   });
   return {};
 }

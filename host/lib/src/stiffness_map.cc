@@ -31,17 +31,23 @@ std::string Num(double v) {
   return b;
 }
 
+/// Which range a curve-bound value is held to: a calibration's only when one is loaded.
+std::string CurveRange(const FingerCurves& c) {
+  return c.calibrated.empty() ? "the nominal curve's range" : "the calibrated range";
+}
+
 /// Keeps v in [lo, hi] under the policy; false (with *error) when refused. A value that is not
-/// a finite number has no place in any range: refused under every policy.
+/// a finite number has no place in any range: refused under every policy. `range` names the
+/// range ("the calibrated range", "the range").
 bool InRange(double& v, double lo, double hi, RangePolicy policy, const std::string& what,
-             std::string* note, std::string* error) {
+             const std::string& range, std::string* note, std::string* error) {
   if (!std::isfinite(v)) {
     *error = what + " " + Num(v) + " is not a finite number";
     return false;
   }
   if (v >= lo && v <= hi) return true;
   if (policy == RangePolicy::kRefuse) {
-    *error = what + " " + Num(v) + " is outside the calibrated range " + Num(lo) + " … " + Num(hi);
+    *error = what + " " + Num(v) + " is outside " + range + " " + Num(lo) + " … " + Num(hi);
     return false;
   }
   const double clamped = v < lo ? lo : hi;
@@ -147,16 +153,19 @@ Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& leve
       }
       kpa = table[static_cast<size_t>(level)];
       from_pressure = true;
+      m.from_table = true;
+      m.table_kpa = kpa;
       break;
     }
     case TargetKind::kPressureKpa: {
       double v = request.value;
       if (jamming) {
-        if (!InRange(v, -100, 0, policy, "vacuum (kPa)", &m.note, &m.error)) return Refuse(m.error);
+        if (!InRange(v, -100, 0, policy, "vacuum (kPa)", "the range", &m.note, &m.error))
+          return Refuse(m.error);
         m.line_a_pa = static_cast<int32_t>(levels.jamming_bias_kpa * 1000);
         m.line_b_pa = static_cast<int32_t>(std::lround(v * 1000));
       } else {
-        if (!InRange(v, 0, 100, policy, "pressure (kPa)", &m.note, &m.error))
+        if (!InRange(v, 0, 100, policy, "pressure (kPa)", "the range", &m.note, &m.error))
           return Refuse(m.error);
         m.line_a_pa = static_cast<int32_t>(std::lround(v * 1000));
       }
@@ -173,7 +182,7 @@ Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& leve
       }
       double v = request.value;
       if (!InRange(v, curves.stiffness_at_0, curves.stiffness_at_full_vacuum, policy,
-                   "stiffness (N/mm)", &m.note, &m.error)) {
+                   "stiffness (N/mm)", CurveRange(curves), &m.note, &m.error)) {
         return Refuse(m.error);
       }
       m.target = static_cast<int32_t>(std::lround(v * 1000));
@@ -187,14 +196,15 @@ Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& leve
             Status::kBadValue);
       }
       double v = request.value;
-      if (!InRange(v, 0, curves.max_deformation_mm, policy, "deformation (mm)", &m.note, &m.error))
+      if (!InRange(v, 0, curves.max_deformation_mm, policy, "deformation (mm)", CurveRange(curves),
+                   &m.note, &m.error))
         return Refuse(m.error);
       m.target = static_cast<int32_t>(std::lround(v * 1000));
       return m;
     }
     case TargetKind::kNormalized: {
       double v = request.value;
-      if (!InRange(v, 0, 1, policy, "normalised stiffness", &m.note, &m.error))
+      if (!InRange(v, 0, 1, policy, "normalised stiffness", "the range", &m.note, &m.error))
         return Refuse(m.error);
       m.target = jamming
                      ? static_cast<int32_t>(std::lround(
@@ -209,7 +219,7 @@ Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& leve
     // A calibrated curve covers what was measured, no more.
     const double a = curves.calibrated.front().first, b = curves.calibrated.back().first;
     if (kpa != 0 && !InRange(kpa, std::min(a, b), std::max(a, b), policy, "level pressure (kPa)",
-                             &m.note, &m.error)) {
+                             CurveRange(curves), &m.note, &m.error)) {
       return Refuse(m.error);
     }
   }
@@ -224,6 +234,35 @@ Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& leve
     }
   }
   return m;
+}
+
+double LinePressurePa(const protocol::LineSummary& line, const protocol::LineSample& sample) {
+  return line.has_sensor ? sample.measured_pa : sample.setpoint_pa;
+}
+
+std::vector<double> EstimateFingerOutputs(const protocol::HelloReply& board,
+                                          const std::vector<FingerCurves>& curves,
+                                          const protocol::LineSample* tick) {
+  std::vector<double> out;
+  for (uint8_t f = 0; f < board.finger_count && f < curves.size(); ++f) {
+    const protocol::FingerSummary& finger = board.fingers[f];
+    if (finger.kind == FingerKind::kJamming) {
+      const uint8_t line = finger.line_b != protocol::kNoLine ? finger.line_b : finger.line_a;
+      const double kpa =
+          line < board.line_count ? LinePressurePa(board.lines[line], tick[line]) / 1000.0 : 0.0;
+      out.push_back(StiffnessAt(curves[f], std::clamp(kpa, -100.0, 0.0)));
+    } else {
+      const uint8_t line = finger.line_a;
+      const double kpa =
+          line < board.line_count ? LinePressurePa(board.lines[line], tick[line]) / 1000.0 : 0.0;
+      out.push_back(DeformationAt(curves[f], std::clamp(kpa, 0.0, 100.0)));
+    }
+  }
+  return out;
+}
+
+const char* OutputUnitName(protocol::FingerKind kind) {
+  return kind == FingerKind::kJamming ? "N/mm" : "mm";
 }
 
 }  // namespace palpa::host

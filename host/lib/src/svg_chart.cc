@@ -63,13 +63,39 @@ std::vector<double> Ticks(double lo, double hi, int count) {
 
 }  // namespace
 
-std::string RenderSvg(const Chart& c) {
-  double x0 = std::numeric_limits<double>::max(), x1 = -x0, y0 = x0, y1 = -x0;
-  auto tx = [&](double x) { return c.log_x ? std::log10(x) : x; };
+namespace {
+
+struct Range {
+  double x0 = std::numeric_limits<double>::max(), x1 = -std::numeric_limits<double>::max();
+};
+
+double AxisX(const Chart& c, double x) { return c.log_x ? std::log10(x) : x; }
+
+Range XRange(const Chart& c) {
+  Range r;
+  for (const Series& s : c.series) {
+    for (const auto& point : s.points) {
+      r.x0 = std::min(r.x0, AxisX(c, point.first));
+      r.x1 = std::max(r.x1, AxisX(c, point.first));
+    }
+  }
+  return r;
+}
+
+std::string Header(double width, double height) {
+  return "<svg xmlns='http://www.w3.org/2000/svg' width='" + Num(width) + "' height='" +
+         Num(height) +
+         "' font-family='sans-serif' font-size='12'>\n<rect width='100%' height='100%' "
+         "fill='white'/>\n";
+}
+
+/// One chart's axes, series, markers and legend, its top edge at `offset_y`, over the x range
+/// [x0, x1] (in axis units); its title only when `titled`.
+void DrawPanel(std::string& svg, const Chart& c, double offset_y, double x0, double x1,
+               bool titled) {
+  double y0 = std::numeric_limits<double>::max(), y1 = -y0;
   for (const Series& s : c.series) {
     for (const auto& [x, y] : s.points) {
-      x0 = std::min(x0, tx(x));
-      x1 = std::max(x1, tx(x));
       y0 = std::min(y0, y);
       y1 = std::max(y1, y);
     }
@@ -79,16 +105,27 @@ std::string RenderSvg(const Chart& c) {
   const double pad_y = 0.05 * (y1 - y0);
   y0 -= pad_y;
   y1 += pad_y;
-  const double left = 70, right = 230, top = 40, bottom = 50;
-  const double pw = c.width - left - right, ph = c.height - top - bottom;
-  auto px = [&](double x) { return left + (tx(x) - x0) / (x1 - x0) * pw; };
+  const double left = 70, right = 230, top = offset_y + (titled ? 40 : 14), bottom = 50;
+  const double pw = c.width - left - right, ph = offset_y + c.height - top - bottom;
+  auto px = [&](double x) { return left + (AxisX(c, x) - x0) / (x1 - x0) * pw; };
   auto py = [&](double y) { return top + (1 - (y - y0) / (y1 - y0)) * ph; };
-  std::string svg = "<svg xmlns='http://www.w3.org/2000/svg' width='" + Num(c.width) +
-                    "' height='" + Num(c.height) +
-                    "' font-family='sans-serif' font-size='12'>\n<rect width='100%' height='100%' "
-                    "fill='white'/>\n";
-  svg += "<text x='" + Num(c.width / 2) + "' y='22' text-anchor='middle' font-size='14'>" +
-         Escape(c.title) + "</text>\n";
+  if (titled) {
+    svg += "<text x='" + Num(c.width / 2) + "' y='" + Num(offset_y + 22) +
+           "' text-anchor='middle' font-size='14'>" + Escape(c.title) + "</text>\n";
+  }
+  for (const Marker& m : c.markers) {  // behind the data
+    const double a = std::clamp(px(m.x), left, left + pw);
+    const double b = std::clamp(px(m.x_end), left, left + pw);
+    if (b > a + 0.5) {
+      svg += "<rect x='" + Num(a) + "' y='" + Num(top) + "' width='" + Num(b - a) + "' height='" +
+             Num(ph) + "' fill='#f2f2f2'/>";
+    } else {
+      svg += "<line x1='" + Num(a) + "' y1='" + Num(top) + "' x2='" + Num(a) + "' y2='" +
+             Num(top + ph) + "' stroke='#888' stroke-dasharray='2,3'/>";
+    }
+    svg += "<text x='" + Num((a + b) / 2) + "' y='" + Num(top + 14) +
+           "' text-anchor='middle' fill='#555' font-size='11'>" + Escape(m.label) + "</text>\n";
+  }
   svg += "<rect x='" + Num(left) + "' y='" + Num(top) + "' width='" + Num(pw) + "' height='" +
          Num(ph) + "' fill='none' stroke='#444'/>\n";
   // A log axis is labelled at 1, 2 and 5 of each decade (round numbers a reader can place).
@@ -117,7 +154,7 @@ std::string RenderSvg(const Chart& c) {
     svg += "<text x='" + Num(left - 6) + "' y='" + Num(y + 4) + "' text-anchor='end'>" + Label(t) +
            "</text>\n";
   }
-  svg += "<text x='" + Num(left + pw / 2) + "' y='" + Num(c.height - 10) +
+  svg += "<text x='" + Num(left + pw / 2) + "' y='" + Num(offset_y + c.height - 10) +
          "' text-anchor='middle'>" + Escape(c.x_label) + "</text>\n";
   svg += "<text transform='translate(16," + Num(top + ph / 2) +
          ") rotate(-90)' text-anchor='middle'>" + Escape(c.y_label) + "</text>\n";
@@ -148,6 +185,35 @@ std::string RenderSvg(const Chart& c) {
            (s.dashed ? std::string(" stroke-dasharray='6,4'") : std::string()) + "/>";
     svg +=
         "<text x='" + Num(left + pw + 40) + "' y='" + Num(ly) + "'>" + Escape(s.name) + "</text>\n";
+  }
+}
+
+}  // namespace
+
+std::string RenderSvg(const Chart& c) {
+  const Range r = XRange(c);
+  std::string svg = Header(c.width, c.height);
+  DrawPanel(svg, c, 0, r.x0, r.x1, true);
+  return svg + "</svg>\n";
+}
+
+std::string RenderSvgPanels(const std::vector<Chart>& panels, const std::string& title) {
+  Range shared;
+  double width = 0, height = 34;
+  for (const Chart& c : panels) {
+    const Range r = XRange(c);
+    shared.x0 = std::min(shared.x0, r.x0);
+    shared.x1 = std::max(shared.x1, r.x1);
+    width = std::max(width, c.width);
+    height += c.height;
+  }
+  std::string svg = Header(width, height);
+  svg += "<text x='" + Num(width / 2) + "' y='22' text-anchor='middle' font-size='14'>" +
+         Escape(title) + "</text>\n";
+  double offset = 34;
+  for (const Chart& c : panels) {
+    DrawPanel(svg, c, offset, shared.x0, shared.x1, false);
+    offset += c.height;
   }
   return svg + "</svg>\n";
 }

@@ -195,7 +195,8 @@ TEST(HostileCalibrations, AnInvalidCalibrationIsNamedWithItsReasonOrRefusedWhenA
   d = Open(true);
   o = d->Set({{1, {ph::TargetKind::kLevel, 1}}, {0, {ph::TargetKind::kLevel, 1}}});
   LONGS_EQUAL((int)pp::Status::kBadValue, (int)o.status);
-  CHECK_TEXT(Contains(o.message, "finger 1: " + path + ": conditions.speed_mm_s"),
+  // Named as the caller numbers fingers: this API from 0.
+  CHECK_TEXT(Contains(o.message, "finger 0: " + path + ": conditions.speed_mm_s"),
              o.message.c_str());
   CHECK(d->Set({{1, {ph::TargetKind::kLevel, 1}}}).ok());
 }
@@ -204,5 +205,5 @@ TEST(HostileCalibrations, RawSetpointsThatAreNotNumbersAreRefused) {
   auto d = Open(false);
   const ph::Outcome o = d->SetLines({{0, std::numeric_limits<double>::quiet_NaN()}});
   LONGS_EQUAL((int)pp::Status::kOutOfRange, (int)o.status);
-  CHECK_TEXT(Contains(o.message, "line 1: nan kPa is not a finite number"), o.message.c_str());
+  CHECK_TEXT(Contains(o.message, "line 0: nan kPa is not a finite number"), o.message.c_str());
 }

@@ -312,17 +312,31 @@ TEST(LinkSim, DeviceConfiguresReadsBackAndRecords) {
   char line[4096];
   CHECK(fgets(line, sizeof(line), f) != nullptr);
   CHECK(std::string(line).find("\"configuration\":\"thesis-jamming-2\"") != std::string::npos);
+  CHECK(fgets(line, sizeof(line), f) != nullptr);  // a column per line and per finger
+  CHECK(std::string(line).find(",line4_status,finger1_n_per_mm,finger2_n_per_mm") !=
+        std::string::npos);
   int rows = 0;
   while (fgets(line, sizeof(line), f) != nullptr) ++rows;
   fclose(f);
   remove(path.c_str());
-  CHECK(rows > 4 * 100);
+  CHECK_TEXT(rows > 100, std::to_string(rows).c_str());  // a row per sample: 300 in 300 ms
   std::ifstream kept(victim);
   std::string contents;
   std::getline(kept, contents);
   STRCMP_EQUAL("precious", contents.c_str());
   remove(victim.c_str());
   remove((path + ".part").c_str());
+  // The long layout: a row per line per sample.
+  CHECK(d.StartRecording(path, ph::RecordLayout::kLong).ok());
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  CHECK(d.StopRecording().ok());
+  f = fopen(path.c_str(), "r");
+  CHECK(f != nullptr);
+  rows = -2;  // the header and the column names
+  while (fgets(line, sizeof(line), f) != nullptr) ++rows;
+  fclose(f);
+  remove(path.c_str());
+  CHECK_TEXT(rows > 4 * 100, std::to_string(rows).c_str());
 }
 
 TEST(LinkSim, OverARealPtyWithSerialSettings) {
@@ -388,7 +402,8 @@ TEST(LinkSim, AStagedConfigurationTheBoardRefusesNamesTheRecordAndChangesNothing
   const ph::Outcome refused = device->ConfigureStaged(blob.data(), blob.size());
   CHECK_FALSE(refused.ok());
   CHECK_TEXT(refused.message.find("staged commit") != std::string::npos, refused.message.c_str());
-  CHECK_TEXT(refused.message.find("(line 4)") != std::string::npos, refused.message.c_str());
+  // Named as this API numbers lines (from 0): ReadLine(3) above.
+  CHECK_TEXT(refused.message.find("(line 3)") != std::string::npos, refused.message.c_str());
   const auto after = device->ReadLine(3, &error);
   CHECK_TEXT(after.ok(), error.c_str());
   LONGS_EQUAL(limit_before, after.value.limit_max_pa);

@@ -52,3 +52,25 @@ TEST(SvgChart, UnnamedSeriesAreDrawnButNotListed) {
   // The dashed series' swatch is dashed too: its line and its swatch.
   LONGS_EQUAL(2, count("stroke-dasharray"));
 }
+
+TEST(SvgChart, PanelsShareTheTimeAxisEachWithItsOwnUnitAndMarksWhatIsLeftOut) {
+  // The demo chart: mm and N/mm are not one axis; the calibration's time left out is shown.
+  ph::Chart mm, stiffness;
+  mm.y_label = "deformation (mm)";
+  mm.series.push_back({"finger 1", {{0, 0.1}, {10, 1.2}}, "", false, false});
+  mm.markers.push_back({4, 6, "23 s of calibration left out"});
+  stiffness.y_label = "stiffness (N/mm)";
+  stiffness.series.push_back({"finger 4", {{2, 0.7}, {8, 1.3}}, "", false, false});
+  const std::string svg = ph::RenderSvgPanels({mm, stiffness}, "demo");
+  CHECK(svg.find("deformation (mm)") != std::string::npos);
+  CHECK(svg.find("stiffness (N/mm)") != std::string::npos);
+  CHECK(svg.find("23 s of calibration left out") != std::string::npos);
+  CHECK(svg.find("fill='#f2f2f2'") != std::string::npos);  // the band
+  // One x range for both: finger 4's first point (x = 2) is a fifth of the way along, not at
+  // the left edge as it would be on an axis of its own.
+  const size_t second = svg.find("<polyline", svg.find("<polyline") + 1);
+  const size_t points = svg.find("points='", second) + 8;
+  const double x = std::stod(svg.substr(points, svg.find(',', points) - points));
+  const double left = 70, width = 780 - 70 - 230;
+  DOUBLES_EQUAL(left + width * 0.2, x, 0.2);
+}

@@ -8,8 +8,64 @@
 extern "C" {
 #endif
 
-/* Status codes are the wire protocol's (docs/protocol.md): 0 is success. */
+/* Status codes: the wire protocol's (docs/protocol.md), shared by every layer. Every call that
+   returns an int returns one of these (palpa_read_samples: a count, or a negated code);
+   palpa_status_name() gives its stable name ("out_of_range"), palpa_last_error() the sentence. */
 #define PALPA_OK 0
+#define PALPA_STATUS_NO_SESSION 1         /* no Hello yet in this boot of the board */
+#define PALPA_STATUS_UNSUPPORTED 2        /* unknown message type or feature */
+#define PALPA_STATUS_BAD_LENGTH 3         /* body shorter or longer than its fields */
+#define PALPA_STATUS_OUT_OF_RANGE 4       /* outside a range, a limit or a calibration */
+#define PALPA_STATUS_BAD_VALUE 5          /* NaN, a unit meaningless for the finger, bad text */
+#define PALPA_STATUS_SEQ_GAP 6            /* (link internal) */
+#define PALPA_STATUS_WINDOW_FULL 7        /* (link internal) */
+#define PALPA_STATUS_FAULTED 8            /* refused while the board is in its safe state */
+#define PALPA_STATUS_CONDITION_PERSISTS 9 /* clear refused: the fault's cause is still present */
+#define PALPA_STATUS_CATALOG_MISMATCH 10  /* the board runs other firmware: only flashing */
+#define PALPA_STATUS_CRC_ERROR 11
+#define PALPA_STATUS_VERSION_ERROR 12
+#define PALPA_STATUS_RESERVED_FLAGS 13
+#define PALPA_STATUS_OVERFLOW 14
+#define PALPA_STATUS_TIMEOUT 15         /* no answer in time */
+#define PALPA_STATUS_OUTCOME_UNKNOWN 16 /* the board reset while the command was in flight */
+#define PALPA_STATUS_NOT_FOUND 17       /* no such finger, line, device or file */
+#define PALPA_STATUS_IO_ERROR 18
+#define PALPA_STATUS_UNAVAILABLE 19 /* not possible in the current state */
+#define PALPA_STATUS_WRONG_MODE 20
+#define PALPA_STATUS_STAGED_INCOMPLETE 21
+#define PALPA_STATUS_IMAGE_INVALID 22
+#define PALPA_STATUS_ROLLBACK_REFUSED 23
+#define PALPA_STATUS_STALE 24
+#define PALPA_STATUS_BUSY 25
+#define PALPA_STATUS_DISCONNECTED 26     /* the link is gone */
+#define PALPA_STATUS_INVALID_ARGUMENT 27 /* a NULL pointer, a negative count or timeout */
+
+/* Line status bits (palpa_sample.status[]): what a line is doing at that tick. */
+#define PALPA_LINE_SAFE (1u << 0)         /* holding its safe value */
+#define PALPA_LINE_SLEWING (1u << 1)      /* slew limiter active */
+#define PALPA_LINE_TRIM_CLAMPED (1u << 2) /* PI trim at its authority */
+#define PALPA_LINE_SATURATED (1u << 3)    /* output clamped to the line's limits */
+#define PALPA_LINE_OPEN_LOOP (1u << 4)    /* no sensor, or below the regulator's minimum */
+#define PALPA_LINE_RAW (1u << 5)          /* its finger is in raw mode (kPa setpoints) */
+#define PALPA_LINE_SENSOR_FAULT (1u << 6) /* implausible reading */
+
+/* Fault bits (fault_bitmap): latched until palpa_clear_fault() and their cause gone. */
+#define PALPA_FAULT_HOST_SILENCE (1u << 0) /* no host frame within the host timeout */
+#define PALPA_FAULT_OVER_LIMIT (1u << 1)   /* a reading beyond a line's limits */
+#define PALPA_FAULT_IMPLAUSIBLE_SENSOR (1u << 2)
+#define PALPA_FAULT_CONFIG_CRC (1u << 3)
+#define PALPA_FAULT_UNEXPECTED_RESET (1u << 4)
+#define PALPA_FAULT_LEAK (1u << 5)          /* pressure or vacuum not reached in time */
+#define PALPA_FAULT_ESTOP_COMMAND (1u << 6) /* palpa_estop() */
+#define PALPA_FAULT_ESTOP_PIN (1u << 7)
+#define PALPA_FAULT_PUMP_RUN_TIME (1u << 8)
+#define PALPA_FAULT_OUTPUT_WRITE (1u << 9)
+
+/* Finger kinds (palpa_info.finger_kind[]) and the unit of each finger's output. */
+#define PALPA_FINGER_PNEUMATIC 0 /* output: deformation in mm */
+#define PALPA_FINGER_JAMMING 1   /* output: stiffness in N/mm */
+#define PALPA_UNIT_MM 0
+#define PALPA_UNIT_N_PER_MM 1
 
 typedef struct palpa_device palpa_device;
 
@@ -24,22 +80,29 @@ typedef struct {
   int catalog_matches; /* 0: only flashing is possible */
   int plant_simulated;
   float time_scale;
-  char config_name[25];
+  char config_name[25]; /* always NUL-terminated */
   uint8_t line_count;
   uint8_t finger_count;
-  uint8_t finger_kind[PALPA_MAX_FINGERS]; /* 0 pneumatic, 1 jamming */
-  uint32_t fault_bitmap;
+  uint8_t finger_kind[PALPA_MAX_FINGERS]; /* PALPA_FINGER_PNEUMATIC or PALPA_FINGER_JAMMING */
+  uint32_t fault_bitmap;                  /* PALPA_FAULT_* bits, when the device was opened */
 } palpa_info;
 
 typedef struct {
   uint64_t board_time_us;
-  double host_time_s;
+  double host_time_s; /* the host's steady clock (seconds since it started), not wall time */
   uint8_t line_count;
   int32_t setpoint_pa[PALPA_MAX_LINES];
   int32_t measured_pa[PALPA_MAX_LINES];
   uint16_t command_counts[PALPA_MAX_LINES];
-  uint8_t status[PALPA_MAX_LINES];
-  uint32_t fault_bitmap;
+  uint8_t status[PALPA_MAX_LINES]; /* PALPA_LINE_* bits */
+  uint32_t fault_bitmap;           /* PALPA_FAULT_* bits, latched */
+  /* Each finger's output in its unit (finger_unit[]: PALPA_UNIT_MM or PALPA_UNIT_N_PER_MM),
+     estimated on the host from its lines' measured pressure (the setpoint where a line has no
+     sensor) through the finger's curve: the calibration's, else the nominal one. A static
+     estimate: it leaves out the hysteresis the board's compensator works against. */
+  uint8_t finger_count;
+  double finger_output[PALPA_MAX_FINGERS];
+  uint8_t finger_unit[PALPA_MAX_FINGERS];
 } palpa_sample;
 
 /* Opens a device URI ("sim:thesis-5finger", "serial:/dev/ttyACM0", "tcp:HOST:PORT",
@@ -53,7 +116,15 @@ const char* palpa_status_name(int status);
 
 int palpa_get_info(palpa_device* device, palpa_info* info);
 
-/* Fingers are 0-based. Each call waits until the board applied it or refused it. */
+/* Setting fingers. Fingers are numbered from 0 here (the command line numbers them from 1).
+   Each call returns once the board applied the request (telemetry shows it) or refused it.
+   Applied is not yet moved: a finger that leaves its safe state (the first target after opening,
+   after palpa_clear_fault or a raw setpoint) first re-homes — vented (pneumatic) or released
+   (jamming) for the board's homing dwell, board.home_dwell_ms, 300 ms by default — so a first
+   target starts to move about 350 ms after the call returns, then follows the regulator (about
+   50 ms to 90 %). A board makes its outputs safe once no host has talked to it for its
+   host-silence timeout (100 ms by default): the library keeps the session alive while the device
+   is open, and palpa_close() ends it. */
 int palpa_set_level(palpa_device* device, uint8_t finger, int level);
 int palpa_set_normalized(palpa_device* device, uint8_t finger, double value);
 int palpa_set_stiffness(palpa_device* device, uint8_t finger,
@@ -63,9 +134,18 @@ int palpa_set_pressure(palpa_device* device, uint8_t finger, double kpa);   /* r
 int palpa_estop(palpa_device* device);
 int palpa_clear_fault(palpa_device* device);
 
-/* Telemetry: samples (one per board tick) queued since the last call, at most `capacity`;
-   waits up to timeout_ms for the first. Returns the count, or a negative status. */
+/* Telemetry. From palpa_open on, every sample (one per board tick: 1 kHz by default) is queued
+   for the device, up to PALPA_SAMPLE_QUEUE_LIMIT; when the queue is full the oldest sample is
+   dropped for each new one and counted (palpa_samples_dropped), so a reader that falls behind
+   loses its oldest samples, never the newest. */
+#define PALPA_SAMPLE_QUEUE_LIMIT 65536
+
+/* Moves up to `capacity` queued samples to `out`, oldest first, and returns how many (or a
+   negated status). timeout_ms = 0 never waits: it returns what is queued, possibly 0 — a drain
+   for a loop that does other work; timeout_ms > 0 waits up to that long for a first sample. */
 int palpa_read_samples(palpa_device* device, palpa_sample* out, int capacity, int timeout_ms);
+/* Samples dropped from a full queue since the device was opened. */
+uint64_t palpa_samples_dropped(const palpa_device* device);
 
 int palpa_record_start(palpa_device* device, const char* csv_path);
 int palpa_record_stop(palpa_device* device);

@@ -31,7 +31,14 @@ struct DeviceOptions {
   /// for it says why in its notes; true makes such a request an error instead (kBadValue,
   /// nothing sent). A finger with no file is never an error.
   bool invalid_calibration_is_error = false;
+  /// How messages and notes number fingers and lines: from 0, as this API, the C ABI and Python
+  /// do, or from 1, as the command line does — an error names a finger as its caller numbered it.
+  uint8_t number_from = 0;
 };
+
+/// How a recording lays out its samples: a row per sample with a column per line and per finger
+/// (wide), or a row per line per sample (long).
+enum class RecordLayout { kWide, kLong };
 
 /// The outcome of an operation: a shared status code plus words for a person.
 struct Outcome {
@@ -46,6 +53,20 @@ struct FingerRequest {
   Request request;
 };
 
+/// What Set made of one request: the target the board follows, or the raw setpoints it holds.
+struct Applied {
+  uint8_t finger = 0;
+  Request request;
+  bool raw = false;
+  double target = 0;        ///< target mode: in the finger's unit (0: off, released)
+  const char* unit = "";    ///< "mm" (pneumatic) or "N/mm" (jamming)
+  bool from_table = false;  ///< a level: its table's pressure or vacuum, in table_kpa
+  double table_kpa = 0;
+  uint8_t line_a = 0, line_b = protocol::kNoLine;  ///< the finger's lines (0-based)
+  int32_t line_a_pa = 0, line_b_pa = 0;            ///< raw mode: their setpoints
+  std::string map;  ///< the curves the request went through, and any clamping
+};
+
 class Device {
  public:
   /// Opens a device URI (see OpenTransport) and a session with it.
@@ -57,12 +78,17 @@ class Device {
   ~Device();
 
   pp::HelloReply info() const { return link_->board(); }
+  /// "finger 3", "line 2": numbered as DeviceOptions::number_from says.
+  std::string FingerName(uint8_t finger) const;
+  std::string LineName(uint8_t line) const;
   Link& link() { return *link_; }
 
   /// Sets fingers; each request is mapped through the level tables and the finger's curves, the
   /// finger is switched to target or raw mode as needed, and (wait=true) the call returns once
   /// telemetry shows the board applied it or the board refused it.
-  Outcome Set(const std::vector<FingerRequest>& requests, bool wait = true);
+  /// `applied` (optional) receives what each request became, in the order given.
+  Outcome Set(const std::vector<FingerRequest>& requests, bool wait = true,
+              std::vector<Applied>* applied = nullptr);
   /// Raw line setpoints in kPa; the lines' fingers go to raw mode.
   Outcome SetLines(const std::vector<std::pair<uint8_t, double>>& kpa, bool wait = true);
   Outcome EStop();
@@ -89,9 +115,11 @@ class Device {
   void Unsubscribe(int id) { link_->Unsubscribe(id); }
 
   /// Records telemetry to a CSV file whose first line is a JSON header (board, configuration,
-  /// units, clock mapping). Written whole or not at all (file_write.h): to a temporary beside
-  /// PATH, put in its place by StopRecording, so a file at PATH is always complete.
-  Outcome StartRecording(const std::string& path);
+  /// layout, units, numbering, clock); each row has the UTC time and the board time of its sample,
+  /// status and faults by name, and (wide) each finger's output estimated through its curve.
+  /// Written whole or not at all (file_write.h): to a temporary beside PATH, put in its place by
+  /// StopRecording, so a file at PATH is always complete.
+  Outcome StartRecording(const std::string& path, RecordLayout layout = RecordLayout::kWide);
   Outcome StopRecording();
 
   /// The curves used for finger f (nominal until a calibration is attached).
@@ -133,6 +161,9 @@ class Device {
   std::unique_ptr<hal::linux_files::AtomicFile> record_;  ///< null when not recording
   std::string record_path_;
   int record_subscription_ = 0;
+  RecordLayout record_layout_ = RecordLayout::kWide;
+  std::vector<FingerCurves> record_curves_;
+  double record_wall_minus_steady_s_ = 0;  ///< maps the link's host (steady) time to UTC
 };
 
 }  // namespace palpa::host

@@ -9,6 +9,7 @@
 
 #include "palpa/host/file_read.h"
 #include "palpa/protocol/messages_bootstrap.h"
+#include "palpa/protocol/messages_report.h"
 #include "palpa/protocol/status.h"
 
 namespace palpa::host {
@@ -62,11 +63,28 @@ struct Mapped {
   int32_t target = 0;  ///< µm (pneumatic) or mN/mm (jamming)
   int32_t line_a_pa = 0, line_b_pa = 0;  ///< raw mode
   std::string note;  ///< e.g. which curves were used, or that the value was clamped
+  /// A level: the pressure or vacuum its table gives, which the curve then maps to the target.
+  bool from_table = false;
+  double table_kpa = 0;
 };
 
 /// Maps one request for one finger. `finger` comes from HelloReply.
 Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& levels,
                   const FingerCurves& curves, Request request,
                   RangePolicy policy = RangePolicy::kRefuse);
+
+/// The pressure a line is at, as far as the host knows: its sensor's reading, or its setpoint
+/// where it has no sensor.
+double LinePressurePa(const protocol::LineSummary& line, const protocol::LineSample& sample);
+
+/// Each finger's output — deformation in mm (pneumatic), stiffness in N/mm (jamming) — estimated
+/// from one tick's line samples (`tick`: line_count of them, in line order) through the finger's
+/// curve. A static estimate: the hysteresis the board's compensator works against is not in it.
+std::vector<double> EstimateFingerOutputs(const protocol::HelloReply& board,
+                                          const std::vector<FingerCurves>& curves,
+                                          const protocol::LineSample* tick);
+
+/// "mm" or "N/mm": the unit a finger's output is in.
+const char* OutputUnitName(protocol::FingerKind kind);
 
 }  // namespace palpa::host

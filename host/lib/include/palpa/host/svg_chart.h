@@ -16,14 +16,26 @@ struct Series {
   bool joined = false;   ///< with markers: also join the points in order (a family of sizes)
 };
 
+/// A stretch of the x axis marked on the plot: a shaded band from x to x_end with a label (e.g.
+/// where time is left out), or a vertical line where x_end == x.
+struct Marker {
+  double x = 0, x_end = 0;
+  std::string label;
+};
+
 struct Chart {
   std::string title, x_label, y_label;
   std::vector<Series> series;
+  std::vector<Marker> markers;
   double width = 780, height = 420;
   bool log_x = false;
 };
 
 /// Renders the chart as a standalone SVG document.
 std::string RenderSvg(const Chart& chart);
+
+/// Charts stacked in one SVG document under one title, sharing the x axis's range: quantities
+/// in different units (mm, N/mm) each on an axis of their own.
+std::string RenderSvgPanels(const std::vector<Chart>& panels, const std::string& title);
 
 }  // namespace palpa::host

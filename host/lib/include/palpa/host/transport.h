@@ -44,6 +44,10 @@ Result<std::unique_ptr<Transport>> LaunchSim(const std::string& config,
                                              std::string* truth_address, std::string* error,
                                              std::string* rig_address = nullptr);
 
+/// Where palpa-sim is: $PALPA_SIM, next to the running executable, installed beside the library
+/// (an application or python3 using an installed libpalpa), the build tree, or PATH.
+std::string FindPalpaSim();
+
 /// The pid.codes test id palpa uses until one is allocated.
 inline constexpr uint16_t kUsbVendorId = 0x1209;
 inline constexpr uint16_t kUsbProductId = 0x0001;

@@ -1,0 +1,277 @@
+"""palpa for Python: a ctypes wrapper over the palpa C ABI (libpalpa.so).
+
+    import palpa
+    with palpa.Device("sim:thesis-5finger") as board:
+        print(board.info())
+        board.set(0, level=2)            # finger 0 to level 2 (fingers numbered from 0)
+        board.set(3, n_per_mm=1.0)       # a jamming finger
+        for sample in board.monitor(seconds=1.0):
+            print(sample["measured_pa"], sample["finger_output"])
+        board.estop()
+
+The library is found through $PALPA_LIBRARY, then where the install put it beside this package,
+then the system's library path.
+"""
+import ctypes
+import ctypes.util
+import math
+import numbers
+import os
+import time
+
+MAX_LINES = 8
+MAX_FINGERS = 8
+
+
+class _Info(ctypes.Structure):
+    _fields_ = [
+        ("board_id", ctypes.c_uint32),
+        ("firmware_major", ctypes.c_uint8),
+        ("firmware_minor", ctypes.c_uint8),
+        ("firmware_patch", ctypes.c_uint8),
+        ("board_kind", ctypes.c_uint8),
+        ("catalog_hash", ctypes.c_uint32),
+        ("catalog_matches", ctypes.c_int),
+        ("plant_simulated", ctypes.c_int),
+        ("time_scale", ctypes.c_float),
+        ("config_name", ctypes.c_char * 25),
+        ("line_count", ctypes.c_uint8),
+        ("finger_count", ctypes.c_uint8),
+        ("finger_kind", ctypes.c_uint8 * MAX_FINGERS),
+        ("fault_bitmap", ctypes.c_uint32),
+    ]
+
+
+class _Sample(ctypes.Structure):
+    _fields_ = [
+        ("board_time_us", ctypes.c_uint64),
+        ("host_time_s", ctypes.c_double),
+        ("line_count", ctypes.c_uint8),
+        ("setpoint_pa", ctypes.c_int32 * MAX_LINES),
+        ("measured_pa", ctypes.c_int32 * MAX_LINES),
+        ("command_counts", ctypes.c_uint16 * MAX_LINES),
+        ("status", ctypes.c_uint8 * MAX_LINES),
+        ("fault_bitmap", ctypes.c_uint32),
+        ("finger_count", ctypes.c_uint8),
+        ("finger_output", ctypes.c_double * MAX_FINGERS),
+        ("finger_unit", ctypes.c_uint8 * MAX_FINGERS),
+    ]
+
+
+def _library_path():
+    """$PALPA_LIBRARY, else the library installed with this package, else the system's."""
+    if os.environ.get("PALPA_LIBRARY"):
+        return os.environ["PALPA_LIBRARY"]
+    here = os.path.dirname(os.path.abspath(__file__))
+    candidates = [os.path.join(here, "libpalpa.so.0")]
+    try:
+        from . import _installed  # written by the install: the library relative to this package
+        candidates.append(os.path.normpath(os.path.join(here, _installed.LIBRARY)))
+    except ImportError:
+        pass
+    for candidate in candidates:
+        if os.path.exists(candidate):
+            return candidate
+    return ctypes.util.find_library("palpa")
+
+
+def _load():
+    path = _library_path()
+    if not path:
+        raise OSError("libpalpa not found: install palpa (cmake --install) or set PALPA_LIBRARY to "
+                      "the path of libpalpa.so")
+    lib = ctypes.CDLL(path)
+    lib.palpa_open.argtypes = [ctypes.c_char_p, ctypes.POINTER(ctypes.c_void_p)]
+    lib.palpa_close.argtypes = [ctypes.c_void_p]
+    lib.palpa_last_error.argtypes = [ctypes.c_void_p]
+    lib.palpa_last_error.restype = ctypes.c_char_p
+    lib.palpa_status_name.argtypes = [ctypes.c_int]
+    lib.palpa_status_name.restype = ctypes.c_char_p
+    lib.palpa_get_info.argtypes = [ctypes.c_void_p, ctypes.POINTER(_Info)]
+    for name, arg in (("palpa_set_level", ctypes.c_int), ("palpa_set_normalized", ctypes.c_double),
+                      ("palpa_set_stiffness", ctypes.c_double), ("palpa_set_deformation", ctypes.c_double),
+                      ("palpa_set_pressure", ctypes.c_double)):
+        getattr(lib, name).argtypes = [ctypes.c_void_p, ctypes.c_uint8, arg]
+    lib.palpa_estop.argtypes = [ctypes.c_void_p]
+    lib.palpa_clear_fault.argtypes = [ctypes.c_void_p]
+    lib.palpa_read_samples.argtypes = [ctypes.c_void_p, ctypes.POINTER(_Sample), ctypes.c_int, ctypes.c_int]
+    lib.palpa_samples_dropped.argtypes = [ctypes.c_void_p]
+    lib.palpa_samples_dropped.restype = ctypes.c_uint64
+    lib.palpa_record_start.argtypes = [ctypes.c_void_p, ctypes.c_char_p]
+    lib.palpa_record_stop.argtypes = [ctypes.c_void_p]
+    return lib
+
+
+_lib = None
+_INT_MAX = 2**31 - 1
+QUEUE_LIMIT = 65536  # PALPA_SAMPLE_QUEUE_LIMIT
+_UNITS = ("mm", "N/mm")
+
+# Line status bits (sample["status"][line]) and fault bits (fault_bitmap), as in palpa.h.
+LINE_STATUS_BITS = {"safe": 1 << 0, "slewing": 1 << 1, "trim_clamped": 1 << 2, "saturated": 1 << 3,
+                    "open_loop": 1 << 4, "raw": 1 << 5, "sensor_fault": 1 << 6}
+FAULT_BITS = {"host_silence": 1 << 0, "over_limit": 1 << 1, "implausible_sensor": 1 << 2,
+              "config_crc": 1 << 3, "unexpected_reset": 1 << 4, "leak": 1 << 5,
+              "estop_command": 1 << 6, "estop_pin": 1 << 7, "pump_run_time": 1 << 8,
+              "output_write": 1 << 9}
+
+
+def bit_names(bits, table):
+    """The names of the bits set, e.g. bit_names(sample["fault_bitmap"], FAULT_BITS); a bit the
+    table does not know (from a newer board) as "bit_N"."""
+    names = [name for name, bit in table.items() if bits & bit]
+    known = sum(table.values())
+    names += [f"bit_{i}" for i in range(32) if bits & ~known & (1 << i)]
+    return names
+
+
+def _sample_dict(s):
+    lines, fingers = s.line_count, s.finger_count
+    return {"board_time_us": s.board_time_us, "host_time_s": s.host_time_s,
+            "setpoint_pa": list(s.setpoint_pa[:lines]), "measured_pa": list(s.measured_pa[:lines]),
+            "command_counts": list(s.command_counts[:lines]), "status": list(s.status[:lines]),
+            "fault_bitmap": s.fault_bitmap,
+            "finger_output": list(s.finger_output[:fingers]),
+            "finger_unit": [_UNITS[u] for u in s.finger_unit[:fingers]]}
+
+
+def _library():
+    global _lib
+    if _lib is None:
+        _lib = _load()
+    return _lib
+
+
+class PalpaError(Exception):
+    """A palpa call failed: .status is the shared status name, the message says why."""
+
+    def __init__(self, status, message):
+        super().__init__(f"{status}: {message}")
+        self.status = status
+
+
+class Device:
+    """One palpa board."""
+
+    def __init__(self, uri):
+        lib = _library()
+        handle = ctypes.c_void_p()
+        status = lib.palpa_open(uri.encode(), ctypes.byref(handle))
+        if status != 0:
+            raise PalpaError(lib.palpa_status_name(status).decode(), lib.palpa_last_error(None).decode())
+        self._lib, self._handle = lib, handle
+
+    def _check(self, status):
+        if status != 0:
+            raise PalpaError(self._lib.palpa_status_name(status).decode(),
+                             self._lib.palpa_last_error(self._handle).decode())
+
+    def close(self):
+        if self._handle:
+            self._lib.palpa_close(self._handle)
+            self._handle = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def info(self):
+        info = _Info()
+        self._check(self._lib.palpa_get_info(self._handle, ctypes.byref(info)))
+        return {
+            "board_id": info.board_id,
+            "firmware": f"{info.firmware_major}.{info.firmware_minor}.{info.firmware_patch}",
+            "catalog_hash": info.catalog_hash,
+            "catalog_matches": bool(info.catalog_matches),
+            "plant_simulated": bool(info.plant_simulated),
+            "time_scale": info.time_scale,
+            "config": info.config_name.decode(),
+            "lines": info.line_count,
+            "fingers": ["jamming" if info.finger_kind[f] else "pneumatic" for f in range(info.finger_count)],
+            "fault_bitmap": info.fault_bitmap,
+        }
+
+    def set(self, finger, level=None, normalized=None, n_per_mm=None, mm=None, kpa=None):
+        """Sets one finger (numbered from 0) to exactly one of: a level (an int), normalized
+        stiffness 0..1, n_per_mm (jamming fingers), mm (pneumatic fingers) or kpa (raw mode).
+
+        Returns once the board applied it. Applied is not yet moved: a finger leaving its safe
+        state (the first target after opening or clear_fault, or after kpa) re-homes first for
+        the board's homing dwell (board.home_dwell_ms, 300 ms by default), so it starts to move
+        about 350 ms later. Wrong types raise TypeError, a finger or level that cannot exist
+        ValueError (before anything is sent); the board's and the library's refusals raise
+        PalpaError."""
+        given = {k: v for k, v in (("level", level), ("normalized", normalized), ("n_per_mm", n_per_mm),
+                                    ("mm", mm), ("kpa", kpa)) if v is not None}
+        if len(given) != 1:
+            raise ValueError("set() takes exactly one of level, normalized, n_per_mm, mm, kpa")
+        (kind, value), = given.items()
+        finger = self._finger_index(finger)
+        if kind == "level":
+            if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+                raise TypeError(f"finger {finger}: level must be an int, not {type(value).__name__} "
+                                f"({value!r})")
+            if not 0 <= value <= _INT_MAX:
+                raise ValueError(f"finger {finger}: level {value} does not exist (levels are 0, 1, 2 ...)")
+            value = int(value)
+        else:
+            if isinstance(value, bool) or not isinstance(value, numbers.Real):
+                raise TypeError(f"finger {finger}: {kind} must be a number, not {type(value).__name__}")
+            value = float(value)
+            if not math.isfinite(value):
+                raise ValueError(f"finger {finger}: {kind} must be finite, not {value}")
+        call = {"level": self._lib.palpa_set_level, "normalized": self._lib.palpa_set_normalized,
+                "n_per_mm": self._lib.palpa_set_stiffness, "mm": self._lib.palpa_set_deformation,
+                "kpa": self._lib.palpa_set_pressure}[kind]
+        self._check(call(self._handle, finger, value))
+
+    def _finger_index(self, finger):
+        """The finger as an index the C ABI takes: an int within this board's fingers."""
+        if isinstance(finger, bool) or not isinstance(finger, numbers.Integral):
+            raise TypeError(f"finger must be an int (numbered from 0), not {type(finger).__name__} "
+                            f"({finger!r})")
+        count = len(self.info()["fingers"])
+        if not 0 <= finger < count:
+            raise ValueError(f"finger {finger} does not exist: this board has fingers 0 to {count - 1}")
+        return int(finger)
+
+    def estop(self):
+        self._check(self._lib.palpa_estop(self._handle))
+
+    def clear_fault(self):
+        self._check(self._lib.palpa_clear_fault(self._handle))
+
+    def monitor(self, seconds=1.0):
+        """Yields telemetry samples (dicts), one per board tick, for `seconds`; seconds=0 yields
+        the samples queued since the last call and returns without waiting (a drain for a loop
+        that does other work). The library queues up to QUEUE_LIMIT samples between calls and
+        drops the oldest beyond that (samples_dropped() counts them)."""
+        if isinstance(seconds, bool) or not isinstance(seconds, numbers.Real) or not seconds >= 0:
+            raise ValueError(f"seconds must be a number 0 or more, not {seconds!r}")
+        buffer = (_Sample * 256)()
+        end = time.monotonic() + seconds
+        while True:
+            wait_ms = 0 if seconds == 0 else max(0, min(50, int((end - time.monotonic()) * 1000)))
+            n = self._lib.palpa_read_samples(self._handle, buffer, 256, wait_ms)
+            if n < 0:
+                self._check(-n)
+            for s in buffer[:n]:
+                yield _sample_dict(s)
+            if seconds == 0 and n < 256:
+                return
+            if seconds > 0 and time.monotonic() >= end:
+                return
+
+    def samples_dropped(self):
+        """Samples dropped from the full queue since the device was opened."""
+        return self._lib.palpa_samples_dropped(self._handle)
+
+    def record(self, path, seconds):
+        """Records telemetry to a CSV file (JSON header line first) for `seconds`."""
+        self._check(self._lib.palpa_record_start(self._handle, path.encode()))
+        try:
+            time.sleep(seconds)
+        finally:
+            self._check(self._lib.palpa_record_stop(self._handle))
