@@ -1,10 +1,13 @@
 // The palpa command line: shared context, exit codes and the commands' entry points.
 #pragma once
 
+#include <cstdio>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "palpa/host/device.h"
 
@@ -20,6 +23,9 @@ enum Exit : int {
 
 struct Context {
   std::string device_uri;
+  /// The device is a simulator started for this one command (no --device, no $PALPA_DEVICE and
+  /// no `palpa sim start`): what the command changes is gone when it exits, and it says so.
+  bool throwaway = false;
   bool json = false;
   host::DeviceOptions options;  ///< how Device() opens it
   /// Opens the device on first use; prints the error and returns nullptr when it cannot.
@@ -27,10 +33,24 @@ struct Context {
   std::unique_ptr<host::Device> device;
 };
 
+/// --json: every command prints JSON, errors included. Set once, before a command runs.
+void SetJsonOutput(bool json);
+bool JsonOutput();
+/// Where a command's text report goes: stdout, or with --json stderr (as progress), so that stdout
+/// carries only JSON.
+FILE* TextOut();
+/// One JSON document on a line of its own on stdout.
+void PrintJson(const nlohmann::ordered_json& j);
+/// A failure: "palpa WHAT: MESSAGE" on stderr, or with --json
+/// {"error": {"status", "message", "command", "exit_code"}} on stdout. Returns exit_code.
+int Fail(const std::string& what, protocol::Status status, const std::string& message,
+         int exit_code = kExitFailed);
 /// A usage error: names the argument and what was expected. Returns kExitUsage.
 int Usage(const std::string& command, const std::string& message);
 /// Prints an operation's failure (or its notes when --json is off). Returns the exit code.
 int Report(const Context& context, const host::Outcome& outcome, const std::string& what);
+/// The closest of `candidates` to a mistyped `word` (a letter or two off, or a prefix), or "".
+std::string Suggest(const std::string& word, const std::vector<std::string>& candidates);
 
 int CmdList(Context& c, const std::vector<std::string>& args);
 int CmdInfo(Context& c, const std::vector<std::string>& args);
@@ -46,16 +66,29 @@ int CmdDemo(Context& c, const std::vector<std::string>& args);
 int CmdCalibrate(Context& c, const std::vector<std::string>& args);
 int CmdFlash(Context& c, const std::vector<std::string>& args);
 int CmdPackage(Context& c, const std::vector<std::string>& args);
+int CmdSim(Context& c, const std::vector<std::string>& args);
 
 /// One finger request from "N=VALUE": L2 (level), 0.5 (0..1), 1.2mm, 0.9N/mm, -10kPa. Fingers are
-/// numbered from 1 on the command line. Returns false with a message naming the argument.
+/// numbered from 1 on the command line, up to `finger_count`. Returns false with a message naming
+/// the argument (and the unit meant, for "10kpa").
 bool ParseFingerArgument(const std::string& arg, uint8_t finger_count, host::FingerRequest& out,
                          std::string* error);
 /// "L=VALUE" with VALUE in kPa (a "kPa" suffix is allowed); lines numbered from 1.
 bool ParseLineArgument(const std::string& arg, uint8_t line_count, std::pair<uint8_t, double>& out,
                        std::string* error);
-/// A number with a unit suffix, e.g. "--duration 5" (seconds). False when not a finite number.
+/// The same finger or line twice on one command line ("1=L2 1=L1") is refused: which one was
+/// meant? `indices` are 0-based; `what` is "finger" or "line". Returns false with a message.
+bool CheckDistinct(const std::vector<uint8_t>& indices, const std::vector<std::string>& args,
+                   const char* what, std::string* error);
+/// Every finger or line named exists on this board; otherwise a message naming the board's range
+/// ("finger 9: this thesis-5finger board has fingers 1 to 5").
+bool CheckOnBoard(const std::vector<uint8_t>& indices, uint8_t count, const char* what,
+                  const std::string& board_name, std::string* error);
+/// A decimal number ("5", "-10.5", "1e3"), finite: no hex, no "inf", no spaces.
 bool ParseNumber(const std::string& text, double& out);
+/// "--rate 5": the value after option `i`, or a usage message that it is missing.
+bool OptionValue(const std::vector<std::string>& args, size_t i, std::string& value,
+                 std::string* error);
 /// "auto", "pi", "api", "pi:8": the compensator a calibration fits (auto: empty, the better of
 /// pi and api); operators 0 when not given.
 bool ParseCompensator(const std::string& text, std::optional<protocol::CompensatorKind>& kind,

@@ -8,7 +8,11 @@
 #include <nlohmann/json.hpp>
 
 #include "cli.h"
+#include "palpa/host/bit_names.h"
+#include "palpa/host/board_json.h"
+#include "palpa/host/field_text.h"
 #include "palpa/protocol/faults.h"
+#include "sim_state.h"
 
 namespace palpa::cli {
 namespace {
@@ -67,9 +71,13 @@ std::vector<std::string> UsbDevices() {
 int CmdList(Context& c, const std::vector<std::string>& args) {
   if (!args.empty()) return Usage("list", "takes no arguments");
   const auto serial = SerialPorts(), hid = HidDevices(), usb = UsbDevices();
+  const auto sim = FindRunningSim();
   if (c.json) {
-    std::printf("%s\n",
-                ordered_json{{"serial", serial}, {"hid", hid}, {"usb", usb}}.dump().c_str());
+    PrintJson({{"serial", serial},
+               {"hid", hid},
+               {"usb", usb},
+               {"sim", sim ? ordered_json{{"device", sim->uri}, {"config", sim->config}}
+                           : ordered_json(nullptr)}});
     return kExitOk;
   }
   std::printf("serial ports: %s\n", serial.empty() ? "none" : "");
@@ -78,21 +86,43 @@ int CmdList(Context& c, const std::vector<std::string>& args) {
   for (const auto& s : hid) std::printf("  %s\n", s.c_str());
   std::printf("USB devices with id 1209:0001: %s\n", usb.empty() ? "none" : "");
   for (const auto& s : usb) std::printf("  %s\n", s.c_str());
-  std::printf("(a simulated board is always there: --device sim:thesis-5finger)\n");
+  if (sim) {
+    std::printf("simulated board (palpa sim start): %s, %s\n", sim->uri.c_str(),
+                sim->config.c_str());
+  } else {
+    std::printf("(a simulated board is always there: 'palpa sim start' keeps one running)\n");
+  }
   return kExitOk;
 }
+
+namespace {
+
+/// What `info` says of the configuration: whether a reset keeps it.
+std::string ConfigState(const pp::Diagnostics& d) {
+  if (!d.config_unsaved) return d.config_saved ? "saved" : "factory default";
+  return d.config_saved ? "changed, not saved: a reset returns to the saved one"
+                        : "changed, not saved: a reset returns to the factory default";
+}
+
+}  // namespace
 
 int CmdInfo(Context& c, const std::vector<std::string>& args) {
   if (!args.empty()) return Usage("info", "takes no arguments");
   host::Device* d = c.Device();
   if (d == nullptr) return kExitConnect;
   const pp::HelloReply b = d->info();
+  std::string error;
+  const auto diag = d->Diagnostics(&error);  // the configuration's state now, not at Hello
+  if (!diag.ok()) return Fail("info", diag.status, error);
+  const std::string state = ConfigState(diag.value);
   const std::string firmware = std::to_string(b.firmware_major) + "." +
                                std::to_string(b.firmware_minor) + "." +
                                std::to_string(b.firmware_patch);
+  const std::string name = host::FieldText(b.config_name);
   if (c.json) {
     ordered_json j;
     j["device"] = d->link().Describe();
+    j["simulator"] = c.throwaway ? "throwaway" : (b.plant_simulated ? "kept" : "none");
     j["board"] = {{"kind", pp::kBoardKindNames[static_cast<int>(b.board_kind)]},
                   {"id", b.board_id},
                   {"firmware", firmware},
@@ -102,22 +132,20 @@ int CmdInfo(Context& c, const std::vector<std::string>& args) {
                   {"plant_simulated", b.plant_simulated},
                   {"time_scale", b.time_scale},
                   {"reset_cause", pp::kResetCauseNames[static_cast<int>(b.reset_cause)]},
+                  {"configuration", name},
+                  {"config_state", state},
                   {"config_is_default", b.config_is_default},
-                  {"configuration", std::string(b.config_name.data())},
+                  {"config_saved", diag.value.config_saved},
+                  {"config_unsaved", diag.value.config_unsaved},
                   {"active_slot", b.active_slot},
                   {"rollback_counter", b.rollback_counter},
                   {"host_timeout_us", b.host_timeout_us},
-                  {"faults", b.fault_bitmap}};
-    ordered_json fingers = ordered_json::array();
-    for (uint8_t f = 0; f < b.finger_count; ++f) {
-      fingers.push_back(
-          {{"finger", f + 1},
-           {"kind", pp::kFingerKindNames[static_cast<int>(b.fingers[f].kind)]},
-           {"line_a", b.fingers[f].line_a + 1},
-           {"line_b", b.fingers[f].line_b == pp::kNoLine ? 0 : b.fingers[f].line_b + 1}});
-    }
-    j["fingers"] = fingers;
-    std::printf("%s\n", j.dump().c_str());
+                  {"faults", host::FaultList(diag.value.fault_bitmap)},
+                  {"fault_bitmap", diag.value.fault_bitmap}};
+    j["lines"] = host::LinesJson(b);
+    j["fingers"] = host::FingersJson(b);
+    j["numbering"] = "lines and fingers from 1";
+    PrintJson(j);
     return kExitOk;
   }
   std::printf("device        %s\n", d->link().Describe().c_str());
@@ -127,11 +155,10 @@ int CmdInfo(Context& c, const std::vector<std::string>& args) {
               b.protocol_version, b.catalog_hash,
               d->link().catalog_matches() ? "" : " (differs from this host's)");
   std::printf("image slot    %u, anti-rollback counter %u\n", b.active_slot, b.rollback_counter);
-  std::printf("configuration %s%s\n", b.config_name.data(),
-              b.config_is_default ? " (factory default)" : " (saved)");
+  std::printf("configuration %s (%s)\n", name.c_str(), state.c_str());
   std::printf("reset cause   %s; faults: %s\n",
               pp::kResetCauseNames[static_cast<int>(b.reset_cause)],
-              host::FaultNames(b.fault_bitmap).c_str());
+              host::FaultNames(diag.value.fault_bitmap).c_str());
   if (b.time_scale != 1.0f) std::printf("time scale    %gx\n", static_cast<double>(b.time_scale));
   for (uint8_t i = 0; i < b.line_count; ++i) {
     std::printf("line %u        %-8s %7.1f … %6.1f kPa%s\n", i + 1,
@@ -141,11 +168,11 @@ int CmdInfo(Context& c, const std::vector<std::string>& args) {
   }
   for (uint8_t f = 0; f < b.finger_count; ++f) {
     const bool jamming = b.fingers[f].kind == pp::FingerKind::kJamming;
-    std::printf(
-        "finger %u      %-9s line %u%s  (%s)\n", f + 1, jamming ? "jamming" : "pneumatic",
-        b.fingers[f].line_a + 1,
-        jamming ? (" + vacuum line " + std::to_string(b.fingers[f].line_b + 1)).c_str() : "",
-        jamming ? "N/mm, levels, 0..1, kPa" : "mm, levels, 0..1, kPa");
+    const std::string second =
+        b.fingers[f].line_b == pp::kNoLine ? "none" : std::to_string(b.fingers[f].line_b + 1);
+    std::printf("finger %u      %-9s line %u, second line %s  (%s)\n", f + 1,
+                jamming ? "jamming" : "pneumatic", b.fingers[f].line_a + 1, second.c_str(),
+                jamming ? "N/mm, levels, 0..1, kPa" : "mm, levels, 0..1, kPa");
   }
   return kExitOk;
 }
@@ -157,43 +184,42 @@ int CmdDiag(Context& c, const std::vector<std::string>& args) {
   std::string error;
   const auto diag = d->Diagnostics(&error);
   const auto stats = d->LoopStats(&error);
-  if (!diag.ok() || !stats.ok()) {
-    std::fprintf(stderr, "palpa diag: %s\n", error.c_str());
-    return kExitFailed;
-  }
+  if (!diag.ok()) return Fail("diag", diag.status, error);
+  if (!stats.ok()) return Fail("diag", stats.status, error);
   const host::LinkCounters link = d->link().counters();
   if (c.json) {
     ordered_json history = ordered_json::array();
     for (uint8_t i = 0; i < diag.value.history_count; ++i) {
       const auto& h = diag.value.history[i];
-      history.push_back(
-          {{"time_us", h.time_us}, {"fault", host::FaultName(h.fault)}, {"detail", h.detail}});
+      history.push_back({{"time_us", h.time_us},
+                         {"fault", host::FaultName(h.fault)},
+                         {"detail", h.detail},
+                         {"meaning", host::FaultDetail(h.fault, h.detail, 1)}});
     }
     const auto& s = stats.value;
-    std::printf("%s\n",
-                ordered_json{
-                    {"reset_cause", pp::kResetCauseNames[static_cast<int>(diag.value.reset_cause)]},
-                    {"boot_count", diag.value.boot_count},
-                    {"faults_latched", diag.value.fault_bitmap},
-                    {"faults_active", diag.value.active_conditions},
-                    {"uptime_us", diag.value.uptime_us},
-                    {"history", history},
-                    {"loop",
-                     {{"ticks", s.ticks},
-                      {"period_us", s.period_us},
-                      {"jitter_max_us", s.jitter_max_us},
-                      {"worst_tick_us", s.worst_tick_us},
-                      {"mean_tick_us", s.mean_tick_us},
-                      {"overruns", s.overruns},
-                      {"telemetry_dropped", s.telemetry_dropped},
-                      {"rx_frames", s.rx_frames},
-                      {"rx_errors", s.rx_errors}}},
-                    {"link",
-                     {{"retransmissions", link.retransmissions},
-                      {"telemetry_lost", link.telemetry_lost},
-                      {"board_resets", link.board_resets}}}}
-                    .dump()
-                    .c_str());
+    PrintJson(ordered_json{
+        {"reset_cause", pp::kResetCauseNames[static_cast<int>(diag.value.reset_cause)]},
+        {"boot_count", diag.value.boot_count},
+        {"faults_latched", diag.value.fault_bitmap},
+        {"faults_active", diag.value.active_conditions},
+        {"faults_latched_names", host::FaultList(diag.value.fault_bitmap)},
+        {"faults_active_names", host::FaultList(diag.value.active_conditions)},
+        {"uptime_us", diag.value.uptime_us},
+        {"history", history},
+        {"loop",
+         {{"ticks", s.ticks},
+          {"period_us", s.period_us},
+          {"jitter_max_us", s.jitter_max_us},
+          {"worst_tick_us", s.worst_tick_us},
+          {"mean_tick_us", s.mean_tick_us},
+          {"overruns", s.overruns},
+          {"telemetry_dropped", s.telemetry_dropped},
+          {"rx_frames", s.rx_frames},
+          {"rx_errors", s.rx_errors}}},
+        {"link",
+         {{"retransmissions", link.retransmissions},
+          {"telemetry_lost", link.telemetry_lost},
+          {"board_resets", link.board_resets}}}});
     return kExitOk;
   }
   std::printf("reset cause     %s (boot %u), up %.1f s\n",
@@ -203,8 +229,8 @@ int CmdDiag(Context& c, const std::vector<std::string>& args) {
   std::printf("faults active   %s\n", host::FaultNames(diag.value.active_conditions).c_str());
   for (uint8_t i = 0; i < diag.value.history_count; ++i) {
     const auto& h = diag.value.history[i];
-    std::printf("  %10.3f s  %-20s detail %d\n", static_cast<double>(h.time_us) / 1e6,
-                host::FaultName(h.fault).c_str(), h.detail);
+    std::printf("  %10.3f s  %-20s %s\n", static_cast<double>(h.time_us) / 1e6,
+                host::FaultName(h.fault).c_str(), host::FaultDetail(h.fault, h.detail, 1).c_str());
   }
   const auto& s = stats.value;
   std::printf(
@@ -224,8 +250,13 @@ int CmdEStop(Context& c, const std::vector<std::string>& args) {
   host::Device* d = c.Device();
   if (d == nullptr) return kExitConnect;
   const int rc = Report(c, d->EStop(), "estop");
-  if (rc == kExitOk && !c.json)
+  if (rc != kExitOk) return rc;
+  if (c.json) {
+    PrintJson({{"estop", "acknowledged"},
+               {"faults", host::FaultList(pp::FaultBit(pp::Fault::kEStopCommand))}});
+  } else {
     std::printf("EStop acknowledged: every line is safe until 'palpa clear' and new setpoints\n");
+  }
   return rc;
 }
 
@@ -233,9 +264,20 @@ int CmdClear(Context& c, const std::vector<std::string>& args) {
   if (!args.empty()) return Usage("clear", "takes no arguments");
   host::Device* d = c.Device();
   if (d == nullptr) return kExitConnect;
+  std::string error;
+  const auto before = d->Diagnostics(&error);
+  if (!before.ok()) return Fail("clear", before.status, error);
   const int rc = Report(c, d->ClearFault(), "clear");
-  if (rc == kExitOk && !c.json)
-    std::printf("faults cleared; outputs stay safe until new setpoints arrive\n");
+  if (rc != kExitOk) return rc;
+  const std::vector<std::string> cleared = host::FaultList(before.value.fault_bitmap);
+  if (c.json) {
+    PrintJson({{"cleared", cleared}});
+  } else if (cleared.empty()) {
+    std::printf("no faults were latched; outputs stay as they were\n");
+  } else {
+    std::printf("faults cleared: %s; outputs stay safe until new setpoints arrive\n",
+                host::JoinNames(cleared, ", ", "none").c_str());
+  }
   return rc;
 }
 

@@ -173,10 +173,7 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
     }
     const std::string config = c.device_uri.size() > 4 ? c.device_uri.substr(4) : "thesis-5finger";
     sim = OpenSimRig(config, a.finger, a.speed, &error);
-    if (!sim) {
-      std::fprintf(stderr, "palpa calibrate: %s\n", error.c_str());
-      return kExitConnect;
-    }
+    if (!sim) return Fail("calibrate", protocol::Status::kUnavailable, error, kExitConnect);
     device = sim->device.get();
     description = sim->description;
     devices = &sim->devices;
@@ -193,26 +190,20 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
   if (devices == nullptr) {
     lab_devices = cal::OpenRigDevices(*description, &error);
     if (!lab_devices) {
-      std::fprintf(stderr, "palpa calibrate: rig %s: %s\n", description->name.c_str(),
-                   error.c_str());
-      return kExitConnect;
+      return Fail("calibrate", protocol::Status::kUnavailable,
+                  "rig " + description->name + ": " + error, kExitConnect);
     }
     devices = &*lab_devices;
   }
   const auto finger_config = device->ReadFinger(static_cast<uint8_t>(a.finger), &error);
-  if (!finger_config.ok()) {
-    std::fprintf(stderr, "palpa calibrate: %s\n", error.c_str());
-    return kExitFailed;
-  }
+  if (!finger_config.ok()) return Fail("calibrate", finger_config.status, error);
   const std::string serial(finger_config.value.actuator_serial.data(),
                            strnlen(finger_config.value.actuator_serial.data(),
                                    finger_config.value.actuator_serial.size()));
   if (!host::ValidSerial(serial)) {
-    std::fprintf(stderr,
-                 "palpa calibrate: finger %d has no usable actuator serial ('%s'); set it with "
-                 "palpa config set\n",
-                 a.finger + 1, serial.c_str());
-    return kExitFailed;
+    return Fail("calibrate", protocol::Status::kBadValue,
+                "finger " + std::to_string(a.finger + 1) + " has no usable actuator serial ('" +
+                    serial + "'); set it with palpa config set");
   }
 
   cal::DeviceBoardPort board(*device);
@@ -222,9 +213,8 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
   // Another run (of another finger) may have made it meanwhile: only a failure to have it counts.
   if (!out_exists && mkdir(a.out.c_str(), 0755) != 0 &&
       !(errno == EEXIST && stat(a.out.c_str(), &st) == 0 && S_ISDIR(st.st_mode))) {
-    std::fprintf(stderr, "palpa calibrate: cannot create --out %s: %s\n", a.out.c_str(),
-                 std::strerror(errno));
-    return kExitFailed;
+    return Fail("calibrate", protocol::Status::kIoError,
+                "cannot create --out " + a.out + ": " + std::strerror(errno));
   }
   const std::string base = a.out + "/" + serial;
   cal::Journal journal;
@@ -273,40 +263,38 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
       [&](const cal::Progress& p) { ProgressBar(p, start); }, &run);
   std::fprintf(stderr, "\n");
   if (!s.ok) {
-    std::fprintf(stderr,
-                 "palpa calibrate: stopped: %s\nThe stage was retracted and the board vented. What "
-                 "was finished is in "
-                 "%s.journal.json; run again with --resume to continue.\n",
-                 s.error.c_str(), base.c_str());
-    return kExitFailed;
+    return Fail("calibrate", protocol::Status::kUnavailable,
+                "stopped: " + s.error +
+                    "\nThe stage was retracted and the board vented. What was finished is in " +
+                    base + ".journal.json; run again with --resume to continue.");
   }
   std::string csv;
   for (const std::string& row : run.csv) csv += row + "\n";
   if (!host::WriteFileWhole(base + ".csv", csv, &error) ||
       !host::SaveCalibration(run.file, base + ".json", &error) ||
       !host::WriteFileWhole(base + ".html", cal::RenderReport(run), &error)) {
-    std::fprintf(stderr, "palpa calibrate: cannot write the results in %s: %s\n", a.out.c_str(),
-                 error.c_str());
-    return kExitFailed;
+    return Fail("calibrate", protocol::Status::kIoError,
+                "cannot write the results in " + a.out + ": " + error);
   }
   unlink((base + ".journal.json").c_str());
-  std::printf("calibrated %s (finger %d): %s.json, %s.csv, %s.html\n", serial.c_str(), a.finger + 1,
-              base.c_str(), base.c_str(), base.c_str());
+  std::fprintf(TextOut(), "calibrated %s (finger %d): %s.json, %s.csv, %s.html\n", serial.c_str(),
+               a.finger + 1, base.c_str(), base.c_str(), base.c_str());
   if (run.file.rising_fit) {
-    std::printf(
+    std::fprintf(
+        TextOut(),
         "  deformation branches: rising %.4f, falling %.4f mm/kPa (Table 5-4: 0.0428, 0.0475)\n",
         run.file.rising_fit->slope, run.file.falling_fit->slope);
   }
   if (run.file.recommended_bias_kpa)
-    std::printf("  recommended bias: %.0f kPa\n", *run.file.recommended_bias_kpa);
+    std::fprintf(TextOut(), "  recommended bias: %.0f kPa\n", *run.file.recommended_bias_kpa);
   if (run.file.quality.map_error) {
-    std::printf("  stiffness map: %s, %d cycles, cross-validated error %.1f %%\n",
-                run.file.quality.protocol.c_str(), run.file.quality.cycles,
-                100 * *run.file.quality.map_error);
+    std::fprintf(TextOut(), "  stiffness map: %s, %d cycles, cross-validated error %.1f %%\n",
+                 run.file.quality.protocol.c_str(), run.file.quality.cycles,
+                 100 * *run.file.quality.map_error);
   }
   for (const host::QualityCheck& k : run.file.quality.checks) {
-    std::printf("  check %-10s %s  %s\n", k.name.c_str(), k.passed ? "pass" : "FAIL",
-                k.detail.c_str());
+    std::fprintf(TextOut(), "  check %-10s %s  %s\n", k.name.c_str(), k.passed ? "pass" : "FAIL",
+                 k.detail.c_str());
   }
   for (const std::string& flag : run.file.quality.flags) {
     const bool from_check =
@@ -314,25 +302,38 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
                     [&](const host::QualityCheck& k) {
                       return !k.passed && flag.rfind(k.name + ": ", 0) == 0;
                     });
-    if (!from_check) std::printf("  note: %s\n", flag.c_str());
+    if (!from_check) std::fprintf(TextOut(), "  note: %s\n", flag.c_str());
   }
   if (!run.compensator_choice.empty()) {
-    std::printf("  model chosen (auto): %s (%s)\n", run.compensator_choice.c_str(),
-                run.file.kind == protocol::FingerKind::kJamming ? "mN/mm" : "um");
+    std::fprintf(TextOut(), "  model chosen (auto): %s (%s)\n", run.compensator_choice.c_str(),
+                 run.file.kind == protocol::FingerKind::kJamming ? "mN/mm" : "um");
   }
   if (run.file.compensator == protocol::CompensatorKind::kNone) {
-    std::printf("  compensator none: the static inverse alone (no model was fitted)\n");
+    std::fprintf(TextOut(), "  compensator none: the static inverse alone (no model was fitted)\n");
   } else {
     const bool jamming = run.file.kind == protocol::FingerKind::kJamming;
-    std::printf("  compensator %s, fit residual %.1f RMS, %.1f max (%s)\n",
-                host::CompensatorLabel(run.file).c_str(), 1000 * run.file.quality.residual_rms,
-                1000 * run.file.quality.residual_max, jamming ? "mN/mm" : "um");
+    std::fprintf(TextOut(), "  compensator %s, fit residual %.1f RMS, %.1f max (%s)\n",
+                 host::CompensatorLabel(run.file).c_str(), 1000 * run.file.quality.residual_rms,
+                 1000 * run.file.quality.residual_max, jamming ? "mN/mm" : "um");
   }
   if (a.apply) {
     const host::Outcome o = device->ApplyCalibration(static_cast<uint8_t>(a.finger), run.file);
     if (!o.ok()) return Report(c, o, "apply calibration");
-    std::printf("  applied to finger %d (static inverse, compensator, regulator correction%s)\n",
-                a.finger + 1, run.file.recommended_bias_kpa ? ", bias" : "");
+    std::fprintf(TextOut(),
+                 "  applied to finger %d (static inverse, compensator, regulator correction%s)\n",
+                 a.finger + 1, run.file.recommended_bias_kpa ? ", bias" : "");
+  }
+  if (c.json) {
+    nlohmann::ordered_json checks = nlohmann::ordered_json::array();
+    for (const host::QualityCheck& k : run.file.quality.checks)
+      checks.push_back({{"name", k.name}, {"passed", k.passed}, {"detail", k.detail}});
+    PrintJson({{"calibrated", serial},
+               {"finger", a.finger + 1},
+               {"files", {base + ".json", base + ".csv", base + ".html"}},
+               {"compensator", host::CompensatorLabel(run.file)},
+               {"residual_rms", run.file.quality.residual_rms},
+               {"checks", checks},
+               {"applied", a.apply}});
   }
   return kExitOk;
 }

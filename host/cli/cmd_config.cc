@@ -1,5 +1,6 @@
 // palpa config show|set|load|save|factory-reset: read, change and persist the configuration.
 // Changes are checked locally with the firmware's own validation, then sent staged (atomic).
+#include <cmath>
 #include <cstdio>
 
 #include "cli.h"
@@ -36,31 +37,39 @@ bool ReadAll(host::Device& d, core::BoardConfig& config, std::string* error) {
 }
 
 /// Validates like the board would, then sends everything staged so it applies at once.
-int Upload(Context& c, host::Device& d, const core::BoardConfig& config) {
+int Upload(Context& c, host::Device& d, const core::BoardConfig& config,
+           const nlohmann::ordered_json& changes) {
   core::ConfigError error;
   if (core::ValidateConfig(config, &error) != pp::Status::kOk) {
-    std::fprintf(
-        stderr, "palpa config: the configuration is not valid: %s %u: %s (nothing was sent)\n",
-        pp::kConfigSectionNames[static_cast<int>(error.section)], error.index + 1u, error.reason);
-    return kExitUsage;
+    return Fail("config", pp::Status::kOutOfRange,
+                std::string("the configuration is not valid: ") +
+                    pp::kConfigSectionNames[static_cast<int>(error.section)] + " " +
+                    std::to_string(error.index + 1u) + ": " + error.reason + " (nothing was sent)",
+                kExitUsage);
   }
   std::vector<uint8_t> blob(core::kMaxConfigBlob);
   const auto size = core::EncodeConfigBlob(config, blob.data(), blob.size());
   if (!size.ok() || size.value > pp::kMaxStagedBytes) {
-    std::fprintf(stderr,
-                 "palpa config: the configuration is too large for one staged upload (%zu bytes)\n",
-                 size.value);
-    return kExitUsage;
+    return Fail("config", pp::Status::kOverflow,
+                "the configuration is too large for one staged upload (" +
+                    std::to_string(size.value) + " bytes; nothing was sent)",
+                kExitUsage);
   }
   const host::Outcome applied = d.ConfigureStaged(blob.data(), size.value);
   if (!applied.ok()) return Report(c, applied, "config");
-  if (!c.json) std::printf("applied (not yet saved: 'palpa config save' keeps it across resets)\n");
+  if (c.json) {
+    PrintJson({{"applied", changes}, {"saved", false}});
+  } else {
+    std::printf("applied (not yet saved: 'palpa config save' keeps it across resets)\n");
+  }
   return kExitOk;
 }
 
-/// "board.FIELD=V", "lineN.FIELD=V", "fingerN.FIELD=V" (N from 1) as a JSON patch.
-bool PatchFromArgument(const std::string& arg, const core::BoardConfig& config, json& patch,
-                       std::string* error) {
+/// "board.FIELD=V", "lineN.FIELD=V", "fingerN.FIELD=V" (N from 1) applied onto `config`;
+/// false with a message naming the argument (once) and, for a field that does not exist, the
+/// fields there are.
+bool SetFromArgument(const std::string& arg, core::BoardConfig& config,
+                     nlohmann::ordered_json& changes, std::string* error) {
   const size_t eq = arg.find('='), dot = arg.find('.');
   if (eq == std::string::npos || dot == std::string::npos || dot > eq) {
     *error = "'" + arg +
@@ -78,32 +87,44 @@ bool PatchFromArgument(const std::string& arg, const core::BoardConfig& config, 
                 : json(number);
   } else if (text == "true" || text == "false") {
     value = text == "true";
+  } else if (text == "none" && field == "line_b") {
+    value = nullptr;  // no second line, as palpa info says it
   } else {
     value = text;
   }
-  auto index_of = [&](const std::string& prefix, uint8_t count, size_t& index) {
+  auto index_of = [&](const std::string& prefix, uint8_t count, uint8_t& index) {
     double n = 0;
-    if (!ParseNumber(section.substr(prefix.size()), n) || n < 1 || n > count ||
-        n != static_cast<int>(n)) {
-      *error = "'" + arg + "': " + prefix + " must be numbered 1 to " + std::to_string(count);
+    if (!ParseNumber(section.substr(prefix.size()), n) || n != std::floor(n) || n < 1) {
+      *error = "'" + arg + "': expected " + prefix + "N with N from 1, e.g. " + prefix + "2";
       return false;
     }
-    index = static_cast<size_t>(n - 1);
+    if (n > count) {
+      *error = "'" + arg + "': this board has " + prefix + "s 1 to " + std::to_string(count);
+      return false;
+    }
+    index = static_cast<uint8_t>(n - 1);
     return true;
   };
-  size_t index = 0;
+  pp::ConfigSection kind = pp::ConfigSection::kBoard;
+  uint8_t index = 0;
   if (section == "board") {
-    patch["board"][field] = value;
   } else if (section.rfind("line", 0) == 0) {
+    kind = pp::ConfigSection::kLine;
     if (!index_of("line", config.line_count, index)) return false;
-    patch["lines"].push_back({{"line", index}, {field, value}});
   } else if (section.rfind("finger", 0) == 0) {
+    kind = pp::ConfigSection::kFinger;
     if (!index_of("finger", config.finger_count, index)) return false;
-    patch["fingers"].push_back({{"finger", index}, {field, value}});
   } else {
     *error = "'" + arg + "': the section must be board, lineN or fingerN";
     return false;
   }
+  try {
+    host::SetConfigField(kind, index, field, value, config);
+  } catch (const std::exception& e) {
+    *error = "'" + arg + "': " + e.what();
+    return false;
+  }
+  changes[section][field] = value;
   return true;
 }
 
@@ -125,36 +146,46 @@ int CmdConfig(Context& c, const std::vector<std::string>& args) {
   } else if (what == "show" || what == "save" || what == "factory-reset") {
     if (!rest.empty()) return Usage("config", what + " takes no arguments");
   } else {
-    return Usage("config", "unknown subcommand '" + what +
-                               "' (expected show, set, load, save, factory-reset)");
+    const std::string near = Suggest(what, {"show", "set", "load", "save", "factory-reset"});
+    return Usage("config", "unknown subcommand '" + what + "'" +
+                               (near.empty() ? " (expected show, set, load, save, factory-reset)"
+                                             : " (did you mean '" + near + "'?)"));
   }
   host::Device* d = c.Device();
   if (d == nullptr) return kExitConnect;
-  if (what == "save") return Report(c, d->SaveConfig(), "config save");
-  if (what == "factory-reset") return Report(c, d->FactoryReset(), "config factory-reset");
+  if (what == "save" || what == "factory-reset") {
+    const bool save = what == "save";
+    const int rc = Report(c, save ? d->SaveConfig() : d->FactoryReset(), "config " + what);
+    if (rc != kExitOk) return rc;
+    if (c.json) {
+      PrintJson({{save ? "saved" : "factory_reset", true}});
+    } else {
+      std::printf("%s\n", save ? "saved: the board starts with this configuration from now on"
+                               : "back to the factory configuration; nothing saved any more");
+    }
+    return kExitOk;
+  }
   core::BoardConfig config{};
   std::string error;
-  if (!ReadAll(*d, config, &error)) {
-    std::fprintf(stderr, "palpa config: %s\n", error.c_str());
-    return kExitFailed;
-  }
+  if (!ReadAll(*d, config, &error)) return Fail("config", pp::Status::kIoError, error);
   if (what == "show") {
     std::printf("%s\n", host::ConfigToJson(config).dump(c.json ? -1 : 2).c_str());
     return kExitOk;
   }
+  nlohmann::ordered_json changes = nlohmann::ordered_json::object();
   if (what == "set") {
-    file = json::object();
     for (const std::string& a : rest) {
-      if (!PatchFromArgument(a, config, file, &error)) return Usage("config", error);
+      if (!SetFromArgument(a, config, changes, &error))
+        return Usage("config", error + " (nothing was sent)");
     }
+    return Upload(c, *d, config, changes);
   }
   try {
     host::ApplyConfigJson(file, config);
   } catch (const std::exception& e) {
-    return Usage("config", std::string(what == "load" ? rest[0] + ": " : "") + e.what() +
-                               " (nothing was sent)");
+    return Usage("config", rest[0] + ": " + e.what() + " (nothing was sent)");
   }
-  return Upload(c, *d, config);
+  return Upload(c, *d, config, {{"file", rest[0]}});
 }
 
 }  // namespace palpa::cli

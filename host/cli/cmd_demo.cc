@@ -28,8 +28,21 @@ struct DemoArgs {
 
 }  // namespace
 
+/// A pass's figures for --json.
+nlohmann::ordered_json PassJson(const PassFigures& f) {
+  return {{"pneumatic_largest_error_pct", f.worst_pct[0]},
+          {"pneumatic_rms_error_pct", f.Rms(0)},
+          {"jamming_largest_error_pct", f.count[1] > 0 ? nlohmann::ordered_json(f.worst_pct[1])
+                                                       : nlohmann::ordered_json(nullptr)},
+          {"level1_from_above_minus_below_um",
+           f.n_above > 0 && f.n_below > 0
+               ? nlohmann::ordered_json(1000 *
+                                        (f.l1_from_above / f.n_above - f.l1_from_below / f.n_below))
+               : nlohmann::ordered_json(nullptr)}};
+}
+
 int CmdDemo(Context& c, const std::vector<std::string>& args) {
-  (void)c;  // the demo always runs on a simulator of its own, whatever --device says
+  // The demo always runs on a simulator of its own, whatever --device says.
   DemoArgs a;
   for (size_t i = 0; i < args.size(); ++i) {
     const bool has_value = i + 1 < args.size();
@@ -54,6 +67,11 @@ int CmdDemo(Context& c, const std::vector<std::string>& args) {
   }
   if (!a.calibrate && !a.calibration_dir.empty())
     return Usage("demo", "--nominal-only and --calibration exclude each other");
+  const std::string extension = std::filesystem::path(a.out).extension().string();
+  if (extension != ".svg" && extension != ".SVG") {
+    return Usage("demo",
+                 "--out " + a.out + ": the chart is an SVG drawing; give a name ending in .svg");
+  }
   // Checked before the run, not after it: the chart is written at the end.
   const std::filesystem::path chart_dir = std::filesystem::path(a.out).parent_path();
   const std::string dir = chart_dir.empty() ? "." : chart_dir.string();
@@ -63,7 +81,8 @@ int CmdDemo(Context& c, const std::vector<std::string>& args) {
   }
   char speed_text[16];
   std::snprintf(speed_text, sizeof(speed_text), "%g", a.speed);
-  std::printf(
+  std::fprintf(
+      TextOut(),
       "palpa demo: starting a simulated thesis-5finger board (plant level 3: regulators with "
       "static errors,\n"
       "hysteretic fingers, real sensors), running %sx faster than real time\n",
@@ -71,24 +90,18 @@ int CmdDemo(Context& c, const std::vector<std::string>& args) {
   std::string truth_address, error;
   auto transport = host::LaunchSim(kConfig, {"--speed", speed_text, "--truth-every-ms", "10"},
                                    &truth_address, &error);
-  if (!transport.ok()) {
-    std::fprintf(stderr, "palpa demo: %s\n", error.c_str());
-    return kExitConnect;
-  }
+  if (!transport.ok()) return Fail("demo", transport.status, error, kExitConnect);
   // Nominal curves in the first pass whatever calibrations this user keeps for PN-1 .. PN-5.
   host::DeviceOptions options;
   options.use_calibrations = false;
+  options.number_from = 1;
   auto device = host::Device::Attach(std::move(transport.value), options, &error);
-  if (!device.ok()) {
-    std::fprintf(stderr, "palpa demo: %s\n", error.c_str());
-    return kExitConnect;
-  }
+  if (!device.ok()) return Fail("demo", device.status, error, kExitConnect);
   host::Device& d = *device.value;
   TruthReader truth;
   if (!truth.Connect(truth_address)) {
-    std::fprintf(stderr, "palpa demo: cannot read the simulator's truth channel at %s\n",
-                 truth_address.c_str());
-    return kExitConnect;
+    return Fail("demo", protocol::Status::kUnavailable,
+                "cannot read the simulator's truth channel at " + truth_address, kExitConnect);
   }
   const PneumaticFingers fingers = FindPneumatic(d);
   std::optional<std::vector<host::CalibrationFile>> files;
@@ -100,7 +113,8 @@ int CmdDemo(Context& c, const std::vector<std::string>& args) {
   for (const auto& combo : TumourCombinations(3, 3)) pneumatic.push_back({combo, false});
   all = pneumatic;
   for (const auto& combo : TumourCombinations(2, 3)) all.push_back({combo, true});
-  std::printf(
+  std::fprintf(
+      TextOut(),
       "stimuli: %zu three-finger pneumatic combinations of 0/10/30 kPa, %zu two-finger jamming "
       "combinations\n"
       "of 0/-10/-100 kPa at 20 kPa bias (a tumour: one finger or two adjacent fingers stiffer than "
@@ -118,62 +132,83 @@ int CmdDemo(Context& c, const std::vector<std::string>& args) {
     if (!files) files = CalibrateOnSimulatedRigs(kConfig, fingers, a.speed);
     if (!files) return kExitFailed;
     if (!a.calibration_dir.empty())
-      std::printf("\ncalibrations from %s\n", a.calibration_dir.c_str());
+      std::fprintf(TextOut(), "\ncalibrations from %s\n", a.calibration_dir.c_str());
     if (!ApplyCalibrations(d, fingers, *files, &compensator)) return kExitFailed;
-    std::printf(
-        "\npass 2: the pneumatic stimuli again, each finger on its own calibration and "
-        "compensated\n");
+    std::fprintf(TextOut(),
+                 "\npass 2: the pneumatic stimuli again, each finger on its own calibration and "
+                 "compensated\n");
     second_pass_s = truth.now_s();
     if (!PlaySteps(d, truth, pneumatic, second_targets, calibrated)) return kExitFailed;
   }
   // The chart leaves out the board time spent calibrating (the fingers held still meanwhile):
-  // the second pass is drawn 2 s after the first.
+  // the second pass is drawn 2 s after the first, and the gap is marked.
   const double cut_s = a.calibrate ? second_pass_s - first_pass_end_s - 2 : 0;
   auto drawn_at = [&](double t) { return t >= second_pass_s && a.calibrate ? t - cut_s : t; };
-  host::Chart chart;
-  chart.title = "palpa demo: thesis stimuli on a simulated thesis-5finger board (true outputs)";
+  // Deformation (mm) and stiffness (N/mm) are different quantities: a panel each.
+  host::Chart pneumatic_panel, jamming_panel;
+  pneumatic_panel.y_label = "deformation (mm), fingers 1-3";
+  jamming_panel.y_label = "stiffness (N/mm), fingers 4-5";
+  pneumatic_panel.x_label = jamming_panel.x_label = "board time (s)";
+  pneumatic_panel.width = jamming_panel.width = 1100;
+  pneumatic_panel.height = 380;
+  jamming_panel.height = 300;
   if (a.calibrate) {
-    char title[160];
-    std::snprintf(title, sizeof(title),
-                  "palpa demo: thesis stimuli, nominal, then calibrated from %.0f s (true outputs; "
-                  "%.0f s of calibration left out)",
-                  drawn_at(second_pass_s), cut_s);
-    chart.title = title;
+    char label[96];
+    std::snprintf(label, sizeof(label), "%.0f s of calibration left out", cut_s);
+    for (host::Chart* panel : {&pneumatic_panel, &jamming_panel})
+      panel->markers.push_back({first_pass_end_s, first_pass_end_s + 2, label});
   }
-  chart.x_label = "board time (s)";
-  chart.y_label = "deformation (mm), fingers 1-3 / stiffness (N/mm), fingers 4-5";
   const auto samples = truth.All();
-  const char* names[] = {"finger 1 (mm)", "finger 2 (mm)", "finger 3 (mm)", "finger 4 (N/mm)",
-                         "finger 5 (N/mm)"};
+  const char* names[] = {"finger 1", "finger 2", "finger 3", "finger 4", "finger 5"};
   const char* colours[] = {"#2471a3", "#c0392b", "#229954", "#7d3c98", "#d68910"};
   for (size_t f = 0; f < 5; ++f) {
+    host::Chart& panel = f < 3 ? pneumatic_panel : jamming_panel;
     host::Series trace{names[f], {}, colours[f], false, false};
     for (size_t i = 0; i < samples.size(); i += 5) {
       const double t = samples[i].t_s;
       if (a.calibrate && t > first_pass_end_s && t < second_pass_s) continue;
       trace.points.push_back({drawn_at(t), samples[i].outputs[f]});
     }
-    chart.series.push_back(trace);
+    panel.series.push_back(trace);
   }
   for (size_t f = 0; f < 5; ++f) {  // the targets, dashed in the finger's colour
+    host::Chart& panel = f < 3 ? pneumatic_panel : jamming_panel;
     targets[f].name = std::string("target ") + std::to_string(f + 1);
     targets[f].color = colours[f];
     targets[f].dashed = true;
-    chart.series.push_back(targets[f]);
+    panel.series.push_back(targets[f]);
     if (second_targets[f].points.empty()) continue;
     for (auto& point : second_targets[f].points) point.first = drawn_at(point.first);
     second_targets[f].color = colours[f];  // unnamed: the legend lists it once
     second_targets[f].dashed = true;
-    chart.series.push_back(second_targets[f]);
+    panel.series.push_back(second_targets[f]);
   }
-  chart.width = 1100;
+  std::string title =
+      "palpa demo: thesis stimuli on a simulated thesis-5finger board (true outputs, targets "
+      "dashed)";
+  if (a.calibrate) {
+    char text[200];
+    std::snprintf(text, sizeof(text),
+                  "palpa demo: thesis stimuli, nominal, then calibrated from %.0f s (true "
+                  "outputs, targets dashed)",
+                  drawn_at(second_pass_s));
+    title = text;
+  }
   d.EStop();
-  if (!host::WriteFileWhole(a.out, host::RenderSvg(chart), &error)) {
-    std::fprintf(stderr, "palpa demo: %s\n", error.c_str());
-    return kExitFailed;
+  if (!host::WriteFileWhole(a.out, host::RenderSvgPanels({pneumatic_panel, jamming_panel}, title),
+                            &error)) {
+    return Fail("demo", protocol::Status::kIoError, error);
   }
   PrintSummary(nominal, a.calibrate ? &calibrated : nullptr, compensator);
-  std::printf("traces plotted to %s\n", a.out.c_str());
+  if (c.json) {
+    PrintJson({{"nominal", PassJson(nominal)},
+               {"calibrated", a.calibrate ? PassJson(calibrated) : nlohmann::ordered_json(nullptr)},
+               {"compensator", compensator},
+               {"calibration_left_out_s", cut_s},
+               {"chart", a.out}});
+  } else {
+    std::printf("traces plotted to %s\n", a.out.c_str());
+  }
   return kExitOk;
 }
 

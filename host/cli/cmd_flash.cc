@@ -109,19 +109,28 @@ int CmdFlash(Context& c, const std::vector<std::string>& args) {
   host::Device* device = c.Device();
   if (device == nullptr) return kExitConnect;
   const pp::HelloReply before = device->link().board();
-  std::printf("board %s %u, slot %u running %s\n",
-              pp::EnumNames(pp::BoardKind{})[static_cast<size_t>(before.board_kind)],
-              before.board_id, before.active_slot,
-              host::VersionText(before.firmware_major, before.firmware_minor, before.firmware_patch)
-                  .c_str());
+  std::fprintf(
+      TextOut(), "board %s %u, slot %u running %s\n",
+      pp::EnumNames(pp::BoardKind{})[static_cast<size_t>(before.board_kind)], before.board_id,
+      before.active_slot,
+      host::VersionText(before.firmware_major, before.firmware_minor, before.firmware_patch)
+          .c_str());
   options.progress = Progress;
   const host::FlashReport r = host::FlashPackage(device->link(), *package, options);
   std::fprintf(stderr, "\n");
   if (r.status != pp::Status::kOk) {
-    std::fprintf(stderr, "palpa flash: %s\n", r.message.c_str());
-    return r.status == pp::Status::kRollbackRefused || r.status == pp::Status::kImageInvalid
-               ? kExitUsage
-               : kExitFailed;
+    return Fail("flash", r.status, r.message,
+                r.status == pp::Status::kRollbackRefused || r.status == pp::Status::kImageInvalid
+                    ? kExitUsage
+                    : kExitFailed);
+  }
+  if (c.json) {
+    PrintJson({{"result", r.message},
+               {"dry_run", options.dry_run},
+               {"bytes_written", r.bytes_written},
+               {"resumed_from", r.resumed_from},
+               {"write_seconds", r.write_seconds}});
+    return kExitOk;
   }
   std::printf("%s\n", r.message.c_str());
   if (!options.dry_run) {
@@ -204,8 +213,15 @@ int CmdPackage(Context&, const std::vector<std::string>& args) {
   std::string error;
   if (!host::WriteFileWhole(out, {reinterpret_cast<const char*>(bytes.data()), bytes.size()},
                             &error)) {
-    std::fprintf(stderr, "palpa package: %s\n", error.c_str());
-    return kExitFailed;
+    return Fail("package", pp::Status::kIoError, error);
+  }
+  if (JsonOutput()) {
+    PrintJson({{"package", out},
+               {"kind", kind_text},
+               {"version", version_text},
+               {"counter", counter},
+               {"slot_image_bytes", {package.slot_image[0].size(), package.slot_image[1].size()}}});
+    return kExitOk;
   }
   std::printf("%s: %s %s, counter %u, slot images of %zu and %zu bytes\n", out.c_str(),
               kind_text.c_str(), version_text.c_str(), counter, package.slot_image[0].size(),

@@ -8,9 +8,9 @@
 #include <mutex>
 #include <thread>
 
-#include <nlohmann/json.hpp>
-
 #include "cli.h"
+#include "palpa/host/bit_names.h"
+#include "palpa/host/field_text.h"
 #include "palpa/protocol/faults.h"
 
 namespace palpa::cli {
@@ -19,21 +19,35 @@ namespace {
 namespace pp = palpa::protocol;
 std::atomic<bool> g_stop{false};
 
-/// Reads "--rate HZ" and "--duration S" (and the record file) from args.
-bool Options(const std::string& command, const std::vector<std::string>& args, double& rate,
-             double& duration, std::string* file, int* usage) {
+struct TelemetryOptions {
+  double rate = 0;  ///< 0: not given
+  double duration = 0;
+  std::string file;
+  bool long_layout = false;
+};
+
+/// Reads "--rate HZ", "--duration S" (and for record the file and --long) from args.
+bool Options(const std::string& command, const std::vector<std::string>& args, TelemetryOptions& o,
+             bool record, int* usage) {
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
-    if ((a == "--rate" || a == "--duration") && i + 1 < args.size()) {
-      double v = 0;
-      if (!ParseNumber(args[i + 1], v) || v <= 0) {
-        *usage = Usage(command, a + " needs a positive number");
+    if (a == "--rate" || a == "--duration") {
+      std::string value, error;
+      if (!OptionValue(args, i, value, &error)) {
+        *usage = Usage(command, error + " (" + a + (a == "--rate" ? " HZ)" : " SECONDS)"));
         return false;
       }
-      (a == "--rate" ? rate : duration) = v;
+      double v = 0;
+      if (!ParseNumber(value, v) || v <= 0) {
+        *usage = Usage(command, a + " " + value + ": a positive number");
+        return false;
+      }
+      (a == "--rate" ? o.rate : o.duration) = v;
       ++i;
-    } else if (file != nullptr && file->empty() && a[0] != '-') {
-      *file = a;
+    } else if (record && a == "--long") {
+      o.long_layout = true;
+    } else if (record && o.file.empty() && a[0] != '-') {
+      o.file = a;
     } else {
       *usage = Usage(command, "unexpected argument '" + a + "'");
       return false;
@@ -42,15 +56,93 @@ bool Options(const std::string& command, const std::vector<std::string>& args, d
   return true;
 }
 
+/// Samples per second the board sends: one every telemetry_decimation ticks of its loop.
+bool BoardRate(host::Device& d, double& rate, std::string* error) {
+  const auto board = d.ReadBoard(error);
+  if (!board.ok()) return false;
+  const auto stats = d.LoopStats(error);
+  if (!stats.ok()) return false;
+  const double period_us = stats.value.period_us > 0 ? stats.value.period_us : 1000;
+  rate = 1e6 / (period_us * std::max<uint16_t>(board.value.telemetry_decimation, 1));
+  return true;
+}
+
+nlohmann::ordered_json SampleJson(const pp::HelloReply& b, const pp::Telemetry& t, uint8_t tick,
+                                  double host_time_s,
+                                  const std::vector<host::FingerCurves>& curves) {
+  const uint64_t at = t.first_sample_us + static_cast<uint64_t>(tick) * t.sample_interval_us;
+  nlohmann::ordered_json j = {{"board_time_us", at},
+                              {"host_time_s", host_time_s + tick * t.sample_interval_us / 1e6},
+                              {"faults", host::FaultList(t.fault_bitmap)},
+                              {"fault_bitmap", t.fault_bitmap}};
+  const pp::LineSample* lines = &t.samples[tick * t.line_count];
+  for (uint8_t i = 0; i < t.line_count; ++i) {
+    j["lines"].push_back({{"line", i + 1},
+                          {"setpoint_pa", lines[i].setpoint_pa},
+                          {"measured_pa", lines[i].measured_pa},
+                          {"command_counts", lines[i].command_counts},
+                          {"status", host::LineStatusList(lines[i].status)},
+                          {"status_bits", lines[i].status}});
+  }
+  if (t.line_count == b.line_count) {
+    const std::vector<double> outputs = host::EstimateFingerOutputs(b, curves, lines);
+    for (uint8_t f = 0; f < outputs.size(); ++f) {
+      j["fingers"].push_back({{"finger", f + 1},
+                              {"output", outputs[f]},
+                              {"unit", host::OutputUnitName(b.fingers[f].kind)}});
+    }
+  }
+  return j;
+}
+
+void PrintTable(host::Device& d, const pp::HelloReply& b, const pp::Telemetry& latest,
+                uint64_t frames, const std::vector<host::FingerCurves>& curves) {
+  std::printf("%s  %s  faults: %s  frames: %llu\n", d.link().Describe().c_str(),
+              host::FieldText(b.config_name).c_str(),
+              host::JoinNames(host::FaultList(latest.fault_bitmap), ", ", "none").c_str(),
+              static_cast<unsigned long long>(frames));
+  if (latest.tick_count == 0 || latest.line_count != b.line_count) return;
+  const pp::LineSample* lines = &latest.samples[(latest.tick_count - 1) * latest.line_count];
+  std::printf("line  kind      setpoint kPa  measured kPa  DAC    status\n");
+  for (uint8_t i = 0; i < b.line_count; ++i) {
+    std::printf("%4u  %-8s  %12.2f  %12.2f  %5u  %s\n", i + 1,
+                pp::kLineKindNames[static_cast<int>(b.lines[i].kind)],
+                lines[i].setpoint_pa / 1000.0, lines[i].measured_pa / 1000.0,
+                lines[i].command_counts,
+                host::JoinNames(host::LineStatusList(lines[i].status), " ", "").c_str());
+  }
+  const std::vector<double> outputs = host::EstimateFingerOutputs(b, curves, lines);
+  std::printf("finger  kind       output  (from the measured pressure through its curve)\n");
+  for (uint8_t f = 0; f < outputs.size(); ++f) {
+    const bool jamming = b.fingers[f].kind == pp::FingerKind::kJamming;
+    std::printf("%6u  %-9s  %6.3f %s\n", f + 1, jamming ? "jamming" : "pneumatic", outputs[f],
+                host::OutputUnitName(b.fingers[f].kind));
+  }
+}
+
 }  // namespace
 
 int CmdMonitor(Context& c, const std::vector<std::string>& args) {
-  double rate = 10, duration = 0;
+  TelemetryOptions o;
   int usage = 0;
-  if (!Options("monitor", args, rate, duration, nullptr, &usage)) return usage;
+  if (!Options("monitor", args, o, false, &usage)) return usage;
   host::Device* d = c.Device();
   if (d == nullptr) return kExitConnect;
+  double board_rate = 0;
+  std::string error;
+  if (!BoardRate(*d, board_rate, &error)) return Fail("monitor", pp::Status::kTimeout, error);
+  if (o.rate > board_rate) {
+    char text[160];
+    std::snprintf(text, sizeof(text),
+                  "--rate %g: the board sends %g samples a second (its telemetry_decimation); "
+                  "ask for %g or less",
+                  o.rate, board_rate, board_rate);
+    return Usage("monitor", text);
+  }
+  const double rate = o.rate > 0 ? o.rate : std::min(10.0, board_rate);
   const pp::HelloReply b = d->info();
+  std::vector<host::FingerCurves> curves;
+  for (uint8_t f = 0; f < b.finger_count; ++f) curves.push_back(d->curves(f));
   const bool terminal = isatty(STDOUT_FILENO) && !c.json;
   std::mutex mutex;
   pp::Telemetry latest{};
@@ -67,41 +159,19 @@ int CmdMonitor(Context& c, const std::vector<std::string>& args) {
       const uint64_t at = t.first_sample_us + static_cast<uint64_t>(tick) * t.sample_interval_us;
       if (at < next_us) continue;
       next_us = at + every_us;
-      nlohmann::json j = {{"board_time_us", at},
-                          {"host_time_s", f.host_time_s + tick * t.sample_interval_us / 1e6},
-                          {"faults", t.fault_bitmap}};
-      for (uint8_t i = 0; i < t.line_count; ++i) {
-        const pp::LineSample& s = t.samples[tick * t.line_count + i];
-        j["lines"].push_back({{"line", i + 1},
-                              {"setpoint_pa", s.setpoint_pa},
-                              {"measured_pa", s.measured_pa},
-                              {"command_counts", s.command_counts},
-                              {"status", s.status}});
-      }
-      std::printf("%s\n", j.dump().c_str());
+      std::printf("%s\n", SampleJson(b, t, tick, f.host_time_s, curves).dump().c_str());
     }
     std::fflush(stdout);
   });
   std::signal(SIGINT, [](int) { g_stop = true; });
   const auto start = std::chrono::steady_clock::now();
-  while (!g_stop && (duration == 0 || std::chrono::steady_clock::now() - start <
-                                          std::chrono::duration<double>(duration))) {
-    std::this_thread::sleep_for(std::chrono::duration<double>(1.0 / rate));
+  while (!g_stop && (o.duration == 0 || std::chrono::steady_clock::now() - start <
+                                            std::chrono::duration<double>(o.duration))) {
+    std::this_thread::sleep_for(std::chrono::duration<double>(1.0 / std::min(rate, 10.0)));
     if (c.json) continue;
     std::lock_guard<std::mutex> lock(mutex);
     if (terminal) std::printf("\033[H\033[2J");
-    std::printf("%s  %s  faults: 0x%x  frames: %llu\n", d->link().Describe().c_str(),
-                b.config_name.data(), latest.fault_bitmap, static_cast<unsigned long long>(frames));
-    std::printf("line  kind      setpoint kPa  measured kPa  DAC    status\n");
-    for (uint8_t i = 0; i < latest.line_count && i < b.line_count; ++i) {
-      const pp::LineSample& s = latest.samples[(latest.tick_count - 1) * latest.line_count + i];
-      std::printf("%4u  %-8s  %12.2f  %12.2f  %5u  %s%s%s\n", i + 1,
-                  pp::kLineKindNames[static_cast<int>(b.lines[i].kind)], s.setpoint_pa / 1000.0,
-                  s.measured_pa / 1000.0, s.command_counts,
-                  (s.status & pp::line_status::kSafe) ? "safe " : "",
-                  (s.status & pp::line_status::kRaw) ? "raw " : "",
-                  (s.status & pp::line_status::kSaturated) ? "saturated" : "");
-    }
+    PrintTable(*d, b, latest, frames, curves);
     std::fflush(stdout);
   }
   d->Unsubscribe(id);
@@ -109,24 +179,36 @@ int CmdMonitor(Context& c, const std::vector<std::string>& args) {
 }
 
 int CmdRecord(Context& c, const std::vector<std::string>& args) {
-  double rate = 1, duration = 0;
-  std::string file;
+  TelemetryOptions o;
   int usage = 0;
-  if (!Options("record", args, rate, duration, &file, &usage)) return usage;
-  if (file.empty()) return Usage("record", "expected FILE.csv");
-  if (duration <= 0) return Usage("record", "expected --duration SECONDS");
+  if (!Options("record", args, o, true, &usage)) return usage;
+  if (o.file.empty()) return Usage("record", "expected FILE.csv");
+  if (o.duration <= 0) return Usage("record", "expected --duration SECONDS");
+  if (o.rate > 0) return Usage("record", "--rate: a recording keeps every sample the board sends");
   host::Device* d = c.Device();
   if (d == nullptr) return kExitConnect;
-  const int started = Report(c, d->StartRecording(file), "record");
+  const host::RecordLayout layout =
+      o.long_layout ? host::RecordLayout::kLong : host::RecordLayout::kWide;
+  const int started = Report(c, d->StartRecording(o.file, layout), "record");
   if (started != kExitOk) return started;
   std::signal(SIGINT, [](int) { g_stop = true; });
   const auto start = std::chrono::steady_clock::now();
   while (!g_stop &&
-         std::chrono::steady_clock::now() - start < std::chrono::duration<double>(duration)) {
+         std::chrono::steady_clock::now() - start < std::chrono::duration<double>(o.duration)) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const int rc = Report(c, d->StopRecording(), "record");
-  if (rc == kExitOk && !c.json) std::printf("recorded %.1f s to %s\n", duration, file.c_str());
+  if (rc != kExitOk) return rc;
+  if (c.json) {
+    PrintJson(
+        {{"file", o.file}, {"seconds", seconds}, {"layout", o.long_layout ? "long" : "wide"}});
+  } else {
+    std::printf(
+        "recorded %.1f s to %s (%s)\n", seconds, o.file.c_str(),
+        o.long_layout ? "long layout: a row per line per sample" : "wide layout: a row per sample");
+  }
   return rc;
 }
 

@@ -6,18 +6,24 @@
 #include <thread>
 
 #include "cli.h"
+#include "palpa/host/field_text.h"
 
 namespace palpa::cli {
 namespace {
 
 volatile std::sig_atomic_t g_interrupted = 0;
 
+/// Any finger or line number that fits the wire; each board's own range is checked once open.
+constexpr uint8_t kAnyNumber = 255;
+
 /// Splits off "--hold S"; false with *error on a bad value.
 bool TakeHold(std::vector<std::string>& args, double& hold_s, std::string* error) {
   for (size_t i = 0; i < args.size(); ++i) {
     if (args[i] != "--hold") continue;
-    if (i + 1 >= args.size() || !ParseNumber(args[i + 1], hold_s) || hold_s < 0) {
-      *error = "--hold needs a number of seconds (0 or more)";
+    std::string value;
+    if (!OptionValue(args, i, value, error)) return false;
+    if (!ParseNumber(value, hold_s) || hold_s < 0) {
+      *error = "--hold " + value + ": a number of seconds (0 or more)";
       return false;
     }
     args.erase(args.begin() + static_cast<long>(i), args.begin() + static_cast<long>(i) + 2);
@@ -42,13 +48,99 @@ void Hold(const Context& c, double hold_s) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
 }
 
+const char* KindName(host::TargetKind kind) {
+  switch (kind) {
+    case host::TargetKind::kLevel:
+      return "level";
+    case host::TargetKind::kNormalized:
+      return "normalized";
+    case host::TargetKind::kStiffnessNPerMm:
+      return "N/mm";
+    case host::TargetKind::kDeformationMm:
+      return "mm";
+    case host::TargetKind::kPressureKpa:
+      return "kPa";
+  }
+  return "";
+}
+
+/// "L2", "0.5", "0.9 N/mm": the request as it was given.
+std::string RequestText(const host::Request& r) {
+  char text[48];
+  if (r.kind == host::TargetKind::kLevel) {
+    std::snprintf(text, sizeof(text), "level %g", r.value);
+  } else if (r.kind == host::TargetKind::kNormalized) {
+    std::snprintf(text, sizeof(text), "%g (of 0..1)", r.value);
+  } else {
+    std::snprintf(text, sizeof(text), "%g %s", r.value, KindName(r.kind));
+  }
+  return text;
+}
+
+nlohmann::ordered_json AppliedJson(const host::Applied& a) {
+  nlohmann::ordered_json j = {
+      {"finger", a.finger + 1},
+      {"request", {{"kind", KindName(a.request.kind)}, {"value", a.request.value}}},
+      {"mode", a.raw ? "raw" : "target"}};
+  if (a.from_table) j["level_kpa"] = a.table_kpa;
+  if (a.raw) {
+    nlohmann::ordered_json setpoints = {{{"line", a.line_a + 1}, {"kpa", a.line_a_pa / 1000.0}}};
+    if (a.line_b != protocol::kNoLine)
+      setpoints.push_back({{"line", a.line_b + 1}, {"kpa", a.line_b_pa / 1000.0}});
+    j["setpoints"] = setpoints;
+  } else {
+    j["target"] = {{"value", a.target}, {"unit", a.unit}};
+  }
+  j["map"] = a.map;
+  return j;
+}
+
+/// One line per finger: what was asked and the value the board now follows or holds.
+void PrintApplied(const host::Applied& a) {
+  std::string value;
+  char text[96];
+  if (a.from_table) {
+    std::snprintf(text, sizeof(text), " = %g kPa", a.table_kpa);
+    value += text;
+  }
+  if (a.raw) {
+    std::snprintf(text, sizeof(text), " → line %u at %.1f kPa", a.line_a + 1, a.line_a_pa / 1000.0);
+    value += text;
+    if (a.line_b != protocol::kNoLine) {
+      std::snprintf(text, sizeof(text), ", line %u at %.1f kPa", a.line_b + 1,
+                    a.line_b_pa / 1000.0);
+      value += text;
+    }
+    value += " (raw, no compensation)";
+  } else if (a.target == 0) {
+    value += " → target 0 (off: vented or released)";
+  } else {
+    std::snprintf(text, sizeof(text), " → target %.3f %s", a.target, a.unit);
+    value += text;
+  }
+  std::printf("finger %u: %s%s\n", a.finger + 1u, RequestText(a.request).c_str(), value.c_str());
+  if (!a.raw) std::printf("          through %s\n", a.map.c_str());
+}
+
+/// The board's range for every finger or line named, once it is open: a usage error otherwise.
+int CheckRange(const std::string& command, host::Device& d, const std::vector<uint8_t>& indices,
+               bool fingers) {
+  const protocol::HelloReply b = d.info();
+  std::string error;
+  if (!CheckOnBoard(indices, fingers ? b.finger_count : b.line_count, fingers ? "finger" : "line",
+                    host::FieldText(b.config_name), &error)) {
+    return Usage(command, error + " (nothing was sent)");
+  }
+  return kExitOk;
+}
+
 }  // namespace
 
 int CmdSet(Context& c, const std::vector<std::string>& given) {
   std::vector<std::string> args = given;
   double hold_s = 0;
-  std::string hold_error;
-  if (!TakeHold(args, hold_s, &hold_error)) return Usage("set", hold_error);
+  std::string error;
+  if (!TakeHold(args, hold_s, &error)) return Usage("set", error);
   const auto strict = std::find(args.begin(), args.end(), "--strict-calibration");
   if (strict != args.end()) {
     c.options.invalid_calibration_is_error = true;
@@ -57,41 +149,60 @@ int CmdSet(Context& c, const std::vector<std::string>& given) {
   if (args.empty())
     return Usage("set", "expected at least one F=VALUE, e.g. palpa set 1=L2 4=0.9N/mm");
   std::vector<host::FingerRequest> requests;
-  for (const std::string& a :
-       args) {  // syntax first: a malformed line sends nothing, not even Hello
+  std::vector<uint8_t> fingers;
+  for (const std::string& a : args) {  // syntax first: a malformed line sends nothing
     host::FingerRequest r;
-    std::string error;
-    if (!ParseFingerArgument(a, protocol::kMaxFingers, r, &error)) return Usage("set", error);
+    if (!ParseFingerArgument(a, kAnyNumber, r, &error)) return Usage("set", error);
     requests.push_back(r);
+    fingers.push_back(r.finger);
   }
+  if (!CheckDistinct(fingers, args, "finger", &error)) return Usage("set", error);
   host::Device* d = c.Device();
   if (d == nullptr) return kExitConnect;
-  const int rc = Report(c, d->Set(requests), "set");
-  if (rc != kExitOk) return rc;
-  if (c.json) std::printf("{\"applied\":true}\n");
+  if (const int rc = CheckRange("set", *d, fingers, true); rc != kExitOk) return rc;
+  std::vector<host::Applied> applied;
+  const host::Outcome o = d->Set(requests, true, &applied);
+  if (!o.ok()) return Fail("set", o.status, o.message);
+  if (c.json) {
+    nlohmann::ordered_json list = nlohmann::ordered_json::array();
+    for (const host::Applied& a : applied) list.push_back(AppliedJson(a));
+    PrintJson({{"applied", list}, {"hold_s", hold_s}});
+  } else {
+    for (const host::Applied& a : applied) PrintApplied(a);
+  }
   Hold(c, hold_s);
-  return rc;
+  return kExitOk;
 }
 
 int CmdLine(Context& c, const std::vector<std::string>& given) {
   std::vector<std::string> args = given;
   double hold_s = 0;
-  std::string hold_error;
-  if (!TakeHold(args, hold_s, &hold_error)) return Usage("line", hold_error);
+  std::string error;
+  if (!TakeHold(args, hold_s, &error)) return Usage("line", error);
   if (args.empty())
     return Usage("line", "expected at least one L=VALUE in kPa, e.g. palpa line 1=30 6=-40");
   std::vector<std::pair<uint8_t, double>> setpoints;
+  std::vector<uint8_t> lines;
   for (const std::string& a : args) {
     std::pair<uint8_t, double> s;
-    std::string error;
-    if (!ParseLineArgument(a, protocol::kMaxLines, s, &error)) return Usage("line", error);
+    if (!ParseLineArgument(a, kAnyNumber, s, &error)) return Usage("line", error);
     setpoints.push_back(s);
+    lines.push_back(s.first);
   }
+  if (!CheckDistinct(lines, args, "line", &error)) return Usage("line", error);
   host::Device* d = c.Device();
   if (d == nullptr) return kExitConnect;
+  if (const int rc = CheckRange("line", *d, lines, false); rc != kExitOk) return rc;
   const int rc = Report(c, d->SetLines(setpoints), "line");
   if (rc != kExitOk) return rc;
-  if (c.json) std::printf("{\"applied\":true}\n");
+  if (c.json) {
+    nlohmann::ordered_json list = nlohmann::ordered_json::array();
+    for (const auto& [line, kpa] : setpoints) list.push_back({{"line", line + 1}, {"kpa", kpa}});
+    PrintJson({{"applied", list}, {"hold_s", hold_s}});
+  } else {
+    for (const auto& [line, kpa] : setpoints)
+      std::printf("line %u → %g kPa (raw; its finger in raw mode)\n", line + 1u, kpa);
+  }
   Hold(c, hold_s);
   return rc;
 }

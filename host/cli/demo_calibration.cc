@@ -9,7 +9,9 @@
 #include <mutex>
 #include <thread>
 
+#include "cli.h"
 #include "palpa/calibration/calibration_protocol.h"
+#include "palpa/host/field_text.h"
 #include "sim_rig.h"
 
 namespace palpa::cli {
@@ -53,9 +55,7 @@ bool CalibrateOne(const std::string& config, int finger, double speed,
   if (!sim) return false;
   const auto fc = sim->device->ReadFinger(static_cast<uint8_t>(finger), error);
   if (!fc.ok()) return false;
-  const std::string serial(
-      fc.value.actuator_serial.data(),
-      strnlen(fc.value.actuator_serial.data(), fc.value.actuator_serial.size()));
+  const std::string serial = host::FieldText(fc.value.actuator_serial);
   cal::DeviceBoardPort board(*sim->device);
   cal::BoardTime time(*sim->device);
   cal::Rig rig{
@@ -122,8 +122,7 @@ std::string Serial(host::Device& d, uint8_t finger) {
   std::string error;
   const auto f = d.ReadFinger(finger, &error);
   if (!f.ok()) return "";
-  return std::string(f.value.actuator_serial.data(),
-                     strnlen(f.value.actuator_serial.data(), f.value.actuator_serial.size()));
+  return host::FieldText(f.value.actuator_serial);
 }
 
 }  // namespace
@@ -146,7 +145,7 @@ std::optional<std::vector<host::CalibrationFile>> ReadCalibrationDir(const Pneum
     error = "--calibration " + dir + ": no calibration file of " + p.serials.front() + " .. " +
             p.serials.back() + " (SERIAL.json)";
   if (!files || files->empty()) {
-    std::fprintf(stderr, "palpa demo: %s\n", error.c_str());
+    Fail("demo", protocol::Status::kNotFound, error);
     return std::nullopt;
   }
   return files;
@@ -154,7 +153,8 @@ std::optional<std::vector<host::CalibrationFile>> ReadCalibrationDir(const Pneum
 
 std::optional<std::vector<host::CalibrationFile>> CalibrateOnSimulatedRigs(
     const std::string& config, const PneumaticFingers& p, double speed) {
-  std::printf(
+  std::fprintf(
+      TextOut(),
       "\ncalibrating fingers 1-%zu on simulated rigs of their own, in parallel (palpa calibrate "
       "--rig sim\n--quick --compensator api:%d: a sweep with nested reversals measured by the "
       "rig's stage and force sensor)\n",
@@ -163,11 +163,11 @@ std::optional<std::vector<host::CalibrationFile>> CalibrateOnSimulatedRigs(
   std::string error;
   auto files = CalibrateSimulatedFingers(config, p.fingers, speed, &error);
   if (!files) {
-    std::fprintf(stderr, "palpa demo: %s\n", error.c_str());
+    Fail("demo", protocol::Status::kUnavailable, error);
     return std::nullopt;
   }
-  std::printf("  done in %.0f s\n",
-              std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
+  std::fprintf(TextOut(), "  done in %.0f s\n",
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
   return files;
 }
 
@@ -176,22 +176,22 @@ bool ApplyCalibrations(host::Device& d, const PneumaticFingers& p,
   for (const host::CalibrationFile& file : files) {
     const auto at = std::find(p.serials.begin(), p.serials.end(), file.actuator_serial);
     if (at == p.serials.end()) {
-      std::fprintf(stderr, "palpa demo: no pneumatic finger carries %s\n",
-                   file.actuator_serial.c_str());
+      Fail("demo", protocol::Status::kNotFound,
+           "no pneumatic finger carries " + file.actuator_serial);
       return false;
     }
     const uint8_t finger =
         static_cast<uint8_t>(p.fingers[static_cast<size_t>(at - p.serials.begin())]);
     const host::Outcome o = d.ApplyCalibration(finger, file);
     if (!o.ok()) {
-      std::fprintf(stderr, "palpa demo: %s: %s\n", file.actuator_serial.c_str(), o.message.c_str());
+      Fail("demo", o.status, file.actuator_serial + ": " + o.message);
       return false;
     }
     *compensator = "calibrated, " + host::CompensatorLabel(file);
-    std::printf("  finger %d (%s): fit residual %.1f um RMS%s%s\n", finger + 1,
-                file.actuator_serial.c_str(), 1000 * file.quality.residual_rms,
-                file.quality.flags.empty() ? "" : "; note: ",
-                file.quality.flags.empty() ? "" : file.quality.flags.front().c_str());
+    std::fprintf(TextOut(), "  finger %d (%s): fit residual %.1f um RMS%s%s\n", finger + 1,
+                 file.actuator_serial.c_str(), 1000 * file.quality.residual_rms,
+                 file.quality.flags.empty() ? "" : "; note: ",
+                 file.quality.flags.empty() ? "" : file.quality.flags.front().c_str());
   }
   return true;
 }

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <thread>
 
+#include "cli.h"
+
 namespace palpa::cli {
 namespace {
 
@@ -23,7 +25,8 @@ bool PlaySteps(host::Device& d, TruthReader& truth, const std::vector<Step>& ste
                std::vector<host::Series>& targets, PassFigures& figures) {
   const pp::HelloReply board = d.info();
   const host::LevelTables levels = host::LevelTables::Shipped();
-  std::printf(
+  std::fprintf(
+      TextOut(),
       "  step  fingers      target                         achieved (true)                settled  "
       " latency\n");
   std::vector<int> previous(board.finger_count, 0);
@@ -45,7 +48,7 @@ bool PlaySteps(host::Device& d, TruthReader& truth, const std::vector<Step>& ste
     const double latency_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - sent).count();
     if (!o.ok()) {
-      std::fprintf(stderr, "palpa demo: step %zu: %s\n", n + 1, o.message.c_str());
+      Fail("demo", o.status, "step " + std::to_string(n + 1) + ": " + o.message);
       return false;
     }
     const double hold_s = s.jamming ? 3.5 : 1.6;  // board time: vacuum chambers are slow
@@ -84,9 +87,10 @@ bool PlaySteps(host::Device& d, TruthReader& truth, const std::vector<Step>& ste
       targets[f].points.push_back({t0, want[f]});
       targets[f].points.push_back({t0 + hold_s, want[f]});
     }
-    std::printf("  %2zu/%zu  %-12s %-4s %-25s %-4s %-25s %5.2f s  %5.1f ms\n", n + 1, steps.size(),
-                Levels(s.levels).c_str(), s.jamming ? "N/mm" : "mm", target_text.c_str(),
-                s.jamming ? "N/mm" : "mm", achieved_text.c_str(), settled_s, latency_ms);
+    std::fprintf(TextOut(), "  %2zu/%zu  %-12s %-4s %-25s %-4s %-25s %5.2f s  %5.1f ms\n", n + 1,
+                 steps.size(), Levels(s.levels).c_str(), s.jamming ? "N/mm" : "mm",
+                 target_text.c_str(), s.jamming ? "N/mm" : "mm", achieved_text.c_str(), settled_s,
+                 latency_ms);
     std::fflush(stdout);
   }
   return true;
@@ -95,11 +99,12 @@ bool PlaySteps(host::Device& d, TruthReader& truth, const std::vector<Step>& ste
 void PrintSummary(const PassFigures& nominal, const PassFigures* calibrated,
                   const std::string& compensator) {
   auto mean = [](double sum, int n) { return n > 0 ? sum / n : 0.0; };
-  std::printf("\n%-44s %-22s %s\n", "", "  nominal, none", calibrated ? compensator.c_str() : "");
+  std::fprintf(TextOut(), "\n%-44s %-22s %s\n", "", "  nominal, none",
+               calibrated ? compensator.c_str() : "");
   auto row = [&](const char* what, double a, double b, const char* unit) {
-    std::printf("%-44s %6.1f %-15s", what, a, unit);
-    if (calibrated) std::printf(" %6.1f %s", b, unit);
-    std::printf("\n");
+    std::fprintf(TextOut(), "%-44s %6.1f %-15s", what, a, unit);
+    if (calibrated) std::fprintf(TextOut(), " %6.1f %s", b, unit);
+    std::fprintf(TextOut(), "\n");
   };
   row("pneumatic fingers: largest |error| / target", nominal.worst_pct[0],
       calibrated ? calibrated->worst_pct[0] : 0, "%");
@@ -109,8 +114,8 @@ void PrintSummary(const PassFigures& nominal, const PassFigures* calibrated,
     return 1000 * (mean(p.l1_from_above, p.n_above) - mean(p.l1_from_below, p.n_below));
   };
   row("level 1 from above minus from below", gap(nominal), calibrated ? gap(*calibrated) : 0, "um");
-  std::printf("%-44s %6.1f %%\n", "jamming fingers: largest |error| / target",
-              nominal.worst_pct[1]);
+  std::fprintf(TextOut(), "%-44s %6.1f %%\n", "jamming fingers: largest |error| / target",
+               nominal.worst_pct[1]);
 }
 
 }  // namespace palpa::cli

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cli.h"
+#include "sim_state.h"
 
 namespace palpa::cli {
 namespace {
@@ -92,6 +93,17 @@ const std::map<std::string, Command>& Commands() {
         "image\n"
         "header, board kind, slot, anti-rollback counter and SHA-256. KIND: sim (default),\n"
         "mps2-an386, stm32f4."}},
+      {"sim",
+       {CmdSim, "sim start [--config NAME] [--flash FILE] [--speed X] [--plant N] | stop | status",
+        "Keeps one simulated board running for the commands that follow (they use it when no\n"
+        "--device or $PALPA_DEVICE names another). Its flash is a file, as a board's flash is a\n"
+        "chip: a saved configuration, the boot state and the firmware slots survive 'sim stop' "
+        "and\n"
+        "the next 'sim start'. --config NAME: thesis-5finger (default), thesis-pneumatic-3,\n"
+        "thesis-jamming-2, full-8. --flash FILE: default STATE/sim-CONFIG.flash, STATE being\n"
+        "$PALPA_STATE_DIR, else $XDG_STATE_HOME/palpa, else ~/.local/state/palpa.\n"
+        "--speed X (0.01-100) and --plant N (0-3) as palpa-sim takes them.\n"
+        "Without it, each command starts a throwaway simulated board of its own, and says so."}},
       {"demo",
        {CmdDemo, "demo [--out FILE.svg] [--speed X] [--calibration DIR | --nominal-only]",
         "Starts a simulated thesis-5finger board and plays the thesis's discrimination stimuli:\n"
@@ -111,12 +123,28 @@ void PrintUsage(FILE* out) {
       out,
       "usage: palpa [--device URI] [--json] COMMAND [ARGS]\n\n"
       "  --device URI   sim[:CONFIG], serial:PATH[?baud=N], tcp:HOST:PORT, hid:VID:PID[:SERIAL],\n"
-      "                 usb:VID:PID[:SERIAL] (default: $PALPA_DEVICE, else sim:thesis-5finger)\n"
-      "  --json         machine-readable output\n\ncommands:\n");
+      "                 usb:VID:PID[:SERIAL] (default: $PALPA_DEVICE, else the board 'palpa sim\n"
+      "                 start' keeps running, else a throwaway sim:thesis-5finger)\n"
+      "  --json         every command's output as JSON, errors too: {\"error\": {\"status\", "
+      "...}}\n\n"
+      "commands:\n");
   for (const auto& [name, c] : Commands()) std::fprintf(out, "  %s\n", c.synopsis);
-  std::fprintf(out,
-               "\npalpa COMMAND --help explains a command. Exit codes: 0 ok, 1 refused or failed,\n"
-               "2 bad command line (nothing sent), 3 cannot open the device.\n");
+  std::fprintf(
+      out,
+      "\nFingers and lines are numbered from 1. palpa COMMAND --help explains a command.\n"
+      "Exit codes: 0 ok, 1 refused or failed, 2 bad command line (nothing sent), 3 cannot\n"
+      "open the device.\n");
+}
+
+/// Commands that run without a device, or on simulators of their own whatever --device says.
+bool OwnsItsBoards(const std::string& command) {
+  return command == "demo" || command == "sim" || command == "list" || command == "package";
+}
+
+/// Commands that use the board `palpa sim start` keeps when no device is named: not calibrate,
+/// whose simulated rig comes with a simulated board of its own.
+bool UsesKeptSim(const std::string& command) {
+  return !OwnsItsBoards(command) && command != "calibrate";
 }
 
 }  // namespace
@@ -124,34 +152,21 @@ void PrintUsage(FILE* out) {
 host::Device* Context::Device() {
   if (device) return device.get();
   std::string error;
+  options.number_from = 1;  // as the command line numbers fingers and lines
   auto opened = host::Device::Open(device_uri, options, &error);
   if (!opened.ok()) {
-    std::fprintf(stderr, "palpa: cannot open %s: %s\n", device_uri.c_str(), error.c_str());
+    // The transports' messages name the device already, most of them.
+    const bool named = error.find(device_uri) != std::string::npos;
+    Fail("", opened.status, "cannot open " + (named ? error : device_uri + ": " + error),
+         kExitConnect);
     return nullptr;
   }
   device = std::move(opened.value);
-  if (!device->link().catalog_matches()) {
+  if (!device->link().catalog_matches()) {  // on stderr: with --json too
     std::fprintf(stderr, "palpa: %s runs other firmware: %s. Only flashing is possible.\n",
                  device_uri.c_str(), device->link().Versions().c_str());
   }
   return device.get();
-}
-
-int Usage(const std::string& command, const std::string& message) {
-  std::fprintf(stderr, "palpa %s: %s\n(see palpa %s --help)\n", command.c_str(), message.c_str(),
-               command.c_str());
-  return kExitUsage;
-}
-
-int Report(const Context& context, const host::Outcome& outcome, const std::string& what) {
-  if (!outcome.ok()) {
-    std::fprintf(stderr, "palpa %s: %s\n", what.c_str(), outcome.message.c_str());
-    return kExitFailed;
-  }
-  if (!context.json) {
-    for (const std::string& note : outcome.notes) std::printf("  %s\n", note.c_str());
-  }
-  return kExitOk;
 }
 
 }  // namespace palpa::cli
@@ -159,8 +174,7 @@ int Report(const Context& context, const host::Outcome& outcome, const std::stri
 int main(int argc, char** argv) {
   using namespace palpa::cli;
   Context context;
-  const char* env = std::getenv("PALPA_DEVICE");
-  context.device_uri = env != nullptr && *env != '\0' ? env : "sim:thesis-5finger";
+  std::string device_option;
   int i = 1;
   for (; i < argc && argv[i][0] == '-'; ++i) {
     const std::string arg = argv[i];
@@ -170,19 +184,22 @@ int main(int argc, char** argv) {
     }
     if (arg == "--json") {
       context.json = true;
+      SetJsonOutput(true);
     } else if (arg == "--device") {
-      if (i + 1 >= argc) {
-        std::fprintf(stderr, "palpa: --device needs a URI, e.g. --device tcp:127.0.0.1:5555\n");
-        return kExitUsage;
+      if (i + 1 >= argc || argv[i + 1][0] == '-') {
+        return Usage("", "--device: a value is missing, e.g. --device tcp:127.0.0.1:5555");
       }
-      context.device_uri = argv[++i];
+      device_option = argv[++i];
     } else {
-      std::fprintf(stderr, "palpa: unknown option '%s'\n", arg.c_str());
-      PrintUsage(stderr);
+      const std::string near = Suggest(arg, {"--json", "--device", "--help"});
+      Usage("",
+            "unknown option '" + arg + "'" + (near.empty() ? "" : " (did you mean " + near + "?)"));
+      if (!context.json) PrintUsage(stderr);
       return kExitUsage;
     }
   }
   if (i >= argc) {
+    if (context.json) return Usage("", "a COMMAND is missing (palpa --help lists them)");
     PrintUsage(stderr);
     return kExitUsage;
   }
@@ -190,9 +207,12 @@ int main(int argc, char** argv) {
   const auto& commands = Commands();
   const auto it = commands.find(name);
   if (it == commands.end()) {
-    std::fprintf(stderr, "palpa: unknown command '%s'\n", name.c_str());
-    PrintUsage(stderr);
-    return kExitUsage;
+    std::vector<std::string> names;
+    for (const auto& [known, c] : commands) names.push_back(known);
+    const std::string near = Suggest(name, names);
+    return Usage(
+        "", "unknown command '" + name + "'" +
+                (near.empty() ? " (palpa --help lists them)" : " (did you mean '" + near + "'?)"));
   }
   std::vector<std::string> args(argv + i + 1, argv + argc);
   for (const std::string& a : args) {
@@ -202,5 +222,26 @@ int main(int argc, char** argv) {
       return kExitOk;
     }
   }
-  return it->second.run(context, args);
+  // Which board: --device, $PALPA_DEVICE, the one 'palpa sim start' keeps, or a throwaway one.
+  const char* env = std::getenv("PALPA_DEVICE");
+  std::string gone;
+  if (!device_option.empty()) {
+    context.device_uri = device_option;
+  } else if (env != nullptr && *env != '\0') {
+    context.device_uri = env;
+  } else if (UsesKeptSim(name)) {
+    if (const auto sim = FindRunningSim(&gone)) context.device_uri = sim->uri;
+  }
+  if (context.device_uri.empty()) context.device_uri = "sim:thesis-5finger";
+  context.throwaway = context.device_uri.rfind("sim", 0) == 0 && !OwnsItsBoards(name);
+  const int rc = it->second.run(context, args);
+  if (context.device && context.throwaway) {
+    if (!gone.empty()) std::fprintf(stderr, "palpa: %s.\n", gone.c_str());
+    std::fprintf(stderr,
+                 "palpa: this ran on a throwaway simulated board (%s), gone now with whatever the "
+                 "command changed;\n       'palpa sim start' keeps one board running for the "
+                 "commands that follow.\n",
+                 context.device_uri.c_str());
+  }
+  return rc;
 }

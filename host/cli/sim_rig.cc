@@ -17,7 +17,9 @@ std::optional<SimRig> OpenSimRig(const std::string& config, int finger, double s
                                     "--rig-finger", std::to_string(finger)},
                                    nullptr, error, &rig_address);
   if (!transport.ok()) return std::nullopt;
-  auto device = host::Device::Attach(std::move(transport.value), host::DeviceOptions{}, error);
+  host::DeviceOptions options;
+  options.number_from = 1;  // as the command line numbers fingers
+  auto device = host::Device::Attach(std::move(transport.value), options, error);
   if (!device.ok()) return std::nullopt;
   SimRig sim;
   sim.device = std::move(device.value);

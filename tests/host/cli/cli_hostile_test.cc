@@ -7,6 +7,8 @@
 #include <fstream>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "cli_run.h"
 #include "mini_client.h"
 
@@ -67,9 +69,19 @@ TEST(CliHostileBoard, AnInvalidCalibrationIsNamedAndStrictModeRefusesIt) {
   LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
   CHECK_TEXT(Has(r, "nominal thesis curves (" + file + ": schema_version: 7 is not the version"),
              r.output.c_str());
+  // With --json the same reason is in what set reports it applied: the map the finger went through.
+  r = palpa::testing::Palpa(device + "--json set 1=L1", env);
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  const std::string map = nlohmann::json::parse(r.output)["applied"][0]["map"].get<std::string>();
+  CHECK_TEXT(map.find("nominal thesis curves (" + file + ": schema_version: 7") == 0, map.c_str());
   r = palpa::testing::Palpa(device + "set --strict-calibration 2=L1 1=L1", env);
   LONGS_EQUAL_TEXT(1, r.code, r.output.c_str());
   CHECK_TEXT(Has(r, "finger 1: " + file + ": schema_version"), r.output.c_str());
+  r = palpa::testing::Palpa(device + "--json set --strict-calibration 1=L1", env);
+  LONGS_EQUAL_TEXT(1, r.code, r.output.c_str());
+  const auto error = nlohmann::json::parse(r.output)["error"];
+  STRCMP_EQUAL("bad_value", error["status"].get<std::string>().c_str());
+  CHECK(error["message"].get<std::string>().find(file + ": schema_version") != std::string::npos);
   // A finger with no file at all is no error, strict or not.
   r = palpa::testing::Palpa(device + "set --strict-calibration 2=L1", env);
   LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());

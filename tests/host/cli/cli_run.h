@@ -16,10 +16,14 @@ struct Run {
   std::string output;  ///< stdout and stderr
 };
 
-/// `palpa ARGS` through the shell (so ARGS may start with VAR=VALUE settings for it).
-inline Run Palpa(const std::string& args, const std::string& environment = "") {
-  const std::string command =
-      environment + (environment.empty() ? "" : " ") + PALPA_CLI_PATH + " " + args + " 2>&1";
+/// `palpa ARGS` through the shell, with `environment` (VAR=VALUE settings) for it. Each run has
+/// no $PALPA_DEVICE and, unless `environment` gives one, a state directory with nothing in it: no
+/// simulated board kept by another. The output is stdout and stderr, or stdout alone.
+inline Run Palpa(const std::string& args, const std::string& environment = "",
+                 bool with_stderr = true) {
+  const std::string command = "env -u PALPA_DEVICE PALPA_STATE_DIR=/nonexistent-palpa-state " +
+                              environment + " " + PALPA_CLI_PATH + " " + args +
+                              (with_stderr ? " 2>&1" : " 2>/dev/null");
   FILE* p = popen(command.c_str(), "r");
   std::string out;
   char buffer[4096];

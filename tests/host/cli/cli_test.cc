@@ -1,12 +1,18 @@
 // The palpa command line as a person uses it: exit codes, named errors, nothing sent on a bad
 // command line, and the commands against palpa-sim.
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <ctime>
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -25,7 +31,7 @@ TEST_GROUP(CliUsage){};
 
 TEST(CliUsage, HelpForEveryCommand) {
   for (const char* command : {"list", "info", "diag", "config", "set", "line", "monitor", "record",
-                              "estop", "clear", "demo", "calibrate", "flash", "package"}) {
+                              "estop", "clear", "demo", "calibrate", "flash", "package", "sim"}) {
     const Run r = Palpa(std::string(command) + " --help");
     LONGS_EQUAL_TEXT(0, r.code, command);
     CHECK_TEXT(Has(r, "usage: palpa"), command);
@@ -37,7 +43,7 @@ TEST(CliUsage, MalformedCommandLinesNameTheArgumentAndSendNothing) {
   // The device does not exist: a usage error must come before any attempt to open it.
   const std::string nowhere = "--device tcp:127.0.0.1:1 ";
   Run r = ExpectUsage(nowhere + "set 1=L2x", "'1=L2x'");
-  r = ExpectUsage(nowhere + "set 9=L1", "finger must be a number from 1 to 8");
+  r = ExpectUsage(nowhere + "set 0=L1", "finger must be a whole number from 1");
   r = ExpectUsage(nowhere + "set 2=1.7", "normalised stiffness from 0 to 1");
   r = Palpa(nowhere + "set 4=0.9N/m");
   LONGS_EQUAL(2, r.code);
@@ -51,6 +57,7 @@ TEST(CliUsage, MalformedCommandLinesNameTheArgumentAndSendNothing) {
   r = ExpectUsage("demo --out /nonexistent-dir/chart.svg", "/nonexistent-dir is not a directory");
   CHECK_FALSE(Has(r, "starting a simulated"));
   r = ExpectUsage("demo --out", "--out needs a file name");
+  r = ExpectUsage("demo --out /tmp/chart.png", "give a name ending in .svg");
   r = ExpectUsage("demo --speed 20", "--speed needs a number from 0.1 to 10");
   r = ExpectUsage("demo --calibration /nonexistent-dir",
                   "--calibration /nonexistent-dir: not a directory");
@@ -61,6 +68,53 @@ TEST(CliUsage, MalformedCommandLinesNameTheArgumentAndSendNothing) {
   std::remove(bad.c_str());
   LONGS_EQUAL(2, r.code);
   CHECK(Has(r, "not valid JSON"));
+}
+
+TEST(CliUsage, MistakesAreNamedWithWhatWasMeant) {
+  const std::string nowhere = "--device tcp:127.0.0.1:1 ";
+  ExpectUsage(nowhere + "sett 1=L2", "unknown command 'sett' (did you mean 'set'?)");
+  ExpectUsage(nowhere + "monitr", "did you mean 'monitor'?");
+  ExpectUsage(nowhere + "config shwo", "did you mean 'show'?");
+  ExpectUsage("--jsn info", "unknown option '--jsn' (did you mean --json?)");
+  ExpectUsage(nowhere + "set 1=10kpa", "'1=10kpa': unknown unit 'kpa' (did you mean 10kPa?)");
+  ExpectUsage(nowhere + "set 3=1.2MM", "did you mean 1.2mm?");
+  ExpectUsage(nowhere + "set 4=0.9n/mm", "did you mean 0.9N/mm?");
+  ExpectUsage(nowhere + "line 6=-40KPA", "did you mean -40kPa?");
+  // The same finger twice: which one was meant? Nothing is sent.
+  ExpectUsage(nowhere + "set 1=L2 1=L1", "finger 1 is given twice ('1=L2' and '1=L1')");
+  ExpectUsage(nowhere + "line 2=10 2=20", "line 2 is given twice");
+  // strtod's other numbers are not numbers here.
+  ExpectUsage(nowhere + "set 1=0x1", "'1=0x1': expected L<level>");
+  ExpectUsage(nowhere + "set 0x1=L1", "finger must be a whole number");
+  ExpectUsage(nowhere + "set 2=inf", "'2=inf'");
+  ExpectUsage(nowhere + "line 1=nan", "'1=nan'");
+  ExpectUsage(nowhere + "set 1=L0x2", "a level is L followed by");
+  // An option whose value is missing says so, even when another option follows.
+  ExpectUsage(nowhere + "monitor --duration", "--duration: a value is missing");
+  ExpectUsage(nowhere + "monitor --rate --duration 1", "--rate: a value is missing");
+  ExpectUsage(nowhere + "set 1=L1 --hold", "--hold: a value is missing");
+  ExpectUsage("--device", "--device: a value is missing");
+}
+
+TEST(CliUsage, JsonErrorsAreJson) {
+  // With --json every outcome is a JSON document on stdout, a refusal too.
+  auto error_of = [](const std::string& args, int code) {
+    const Run r = Palpa("--json " + args, "", false);
+    LONGS_EQUAL_TEXT(code, r.code, r.output.c_str());
+    const auto j = nlohmann::json::parse(r.output);
+    LONGS_EQUAL(code, j["error"]["exit_code"].get<int>());
+    return j["error"];
+  };
+  auto e = error_of("--device tcp:127.0.0.1:1 set 1=L2x", 2);
+  STRCMP_EQUAL("invalid_argument", e["status"].get<std::string>().c_str());
+  CHECK(e["message"].get<std::string>().find("'1=L2x'") != std::string::npos);
+  STRCMP_EQUAL("set", e["command"].get<std::string>().c_str());
+  e = error_of("--device tcp:127.0.0.1:1 info", 3);
+  STRCMP_EQUAL("unavailable", e["status"].get<std::string>().c_str());
+  e = error_of("frobnicate", 2);
+  CHECK(e["message"].get<std::string>().find("frobnicate") != std::string::npos);
+  e = error_of("demo --out chart.png", 2);
+  CHECK(e["message"].get<std::string>().find(".svg") != std::string::npos);
 }
 
 TEST(CliUsage, UnreachableDeviceIsExitCodeThree) {
@@ -85,8 +139,16 @@ TEST(CliBoard, InfoAndDiag) {
   const auto j = nlohmann::json::parse(r.output);
   LONGS_EQUAL(5, j["fingers"].size());
   STRCMP_EQUAL("jamming", j["fingers"][3]["kind"].get<std::string>().c_str());
+  // One numbering for what a person reads: from 1, and no line is null, not 0 or 255.
+  LONGS_EQUAL(1, j["fingers"][0]["finger"].get<int>());
+  LONGS_EQUAL(1, j["fingers"][0]["line_a"].get<int>());
+  CHECK(j["fingers"][0]["line_b"].is_null());
+  LONGS_EQUAL(6, j["fingers"][3]["line_b"].get<int>());
+  LONGS_EQUAL(1, j["lines"][0]["line"].get<int>());
+  STRCMP_EQUAL("N/mm", j["fingers"][3]["unit"].get<std::string>().c_str());
   r = Palpa(device + "info");
   CHECK(Has(r, "finger 4      jamming"));
+  CHECK(Has(r, "line 1, second line none"));
   r = Palpa(device + "--json diag");
   LONGS_EQUAL(0, r.code);
   CHECK(nlohmann::json::parse(r.output).contains("loop"));
@@ -101,7 +163,13 @@ TEST(CliBoard, SetChecksUnitsPerFingerKind) {
   CHECK(Has(r, "N/mm means nothing for a pneumatic finger"));
   r = Palpa(device + "set 4=2.0N/mm");
   LONGS_EQUAL(1, r.code);
-  CHECK(Has(r, "outside the calibrated range"));
+  // No calibration is loaded: the range is the nominal curve's, and says so.
+  CHECK_TEXT(Has(r, "outside the nominal curve's range 0.7 … 1.3"), r.output.c_str());
+  CHECK_FALSE(Has(r, "calibrated range"));
+  // A finger this board does not have: its own range, not the protocol's.
+  r = ExpectUsage(device + "set 9=L1", "finger 9: this thesis-5finger board has fingers 1 to 5");
+  r = ExpectUsage(device + "set 6=L1", "has fingers 1 to 5");
+  r = ExpectUsage(device + "line 8=10", "line 8: this thesis-5finger board has lines 1 to 7");
   r = Palpa(device + "line 4=30");  // a bias line: 20 kPa at most
   LONGS_EQUAL(1, r.code);
   CHECK(Has(r, "outside its limits"));
@@ -119,24 +187,287 @@ TEST(CliBoard, ConfigSetIsValidatedThenAppliedAndShown) {
   CHECK(Has(r, "line 4"));
   CHECK(Has(r, "nothing was sent"));
   r = ExpectUsage(device + "config set line2.no_such_field=1", "no_such_field");
+  // The argument is named once, with its own line number, and the fields there are listed.
+  r = ExpectUsage(device + "config set line2.slew=5",
+                  "'line2.slew=5': unknown field 'slew' (the fields: ");
+  CHECK(Has(r, "slew_pa_per_s"));
+  CHECK_FALSE(Has(r, "lines[0]"));
+  LONGS_EQUAL(std::string::npos, r.output.find("'slew'", r.output.find("'slew'") + 1));
+  r = ExpectUsage(device + "config set line9.slew_pa_per_s=5", "this board has lines 1 to 7");
+  r = ExpectUsage(device + "config set finger1.finger=2", "the entry's number");
+  // config show is a configuration file: numbered from 0 as on the wire, and says so; a finger
+  // without a second line has none (null), not 255.
+  r = Palpa(device + "--json config show");
+  const auto shown = nlohmann::json::parse(r.output);
+  STRCMP_EQUAL("from 0, as on the wire", shown["numbering"].get<std::string>().c_str());
+  LONGS_EQUAL(0, shown["fingers"][0]["finger"].get<int>());
+  CHECK(shown["fingers"][0]["line_b"].is_null());
+}
+
+TEST(CliBoard, InfoSaysWhetherTheConfigurationIsSaved) {
+  auto state = [&] {
+    const Run r = Palpa(device + "info");
+    const size_t at = r.output.find("configuration ");
+    return r.output.substr(at, r.output.find('\n', at) - at);
+  };
+  STRCMP_EQUAL("configuration thesis-5finger (factory default)", state().c_str());
+  LONGS_EQUAL(0, Palpa(device + "config set board.host_timeout_us=200000").code);
+  STRCMP_EQUAL(
+      "configuration thesis-5finger (changed, not saved: a reset returns to the factory default)",
+      state().c_str());
+  Run r = Palpa(device + "config save");
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  STRCMP_EQUAL("configuration thesis-5finger (saved)", state().c_str());
+  LONGS_EQUAL(0, Palpa(device + "config set board.host_timeout_us=300000").code);
+  STRCMP_EQUAL(
+      "configuration thesis-5finger (changed, not saved: a reset returns to the saved one)",
+      state().c_str());
+  LONGS_EQUAL(0, Palpa(device + "config factory-reset").code);
+  LONGS_EQUAL(0, Palpa(device + "set 1=L1").code);
+  STRCMP_EQUAL("configuration thesis-5finger (factory default)", state().c_str());
+}
+
+TEST(CliBoard, SetSaysWhatWasApplied) {
+  Run r = Palpa(device + "set 1=L2 4=0.9N/mm 5=-10kPa");
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  CHECK_TEXT(Has(r, "finger 1: level 2 = 30 kPa → target 1.164 mm"), r.output.c_str());
+  CHECK(Has(r, "finger 4: 0.9 N/mm → target 0.900 N/mm"));
+  CHECK(Has(r, "finger 5: -10 kPa → line 5 at 20.0 kPa, line 7 at -10.0 kPa (raw"));
+  r = Palpa(device + "--json set 1=L2 2=0.5 5=-10kPa");
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  const auto j = nlohmann::json::parse(r.output);
+  const auto& first = j["applied"][0];
+  LONGS_EQUAL(1, first["finger"].get<int>());
+  STRCMP_EQUAL("target", first["mode"].get<std::string>().c_str());
+  DOUBLES_EQUAL(30, first["level_kpa"].get<double>(), 1e-9);
+  DOUBLES_EQUAL(1.164, first["target"]["value"].get<double>(), 0.001);
+  STRCMP_EQUAL("mm", first["target"]["unit"].get<std::string>().c_str());
+  CHECK(first["map"].get<std::string>().find("nominal thesis curves") != std::string::npos);
+  const auto& raw = j["applied"][2];
+  STRCMP_EQUAL("raw", raw["mode"].get<std::string>().c_str());
+  LONGS_EQUAL(7, raw["setpoints"][1]["line"].get<int>());
+  DOUBLES_EQUAL(-10, raw["setpoints"][1]["kpa"].get<double>(), 1e-9);
+}
+
+TEST(CliBoard, EveryCommandSpeaksJson) {
+  const std::string recording = OwnTempPath("json.csv");
+  for (const std::string& command :
+       {std::string("info"), std::string("diag"), std::string("config show"),
+        std::string("config set board.telemetry_batch=2"), std::string("set 1=L1"),
+        std::string("line 1=5"), std::string("estop"), std::string("clear"), std::string("list"),
+        std::string("monitor --duration 0.3"), "record " + recording + " --duration 0.2",
+        std::string("sim status")}) {
+    const Run r = Palpa(device + "--json " + command);
+    LONGS_EQUAL_TEXT(0, r.code, (command + ": " + r.output).c_str());
+    size_t at = 0;
+    while (at < r.output.size()) {  // monitor: one document per line
+      const size_t end = r.output.find('\n', at);
+      const std::string line = r.output.substr(at, end - at);
+      CHECK_TEXT(nlohmann::json::accept(line), (command + ": " + line).c_str());
+      at = end == std::string::npos ? r.output.size() : end + 1;
+    }
+  }
+  std::remove(recording.c_str());
 }
 
 TEST(CliBoard, MonitorRecordEstopClear) {
   Run r = Palpa(device + "--json monitor --rate 50 --duration 0.5");
   LONGS_EQUAL(0, r.code);
-  const std::string first = r.output.substr(0, r.output.find('\n'));
-  CHECK(nlohmann::json::parse(first)["lines"].size() == 7);
-  const std::string recording = OwnTempPath("record.csv");
-  r = Palpa(device + "record " + recording + " --duration 0.5");
-  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
-  std::string header;
-  std::getline(std::ifstream(recording), header);
-  std::remove(recording.c_str());
-  CHECK(header.rfind("# {", 0) == 0);
+  const auto first = nlohmann::json::parse(r.output.substr(0, r.output.find('\n')));
+  LONGS_EQUAL(7, first["lines"].size());
+  LONGS_EQUAL(1, first["lines"][0]["line"].get<int>());
+  // Each finger's output in its unit, not only the lines' pressures.
+  LONGS_EQUAL(5, first["fingers"].size());
+  STRCMP_EQUAL("mm", first["fingers"][0]["unit"].get<std::string>().c_str());
+  STRCMP_EQUAL("N/mm", first["fingers"][4]["unit"].get<std::string>().c_str());
+  DOUBLES_EQUAL(0.7, first["fingers"][4]["output"].get<double>(), 0.05);  // released
+  r = Palpa(device + "monitor --duration 0.3");
+  CHECK(Has(r, "finger  kind       output"));
+  CHECK(Has(r, "jamming     0.7"));
+  // The board sends 1000 samples a second: more is refused, naming that.
+  r = ExpectUsage(device + "monitor --rate 5000 --duration 1",
+                  "the board sends 1000 samples a second");
+
+  LONGS_EQUAL(0, Palpa(device + "clear").code);
+  r = Palpa(device + "clear");  // nothing latched: says so rather than "cleared"
+  CHECK_TEXT(Has(r, "no faults were latched"), r.output.c_str());
   LONGS_EQUAL(0, Palpa(device + "estop").code);
   r = Palpa(device + "--json diag");
   CHECK(nlohmann::json::parse(r.output)["faults_latched"].get<int>() != 0);
-  LONGS_EQUAL(0, Palpa(device + "clear").code);
+  r = Palpa(device + "clear");
+  LONGS_EQUAL(0, r.code);
+  CHECK(Has(r, "faults cleared: estop_command"));
+}
+
+namespace {
+
+/// A recording's header (JSON), column names and rows.
+struct Recording {
+  nlohmann::json header;
+  std::vector<std::string> columns;
+  std::vector<std::vector<std::string>> rows;
+};
+
+std::vector<std::string> Cells(const std::string& line) {
+  std::vector<std::string> cells;
+  size_t at = 0;
+  for (size_t comma; (comma = line.find(',', at)) != std::string::npos; at = comma + 1)
+    cells.push_back(line.substr(at, comma - at));
+  cells.push_back(line.substr(at));
+  return cells;
+}
+
+Recording ReadRecording(const std::string& path) {
+  std::ifstream in(path);
+  Recording r;
+  std::string line;
+  std::getline(in, line);
+  r.header = nlohmann::json::parse(line.substr(2));
+  std::getline(in, line);
+  r.columns = Cells(line);
+  while (std::getline(in, line)) r.rows.push_back(Cells(line));
+  return r;
+}
+
+}  // namespace
+
+TEST(CliBoard, RecordingsCarryUtcAndBoardTimeAColumnPerLineAndFingerAndNamedBits) {
+  const std::string path = OwnTempPath("wide.csv");
+  const time_t before = time(nullptr);
+  Run r = Palpa(device + "record " + path + " --duration 0.5");
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  const Recording wide = ReadRecording(path);
+  std::remove(path.c_str());
+  STRCMP_EQUAL("palpa recording 2", wide.header["format"].get<std::string>().c_str());
+  CHECK(wide.header.dump().find("e+300") == std::string::npos);
+  CHECK(wide.header["numbering"].get<std::string>().find("from 1") != std::string::npos);
+  // A row per sample: UTC, board time, faults, four columns a line, a column a finger.
+  const std::vector<std::string> expected_start = {
+      "utc_time",          "board_time_us",        "faults",      "line1_setpoint_pa",
+      "line1_measured_pa", "line1_command_counts", "line1_status"};
+  CHECK(std::equal(expected_start.begin(), expected_start.end(), wide.columns.begin()));
+  LONGS_EQUAL(3 + 7 * 4 + 5, wide.columns.size());
+  STRCMP_EQUAL("finger1_mm", wide.columns[3 + 28].c_str());
+  STRCMP_EQUAL("finger5_n_per_mm", wide.columns.back().c_str());
+  CHECK(wide.rows.size() > 300);  // 1 kHz for about half a second
+  for (const auto& row : {wide.rows.front(), wide.rows.back()}) {
+    LONGS_EQUAL(wide.columns.size(), row.size());
+    // UTC wall time, now: not seconds since the board or the host booted.
+    std::tm utc{};
+    CHECK_TEXT(strptime(row[0].c_str(), "%Y-%m-%dT%H:%M:%S", &utc) != nullptr, row[0].c_str());
+    CHECK_TEXT(row[0].back() == 'Z', row[0].c_str());
+    const time_t at = timegm(&utc);
+    CHECK_TEXT(at >= before - 1 && at <= time(nullptr) + 1, row[0].c_str());
+    STRCMP_EQUAL("none", row[2].c_str());
+    CHECK_TEXT(row[6].find("safe") == 0, row[6].c_str());  // status by name
+  }
+  CHECK(std::stoull(wide.rows.back()[1]) > std::stoull(wide.rows.front()[1]));
+
+  // The long layout stays: a row per line per sample, lines numbered from 1.
+  r = Palpa(device + "record " + path + " --duration 0.3 --long");
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  const Recording long_layout = ReadRecording(path);
+  std::remove(path.c_str());
+  const std::vector<std::string> long_columns = {"utc_time",    "board_time_us", "line",
+                                                 "setpoint_pa", "measured_pa",   "command_counts",
+                                                 "status",      "faults"};
+  CHECK(long_layout.columns == long_columns);
+  STRCMP_EQUAL("1", long_layout.rows.front()[2].c_str());
+  STRCMP_EQUAL("7", long_layout.rows[6][2].c_str());
+}
+
+TEST_GROUP(CliSim) {
+  std::string state, env;
+  void setup() override {
+    char pattern[] = "/tmp/palpa-cli-state-XXXXXX";
+    state = mkdtemp(pattern);
+    env = "PALPA_STATE_DIR=" + state + " ";
+  }
+  void teardown() override {
+    Palpa("sim stop", env);
+    std::system(("rm -rf " + state).c_str());
+  }
+};
+
+TEST(CliSim, WithoutAKeptBoardEachCommandSaysItRanOnAThrowawayOne) {
+  Run r = Palpa("estop", env);
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  CHECK_TEXT(Has(r, "this ran on a throwaway simulated board (sim:thesis-5finger)"),
+             r.output.c_str());
+  CHECK(Has(r, "'palpa sim start' keeps one board running"));
+  r = Palpa("clear", env);  // another board: nothing to clear, and it says so
+  CHECK_TEXT(Has(r, "no faults were latched"), r.output.c_str());
+  CHECK(Has(r, "throwaway"));
+  r = Palpa("sim status", env);
+  CHECK(Has(r, "no simulated board is running"));
+}
+
+TEST(CliSim, AKeptBoardLivesAcrossCommandsAndItsFlashAcrossRestarts) {
+  Run r = Palpa("sim start", env);
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  CHECK(Has(r, "simulated thesis-5finger board running"));
+  r = Palpa("sim start", env);  // one at a time
+  LONGS_EQUAL(1, r.code);
+  CHECK(Has(r, "already running"));
+  // estop then clear: the same board, so the clear finds the EStop latched.
+  r = Palpa("estop", env);
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  CHECK_FALSE(Has(r, "throwaway"));
+  r = Palpa("clear", env);
+  CHECK_TEXT(Has(r, "faults cleared: estop_command"), r.output.c_str());
+  // A configuration set in one command is there in the next, and once saved after a restart.
+  LONGS_EQUAL(0, Palpa("config set board.host_timeout_us=200000", env).code);
+  r = Palpa("--json config show", env);
+  LONGS_EQUAL(200000, nlohmann::json::parse(r.output)["board"]["host_timeout_us"].get<int>());
+  r = Palpa("config save", env);
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  r = Palpa("sim stop", env);
+  CHECK_TEXT(Has(r, "its flash stays in " + state + "/sim-thesis-5finger.flash"), r.output.c_str());
+  LONGS_EQUAL(0, Palpa("sim start", env).code);
+  r = Palpa("info", env);
+  CHECK_TEXT(Has(r, "configuration thesis-5finger (saved)"), r.output.c_str());
+  r = Palpa("--json config show", env);
+  LONGS_EQUAL(200000, nlohmann::json::parse(r.output)["board"]["host_timeout_us"].get<int>());
+  r = Palpa("--json sim status", env);
+  const auto status = nlohmann::json::parse(r.output);
+  CHECK(status["running"].get<bool>());
+  STRCMP_EQUAL("thesis-5finger", status["config"].get<std::string>().c_str());
+
+  // The firmware slots and boot state are in the same flash: an update survives a restart.
+  std::ofstream(state + "/a.bin") << std::string(20000, 'a');
+  std::ofstream(state + "/b.bin") << std::string(20000, 'b');
+  r = Palpa("package " + state + "/a.bin " + state + "/b.bin --version 0.3.0 --counter 3 --out " +
+                state + "/new.palpa",
+            env);
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  r = Palpa("flash " + state + "/new.palpa", env);
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  LONGS_EQUAL(0, Palpa("sim stop", env).code);
+  LONGS_EQUAL(0, Palpa("sim start", env).code);
+  r = Palpa("info", env);
+  CHECK_TEXT(Has(r, "firmware      0.3.0"), r.output.c_str());
+  CHECK(Has(r, "image slot    1, anti-rollback counter 3"));
+
+  // A flash file belongs to one configuration.
+  LONGS_EQUAL(0, Palpa("sim stop", env).code);
+  r = Palpa("sim start --config thesis-pneumatic-3 --flash " + state + "/sim-thesis-5finger.flash",
+            env);
+  LONGS_EQUAL(1, r.code);
+  CHECK_TEXT(Has(r, "the flash of a thesis-5finger board, not of a thesis-pneumatic-3 one"),
+             r.output.c_str());
+  r = Palpa("sim stop", env);
+  CHECK(Has(r, "no simulated board is running"));
+}
+
+TEST(CliSim, ARecordWhoseBoardIsGoneIsNotUsed) {
+  LONGS_EQUAL(0, Palpa("sim start", env).code);
+  const auto status = nlohmann::json::parse(Palpa("--json sim status", env).output);
+  kill(status["pid"].get<int>(), SIGKILL);
+  for (int i = 0; i < 100 && kill(status["pid"].get<int>(), 0) == 0; ++i) usleep(20000);
+  const Run r = Palpa("info", env);
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  CHECK(Has(r, "no longer running"));
+  CHECK(Has(r, "throwaway"));
 }
 
 TEST_GROUP(CliCalibrate){};
