@@ -1,8 +1,5 @@
 // palpa list, info, diag, estop, clear.
-#include <dirent.h>
-#include <hidapi/hidapi.h>
-#include <libusb-1.0/libusb.h>
-
+#include <algorithm>
 #include <cstdio>
 
 #include <nlohmann/json.hpp>
@@ -10,6 +7,7 @@
 #include "cli.h"
 #include "palpa/host/bit_names.h"
 #include "palpa/host/board_json.h"
+#include "palpa/host/device_list.h"
 #include "palpa/host/field_text.h"
 #include "palpa/protocol/faults.h"
 #include "sim_state.h"
@@ -20,72 +18,57 @@ namespace {
 namespace pp = palpa::protocol;
 using nlohmann::ordered_json;
 
-std::vector<std::string> SerialPorts() {
-  std::vector<std::string> ports;
-  if (DIR* dev = opendir("/dev")) {
-    while (dirent* e = readdir(dev)) {
-      const std::string name = e->d_name;
-      if (name.rfind("ttyACM", 0) == 0 || name.rfind("ttyUSB", 0) == 0)
-        ports.push_back("serial:/dev/" + name);
-    }
-    closedir(dev);
-  }
-  return ports;
-}
-
-std::vector<std::string> HidDevices() {
-  std::vector<std::string> found;
-  if (hid_init() != 0) return found;
-  hid_device_info* list = hid_enumerate(host::kUsbVendorId, host::kUsbProductId);
-  for (hid_device_info* d = list; d != nullptr; d = d->next) {
-    std::string serial;
-    for (const wchar_t* w = d->serial_number; w != nullptr && *w != L'\0'; ++w)
-      serial.push_back(static_cast<char>(*w));
-    found.push_back("hid:1209:0001" + (serial.empty() ? std::string() : ":" + serial));
-  }
-  hid_free_enumeration(list);
-  hid_exit();
-  return found;
-}
-
-std::vector<std::string> UsbDevices() {
-  std::vector<std::string> found;
-  libusb_context* context = nullptr;
-  if (libusb_init(&context) != 0) return found;
-  libusb_device** list = nullptr;
-  const ssize_t n = libusb_get_device_list(context, &list);
-  for (ssize_t i = 0; i < n; ++i) {
-    libusb_device_descriptor d{};
-    if (libusb_get_device_descriptor(list[i], &d) == 0 && d.idVendor == host::kUsbVendorId &&
-        d.idProduct == host::kUsbProductId) {
-      found.push_back("usb:1209:0001");
-    }
-  }
-  if (n > 0) libusb_free_device_list(list, 1);
-  libusb_exit(context);
-  return found;
-}
-
 }  // namespace
 
 int CmdList(Context& c, const std::vector<std::string>& args) {
   if (!args.empty()) return Usage("list", "takes no arguments");
-  const auto serial = SerialPorts(), hid = HidDevices(), usb = UsbDevices();
+  const std::vector<host::FoundDevice> found = host::ListDevices();
   const auto sim = FindRunningSim();
   if (c.json) {
+    ordered_json serial = ordered_json::array(), hid = ordered_json::array(),
+                 usb = ordered_json::array(), devices = ordered_json::array();
+    for (const auto& d : found) {
+      if (d.uri.rfind("serial:", 0) == 0) serial.push_back(d.uri);
+      if (d.palpa && d.uri.rfind("hid:", 0) == 0) hid.push_back(d.uri);
+      if (d.palpa && d.uri.rfind("usb:", 0) == 0) usb.push_back(d.uri);
+      devices.push_back({{"uri", d.uri},
+                         {"product", d.product},
+                         {"serial_number", d.serial_number},
+                         {"palpa", d.palpa},
+                         {"note", d.note}});
+    }
     PrintJson({{"serial", serial},
                {"hid", hid},
                {"usb", usb},
+               {"devices", devices},
                {"sim", sim ? ordered_json{{"device", sim->uri}, {"config", sim->config}}
                            : ordered_json(nullptr)}});
     return kExitOk;
   }
-  std::printf("serial ports: %s\n", serial.empty() ? "none" : "");
-  for (const auto& s : serial) std::printf("  %s\n", s.c_str());
-  std::printf("HID devices with id 1209:0001: %s\n", hid.empty() ? "none" : "");
-  for (const auto& s : hid) std::printf("  %s\n", s.c_str());
-  std::printf("USB devices with id 1209:0001: %s\n", usb.empty() ? "none" : "");
-  for (const auto& s : usb) std::printf("  %s\n", s.c_str());
+  auto line = [](const host::FoundDevice& d) {
+    const std::string what =
+        d.palpa ? "palpa board: " + d.product +
+                      (d.serial_number.empty() ? "" : ", serial " + d.serial_number)
+        : d.product.empty() ? d.note
+                            : d.product + " (" + d.note + ")";
+    std::printf("  %-28s %s\n", d.uri.c_str(), what.c_str());
+  };
+  auto section = [&](const char* title, auto wanted) {
+    const auto n = std::count_if(found.begin(), found.end(), wanted);
+    std::printf("%s:%s\n", title, n == 0 ? " none" : "");
+    for (const auto& d : found)
+      if (wanted(d)) line(d);
+  };
+  auto scheme = [](const host::FoundDevice& d, const char* s) { return d.uri.rfind(s, 0) == 0; };
+  section("serial ports", [&](const host::FoundDevice& d) { return scheme(d, "serial:"); });
+  section("palpa boards on HID (usb 1209:0001, product \"palpa…\")",
+          [&](const host::FoundDevice& d) { return d.palpa && scheme(d, "hid:"); });
+  section("palpa boards on vendor bulk (usb 1209:0001, product \"palpa…\")",
+          [&](const host::FoundDevice& d) { return d.palpa && scheme(d, "usb:"); });
+  for (const auto& d : found) {
+    if (!d.palpa && !scheme(d, "serial:"))
+      std::printf("ignored: %s, %s\n", d.uri.c_str(), d.note.c_str());
+  }
   if (sim) {
     std::printf("simulated board (palpa sim start): %s, %s\n", sim->uri.c_str(),
                 sim->config.c_str());

@@ -8,6 +8,7 @@
 
 #include "palpa/hal/linux/atomic_file.h"
 #include "palpa/host/calibration_file.h"
+#include "palpa/host/device_uri.h"
 #include "palpa/host/field_text.h"
 
 namespace palpa::host {
@@ -142,6 +143,18 @@ Result<std::unique_ptr<Device>> Device::Open(const std::string& uri, DeviceOptio
                                              std::string* error) {
   auto transport = OpenTransport(uri, error);
   if (!transport.ok()) return transport.status;
+  // A board on USB can be unplugged and plugged back in: the link opens it again by its URI.
+  // A simulator child or a TCP server that went away is another board when it comes back.
+  DeviceUri parsed;
+  ParseDeviceUri(uri, parsed, nullptr);
+  const bool pluggable = parsed.kind == DeviceUri::Kind::kUsb ||
+                         parsed.kind == DeviceUri::Kind::kHid ||
+                         parsed.kind == DeviceUri::Kind::kSerial;
+  if (pluggable && options.link.reconnect && !options.link.reopen) {
+    options.link.reopen = [uri](std::string* reopen_error) {
+      return OpenTransport(uri, reopen_error);
+    };
+  }
   return Attach(std::move(transport.value), std::move(options), error);
 }
 

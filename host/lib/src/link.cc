@@ -37,7 +37,9 @@ uint32_t RandomNonce() {
 }  // namespace
 
 Link::Link(std::unique_ptr<Transport> transport, LinkOptions options)
-    : transport_(std::move(transport)), options_(options) {}
+    : transport_(std::move(transport)),
+      description_(transport_->Describe()),
+      options_(std::move(options)) {}
 
 Result<std::unique_ptr<Link>> Link::Open(std::unique_ptr<Transport> transport, LinkOptions options,
                                          std::string* error) {
@@ -55,7 +57,7 @@ Result<std::unique_ptr<Link>> Link::Open(std::unique_ptr<Transport> transport, L
     link->changed_.wait_until(lock, deadline, [&] { return link->session_.open() || link->stop_; });
     if (!link->session_.open()) {
       if (error != nullptr) {
-        *error = link->transport_->Describe() + ": no answer to Hello (" +
+        *error = link->description_ + ": no answer to Hello (" +
                  std::to_string(options.hello_attempts) +
                  " tries); is it a palpa board, and is it powered?";
       }
@@ -101,7 +103,7 @@ std::string Link::Versions() const {
 
 void Link::WriteFrame(const uint8_t* frame, size_t size) {
   std::lock_guard<std::mutex> lock(write_mutex_);
-  transport_->Write(frame, size);
+  if (transport_) transport_->Write(frame, size);  // none while a lost one is being reopened
 }
 
 template <class M>

@@ -1,5 +1,7 @@
 // The link's reader thread: frames from the board into the session, the sender's answers, stream
 // acknowledgements and telemetry; a board reset or a lost link abandons what was in flight.
+#include <chrono>
+
 #include "palpa/host/link.h"
 
 namespace palpa::host {
@@ -17,26 +19,66 @@ void Link::ReaderLoop() {
       if (stop_) return;
     }
     const auto n = transport_->Read(buffer, sizeof(buffer), 5);
-    const double now = SteadySeconds();
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (!n.ok()) {
-      if (n.status == Status::kDisconnected) {
-        events_.push_back("the link to " + transport_->Describe() + " closed");
-        OnBoardReset("link lost");
-        hello_wanted_ = false;
-        stop_ = true;
-        changed_.notify_all();
-        queue_changed_.notify_all();
-        return;
-      }
+    if (!n.ok() && n.status == Status::kDisconnected) {
+      if (!TransportLost()) return;
+      decoder.Process(pp::kFrameDelimiter);  // a frame cut by the loss is not continued
       continue;
     }
+    const double now = SteadySeconds();
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!n.ok()) continue;
     for (size_t i = 0; i < n.value; ++i) {
       const auto event = decoder.Process(buffer[i]);
       if (event == pp::FrameDecoder::Event::kFrame) OnFrame(decoder.frame(), now);
       if (event == pp::FrameDecoder::Event::kError) ++counters_.framing_errors;
     }
     Service(now);
+  }
+}
+
+bool Link::TransportLost() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++counters_.transport_lost;
+    OnBoardReset("link lost");
+    hello_wanted_ = false;
+    if (!options_.reopen) {
+      events_.push_back("the link to " + description_ + " closed");
+      stop_ = true;
+      changed_.notify_all();
+      queue_changed_.notify_all();
+      return false;
+    }
+    events_.push_back("the link to " + description_ +
+                      " was lost (unplugged?); reopening it once it is back");
+  }
+  {
+    // Released at once, so the device can come back under the same name (a tty, a hidraw node).
+    std::lock_guard<std::mutex> lock(write_mutex_);
+    transport_.reset();
+  }
+  for (;;) {
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      if (changed_.wait_for(lock, std::chrono::milliseconds(options_.reopen_interval_ms),
+                            [&] { return stop_; })) {
+        return false;
+      }
+    }
+    std::string error;
+    auto reopened = options_.reopen(&error);
+    if (!reopened.ok()) continue;
+    {
+      std::lock_guard<std::mutex> lock(write_mutex_);
+      transport_ = std::move(reopened.value);
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++counters_.reopens;
+    events_.push_back("reopened " + description_ + "; opening a new session");
+    hello_wanted_ = true;
+    hello_sent_s_ = -1;
+    SendHello();
+    return true;
   }
 }
 

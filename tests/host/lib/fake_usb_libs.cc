@@ -52,6 +52,7 @@ hid_device_info* hid_enumerate(unsigned short vendor, unsigned short product) {
   info->vendor_id = vendor;
   info->product_id = product;
   info->serial_number = Hid().serial.data();
+  info->product_string = const_cast<wchar_t*>(Hid().product);
   return info;
 }
 void hid_free_enumeration(hid_device_info* devices) {
@@ -110,6 +111,7 @@ int libusb_get_device_descriptor(libusb_device*, struct libusb_device_descriptor
   std::memset(d, 0, sizeof(*d));
   d->idVendor = 0x1209;
   d->idProduct = 0x0001;
+  d->iProduct = 2;
   d->iSerialNumber = 3;
   return 0;
 }
@@ -119,11 +121,14 @@ int libusb_open(libusb_device*, libusb_device_handle** h) {
   return 0;
 }
 void libusb_close(libusb_device_handle*) {}
-int libusb_get_string_descriptor_ascii(libusb_device_handle*, uint8_t, unsigned char* data,
+int libusb_get_string_descriptor_ascii(libusb_device_handle*, uint8_t index, unsigned char* data,
                                        int length) {
-  const char serial[] = "PALPA-0042";
-  std::strncpy(reinterpret_cast<char*>(data), serial, static_cast<size_t>(length));
-  return static_cast<int>(sizeof(serial) - 1);
+  const char* text = index == 2 ? Usb().product : Usb().serial;
+  std::strncpy(reinterpret_cast<char*>(data), text, static_cast<size_t>(length));
+  return static_cast<int>(std::strlen(text));
+}
+const char* libusb_error_name(int code) {
+  return code == LIBUSB_ERROR_ACCESS ? "LIBUSB_ERROR_ACCESS" : "LIBUSB_ERROR";
 }
 static libusb_endpoint_descriptor g_endpoints[2];
 static libusb_interface_descriptor g_altsetting;

@@ -11,6 +11,7 @@ namespace palpa::testing {
 struct FakeHid {
   bool present = true;
   std::wstring serial = L"ABC";  ///< the one device's serial number
+  const wchar_t* product = L"palpa actuator board";  ///< literals: no allocation in a test
   int open_failures_after = -1;  ///< >=0: hid_open_path fails once that many opens succeeded
   int opened = 0, closed_handles = 0;
   int read_handle = -1, write_handle = -1;  ///< which handle (0, 1: order opened) last read, wrote
@@ -26,6 +27,8 @@ struct FakeHid {
 struct FakeUsb {
   bool present = true;
   bool access_denied = false;
+  const char* product = "palpa actuator board";  ///< string descriptor 2
+  const char* serial = "PALPA-0042";             ///< string descriptor 3
   bool has_bulk_pair = true;
   int claim_result = 0;
   std::vector<std::vector<uint8_t>> bulk_in;  ///< chunks returned by IN transfers

@@ -139,6 +139,91 @@ TEST(LinkFaults, BoardRestartReportsInFlightCommandsAsOutcomeUnknownAndReconnect
   CHECK(board.sessions >= 2);
 }
 
+namespace {
+
+/// A cable to a test board that can be pulled: while it is out the transport reports the device
+/// gone, and opening it again fails until it is back in.
+struct Cable {
+  std::atomic<bool> plugged{true};
+  std::atomic<int> opened{0};
+};
+
+class PluggedTransport final : public ph::Transport {
+ public:
+  PluggedTransport(TestBoard& board, Cable& cable) : board_(board), cable_(cable) {
+    ++cable_.opened;
+  }
+  ph::Result<size_t> Read(uint8_t* out, size_t capacity, int timeout_ms) override {
+    if (!cable_.plugged) return pp::Status::kDisconnected;
+    return board_.Read(out, capacity, timeout_ms);
+  }
+  ph::Status Write(const uint8_t* data, size_t size) override {
+    return cable_.plugged ? board_.Write(data, size) : pp::Status::kDisconnected;
+  }
+  std::string Describe() const override { return "usb:test"; }
+
+ private:
+  BoardTransport board_;
+  Cable& cable_;
+};
+
+}  // namespace
+
+TEST(LinkFaults, AnUnpluggedBoardIsReportedAndReopenedWithANewSessionWhenItIsBack) {
+  TestBoard board(pp::kCatalogHash, 1024, 16);
+  Cable cable;
+  ph::LinkOptions options;
+  options.command_timeout_ms = 300;
+  options.reopen_interval_ms = 20;
+  options.reopen = [&](std::string* error) -> ph::Result<std::unique_ptr<ph::Transport>> {
+    if (!cable.plugged) {
+      *error = "no such device";
+      return pp::Status::kNotFound;
+    }
+    return std::unique_ptr<ph::Transport>(new PluggedTransport(board, cable));
+  };
+  auto link = OpenLink(std::make_unique<PluggedTransport>(board, cable), options);
+  LONGS_EQUAL((int)pp::Status::kOk, (int)link->Command(pp::ClearFault{1}).status);
+
+  cable.plugged = false;
+  for (int i = 0; i < 100 && link->session_open(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  CHECK(!link->session_open());
+  const ph::CommandResult unplugged = link->Command(pp::ClearFault{2});
+  LONGS_EQUAL((int)pp::Status::kNoSession, (int)unplugged.status);
+  LONGS_EQUAL(1, link->counters().transport_lost);
+  LONGS_EQUAL(1, cable.opened.load());  // nothing opened while the cable is out
+
+  cable.plugged = true;
+  for (int i = 0; i < 200 && !link->session_open(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  CHECK(link->session_open());
+  LONGS_EQUAL((int)pp::Status::kOk, (int)link->Command(pp::ClearFault{3}).status);
+  LONGS_EQUAL(1, link->counters().reopens);
+  LONGS_EQUAL(2, board.sessions);
+  std::string events;
+  for (const std::string& e : link->TakeEvents()) events += e + "\n";
+  CHECK_TEXT(events.find("the link to usb:test was lost") != std::string::npos, events.c_str());
+  CHECK_TEXT(events.find("reopened usb:test") != std::string::npos, events.c_str());
+}
+
+TEST(LinkFaults, WithoutAWayToReopenALostTransportEndsTheLink) {
+  TestBoard board(pp::kCatalogHash, 1024, 17);
+  Cable cable;
+  auto link = OpenLink(std::make_unique<PluggedTransport>(board, cable));
+  cable.plugged = false;
+  for (int i = 0; i < 100 && link->session_open(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  LONGS_EQUAL((int)pp::Status::kNoSession, (int)link->Command(pp::ClearFault{1}).status);
+  bool closed = false;
+  for (const std::string& e : link->TakeEvents()) closed |= e == "the link to usb:test closed";
+  CHECK(closed);
+  cable.plugged = true;
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  CHECK(!link->session_open());
+  LONGS_EQUAL(1, cable.opened.load());
+}
+
 TEST(LinkFaults, ABoardThatReportsNoHostTimeoutGetsHeartbeatsAtTheDefaultRate) {
   TestBoard board(pp::kCatalogHash, 1024, 14);  // its HelloReply leaves host_timeout_us at 0
   const double start = ph::SteadySeconds();

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "fake_usb_libs.h"
+#include "palpa/host/device_list.h"
 #include "palpa/host/transport.h"
 
 #include "CppUTest/TestHarness.h"
@@ -174,4 +175,41 @@ TEST(DeviceUri, BadUrisNameTheirFault) {
   CHECK(ph::OpenTransport("serial:/dev/null", &error).status ==
         pp::Status::kInvalidArgument);  // not a tty
   CHECK(ph::OpenTransport("tcp:127.0.0.1:1", &error).status == pp::Status::kUnavailable);
+}
+
+TEST_GROUP(DeviceList){void setup() override{palpa::testing::ResetFakes();
+}
+void teardown() override { palpa::testing::ResetFakes(); }
+}
+;
+
+TEST(DeviceList, FindsABoardByItsUsbIdAndProductStringOnHidAndBulk) {
+  const auto found = ph::ListDevices();
+  std::vector<std::string> boards;
+  for (const auto& d : found)
+    if (d.palpa) boards.push_back(d.uri + " " + d.product);
+  LONGS_EQUAL(2, boards.size());
+  STRCMP_EQUAL("hid:1209:0001:ABC palpa actuator board", boards[0].c_str());
+  STRCMP_EQUAL("usb:1209:0001:PALPA-0042 palpa actuator board", boards[1].c_str());
+}
+
+TEST(DeviceList, ADeviceWithTheSharedTestIdAndAnotherProductIsNotABoard) {
+  Hid().product = L"someone's keyboard";
+  Usb().product = "a logic analyser";
+  for (const auto& d : ph::ListDevices()) {
+    if (d.uri.rfind("serial:", 0) == 0) continue;
+    CHECK_TEXT(!d.palpa, d.uri.c_str());
+    CHECK_TEXT(d.note.find("not a palpa board") != std::string::npos, d.note.c_str());
+  }
+}
+
+TEST(DeviceList, ADeviceWhoseStringsCannotBeReadSaysWhy) {
+  Usb().access_denied = true;
+  bool said = false;
+  for (const auto& d : ph::ListDevices()) {
+    if (d.uri.rfind("usb:", 0) != 0) continue;
+    CHECK(!d.palpa);
+    said |= d.note.find("udev rule") != std::string::npos;
+  }
+  CHECK(said);
 }

@@ -31,6 +31,12 @@ struct LinkOptions {
   bool reconnect = true;           ///< open a new session after a board reset
   size_t subscriber_queue = 8192;  ///< telemetry frames queued before the slowest drops some
   int stream_resend_ms = 50;       ///< resend a stream value not yet shown applied
+  /// Opens the transport again after it was lost (a USB board unplugged and plugged back in):
+  /// tried every reopen_interval_ms until it succeeds or the link is closed, then a new session
+  /// opens as after a board reset. Empty: a lost transport ends the link. Device::Open sets it
+  /// for usb:, hid: and serial: devices.
+  std::function<Result<std::unique_ptr<Transport>>(std::string* error)> reopen;
+  int reopen_interval_ms = 250;
 };
 
 /// One fault id in words: "leak"; an id this build has no name for (a newer board) as "fault_N".
@@ -70,6 +76,8 @@ struct LinkCounters {
   uint64_t board_resets = 0;
   uint64_t outcome_unknown = 0;
   uint64_t heartbeats = 0;
+  uint64_t transport_lost = 0;  ///< the transport went away (unplugged, closed by the board)
+  uint64_t reopens = 0;         ///< ... and was opened again
 };
 
 class Link {
@@ -86,7 +94,7 @@ class Link {
   bool catalog_matches() const;
   /// "host catalog 0x… (protocol 1) vs board catalog 0x… (firmware a.b.c, protocol 1)".
   std::string Versions() const;
-  std::string Describe() const { return transport_->Describe(); }
+  std::string Describe() const { return description_; }
   /// The board's host-silence timeout changed other than by a ConfigureBoard or a staged board
   /// record sent on this link (which the link follows itself), e.g. after a factory reset:
   /// heartbeats go at a quarter of it.
@@ -167,6 +175,8 @@ class Link {
   uint32_t FailedTicket(CommandResult result);  ///< a ticket already answered with `result`
   static uint64_t Micros(double seconds) { return static_cast<uint64_t>(seconds * 1e6); }
   void ReaderLoop();
+  /// The reader thread after its transport went away: reopens it (true) or ends the link.
+  bool TransportLost();
   void HeartbeatLoop();
   void DispatchLoop();
   void OnFrame(const pp::Frame& frame, double now_s);
@@ -179,7 +189,8 @@ class Link {
   void SendUnsequenced(const M& m);
   Status WaitApplied(bool setpoints, uint32_t generation, int timeout_ms);
 
-  std::unique_ptr<Transport> transport_;
+  std::unique_ptr<Transport> transport_;  ///< replaced only by the reader, under write_mutex_
+  const std::string description_;
   LinkOptions options_;
   std::mutex write_mutex_;
   mutable std::mutex mutex_;  ///< everything below
