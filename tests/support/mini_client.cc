@@ -33,6 +33,7 @@ MiniClient::~MiniClient() { Close(); }
 void MiniClient::Close() {
   if (fd_ >= 0) close(fd_);
   fd_ = -1;
+  pipe_.reset();
 }
 
 bool MiniClient::ConnectTcp(const std::string& host, int port) {
@@ -62,6 +63,10 @@ bool MiniClient::OpenSerial(const std::string& path) {
 }
 
 void MiniClient::SendBytes(const std::vector<uint8_t>& bytes) {
+  if (pipe_) {
+    pipe_->Write(bytes.data(), bytes.size());
+    return;
+  }
   size_t at = 0;
   while (at < bytes.size()) {
     const ssize_t n = write(fd_, bytes.data() + at, bytes.size() - at);
@@ -76,11 +81,17 @@ std::vector<ReceivedFrame> MiniClient::Read(int timeout_ms, bool (*until)(const 
   for (;;) {
     const int64_t left = deadline - NowMs();
     if (left <= 0) break;
-    pollfd p{fd_, POLLIN, 0};
-    if (poll(&p, 1, static_cast<int>(left)) <= 0) break;
     uint8_t buffer[4096];
-    const ssize_t n = read(fd_, buffer, sizeof(buffer));
-    if (n <= 0) break;
+    ssize_t n = 0;
+    if (pipe_) {
+      n = pipe_->Read(buffer, sizeof(buffer), static_cast<int>(left));
+      if (n < 0) break;
+    } else {
+      pollfd p{fd_, POLLIN, 0};
+      if (poll(&p, 1, static_cast<int>(left)) <= 0) break;
+      n = read(fd_, buffer, sizeof(buffer));
+      if (n <= 0) break;
+    }
     bool done = false;
     for (ssize_t i = 0; i < n; ++i) {
       if (decoder_.Process(buffer[i]) != pp::FrameDecoder::Event::kFrame) continue;

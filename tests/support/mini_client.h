@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -12,11 +13,22 @@ namespace palpa::testing {
 
 namespace pp = palpa::protocol;
 
+/// Bytes to and from a board by some other way than a file descriptor (a host Transport: USB,
+/// HID), so this client stays free of the host library.
+class BytePipe {
+ public:
+  virtual ~BytePipe() = default;
+  virtual void Write(const uint8_t* data, size_t size) = 0;
+  /// Bytes read within timeout_ms (0: none), or -1 when the pipe is gone.
+  virtual long Read(uint8_t* out, size_t capacity, int timeout_ms) = 0;
+};
+
 class MiniClient {
  public:
   ~MiniClient();
   bool ConnectTcp(const std::string& host, int port);
   bool OpenSerial(const std::string& path);
+  void Use(std::unique_ptr<BytePipe> pipe) { pipe_ = std::move(pipe); }
   void Close();
 
   void SendBytes(const std::vector<uint8_t>& bytes);
@@ -46,6 +58,7 @@ class MiniClient {
  private:
   pp::Status WaitAnswer(uint8_t seq, uint8_t type, int timeout_ms);
   int fd_ = -1;
+  std::unique_ptr<BytePipe> pipe_;
   uint8_t next_seq_ = 0;
   pp::OwningFrameDecoder decoder_;
 };

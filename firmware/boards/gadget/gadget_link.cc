@@ -134,15 +134,10 @@ bool GadgetLink::Open(const GadgetLinkOptions& o, std::string* error) {
     const std::string instance = "acm." + o.name;
     if (!m.gadget.AddFunction(instance, error)) return false;
     acm_device_ = "/dev/ttyGS" + m.gadget.FunctionAttribute(instance, "port_num");
-    m.acm = open(acm_device_.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
-    if (m.acm < 0) {
+    if (!OpenAcm()) {
       *error = acm_device_ + ": " + std::strerror(errno);
       return false;
     }
-    termios raw{};  // the gadget's tty echoes and edits lines unless told otherwise
-    tcgetattr(m.acm, &raw);
-    cfmakeraw(&raw);
-    tcsetattr(m.acm, TCSANOW, &raw);
   }
   return m.gadget.Bind(o.udc, error);
 }
@@ -204,13 +199,32 @@ void GadgetLink::Pump() {
         break;
     }
   });
+  if (m.acm < 0 && !acm_device_.empty()) OpenAcm();
   if (m.acm >= 0) {
     uint8_t buffer[512];
     ssize_t n;
     while ((n = read(m.acm, buffer, sizeof(buffer))) > 0)
       FromHost(Channel::kAcm, buffer, static_cast<size_t>(n));
+    if (n == 0 || (n < 0 && errno != EAGAIN)) {
+      // The host went away (unbound, unplugged): the gadget's tty was hung up and stays dead;
+      // a new open serves the next connection.
+      close(m.acm);
+      m.acm = -1;
+      Deactivate(Channel::kAcm);
+    }
   }
   Transmit();
+}
+
+bool GadgetLink::OpenAcm() {
+  Impl& m = *impl_;
+  m.acm = open(acm_device_.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+  if (m.acm < 0) return false;
+  termios raw{};  // the gadget's tty echoes and edits lines unless told otherwise
+  tcgetattr(m.acm, &raw);
+  cfmakeraw(&raw);
+  tcsetattr(m.acm, TCSANOW, &raw);
+  return true;
 }
 
 void GadgetLink::FromHost(Channel channel, const uint8_t* data, size_t size) {
@@ -261,7 +275,7 @@ void GadgetLink::Transmit() {
       break;
     }
     case Channel::kAcm: {
-      const ssize_t n = write(m.acm, tx_.data(), tx_.size());
+      const ssize_t n = m.acm >= 0 ? write(m.acm, tx_.data(), tx_.size()) : -1;
       if (n > 0) {
         sent = static_cast<size_t>(n);
         counters_.bytes_to_host[static_cast<int>(Channel::kAcm)] += sent;

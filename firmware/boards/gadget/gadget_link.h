@@ -69,6 +69,7 @@ class GadgetLink final : public hal::ByteLink {
   void FromHost(Channel channel, const uint8_t* data, size_t size);
   void Deactivate(Channel channel);
   void Transmit();
+  bool OpenAcm();
 
   static constexpr size_t kTxCapacity = 4096;  ///< about an MCU's USB transmit buffer
   std::unique_ptr<Impl> impl_;

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "frame_gate.h"
 #include "gadget_link.h"
 
 namespace {
@@ -35,7 +36,29 @@ const char kUsage[] =
     "  --help                this text\n";
 
 volatile sig_atomic_t g_stop = 0;
+volatile sig_atomic_t g_report = 0;
 void OnSignal(int) { g_stop = 1; }
+void OnReport(int) { g_report = 1; }
+
+/// What the link has carried, for a person or a benchmark (on SIGUSR1 and on exit).
+void Report(const palpa::gadget::GadgetLink& link, const palpa::gadget::FrameGate& gate) {
+  const auto& c = link.counters();
+  using palpa::gadget::Channel;
+  auto at = [](const uint64_t* v, Channel ch) {
+    return static_cast<unsigned long long>(v[static_cast<int>(ch)]);
+  };
+  std::printf(
+      "palpa-gadget: active %s; from the host: bulk %llu, hid %llu, acm %llu bytes; to the host: "
+      "bulk %llu, hid %llu (in %llu reports), acm %llu bytes; dropped %llu bytes, %llu telemetry "
+      "frames\n",
+      palpa::gadget::ChannelName(link.active()), at(c.bytes_from_host, Channel::kBulk),
+      at(c.bytes_from_host, Channel::kHid), at(c.bytes_from_host, Channel::kAcm),
+      at(c.bytes_to_host, Channel::kBulk), at(c.bytes_to_host, Channel::kHid),
+      static_cast<unsigned long long>(c.hid_reports), at(c.bytes_to_host, Channel::kAcm),
+      static_cast<unsigned long long>(c.dropped),
+      static_cast<unsigned long long>(gate.telemetry_dropped()));
+  std::fflush(stdout);
+}
 
 struct Options {
   std::string sim;
@@ -135,6 +158,9 @@ int main(int argc, char** argv) {
   action.sa_handler = OnSignal;
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
+  struct sigaction report {};
+  report.sa_handler = OnReport;
+  sigaction(SIGUSR1, &report, nullptr);
   signal(SIGPIPE, SIG_IGN);
 
   palpa::gadget::GadgetLink link;
@@ -150,15 +176,18 @@ int main(int argc, char** argv) {
   std::printf("palpa-gadget: bridged to %s\n", o.sim.c_str());
   std::fflush(stdout);
 
-  // Board bytes are read from the simulator only while the link has room: back-pressure reaches
-  // the board, which then drops whole telemetry frames as it would on its own USB.
+  // The simulator is read as fast as it writes; the gate keeps to what a board's transmit
+  // buffer holds (whole telemetry frames dropped when the host does not take them).
+  palpa::gadget::FrameGate gate;
   std::vector<uint8_t> to_sim;
   uint8_t buffer[4096];
   while (!g_stop) {
+    if (g_report) {
+      g_report = 0;
+      Report(link, gate);
+    }
     std::vector<pollfd> fds = link.PollFds();
-    const bool room = link.WriteSpace() > 0;
-    fds.push_back(
-        pollfd{sim, static_cast<short>((room ? POLLIN : 0) | (to_sim.empty() ? 0 : POLLOUT)), 0});
+    fds.push_back(pollfd{sim, static_cast<short>(POLLIN | (to_sim.empty() ? 0 : POLLOUT)), 0});
     poll(fds.data(), fds.size(), link.PollTimeoutMs() < 0 ? 100 : link.PollTimeoutMs());
     link.Pump();
     size_t n;
@@ -168,17 +197,17 @@ int main(int argc, char** argv) {
       const ssize_t w = send(sim, to_sim.data(), to_sim.size(), MSG_DONTWAIT);
       if (w > 0) to_sim.erase(to_sim.begin(), to_sim.begin() + w);
     }
-    const size_t space = link.WriteSpace();
-    if (space > 0) {
-      const ssize_t r = recv(sim, buffer, std::min(space, sizeof(buffer)), MSG_DONTWAIT);
-      if (r == 0 || (r < 0 && errno != EAGAIN && errno != EWOULDBLOCK)) {
-        std::fprintf(stderr, "palpa-gadget: the simulated board closed the connection\n");
-        break;
-      }
-      if (r > 0) link.Write(buffer, static_cast<size_t>(r));
+    gate.Flush(link);
+    ssize_t r;
+    while ((r = recv(sim, buffer, sizeof(buffer), MSG_DONTWAIT)) > 0)
+      gate.FromBoard(buffer, static_cast<size_t>(r), link);
+    if (r == 0 || (r < 0 && errno != EAGAIN && errno != EWOULDBLOCK)) {
+      std::fprintf(stderr, "palpa-gadget: the simulated board closed the connection\n");
+      break;
     }
     link.Pump();
   }
+  Report(link, gate);
   link.Close();
   close(sim);
   std::printf("palpa-gadget: stopped\n");

@@ -10,6 +10,7 @@
 #include <thread>
 #include <vector>
 
+#include "board_behaviour.h"
 #include "mini_client.h"
 #include "palpa/core/board_config.h"
 #include "palpa/host/device.h"
@@ -21,79 +22,7 @@
 namespace ph = palpa::host;
 namespace pp = palpa::protocol;
 
-namespace {
-
-void CheckBoardBehaviour(const std::string& address, pp::BoardKind kind) {
-  std::string error;
-  auto opened = ph::Device::Open(address, {}, &error);
-  CHECK_TEXT(opened.ok(), error.c_str());
-  ph::Device& d = *opened.value;
-  const pp::HelloReply hello = d.info();
-  CHECK(hello.board_kind == kind);
-  CHECK(d.link().catalog_matches());
-  CHECK(hello.plant_simulated);
-  STRCMP_EQUAL("thesis-5finger", hello.config_name.data());
-
-  auto board = d.ReadBoard(&error);
-  CHECK_TEXT(board.ok(), error.c_str());
-  board.value.host_timeout_us = 150000;
-  CHECK(d.ConfigureBoard(board.value).ok());
-
-  const ph::Outcome set = d.SetLines({{0, 40.0}});
-  CHECK_TEXT(set.ok(), set.message.c_str());
-  std::atomic<int32_t> measured{0};
-  std::atomic<uint32_t> faults{0};
-  std::atomic<uint8_t> status{0};
-  const int id = d.Subscribe([&](const ph::TelemetryFrame& f) {
-    const auto& t = f.telemetry;
-    measured = t.samples[(t.tick_count - 1) * t.line_count].measured_pa;
-    status = t.samples[(t.tick_count - 1) * t.line_count].status;
-    faults = t.fault_bitmap;
-  });
-  for (int i = 0; i < 150 && measured.load() < 39000; ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  CHECK_TEXT(measured.load() > 39000 && measured.load() < 41000,
-             std::to_string(measured.load()).c_str());  // the plant follows
-
-  d.Unsubscribe(id);
-  opened.value.reset();
-
-  // Host silence, watched from outside with a bare protocol client: a session with one setpoint,
-  // heartbeats for a while, then nothing — every line must go safe with the fault latched.
-  palpa::testing::MiniClient client;
-  const size_t colon = address.rfind(':');
-  CHECK(client.ConnectTcp(address.substr(4, colon - 4), std::atoi(address.c_str() + colon + 1)));
-  CHECK(client.Hello(77).ok());
-  LONGS_EQUAL((int)pp::Status::kOk, (int)client.Reliable(pp::ClearFault{}));
-  LONGS_EQUAL((int)pp::Status::kOk,
-              (int)client.Reliable(pp::SetFingerMode{0, pp::FingerMode::kRaw}));
-  pp::SetLineSetpoints sp{};
-  sp.generation = 1;
-  sp.entry_count = 1;
-  sp.entries[0] = {0, 30000};
-  client.Send(sp);
-  bool live = false;
-  for (uint32_t g = 1; g <= 15; ++g) {
-    client.Send(pp::Heartbeat{g});
-    for (const auto& f : client.Read(20)) {
-      if (f.Is<pp::Telemetry>())
-        live |= (f.As<pp::Telemetry>().samples[0].status & pp::line_status::kSafe) == 0;
-    }
-  }
-  CHECK(live);
-  bool safe = false;
-  for (const auto& f : client.Read(600)) {
-    if (!f.Is<pp::Telemetry>()) continue;
-    const auto t = f.As<pp::Telemetry>();
-    bool all = (t.fault_bitmap & pp::FaultBit(pp::Fault::kHostSilence)) != 0;
-    for (uint8_t i = 0; i < t.line_count; ++i)
-      all &= (t.samples[i].status & pp::line_status::kSafe) != 0;
-    safe |= all;
-  }
-  CHECK(safe);
-}
-
-}  // namespace
+using palpa::testing::CheckBoardBehaviour;
 
 TEST_GROUP(QemuBoard){};
 

@@ -1,0 +1,248 @@
+#!/usr/bin/python3
+"""Boots Debian's kernel under QEMU (TCG) with a small initramfs and runs one scenario in it.
+
+The initramfs holds busybox, the kernel modules the scenario names (with what they depend on), the
+given programs with their shared libraries, the common /init and the scenario's guest script.
+The guest's console goes to stdout; the exit status is the scenario script's.
+
+  guest.py --kernel DIR --scenario DIR [--bin PROGRAM]... [--timeout S] [--work DIR] [-- ARGS]
+
+DIR for --kernel is where `./run` unpacked the kernel package (boot/vmlinuz-*, lib/modules/*).
+A scenario directory holds scenario.json ({"modules": [...], "memory_mb": N, "cpus": N,
+"qemu": [extra arguments]}) and guest.sh (run by /init with ARGS; its exit status is the guest's).
+"""
+
+import argparse
+import gzip
+import json
+import os
+import re
+import select
+import shutil
+import signal
+import stat
+import subprocess
+import sys
+import time
+
+MARKER = "palpa-guest: exit "
+
+
+def fail(message):
+    print("guest.py: " + message, file=sys.stderr)
+    sys.exit(2)
+
+
+class Cpio:
+    """A newc archive written as files are added (the format the kernel unpacks)."""
+
+    def __init__(self, out):
+        self.out = out
+        self.ino = 1
+        self.dirs = set()
+
+    def _entry(self, name, mode, data=b""):
+        header = "070701" + "".join(
+            "%08X" % v
+            for v in (self.ino, mode, 0, 0, 1, 0, len(data), 0, 0, 0, 0, len(name) + 1, 0))
+        self.ino += 1
+        self.out.write(header.encode() + name.encode() + b"\0")
+        self.out.write(b"\0" * ((4 - (110 + len(name) + 1) % 4) % 4))
+        self.out.write(data)
+        self.out.write(b"\0" * ((4 - len(data) % 4) % 4))
+
+    def directory(self, path):
+        path = path.strip("/")
+        if not path or path in self.dirs:
+            return
+        self.directory(os.path.dirname(path))
+        self.dirs.add(path)
+        self._entry(path, stat.S_IFDIR | 0o755)
+
+    def file(self, path, data, mode=0o644):
+        path = path.strip("/")
+        self.directory(os.path.dirname(path))
+        self._entry(path, stat.S_IFREG | mode, data)
+
+    def symlink(self, path, target):
+        path = path.strip("/")
+        self.directory(os.path.dirname(path))
+        self._entry(path, stat.S_IFLNK | 0o777, target.encode())
+
+    def close(self):
+        self._entry("TRAILER!!!", 0)
+
+
+def find_kernel(kernel_dir):
+    boot = os.path.join(kernel_dir, "boot")
+    images = sorted(f for f in os.listdir(boot) if f.startswith("vmlinuz-")) if os.path.isdir(
+        boot) else []
+    if len(images) != 1:
+        fail("%s: expected one boot/vmlinuz-* (found %d); fetch the kernel with ./run kernel" %
+             (kernel_dir, len(images)))
+    version = images[0][len("vmlinuz-"):]
+    modules = os.path.join(kernel_dir, "lib", "modules", version)
+    if not os.path.isdir(modules):
+        fail("%s: no modules for %s" % (kernel_dir, version))
+    return os.path.join(boot, images[0]), version, modules
+
+
+def module_index(modules_dir):
+    index = {}
+    for root, _, files in os.walk(os.path.join(modules_dir, "kernel")):
+        for f in files:
+            if f.endswith(".ko"):
+                index[f[:-3].replace("-", "_")] = os.path.join(root, f)
+    return index
+
+
+def module_depends(path):
+    with open(path, "rb") as f:
+        data = f.read()
+    found = re.search(rb"\0depends=([^\0]*)\0", data)
+    if not found or not found.group(1):
+        return []
+    return found.group(1).decode().split(",")
+
+
+def module_load_order(names, index):
+    """The modules and everything they depend on, each after its dependencies."""
+    order, seen = [], set()
+
+    def visit(name, chain):
+        key = name.replace("-", "_")
+        if key in seen:
+            return
+        if key not in index:
+            fail("kernel module '%s' (needed by %s) is not in the kernel package" %
+                 (name, " <- ".join(chain) or "the scenario"))
+        seen.add(key)
+        for dep in module_depends(index[key]):
+            visit(dep, [name] + chain)
+        order.append(index[key])
+
+    for name in names:
+        visit(name, [])
+    return order
+
+
+def shared_libraries(programs):
+    libs = set()
+    for program in programs:
+        out = subprocess.run(["ldd", program], capture_output=True, text=True)
+        if out.returncode != 0 and "not a dynamic executable" in out.stdout + out.stderr:
+            continue
+        for line in out.stdout.splitlines():
+            m = re.search(r"(\S*/\S+) \(0x", line)
+            if "not found" in line:
+                fail("%s: %s" % (program, line.strip()))
+            if m:
+                libs.add(m.group(1))
+    return sorted(libs)
+
+
+def build_initramfs(path, scenario_dir, config, modules_dir, version, programs):
+    busybox = shutil.which("busybox")
+    if busybox is None:
+        fail("busybox is not installed (./run installs busybox-static)")
+    here = os.path.dirname(os.path.abspath(__file__))
+    with open(path, "wb") as out:
+        a = Cpio(out)
+        for d in ("dev", "proc", "sys", "tmp", "run", "etc"):
+            a.directory(d)
+        with open(busybox, "rb") as f:
+            a.file("bin/busybox", f.read(), 0o755)
+        applets = subprocess.run([busybox, "--list"], capture_output=True, text=True).stdout
+        for applet in applets.split():
+            if applet != "busybox":
+                a.symlink("bin/" + applet, "busybox")
+        a.symlink("sbin", "bin")
+        a.symlink("usr/bin", "../bin")
+        a.symlink("usr/sbin", "../bin")
+        with open(os.path.join(here, "init.sh"), "rb") as f:
+            a.file("init", f.read(), 0o755)
+        with open(os.path.join(scenario_dir, "guest.sh"), "rb") as f:
+            a.file("scenario/guest.sh", f.read(), 0o755)
+        order = module_load_order(config.get("modules", []), module_index(modules_dir))
+        for ko in order:
+            with open(ko, "rb") as f:
+                a.file("lib/modules/%s/%s" % (version, os.path.basename(ko)), f.read())
+        a.file("scenario/modules", "".join(os.path.basename(k) + "\n" for k in order).encode())
+        for program in programs:
+            with open(program, "rb") as f:
+                a.file("bin/" + os.path.basename(program), f.read(), 0o755)
+        for lib in shared_libraries(programs):
+            with open(lib, "rb") as f:  # stored under the name programs ask for
+                a.file(lib, f.read(), 0o755)
+        a.close()
+
+
+def run_guest(kernel, initrd, config, append, timeout, log_path):
+    qemu = shutil.which("qemu-system-x86_64")
+    if qemu is None:
+        fail("qemu-system-x86_64 is not installed (./run installs qemu-system-x86)")
+    command = [
+        qemu, "-accel", "tcg", "-m", str(config.get("memory_mb", 512)), "-smp",
+        str(config.get("cpus", 2)), "-nographic", "-monitor", "none", "-serial", "stdio",
+        "-no-reboot", "-nodefaults", "-kernel", kernel, "-initrd", initrd, "-append",
+        "console=ttyS0 panic=-1 loglevel=4 " + append
+    ] + config.get("qemu", [])
+    started = time.monotonic()
+    child = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                             stderr=subprocess.STDOUT, start_new_session=True)
+    status = None
+    pending = b""
+    with open(log_path, "wb") as log:
+        while True:
+            left = started + timeout - time.monotonic()
+            if left <= 0:
+                print("\nguest.py: the guest did not finish within %d s" % timeout, flush=True)
+                break
+            ready, _, _ = select.select([child.stdout], [], [], min(left, 1.0))
+            if not ready:
+                continue
+            chunk = os.read(child.stdout.fileno(), 65536)
+            if not chunk:
+                break
+            log.write(chunk)
+            sys.stdout.buffer.write(chunk)
+            sys.stdout.flush()
+            pending = (pending + chunk)[-4096:]
+            m = re.search(rb"palpa-guest: exit (\d+)\r?\n", pending)
+            if m:
+                status = int(m.group(1))
+                break
+    try:
+        child.wait(timeout=10)
+    except subprocess.TimeoutExpired:
+        os.killpg(child.pid, signal.SIGKILL)
+        child.wait()
+    print("guest.py: guest ran %.1f s" % (time.monotonic() - started), flush=True)
+    return 1 if status is None else status
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("--kernel", required=True)
+    p.add_argument("--scenario", required=True)
+    p.add_argument("--bin", action="append", default=[])
+    p.add_argument("--timeout", type=int, default=240)
+    p.add_argument("--work", default=None)
+    p.add_argument("args", nargs="*")
+    o = p.parse_args()
+    kernel, version, modules_dir = find_kernel(o.kernel)
+    with open(os.path.join(o.scenario, "scenario.json")) as f:
+        config = json.load(f)
+    for program in o.bin:
+        if not os.access(program, os.X_OK):
+            fail("%s: not an executable (build it first)" % program)
+    work = o.work or os.path.join(os.getcwd(), "guest-" + os.path.basename(o.scenario.rstrip("/")))
+    os.makedirs(work, exist_ok=True)
+    initrd = os.path.join(work, "initramfs.cpio")
+    build_initramfs(initrd, o.scenario, config, modules_dir, version, o.bin)
+    append = "palpa.args=" + ",".join(o.args) if o.args else ""
+    sys.exit(run_guest(kernel, initrd, config, append, o.timeout, os.path.join(work, "console.log")))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,113 @@
+// The shared board-behaviour check (CppUTest assertions).
+#include "board_behaviour.h"
+
+#include <atomic>
+#include <chrono>
+#include <thread>
+
+#include "mini_client.h"
+#include "palpa/host/device.h"
+#include "palpa/protocol/faults.h"
+
+#include "CppUTest/TestHarness.h"
+
+namespace palpa::testing {
+namespace {
+
+namespace ph = palpa::host;
+namespace pp = palpa::protocol;
+
+/// The bare client's bytes through a host transport, so it reaches a board by any device URI.
+class TransportPipe final : public BytePipe {
+ public:
+  explicit TransportPipe(std::unique_ptr<ph::Transport> t) : transport_(std::move(t)) {}
+  void Write(const uint8_t* data, size_t size) override { transport_->Write(data, size); }
+  long Read(uint8_t* out, size_t capacity, int timeout_ms) override {
+    const auto n = transport_->Read(out, capacity, timeout_ms);
+    if (n.ok()) return static_cast<long>(n.value);
+    return n.status == pp::Status::kTimeout ? 0 : -1;
+  }
+
+ private:
+  std::unique_ptr<ph::Transport> transport_;
+};
+
+}  // namespace
+
+void CheckBoardBehaviour(const std::string& uri, pp::BoardKind kind) {
+  std::string error;
+  auto opened = ph::Device::Open(uri, {}, &error);
+  CHECK_TEXT(opened.ok(), error.c_str());
+  ph::Device& d = *opened.value;
+  const pp::HelloReply hello = d.info();
+  CHECK(hello.board_kind == kind);
+  CHECK(d.link().catalog_matches());
+  CHECK(hello.plant_simulated);
+  STRCMP_EQUAL("thesis-5finger", hello.config_name.data());
+  CHECK(d.ClearFault().ok());  // a board a previous host left in host silence takes commands again
+
+  auto board = d.ReadBoard(&error);
+  CHECK_TEXT(board.ok(), error.c_str());
+  board.value.host_timeout_us = 150000;
+  CHECK(d.ConfigureBoard(board.value).ok());
+
+  const ph::Outcome set = d.SetLines({{0, 40.0}});
+  CHECK_TEXT(set.ok(), set.message.c_str());
+  std::atomic<int32_t> measured{0};
+  const int id = d.Subscribe([&](const ph::TelemetryFrame& f) {
+    const auto& t = f.telemetry;
+    measured = t.samples[(t.tick_count - 1) * t.line_count].measured_pa;
+  });
+  for (int i = 0; i < 150 && measured.load() < 39000; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  CHECK_TEXT(measured.load() > 39000 && measured.load() < 41000,
+             std::to_string(measured.load()).c_str());  // the plant follows
+
+  d.Unsubscribe(id);
+  opened.value.reset();
+
+  // Host silence, watched from outside with a bare protocol client: a session with one setpoint,
+  // heartbeats for a while, then nothing — every line must go safe with the fault latched.
+  MiniClient client;
+  auto transport = ph::OpenTransport(uri, &error);
+  CHECK_TEXT(transport.ok(), error.c_str());
+  client.Use(std::make_unique<TransportPipe>(std::move(transport.value)));
+  CHECK(client.Hello(77).ok());
+  LONGS_EQUAL((int)pp::Status::kOk, (int)client.Reliable(pp::ClearFault{}));
+  LONGS_EQUAL((int)pp::Status::kOk,
+              (int)client.Reliable(pp::SetFingerMode{0, pp::FingerMode::kRaw}));
+  pp::SetLineSetpoints sp{};
+  sp.generation = 1;
+  sp.entry_count = 1;
+  sp.entries[0] = {0, 30000};
+  client.Send(sp);
+  bool live = false;
+  int frames = 0;
+  pp::Telemetry last{};
+  for (uint32_t g = 1; g <= 15; ++g) {
+    client.Send(pp::Heartbeat{g});
+    for (const auto& f : client.Read(20)) {
+      if (!f.Is<pp::Telemetry>()) continue;
+      last = f.As<pp::Telemetry>();
+      ++frames;
+      live |= (last.samples[0].status & pp::line_status::kSafe) == 0;
+    }
+  }
+  CHECK_TEXT(live, (std::to_string(frames) + " telemetry frames, the last with line 1 status " +
+                    std::to_string(last.samples[0].status) + " at generation " +
+                    std::to_string(last.setpoint_generation) + ", faults " +
+                    ph::FaultNames(last.fault_bitmap))
+                       .c_str());
+  bool safe = false;
+  for (const auto& f : client.Read(600)) {
+    if (!f.Is<pp::Telemetry>()) continue;
+    const auto t = f.As<pp::Telemetry>();
+    bool all = (t.fault_bitmap & pp::FaultBit(pp::Fault::kHostSilence)) != 0;
+    for (uint8_t i = 0; i < t.line_count; ++i)
+      all &= (t.samples[i].status & pp::line_status::kSafe) != 0;
+    safe |= all;
+  }
+  CHECK(safe);
+}
+
+}  // namespace palpa::testing

@@ -1,0 +1,17 @@
+// The link behaviour every board is held to through the host library, whatever carries it (the
+// Cortex-M image under QEMU, palpa-sim over TCP, a USB gadget through a real kernel's bulk, HID
+// and ACM drivers).
+#pragma once
+
+#include <string>
+
+#include "palpa/protocol/enums.h"
+
+namespace palpa::testing {
+
+/// Hello with a matching catalog, a configuration change, a setpoint the plant follows in
+/// telemetry, and — watched with a bare protocol client over the same device URI — every line
+/// safe with host_silence latched once the host goes quiet.
+void CheckBoardBehaviour(const std::string& uri, protocol::BoardKind kind);
+
+}  // namespace palpa::testing
