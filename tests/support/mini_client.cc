@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 
 namespace palpa::testing {
@@ -63,6 +64,7 @@ bool MiniClient::OpenSerial(const std::string& path) {
 }
 
 void MiniClient::SendBytes(const std::vector<uint8_t>& bytes) {
+  last_sent_ms_ = NowMs();
   if (pipe_) {
     pipe_->Write(bytes.data(), bytes.size());
     return;
@@ -79,8 +81,11 @@ std::vector<ReceivedFrame> MiniClient::Read(int timeout_ms, bool (*until)(const 
   std::vector<ReceivedFrame> frames;
   const int64_t deadline = NowMs() + timeout_ms;
   for (;;) {
-    const int64_t left = deadline - NowMs();
+    if (keepalive_ms_ > 0 && NowMs() - last_sent_ms_ >= keepalive_ms_)
+      Send(pp::Heartbeat{++heartbeat_generation_});
+    int64_t left = deadline - NowMs();
     if (left <= 0) break;
+    if (keepalive_ms_ > 0) left = std::min<int64_t>(left, keepalive_ms_);
     uint8_t buffer[4096];
     ssize_t n = 0;
     if (pipe_) {
@@ -88,7 +93,9 @@ std::vector<ReceivedFrame> MiniClient::Read(int timeout_ms, bool (*until)(const 
       if (n < 0) break;
     } else {
       pollfd p{fd_, POLLIN, 0};
-      if (poll(&p, 1, static_cast<int>(left)) <= 0) break;
+      const int ready = poll(&p, 1, static_cast<int>(left));
+      if (ready < 0 || (ready == 0 && keepalive_ms_ == 0)) break;
+      if (ready == 0) continue;  // time for the next heartbeat
       n = read(fd_, buffer, sizeof(buffer));
       if (n <= 0) break;
     }
@@ -165,10 +172,13 @@ bool SimProcess::Start(const std::vector<std::string>& args) {
     dup2(out[1], STDERR_FILENO);
     close(out[0]);
     std::vector<char*> argv;
-    argv.push_back(const_cast<char*>(PALPA_SIM_PATH));
+    // $PALPA_SIM: another palpa-sim than the build's (inside the real-kernel guest).
+    const char* path =
+        std::getenv("PALPA_SIM") != nullptr ? std::getenv("PALPA_SIM") : PALPA_SIM_PATH;
+    argv.push_back(const_cast<char*>(path));
     for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
-    execv(PALPA_SIM_PATH, argv.data());
+    execv(path, argv.data());
     _exit(127);
   }
   close(out[1]);

@@ -38,6 +38,9 @@ class MiniClient {
     const auto n = pp::EncodeMessageFrame(m, seq, flags, frame, sizeof(frame));
     SendBytes(std::vector<uint8_t>(frame, frame + n.value));
   }
+  /// While reading or waiting for answers, sends a Heartbeat whenever nothing was sent for
+  /// `every_ms` (0: never), as a host keeps a session alive; silence starts when it is turned off.
+  void KeepAlive(int every_ms) { keepalive_ms_ = every_ms; }
   /// Frames received within timeout_ms (returns early once `until` says so).
   std::vector<ReceivedFrame> Read(int timeout_ms, bool (*until)(const ReceivedFrame&) = nullptr);
 
@@ -60,6 +63,9 @@ class MiniClient {
   int fd_ = -1;
   std::unique_ptr<BytePipe> pipe_;
   uint8_t next_seq_ = 0;
+  int keepalive_ms_ = 0;
+  int64_t last_sent_ms_ = 0;
+  uint32_t heartbeat_generation_ = 0;
   pp::OwningFrameDecoder decoder_;
 };
 
