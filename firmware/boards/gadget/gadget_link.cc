@@ -23,14 +23,16 @@ namespace {
 enum EndpointId : uint32_t { kBulkIn = 1, kBulkOut, kHidIn, kHidOut };
 // Endpoint files are numbered in descriptor order: IN first, then OUT.
 constexpr int kInFile = 0, kOutFile = 1;
-// The host polls the HID input endpoint once per 1 ms frame (bInterval 1). dummy_hcd serves its
-// endpoints from a timer tick of one jiffy (4 ms at HZ=250) and ignores the interval, so reports
-// are queued at one per millisecond, up to a tick's worth ahead, to give the bus's rate.
+// A host polls the HID input endpoint once per 1 ms frame (bInterval 1) and takes at most one
+// report each time. dummy_hcd ignores the interval and would take reports as fast as they come,
+// so the gadget keeps to the schedule itself: one report in flight, one a millisecond. A report
+// that misses its frame waits for the next, as on the bus.
 constexpr int64_t kReportIntervalNs = 1000000;
-constexpr size_t kHidInQueue = 4;
-// A bulk IN transfer that is not a multiple of the 64-byte packet ends with a short packet, which
-// completes the host's read without waiting for a zero-length packet.
-constexpr size_t kBulkInTransfer = 1023;
+// One bulk IN transfer at a time, carrying all that queued while the previous one was on the bus:
+// a host's read completes at the first short packet, so many small transfers would cost a bus
+// frame each. A length that is not a multiple of the 64-byte packet ends with a short packet,
+// which completes the host's read without waiting for a zero-length packet.
+constexpr size_t kBulkInTransfer = 4095;
 
 int64_t NowNs() {
   timespec t;
@@ -95,9 +97,9 @@ struct GadgetLink::Impl {
   FfsFunction bulk, hid;
   bool has_bulk = false, has_hid = false;
   OutEndpoint bulk_out{kBulkOut, 8, kBulkPacketBytes};
-  InEndpoint bulk_in{kBulkIn, 2, kBulkInTransfer};
+  InEndpoint bulk_in{kBulkIn, 1, kBulkInTransfer};
   OutEndpoint hid_out{kHidOut, 2, kHidReportBytes};
-  InEndpoint hid_in{kHidIn, kHidInQueue, kHidReportBytes};
+  InEndpoint hid_in{kHidIn, 1, kHidReportBytes};
   int acm = -1;
   int64_t next_report_ns = 0;
   std::vector<uint8_t> arrived;
@@ -268,9 +270,8 @@ void GadgetLink::Transmit() {
         if (!m.hid_in.Send(m.aio, m.hid.endpoint_fd(kInFile), report, sizeof(report))) break;
         sent += n;
         counters_.bytes_to_host[static_cast<int>(Channel::kHid)] += n;
-        // Paced from the schedule, not from now: a late wake-up catches up within the queue.
-        m.next_report_ns = std::max(m.next_report_ns + kReportIntervalNs,
-                                    now - kReportIntervalNs * static_cast<int64_t>(kHidInQueue));
+        // Frames keep their schedule: a wake-up late within a frame does not delay the next.
+        m.next_report_ns = std::max(m.next_report_ns + kReportIntervalNs, now);
       }
       break;
     }
