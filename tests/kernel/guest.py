@@ -5,11 +5,14 @@ The initramfs holds busybox, the kernel modules the scenario names (with what th
 given programs with their shared libraries, the common /init and the scenario's guest script.
 The guest's console goes to stdout; the exit status is the scenario script's.
 
-  guest.py --kernel DIR --scenario DIR [--bin PROGRAM]... [--timeout S] [--work DIR] [-- ARGS]
+  guest.py --kernel DIR --scenario DIR [--bin PROGRAM]... [--timeout S] [--work DIR]
+           [--icount SHIFT] [-- ARGS]
 
 DIR for --kernel is where `./run` unpacked the kernel package (boot/vmlinuz-*, lib/modules/*).
 A scenario directory holds scenario.json ({"modules": [...], "memory_mb": N, "cpus": N,
 "qemu": [extra arguments]}) and guest.sh (run by /init with ARGS; its exit status is the guest's).
+--icount SHIFT runs the guest on virtual time, 2^SHIFT ns an instruction, idle time skipped: its
+clocks then follow its own work, not the load on the machine running it (benchmarks).
 """
 
 import argparse
@@ -177,16 +180,20 @@ def build_initramfs(path, scenario_dir, config, modules_dir, version, programs):
         a.close()
 
 
-def run_guest(kernel, initrd, config, append, timeout, log_path):
+def run_guest(kernel, initrd, config, append, timeout, log_path, icount):
     qemu = shutil.which("qemu-system-x86_64")
     if qemu is None:
         fail("qemu-system-x86_64 is not installed (./run installs qemu-system-x86)")
+    # On virtual time QEMU 7.2 runs every CPU in one thread, and this kernel did not boot with two.
+    cpus = 1 if icount is not None else config.get("cpus", 2)
     command = [
         qemu, "-accel", "tcg", "-m", str(config.get("memory_mb", 512)), "-smp",
-        str(config.get("cpus", 2)), "-nographic", "-monitor", "none", "-serial", "stdio",
+        str(cpus), "-nographic", "-monitor", "none", "-serial", "stdio",
         "-no-reboot", "-nodefaults", "-kernel", kernel, "-initrd", initrd, "-append",
         "console=ttyS0 panic=-1 loglevel=4 " + append
     ] + config.get("qemu", [])
+    if icount is not None:
+        command += ["-icount", "shift=%d,sleep=off" % icount]
     started = time.monotonic()
     child = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
                              stderr=subprocess.STDOUT, start_new_session=True)
@@ -228,6 +235,7 @@ def main():
     p.add_argument("--bin", action="append", default=[])
     p.add_argument("--timeout", type=int, default=240)
     p.add_argument("--work", default=None)
+    p.add_argument("--icount", type=int, default=None)
     p.add_argument("args", nargs="*")
     o = p.parse_args()
     kernel, version, modules_dir = find_kernel(o.kernel)
@@ -241,7 +249,8 @@ def main():
     initrd = os.path.join(work, "initramfs.cpio")
     build_initramfs(initrd, o.scenario, config, modules_dir, version, o.bin)
     append = "palpa.args=" + ",".join(o.args) if o.args else ""
-    sys.exit(run_guest(kernel, initrd, config, append, o.timeout, os.path.join(work, "console.log")))
+    sys.exit(run_guest(kernel, initrd, config, append, o.timeout, os.path.join(work, "console.log"),
+                       o.icount))
 
 
 if __name__ == "__main__":

@@ -1,7 +1,7 @@
 #!/bin/sh
 # The USB scenario, in the guest: palpa-sim behind palpa-gadget on the device side of dummy_hcd;
 # the host side runs the suite (test) or the benchmarks (bench).
-#   guest.sh test | bench
+#   guest.sh test | bench [TELEMETRY_SECONDS] [COMMANDS]
 set -u
 mode=${1:-test}
 
@@ -48,6 +48,32 @@ case "$mode" in
     status=$?
     stop_board
     exit $status
+    ;;
+  bench)
+    seconds=${2:-60}
+    commands=${3:-1000}
+    # Command -> dispatch latency: the same board and benchmark over each interface, then over a
+    # pty and TCP with palpa-sim alone (PALPA_SIM: the benchmark starts it).
+    # palpa-sim writes its stamps whole when it stops: a fresh board for each interface.
+    for uri in usb:1209:0001 hid:1209:0001 serial:/dev/ttyACM0; do
+      rm -f /tmp/stamps.txt
+      start_board thesis-pneumatic-3 --stamp file:/tmp/stamps.txt
+      palpa_latency_bench --device "$uri" --stamps /tmp/stamps.txt --stop "$sim_pid" "$commands" ||
+        exit 1
+      stop_board
+      for _ in $(seq 50); do [ -e /dev/ttyACM0 ] || [ -e /dev/hidraw0 ] || break; sleep 0.1; done
+    done
+    PALPA_SIM=/bin/palpa-sim palpa_latency_bench pty "$commands" || exit 1
+    PALPA_SIM=/bin/palpa-sim palpa_latency_bench tcp "$commands" || exit 1
+    # Telemetry, 8 lines at 1 kHz: vendor bulk at every tick; HID at every tick and decimated.
+    start_board full-8
+    palpa_telemetry_bench --device usb:1209:0001 "$seconds" 1
+    palpa_telemetry_bench --device serial:/dev/ttyACM0 10 1
+    for every in 1 2 3 4; do palpa_telemetry_bench --device hid:1209:0001 10 "$every"; done
+    kill -USR1 "$gadget_pid"
+    sleep 1
+    tail -n 1 /tmp/gadget.log
+    stop_board
     ;;
   *)
     fail "unknown mode '$mode' (test or bench)"
