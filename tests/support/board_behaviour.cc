@@ -77,13 +77,7 @@ void CheckBoardBehaviour(const std::string& uri, pp::BoardKind kind) {
   CHECK(client.Hello(77).ok());
   client.KeepAlive(20);
   LONGS_EQUAL((int)pp::Status::kOk, (int)client.Reliable(pp::ClearFault{}));
-  LONGS_EQUAL((int)pp::Status::kOk,
-              (int)client.Reliable(pp::SetFingerMode{0, pp::FingerMode::kRaw}));
-  pp::SetLineSetpoints sp{};
-  sp.generation = 1;
-  sp.entry_count = 1;
-  sp.entries[0] = {0, 30000};
-  client.Send(sp);
+  LONGS_EQUAL((int)pp::Status::kOk, (int)client.RawSetpoint(0, 0, 30000));
   auto live = [](const ReceivedFrame& f) {
     return f.Is<pp::Telemetry>() &&
            (f.As<pp::Telemetry>().samples[0].status & pp::line_status::kSafe) == 0;

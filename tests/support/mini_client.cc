@@ -134,6 +134,16 @@ pp::Result<pp::HelloReply> MiniClient::Hello(uint32_t nonce, int timeout_ms) {
   return pp::Status::kTimeout;
 }
 
+pp::Status MiniClient::RawSetpoint(uint8_t finger, uint8_t line, int32_t pa, uint32_t generation) {
+  const pp::Status mode = Reliable(pp::SetFingerMode{finger, pp::FingerMode::kRaw});
+  pp::SetLineSetpoints sp{};
+  sp.generation = generation;
+  sp.entry_count = 1;
+  sp.entries[0] = {line, pa};
+  Send(sp);
+  return mode;
+}
+
 pp::Status MiniClient::WaitAnswer(uint8_t seq, uint8_t type, int timeout_ms) {
   const int64_t deadline = NowMs() + timeout_ms;
   while (NowMs() < deadline) {

@@ -55,6 +55,9 @@ class MiniClient {
     Send(m, seq, pp::flags::kReliable);
     return WaitAnswer(seq, static_cast<uint8_t>(M::kInfo.type), timeout_ms);
   }
+  /// Puts finger `finger` in raw mode (reliable) and streams one setpoint to `line` (generation
+  /// `generation`); returns the mode command's answer.
+  pp::Status RawSetpoint(uint8_t finger, uint8_t line, int32_t pa, uint32_t generation = 1);
   /// Everything received while waiting, telemetry included.
   std::vector<ReceivedFrame> backlog;
 

@@ -113,22 +113,21 @@ bool GadgetLink::Open(const GadgetLinkOptions& o, std::string* error) {
   Impl& m = *impl_;
   if (!m.aio.Open(64, error) || !m.gadget.Create(o.name, o.identity, error)) return false;
   mkdir(o.mount_root.c_str(), 0755);
+  // Each FunctionFS function: its instance in configfs, then its file system and descriptors.
+  auto add_ffs = [&](const char* suffix, FfsFunction& f, const std::vector<uint8_t>& descriptors,
+                     const char* interface_name) {
+    const std::string instance = o.name + suffix;
+    return m.gadget.AddFunction("ffs." + instance, error) &&
+           f.Open(instance, o.mount_root + "/" + instance, descriptors,
+                  InterfaceStrings(interface_name), 2, error);
+  };
   if (o.bulk) {
-    const std::string instance = o.name + "_bulk";
-    if (!m.gadget.AddFunction("ffs." + instance, error) ||
-        !m.bulk.Open(instance, o.mount_root + "/" + instance, VendorBulkDescriptors(),
-                     InterfaceStrings("palpa link (vendor bulk)"), 2, error)) {
+    if (!add_ffs("_bulk", m.bulk, VendorBulkDescriptors(), "palpa link (vendor bulk)"))
       return false;
-    }
     m.has_bulk = true;
   }
   if (o.hid) {
-    const std::string instance = o.name + "_hid";
-    if (!m.gadget.AddFunction("ffs." + instance, error) ||
-        !m.hid.Open(instance, o.mount_root + "/" + instance, HidDescriptors(),
-                    InterfaceStrings("palpa link (HID)"), 2, error)) {
-      return false;
-    }
+    if (!add_ffs("_hid", m.hid, HidDescriptors(), "palpa link (HID)")) return false;
     m.hid.set_setup_handler(HidSetup);
     m.has_hid = true;
   }

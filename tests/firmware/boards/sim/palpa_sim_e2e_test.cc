@@ -58,13 +58,7 @@ void ExerciseBoard(const std::string& address) {
   board.host_timeout_us = 200000;
   board.telemetry_batch = 2;
   LONGS_EQUAL((int)pp::Status::kOk, (int)client.Reliable(board));
-  LONGS_EQUAL((int)pp::Status::kOk,
-              (int)client.Reliable(pp::SetFingerMode{0, pp::FingerMode::kRaw}));
-  pp::SetLineSetpoints sp{};
-  sp.generation = 1;
-  sp.entry_count = 1;
-  sp.entries[0] = {0, 30000};
-  client.Send(sp);
+  LONGS_EQUAL((int)pp::Status::kOk, (int)client.RawSetpoint(0, 0, 30000));
   uint32_t generation = 0;
   const pp::Telemetry t = Stream(client, 2500, generation);
   LONGS_EQUAL(7, t.line_count);
