@@ -6,6 +6,7 @@
 #include <csignal>
 #include <cstdio>
 #include <mutex>
+#include <string>
 #include <thread>
 
 #include "cli.h"
@@ -165,13 +166,21 @@ int CmdMonitor(Context& c, const std::vector<std::string>& args) {
   });
   std::signal(SIGINT, [](int) { g_stop = true; });
   const auto start = std::chrono::steady_clock::now();
+  std::string last_event;
   while (!g_stop && (o.duration == 0 || std::chrono::steady_clock::now() - start <
                                             std::chrono::duration<double>(o.duration))) {
     std::this_thread::sleep_for(std::chrono::duration<double>(1.0 / std::min(rate, 10.0)));
+    // What happened to the link (a board reset, a cable pulled and plugged back in), on stderr so
+    // that JSON lines on stdout stay clean.
+    for (const std::string& e : d->link().TakeEvents()) {
+      std::fprintf(stderr, "palpa monitor: %s\n", e.c_str());
+      last_event = e;
+    }
     if (c.json) continue;
     std::lock_guard<std::mutex> lock(mutex);
     if (terminal) std::printf("\033[H\033[2J");
     PrintTable(*d, b, latest, frames, curves);
+    if (terminal && !last_event.empty()) std::printf("last event: %s\n", last_event.c_str());
     std::fflush(stdout);
   }
   d->Unsubscribe(id);

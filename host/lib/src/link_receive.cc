@@ -40,17 +40,17 @@ bool Link::TransportLost() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     ++counters_.transport_lost;
+    events_.push_back(
+        "the link to " + description_ +
+        (options_.reopen ? " was lost (unplugged?); reopening it once it is back" : " closed"));
     OnBoardReset("link lost");
     hello_wanted_ = false;
     if (!options_.reopen) {
-      events_.push_back("the link to " + description_ + " closed");
       stop_ = true;
       changed_.notify_all();
       queue_changed_.notify_all();
       return false;
     }
-    events_.push_back("the link to " + description_ +
-                      " was lost (unplugged?); reopening it once it is back");
   }
   {
     // Released at once, so the device can come back under the same name (a tty, a hidraw node).

@@ -44,6 +44,17 @@ case "$mode" in
       fail "palpa list did not find the gadget on HID"
     grep -q "^  serial:/dev/ttyACM0 .*palpa board: palpa actuator board" /tmp/list.txt ||
       fail "palpa list did not find the gadget's serial port"
+    # The CLI says what happens to its link: the cable pulled and plugged back in under monitor.
+    palpa --device usb:1209:0001 --json monitor --duration 8 > /dev/null 2> /tmp/monitor.txt &
+    monitor=$!
+    sleep 2
+    echo "" > "$PALPA_GADGET_CONFIGFS/UDC"
+    sleep 1
+    echo "$PALPA_GADGET_UDC" > "$PALPA_GADGET_CONFIGFS/UDC"
+    wait "$monitor" || fail "palpa monitor failed: $(cat /tmp/monitor.txt)"
+    cat /tmp/monitor.txt
+    grep -q "was lost" /tmp/monitor.txt && grep -q "reopened usb:1209:0001" /tmp/monitor.txt ||
+      fail "palpa monitor did not report the unplug and the replug"
     palpa_guest_usb_tests -v
     status=$?
     stop_board
