@@ -5,10 +5,11 @@ The initramfs holds busybox, the kernel modules the scenario names (with what th
 given programs with their shared libraries, the common /init and the scenario's guest script.
 The guest's console goes to stdout; the exit status is the scenario script's.
 
-  guest.py --kernel DIR --scenario DIR [--bin PROGRAM]... [--timeout S] [--work DIR]
-           [--icount SHIFT] [-- ARGS]
+  guest.py --kernel DIR --scenario DIR [--bin PROGRAM]... [--module FILE.ko]... [--timeout S]
+           [--work DIR] [--icount SHIFT] [-- ARGS]
 
 DIR for --kernel is where `./run` unpacked the kernel package (boot/vmlinuz-*, lib/modules/*).
+--module adds a module built out of tree for this kernel, loaded after the scenario's.
 A scenario directory holds scenario.json ({"modules": [...], "memory_mb": N, "cpus": N,
 "qemu": [extra arguments]}) and guest.sh (run by /init with ARGS; its exit status is the guest's).
 --icount SHIFT runs the guest on virtual time, 2^SHIFT ns an instruction, idle time skipped: its
@@ -16,7 +17,6 @@ clocks then follow its own work, not the load on the machine running it (benchma
 """
 
 import argparse
-import gzip
 import json
 import os
 import re
@@ -144,7 +144,7 @@ def shared_libraries(programs):
     return sorted(libs)
 
 
-def build_initramfs(path, scenario_dir, config, modules_dir, version, programs):
+def build_initramfs(path, scenario_dir, config, modules_dir, version, programs, extra_modules):
     busybox = shutil.which("busybox")
     if busybox is None:
         fail("busybox is not installed (./run installs busybox-static)")
@@ -166,7 +166,13 @@ def build_initramfs(path, scenario_dir, config, modules_dir, version, programs):
             a.file("init", f.read(), 0o755)
         with open(os.path.join(scenario_dir, "guest.sh"), "rb") as f:
             a.file("scenario/guest.sh", f.read(), 0o755)
-        order = module_load_order(config.get("modules", []), module_index(modules_dir))
+        # Modules built out of tree (against the same kernel's headers) join the package's: they
+        # are loaded after what they depend on, like the others.
+        index = module_index(modules_dir)
+        for ko in extra_modules:
+            index[os.path.basename(ko)[:-3].replace("-", "_")] = os.path.abspath(ko)
+        names = config.get("modules", []) + [os.path.basename(k)[:-3] for k in extra_modules]
+        order = module_load_order(names, index)
         for ko in order:
             with open(ko, "rb") as f:
                 a.file("lib/modules/%s/%s" % (version, os.path.basename(ko)), f.read())
@@ -236,6 +242,7 @@ def main():
     p.add_argument("--timeout", type=int, default=240)
     p.add_argument("--work", default=None)
     p.add_argument("--icount", type=int, default=None)
+    p.add_argument("--module", action="append", default=[])
     p.add_argument("args", nargs="*")
     o = p.parse_args()
     kernel, version, modules_dir = find_kernel(o.kernel)
@@ -244,10 +251,13 @@ def main():
     for program in o.bin:
         if not os.access(program, os.X_OK):
             fail("%s: not an executable (build it first)" % program)
+    for ko in o.module:
+        if not ko.endswith(".ko") or not os.path.isfile(ko):
+            fail("%s: not a kernel module file (.ko)" % ko)
     work = o.work or os.path.join(os.getcwd(), "guest-" + os.path.basename(o.scenario.rstrip("/")))
     os.makedirs(work, exist_ok=True)
     initrd = os.path.join(work, "initramfs.cpio")
-    build_initramfs(initrd, o.scenario, config, modules_dir, version, o.bin)
+    build_initramfs(initrd, o.scenario, config, modules_dir, version, o.bin, o.module)
     append = "palpa.args=" + ",".join(o.args) if o.args else ""
     sys.exit(run_guest(kernel, initrd, config, append, o.timeout, os.path.join(work, "console.log"),
                        o.icount))
