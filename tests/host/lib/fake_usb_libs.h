@@ -10,7 +10,7 @@ namespace palpa::testing {
 
 struct FakeHid {
   bool present = true;
-  std::wstring serial = L"ABC";  ///< the one device's serial number
+  std::wstring serial = L"ABC";                      ///< the one device's serial number
   const wchar_t* product = L"palpa actuator board";  ///< literals: no allocation in a test
   int open_failures_after = -1;  ///< >=0: hid_open_path fails once that many opens succeeded
   int opened = 0, closed_handles = 0;
