@@ -29,6 +29,25 @@ start_board() {
   echo "usb scenario: $(cat /sys/bus/usb/devices/1-1/product), $(cat /sys/bus/usb/devices/1-1/speed) Mbit/s"
 }
 
+# What the host side sees of the gadget (sysfs, from the descriptors the kernel read): full speed,
+# as an MCU's USB; a vendor interface with 64-byte bulk IN and OUT; a HID interface with 64-byte
+# interrupt IN and OUT polled every 1 ms; CDC-ACM (its control and data interfaces).
+check_descriptors() {
+  dev=/sys/bus/usb/devices/1-1
+  [ "$(cat $dev/speed)" = 12 ] || fail "the gadget runs at $(cat $dev/speed) Mbit/s, not 12 (full speed)"
+  for intf in "$dev"/1-1:1.*; do
+    for ep in "$intf"/ep_*; do
+      echo "$(cat "$intf/bInterfaceClass") $(cat "$ep/type") $(cat "$ep/direction")" \
+        "$(cat "$ep/wMaxPacketSize") $(cat "$ep/interval")"
+    done
+  done > /tmp/endpoints.txt
+  cat /tmp/endpoints.txt
+  for expected in "ff Bulk in 0040" "ff Bulk out 0040" "03 Interrupt in 0040 1ms" \
+    "03 Interrupt out 0040 1ms" "02 Interrupt in" "0a Bulk in 0040" "0a Bulk out 0040"; do
+    grep -q "^$expected" /tmp/endpoints.txt || fail "no endpoint '$expected' (class, type, direction, packet, interval)"
+  done
+}
+
 stop_board() {
   kill "$gadget_pid" "$sim_pid" 2>/dev/null
   wait "$gadget_pid" "$sim_pid" 2>/dev/null
@@ -37,6 +56,7 @@ stop_board() {
 case "$mode" in
   test)
     start_board thesis-5finger
+    check_descriptors
     palpa list | tee /tmp/list.txt
     grep -q "^  usb:1209:0001:0001 .*palpa board: palpa actuator board" /tmp/list.txt ||
       fail "palpa list did not find the gadget on vendor bulk"
