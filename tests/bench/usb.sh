@@ -5,7 +5,7 @@
 # bulk for 60 s (PALPA_USB_TELEMETRY_SECONDS), over CDC-ACM, and over HID at every tick and
 # decimated. The guest runs on virtual time (-icount, PALPA_USB_ICOUNT=SHIFT, default 1: 2 ns an
 # instruction), so its figures follow its own work and not the load on this machine; they are for
-# comparison between transports and between runs, not a PC's. About 15 minutes.
+# comparison between transports and between runs, not a PC's. About 11 minutes.
 set -eu
 cd "$(dirname "$0")/../.."
 B=build/default
