@@ -136,6 +136,21 @@ std::vector<float> PlayParams(CompensatorKind kind, const PlayModel& m) {
   return p;
 }
 
+/// Readings a play-model fit needs: about two per unknown (w0, offset, and per operator and per
+/// dead zone one each; an api dead zone's slope takes two non-negative columns).
+size_t PlayFitPoints(int operators, int dead_zones) {
+  return static_cast<size_t>(2 * operators + 2 * dead_zones + 4);
+}
+
+/// The model's operators, and those with a weight.
+void CountOperators(const PlayModel& m, HysteresisFit& fit) {
+  fit.operators = static_cast<int>(m.weights.size());
+  fit.operators_used =
+      static_cast<int>(std::count_if(m.weights.begin(), m.weights.end(), [](double w) {
+        return static_cast<float>(w) != 0.0f;  // as the board gets it
+      }));
+}
+
 /// Refuses parameter sets the firmware would refuse, with its reason.
 void CheckWithFirmware(HysteresisFit& fit) {
   protocol::ConfigureFinger f{};
@@ -144,6 +159,23 @@ void CheckWithFirmware(HysteresisFit& fit) {
 }
 
 }  // namespace
+
+size_t MinSweepPoints(CompensatorKind kind, int operators) {
+  switch (kind) {
+    case CompensatorKind::kPrandtlIshlinskii:
+      return PlayFitPoints(operators, 0);
+    case CompensatorKind::kAsymmetricPi:
+      return PlayFitPoints(operators, kApiDeadZones);
+    default:
+      return 0;
+  }
+}
+
+int MaxOperators(CompensatorKind kind, size_t points) {
+  int n = 0;
+  while (n < core::kMaxPlayOperators && MinSweepPoints(kind, n + 1) <= points) ++n;
+  return n;
+}
 
 std::string SweepError(const std::vector<SweepSample>& sweep, size_t min_points, double drive_max) {
   if (sweep.size() < min_points) {
@@ -169,7 +201,7 @@ HysteresisFit FitPi(const std::vector<SweepSample>& sweep, int operators, double
     fit.error = "operator count must be 1..32";
     return fit;
   }
-  fit.error = SweepError(sweep, static_cast<size_t>(2 * operators + 4), drive_max);
+  fit.error = SweepError(sweep, MinSweepPoints(fit.kind, operators), drive_max);
   if (!fit.ok()) return fit;
   std::vector<double> u = Drives(sweep);
   for (double& x : u) x = std::max(x, 0.0);
@@ -177,6 +209,7 @@ HysteresisFit FitPi(const std::vector<SweepSample>& sweep, int operators, double
   double c = 0;
   const PlayModel m = FitPlay(u, y, EvenThresholds(operators, drive_max), &c);
   Residuals(m.Simulate(u), y, fit);
+  CountOperators(m, fit);
   fit.params = PlayParams(fit.kind, m);
   CheckWithFirmware(fit);
   return fit;
@@ -191,7 +224,7 @@ HysteresisFit FitApi(const std::vector<SweepSample>& sweep, int operators, int d
     fit.error = "api needs 1..32 operators and 1..8 dead zones within 80 parameters";
     return fit;
   }
-  fit.error = SweepError(sweep, static_cast<size_t>(2 * operators + 2 * dead_zones + 4), drive_max);
+  fit.error = SweepError(sweep, PlayFitPoints(operators, dead_zones), drive_max);
   if (!fit.ok()) return fit;
   std::vector<double> u = Drives(sweep);
   for (double& x : u) x = std::max(x, 0.0);
@@ -202,6 +235,7 @@ HysteresisFit FitApi(const std::vector<SweepSample>& sweep, int operators, int d
     return fit;
   }
   Residuals(best.Simulate(u), y, fit);
+  CountOperators(best, fit);
   fit.params = PlayParams(fit.kind, best);
   CheckWithFirmware(fit);
   return fit;

@@ -38,9 +38,16 @@ std::string Figure(double v, int decimals = 1) {
   return buf;
 }
 
+/// "7 / 16": a play model's operators that carry a weight, of those fitted; "-" for others.
+std::string Used(const cal::HysteresisFit& fit) {
+  if (fit.operators == 0) return "-";
+  return std::to_string(fit.operators_used) + " / " + std::to_string(fit.operators);
+}
+
 struct JammingRow {
   double history;
   pt::Method method;
+  cal::HysteresisFit fit;
   pt::GapResult gap;
   pt::LevelResult levels;      ///< held-out unit
   pt::LevelResult own_levels;  ///< the unit the parameters were identified on, new rig noise
@@ -90,9 +97,9 @@ int main(int argc, char** argv) {
       "== hysteresis: pneumatic finger, identified on unit 1 (%zu sweep points), scored on unit 2 "
       "(creep and rate on) ==\n",
       id.sweep.size());
-  std::printf("%-11s %9s %9s | %9s %7s %7s %7s | %8s %8s %8s %8s %8s %8s | %7s\n", "method",
-              "fit rms", "fit max", "gap um", "ratio", "+-5%", "+-20%", "demo rms", "max",
-              "rand rms", "max", "ramp rms", "max", "M4 instr");
+  std::printf("%-11s %9s %9s %7s | %9s %7s %7s %7s | %8s %8s %8s %8s %8s %8s | %7s\n", "method",
+              "fit rms", "fit max", "weights", "gap um", "ratio", "+-5%", "+-20%", "demo rms",
+              "max", "rand rms", "max", "ramp rms", "max", "M4 instr");
   std::vector<Row> rows;
   double uncompensated_gap = 0;
   for (const pt::Method& m : pt::AllMethods()) {
@@ -124,10 +131,10 @@ int main(int argc, char** argv) {
     if (m.kind == pp::CompensatorKind::kNone) uncompensated_gap = row.gap.major_gap;
     const double m4 = cost.count(m.name) ? cost[m.name] : 0;
     std::printf(
-        "%-11s %9.1f %9.1f | %9.1f %6.0f%% %7.1f %7.1f | %8.1f %8.1f %8.1f %8.1f %8.1f %8.1f | "
-        "%7.0f\n",
-        m.name.c_str(), row.fit.residual_rms, row.fit.residual_max, row.gap.major_gap,
-        100 * row.gap.major_gap / uncompensated_gap, row.gap.nested_gap_small,
+        "%-11s %9.1f %9.1f %7s | %9.1f %6.0f%% %7.1f %7.1f | %8.1f %8.1f %8.1f %8.1f %8.1f %8.1f "
+        "| %7.0f\n",
+        m.name.c_str(), row.fit.residual_rms, row.fit.residual_max, Used(row.fit).c_str(),
+        row.gap.major_gap, 100 * row.gap.major_gap / uncompensated_gap, row.gap.nested_gap_small,
         row.gap.nested_gap_large, row.demo.rms, row.demo.max, row.random.rms, row.random.max,
         row.ramps.rms, row.ramps.max, m4);
     rows.push_back(row);
@@ -138,8 +145,8 @@ int main(int argc, char** argv) {
       "\n== hysteresis: jamming finger, vacuum-history effect h of the stiffness range; identified "
       "on unit 1, "
       "scored on unit 2 ==\n");
-  std::printf("%5s %-11s %12s %10s | %10s %8s | %10s %8s\n", "h", "method", "gap mN/mm", "residual",
-              "own unit", "max", "held-out", "max");
+  std::printf("%5s %-11s %7s %12s %10s | %10s %8s | %10s %8s\n", "h", "method", "weights",
+              "gap mN/mm", "residual", "own unit", "max", "held-out", "max");
   std::vector<JammingRow> jamming;
   for (double h : {0.05, 0.10, 0.15, 0.20}) {
     palpa::sim::Effects jam_effects;
@@ -162,7 +169,7 @@ int main(int argc, char** argv) {
         std::printf("%5.2f %-11s fit refused: %s\n", h, m.name.c_str(), fit.error.c_str());
         continue;
       }
-      JammingRow row{h, m, {}, {}, {}, 0};
+      JammingRow row{h, m, fit, {}, {}, {}, 0};
       {
         pt::FingerRig rig({3, 2, 23, jam_effects});
         rig.Configure(jid.inverse, m.kind, fit.params);
@@ -179,10 +186,11 @@ int main(int argc, char** argv) {
         row.own_levels = pt::SettledLevels(rig, jid.inverse, quick ? 8 : 20, 3 * dwell, 6);
       }
       if (m.kind == pp::CompensatorKind::kNone) injected = row.gap.major_gap;
-      std::printf("%5.2f %-11s %12.1f %9.0f%% | %9.1f%% %7.1f%% | %9.1f%% %7.1f%%\n", h,
-                  m.name.c_str(), row.gap.major_gap, 100 * row.gap.major_gap / injected,
-                  100 * row.own_levels.mean_relative, 100 * row.own_levels.max_relative,
-                  100 * row.levels.mean_relative, 100 * row.levels.max_relative);
+      std::printf("%5.2f %-11s %7s %12.1f %9.0f%% | %9.1f%% %7.1f%% | %9.1f%% %7.1f%%\n", h,
+                  m.name.c_str(), Used(fit).c_str(), row.gap.major_gap,
+                  100 * row.gap.major_gap / injected, 100 * row.own_levels.mean_relative,
+                  100 * row.own_levels.max_relative, 100 * row.levels.mean_relative,
+                  100 * row.levels.max_relative);
       row.injected = injected;
       jamming.push_back(row);
     }
@@ -235,10 +243,12 @@ int main(int argc, char** argv) {
         "second "
         "after each new held level not scored.\n\n";
   md +=
-      "| method | M4F instr/step | fit residual rms | gap (um) | gap / none | nested +-5 % | "
-      "nested +-20 % | "
-      "abs error at reads (um) | demo rms / max | random rms / max | fast ramps rms / max |\n";
-  md += "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+      "| method | M4F instr/step | fit residual rms | operators with weight | gap (um) | gap / "
+      "none "
+      "| nested +-5 % | nested +-20 % | abs error at reads (um) | demo rms / max | random rms / "
+      "max "
+      "| fast ramps rms / max |\n";
+  md += "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const Row& r : rows) {
     const bool branch = r.method.kind == pp::CompensatorKind::kBranch;
     md += "| " + r.method.name + " | " +
@@ -246,7 +256,7 @@ int main(int argc, char** argv) {
           (r.method.kind == pp::CompensatorKind::kNone
                ? "-"
                : Figure(r.fit.residual_rms) + (branch ? " Pa" : " um")) +
-          " | " + Figure(r.gap.major_gap) + " | " +
+          " | " + Used(r.fit) + " | " + Figure(r.gap.major_gap) + " | " +
           Figure(100 * r.gap.major_gap / uncompensated_gap, 0) + " % | " +
           Figure(r.gap.nested_gap_small) + " | " + Figure(r.gap.nested_gap_large) + " | " +
           Figure(r.gap.mean_abs_error) + " | " + Figure(r.demo.rms) + " / " + Figure(r.demo.max) +
@@ -261,13 +271,13 @@ int main(int argc, char** argv) {
       "new rig "
       "noise and on held-out unit 2.\n\n";
   md +=
-      "| h | method | gap (mN/mm) | residual | level error, own unit (mean / max) | held-out unit "
-      "(mean / max) |\n";
-  md += "|---:|---|---:|---:|---:|---:|\n";
+      "| h | method | operators with weight | gap (mN/mm) | residual | level error, own unit "
+      "(mean / max) | held-out unit (mean / max) |\n";
+  md += "|---:|---|---:|---:|---:|---:|---:|\n";
   for (const JammingRow& r : jamming) {
-    md += "| " + Figure(r.history, 2) + " | " + r.method.name + " | " + Figure(r.gap.major_gap) +
-          " | " + Figure(100 * r.gap.major_gap / r.injected, 0) + " % | " +
-          Figure(100 * r.own_levels.mean_relative) + " / " +
+    md += "| " + Figure(r.history, 2) + " | " + r.method.name + " | " + Used(r.fit) + " | " +
+          Figure(r.gap.major_gap) + " | " + Figure(100 * r.gap.major_gap / r.injected, 0) +
+          " % | " + Figure(100 * r.own_levels.mean_relative) + " / " +
           Figure(100 * r.own_levels.max_relative) + " % | " + Figure(100 * r.levels.mean_relative) +
           " / " + Figure(100 * r.levels.max_relative) + " % |\n";
   }

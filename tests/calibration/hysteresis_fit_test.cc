@@ -6,6 +6,7 @@
 #include <string>
 
 #include "palpa/calibration/hysteresis_fit.h"
+#include "palpa/calibration/play_operators.h"
 #include "palpa/calibration/sweep.h"
 #include "palpa/core/compensator.h"
 
@@ -74,6 +75,68 @@ TEST(HysteresisFit, PiRecoversItsOwnModelAndTheFirmwareInvertsIt) {
         pc::StepCompensator(c, s, static_cast<float>(y[k]), static_cast<float>(held_out[k - 1]));
     DOUBLES_EQUAL(held_out[k], out.drive, 30);  // Pa, float arithmetic
   }
+}
+
+TEST(HysteresisFit, EveryOperatorAddsADegreeOfFreedomOnTheSweepsPalpaUses) {
+  // An operator with threshold 0 is the drive itself (w0·u again); one at half the range or above
+  // never leaves its vented clamp under a one-sided drive, a constant like the offset.
+  const auto u = cal::SweepDrives(cal::SweepPlan{100000, 5000, 4});  // palpa calibrate, pneumatic
+  LONGS_EQUAL(2, cal::DistinctOperators(u, {0, 20000, 30000}));
+  LONGS_EQUAL(2, cal::DistinctOperators(u, {10000, 20000, 50000}));
+  LONGS_EQUAL(2, cal::DistinctOperators(u, {10000, 20000, 20000}));
+  // Thresholds sit strictly inside (0, half the range), evenly.
+  for (int n : {1, 4, 8, 16, 32}) {
+    const auto r = cal::EvenThresholds(n, 100000);
+    LONGS_EQUAL(n, r.size());
+    CHECK(r.front() > 0);
+    CHECK(r.back() < 50000);
+    for (size_t i = 1; i < r.size(); ++i) DOUBLES_EQUAL(r[0], r[i] - r[i - 1], 1e-9);
+  }
+  // Each sweep with the sizes fitted on it: the benchmark's (2.5 kPa), the calibration's
+  // (pneumatic 5 kPa, --quick 20 kPa; jamming --quick 20 kPa), every operator its own.
+  struct Use {
+    cal::SweepPlan plan;
+    int most;
+  };
+  for (const Use& use :
+       {Use{cal::SweepPlan{100000, 2500, 4}, 32}, Use{cal::SweepPlan{100000, 5000, 4}, 16},
+        Use{cal::SweepPlan{100000, 20000, 2}, 8}, Use{cal::SweepPlan{100000, 20000, 1}, 8}}) {
+    const auto staircase = cal::SweepDrives(use.plan);
+    for (int n = 1; n <= use.most; n *= 2) {
+      LONGS_EQUAL_TEXT(n, cal::DistinctOperators(staircase, cal::EvenThresholds(n, 100000)),
+                       ("step " + std::to_string(use.plan.step)).c_str());
+    }
+  }
+  // A coarse staircase cannot tell close thresholds apart: the jamming finger's 10 kPa sweep has
+  // room for 9 of 16.
+  const auto jamming = cal::SweepDrives(cal::SweepPlan{100000, 10000, 2});
+  LONGS_EQUAL(9, cal::DistinctOperators(jamming, cal::EvenThresholds(16, 100000)));
+  LONGS_EQUAL(9, cal::OperatorsToldApart(jamming, 100000, 16));
+  LONGS_EQUAL(16, cal::OperatorsToldApart(u, 100000, 16));
+}
+
+TEST(HysteresisFit, AFitSaysHowManyOfItsOperatorsCarryAWeight) {
+  const auto sweep = Measure(TruthPi(), drives);
+  for (int n : {4, 16}) {
+    const auto fit = cal::FitPi(sweep, n, 100000);
+    CHECK_TEXT(fit.ok(), fit.error.c_str());
+    LONGS_EQUAL(n, fit.operators);
+    // The weights as the board gets them: params = offset, w0, n thresholds, n weights.
+    int nonzero = 0;
+    for (int i = 0; i < n; ++i) nonzero += fit.params[static_cast<size_t>(2 + n + i)] != 0;
+    LONGS_EQUAL(nonzero, fit.operators_used);
+    CHECK(fit.operators_used >= 1);
+  }
+  // Sweep lengths: what a fit needs, and the most operators a sweep of a given length allows.
+  LONGS_EQUAL(36, cal::MinSweepPoints(pp::CompensatorKind::kPrandtlIshlinskii, 16));
+  LONGS_EQUAL(28, cal::MinSweepPoints(pp::CompensatorKind::kAsymmetricPi, 8));
+  LONGS_EQUAL(12, cal::MaxOperators(pp::CompensatorKind::kPrandtlIshlinskii, 28));
+  LONGS_EQUAL(8, cal::MaxOperators(pp::CompensatorKind::kAsymmetricPi, 28));
+  LONGS_EQUAL(32, cal::MaxOperators(pp::CompensatorKind::kPrandtlIshlinskii, 1000));
+  LONGS_EQUAL(0, cal::MaxOperators(pp::CompensatorKind::kAsymmetricPi, 10));
+  const auto short_fit =
+      cal::FitPi(std::vector<cal::SweepSample>(sweep.begin(), sweep.begin() + 35), 16, 100000);
+  CHECK(short_fit.error.find("at least 36") != std::string::npos);
 }
 
 TEST(HysteresisFit, AsymmetricLoopsNeedApi) {

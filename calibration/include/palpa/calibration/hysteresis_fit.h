@@ -24,9 +24,22 @@ struct HysteresisFit {
   std::vector<float> params;  ///< ConfigureFinger.params layout (docs/hysteresis.md)
   double residual_rms = 0;    ///< output units; for branch, the drive residual in Pa
   double residual_max = 0;
+  /// pi and api: the operators fitted, and how many of them carry a weight (the others were
+  /// driven to zero by the non-negative least squares: the sweep gave them nothing to explain).
+  int operators = 0, operators_used = 0;
   std::string error;  ///< non-empty: no usable fit, and why
   bool ok() const { return error.empty(); }
 };
+
+/// Dead zones of an `api` fit: four knots of S are what the evidence in docs/hysteresis.md used.
+constexpr int kApiDeadZones = 4;
+
+/// The settled readings a sweep needs for a pi or api fit of `operators` (api with
+/// kApiDeadZones): twice the unknowns' count, about; 0 for other kinds.
+size_t MinSweepPoints(protocol::CompensatorKind kind, int operators);
+/// The most operators (up to 32) a pi or api fit can have on a sweep of `points` readings; 0 when
+/// even one is too many.
+int MaxOperators(protocol::CompensatorKind kind, size_t points);
 
 /// Checks a sweep before fitting: enough points, finite, drive within 0..drive_max.
 std::string SweepError(const std::vector<SweepSample>& sweep, size_t min_points, double drive_max);
@@ -36,9 +49,6 @@ HysteresisFit FitApi(const std::vector<SweepSample>& sweep, int operators, int d
                      double drive_max);
 /// Rising and falling curves at `points` output levels; the reversal band chosen on the sweep.
 HysteresisFit FitBranch(const std::vector<SweepSample>& sweep, int points);
-
-/// Dead zones of an `api` fit: four knots of S are what the evidence in docs/hysteresis.md used.
-constexpr int kApiDeadZones = 4;
 
 /// The better play model on this sweep: api when it fits and leaves at most three quarters of
 /// pi's RMS residual (its dead zones must earn their extra cost per step), else pi. `why` says
