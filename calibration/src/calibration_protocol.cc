@@ -1,11 +1,14 @@
 // The thesis protocol, step by step, with a journal for resuming.
 #include "palpa/calibration/calibration_protocol.h"
 
-#include "palpa/calibration/quality_checks.h"
-
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
+
+#include "palpa/calibration/play_operators.h"
+#include "palpa/calibration/quality_checks.h"
+#include "palpa/core/compensator.h"
 
 namespace palpa::calibration {
 namespace {
@@ -35,7 +38,7 @@ std::vector<SweepSample> SamplesFrom(const json& j) {
 }
 
 /// Straight lines through the major rising and falling passes over 10–90 % of the range (the
-/// Table 5-4 comparison), in mm against kPa.
+/// Table 5-4 comparison), in µm against Pa (µm/Pa is the thesis's mm/kPa).
 void BranchFits(const std::vector<SweepSample>& sweep, double drive_max, host::CalibrationFile& f) {
   size_t top = 0;
   for (size_t k = 0; k < sweep.size(); ++k) {
@@ -44,13 +47,13 @@ void BranchFits(const std::vector<SweepSample>& sweep, double drive_max, host::C
   std::vector<std::pair<double, double>> up, down;
   for (size_t k = 0; k <= top; ++k) {
     if (sweep[k].drive_pa >= 0.1 * drive_max && sweep[k].drive_pa <= 0.9 * drive_max) {
-      up.push_back({sweep[k].drive_pa / 1000, sweep[k].output / 1000});
+      up.push_back({sweep[k].drive_pa, sweep[k].output});
     }
   }
   for (size_t k = top; k < sweep.size() && (k == top || sweep[k].drive_pa <= sweep[k - 1].drive_pa);
        ++k) {
     if (sweep[k].drive_pa >= 0.1 * drive_max && sweep[k].drive_pa <= 0.9 * drive_max) {
-      down.push_back({sweep[k].drive_pa / 1000, sweep[k].output / 1000});
+      down.push_back({sweep[k].drive_pa, sweep[k].output});
     }
   }
   const Line r = FitLine(up), d = FitLine(down);
@@ -73,8 +76,57 @@ ProtocolOptions QuickProtocol() {
   o.pneumatic_sweep = SweepPlan{100000, 20000, 2};
   o.jamming_sweep = SweepPlan{100000, 20000, 1};
   o.correction_points = 4;
-  o.compensator_operators = 8;
+  o.default_operators = 8;
   return o;
+}
+
+SweepCapacity SweepFor(const ProtocolOptions& o, bool jamming) {
+  SweepCapacity c;
+  c.plan = jamming ? o.jamming_sweep : o.pneumatic_sweep;
+  const std::vector<double> drives = SweepDrives(c.plan);
+  c.points = drives.size();
+  c.pi_operators = MaxOperators(protocol::CompensatorKind::kPrandtlIshlinskii, c.points);
+  c.api_operators = MaxOperators(protocol::CompensatorKind::kAsymmetricPi, c.points);
+  c.told_apart = OperatorsToldApart(drives, c.plan.drive_max, core::kMaxPlayOperators);
+  c.operators = o.compensator_operators > 0
+                    ? o.compensator_operators
+                    : std::max(1, std::min(o.default_operators, c.told_apart));
+  return c;
+}
+
+std::string SweepCapacity::Describe(std::optional<protocol::CompensatorKind> kind) const {
+  const std::string n = "(" + std::to_string(operators) + ")";
+  std::string fitting = !kind ? "pi" + n + " and api" + n + ", keeping the better"
+                        : *kind == protocol::CompensatorKind::kAsymmetricPi ? "api" + n
+                                                                            : "pi" + n;
+  if (operators > told_apart) {
+    fitting += " (its steps tell only " + std::to_string(told_apart) + " operators apart)";
+  }
+  char text[160];
+  std::snprintf(text, sizeof(text),
+                "%zu readings in %g kPa steps (pi up to %d operators, api up to %d; its steps tell "
+                "%d apart): fitting ",
+                points, plan.step / 1000, pi_operators, api_operators, told_apart);
+  return text + fitting;
+}
+
+std::string SweepCapacity::Refusal(std::optional<protocol::CompensatorKind> kind) const {
+  using protocol::CompensatorKind;
+  const std::string n = "(" + std::to_string(operators) + ")";
+  auto too_short = [&](CompensatorKind k, const std::string& name, int most) {
+    return name + n + " needs " + std::to_string(MinSweepPoints(k, operators)) +
+           " sweep readings; this sweep has " + std::to_string(points) + " (" + name + " up to " +
+           std::to_string(most) + ")";
+  };
+  const bool pi = operators <= pi_operators, api = operators <= api_operators;
+  if (kind == CompensatorKind::kPrandtlIshlinskii && !pi)
+    return too_short(*kind, "pi", pi_operators);
+  if (kind == CompensatorKind::kAsymmetricPi && !api) return too_short(*kind, "api", api_operators);
+  if (!kind && !pi && !api) {
+    return "neither pi" + n + " nor api" + n + ": " +
+           too_short(CompensatorKind::kPrandtlIshlinskii, "pi", pi_operators);
+  }
+  return {};
 }
 
 RigStatus RunCalibration(Rig& rig, uint8_t finger, const ProtocolOptions& o, const RunInfo& info,
@@ -100,9 +152,9 @@ RigStatus RunCalibration(Rig& rig, uint8_t finger, const ProtocolOptions& o, con
     if (journal.save) journal.save(journal);
     if (progress) progress(p);
   };
-  // Columns per phase (docs/calibration.md): correction: line, command, rising, falling (kPa);
-  // grid: bias, vacuum (kPa), stiffness mean, spread (N/mm), loop area (mJ); sweep: commanded and
-  // measured drive (kPa), output (µm or mN/mm).
+  // Columns per phase (docs/calibration.md), in the calibration file's units: correction: line,
+  // command, rising, falling (Pa); grid: bias, vacuum (Pa), stiffness mean, spread (mN/mm), loop
+  // area (mJ); sweep: commanded and measured drive (Pa), output (µm or mN/mm).
   out->csv = {"phase,v1,v2,v3,v4,v5"};
 
   // 1. Zero (every run, also a resumed one: the rig may have been moved).
@@ -137,8 +189,8 @@ RigStatus RunCalibration(Rig& rig, uint8_t finger, const ProtocolOptions& o, con
     correction.line = line;
     for (const json& q : st["corrections"][std::to_string(line)]) {
       correction.points.push_back({q[0].get<int32_t>(), q[1].get<int32_t>(), q[2].get<int32_t>()});
-      out->csv.push_back(Csv({static_cast<double>(line + 1), q[0].get<double>() / 1000,
-                              q[1].get<double>() / 1000, q[2].get<double>() / 1000, 0},
+      out->csv.push_back(Csv({static_cast<double>(line + 1), q[0].get<double>(), q[1].get<double>(),
+                              q[2].get<double>(), 0},
                              "correction"));
     }
     corrections.push_back(correction);
@@ -146,7 +198,7 @@ RigStatus RunCalibration(Rig& rig, uint8_t finger, const ProtocolOptions& o, con
 
   // 3. Jamming: the stiffness map (the thesis's grid, or adaptive) and the recommended bias.
   double bias = o.biases_kpa.empty() ? 20 : o.biases_kpa.back();
-  std::vector<host::GridPoint> grid;
+  std::vector<ConditionSummary> grid;
   if (jamming) {
     const PressSettings press{o.press_depth_mm, o.press_speed_mm_s, o.dwell_s};
     if (!st.contains("map")) st["map"] = json::object();
@@ -160,9 +212,10 @@ RigStatus RunCalibration(Rig& rig, uint8_t finger, const ProtocolOptions& o, con
     if (!s.ok) return s;
     if (!adaptive) out->map_estimate = EstimateMap(out->map, o.adaptive.box);  // adaptive: its own
     grid = SummariseConditions(out->map);
-    for (const host::GridPoint& g : grid) {
+    for (const ConditionSummary& c : grid) {
+      const host::GridPoint g = FileGridPoint(c);
       out->csv.push_back(
-          Csv({g.bias_kpa, g.vacuum_kpa, g.stiffness_mean, g.stiffness_spread, g.loop_area_mean},
+          Csv({g.bias_pa, g.vacuum_pa, g.stiffness_mean, g.stiffness_spread, g.loop_area_mean},
               "grid"));
     }
     bias = adaptive ? RecommendBiasFromMap(out->map, o.adaptive.box) : RecommendBias(grid);
@@ -200,8 +253,7 @@ RigStatus RunCalibration(Rig& rig, uint8_t finger, const ProtocolOptions& o, con
   if (s.ok) s = ReadForceMean(rig, 10, &end_free);  // clear of everything: the zero at the end
   if (!s.ok) return s;
   for (size_t k = 0; k < sweep.size(); ++k) {
-    out->csv.push_back(
-        Csv({drives[k] / 1000, sweep[k].drive_pa / 1000, sweep[k].output, 0, 0}, "sweep"));
+    out->csv.push_back(Csv({drives[k], sweep[k].drive_pa, sweep[k].output, 0, 0}, "sweep"));
   }
   out->sweep = sweep;
 
@@ -213,12 +265,13 @@ RigStatus RunCalibration(Rig& rig, uint8_t finger, const ProtocolOptions& o, con
   f.finger = finger;
   f.date = info.date;
   f.rig = info.rig;
-  f.speed_mm_s = jamming ? o.press_speed_mm_s : o.contact.speed_mm_s;
-  f.depth_mm = jamming ? o.press_depth_mm : 0;
+  f.simulation = info.simulation;
+  f.speed_um_s = 1000 * (jamming ? o.press_speed_mm_s : o.contact.speed_mm_s);
+  f.depth_um = jamming ? 1000 * o.press_depth_mm : 0;
   f.repeats = jamming ? o.repeats : 1;
-  if (jamming) f.bias_kpa = bias;
+  if (jamming) f.bias_pa = 1000 * bias;
   f.raw_data = info.raw_data;
-  f.grid = grid;
+  for (const ConditionSummary& c : grid) f.grid.push_back(FileGridPoint(c));
   f.regulator_corrections = corrections;
   const double drive_max = jamming ? o.jamming_sweep.drive_max : o.pneumatic_sweep.drive_max;
   std::string error;
@@ -226,14 +279,15 @@ RigStatus RunCalibration(Rig& rig, uint8_t finger, const ProtocolOptions& o, con
   f.static_inverse = FitStaticInverse(sweep, inverse_points, jamming, &error);
   const bool fitted = f.static_inverse.size() >= 2;  // if not, the detectors still say why
   for (const protocol::InversePoint& q : f.static_inverse) {
-    f.curve.push_back({q.setpoint_pa / 1000.0, q.output / 1000.0});
+    f.curve.push_back({static_cast<double>(q.setpoint_pa), static_cast<double>(q.output)});
   }
   if (!jamming && fitted) BranchFits(sweep, drive_max, f);
-  HysteresisFit fit;
+  HysteresisFit& fit = out->fit;
+  const int operators = SweepFor(o, jamming).operators;
   if (!o.compensator) {
-    fit = FitBetterPlayModel(sweep, o.compensator_operators, drive_max, &out->compensator_choice);
+    fit = FitBetterPlayModel(sweep, operators, drive_max, &out->compensator_choice);
   } else {
-    fit = FitCompensator(*o.compensator, o.compensator_operators, sweep, drive_max);
+    fit = FitCompensator(*o.compensator, operators, sweep, drive_max);
     const bool play = *o.compensator == protocol::CompensatorKind::kPrandtlIshlinskii ||
                       *o.compensator == protocol::CompensatorKind::kAsymmetricPi;
     if (!play) fit.error = "a calibration fits pi or api";  // their residuals are output units
@@ -241,12 +295,12 @@ RigStatus RunCalibration(Rig& rig, uint8_t finger, const ProtocolOptions& o, con
   if (fit.ok()) {
     f.compensator = fit.kind;
     f.compensator_params = fit.params;
-    f.quality.residual_rms = fit.residual_rms / 1000;  // in the curve's unit (mm or N/mm)
-    f.quality.residual_max = fit.residual_max / 1000;
+    f.quality.residual_rms = fit.residual_rms;  // in the sweep's output unit, as the curve
+    f.quality.residual_max = fit.residual_max;
   } else {
     f.quality.flags.push_back("compensator not fitted: " + fit.error);
   }
-  if (jamming) f.recommended_bias_kpa = bias;
+  if (jamming) f.recommended_bias_pa = 1000 * bias;
   f.quality.points = static_cast<int>(sweep.size());
   f.quality.protocol = jamming && adaptive ? "adaptive" : "thesis";
   f.quality.cycles = static_cast<int>(out->map.size());

@@ -93,7 +93,7 @@ MapEstimate EstimateMap(const std::vector<MapPress>& presses, const StiffnessSur
   return e;
 }
 
-std::vector<host::GridPoint> SummariseConditions(const std::vector<MapPress>& presses) {
+std::vector<ConditionSummary> SummariseConditions(const std::vector<MapPress>& presses) {
   std::vector<std::pair<double, double>> order;
   std::map<std::pair<double, double>, std::vector<const MapPress*>> by_condition;
   for (const MapPress& p : presses) {
@@ -101,11 +101,11 @@ std::vector<host::GridPoint> SummariseConditions(const std::vector<MapPress>& pr
     if (list.empty()) order.push_back({p.bias_kpa, p.vacuum_kpa});
     list.push_back(&p);
   }
-  std::vector<host::GridPoint> out;
+  std::vector<ConditionSummary> out;
   for (const auto& at : order) {
     const auto& list = by_condition[at];
     const double n = static_cast<double>(list.size());
-    host::GridPoint g{at.first, at.second, static_cast<int>(list.size()), 0, 0, 0, 1};
+    ConditionSummary g{at.first, at.second, static_cast<int>(list.size()), 0, 0, 0, 1};
     for (const MapPress* p : list) {
       g.stiffness_mean += p->stiffness / n;
       g.loop_area_mean += p->loop_area_mj / n;
@@ -121,12 +121,18 @@ std::vector<host::GridPoint> SummariseConditions(const std::vector<MapPress>& pr
   return out;
 }
 
-double RecommendBias(const std::vector<host::GridPoint>& grid) {
+host::GridPoint FileGridPoint(const ConditionSummary& c) {
+  return host::GridPoint{
+      1000 * c.bias_kpa,         1000 * c.vacuum_kpa, c.cycles, 1000 * c.stiffness_mean,
+      1000 * c.stiffness_spread, c.loop_area_mean,    c.r2_min};
+}
+
+double RecommendBias(const std::vector<ConditionSummary>& grid) {
   // "Kept" allows for what a few presses resolve: a bias may lose a fifth of the widest range.
   constexpr double kRangeKept = 0.8;
   std::map<double, std::pair<double, double>> range;  // bias → (min, max) stiffness
   std::map<double, std::vector<double>> loops;
-  for (const host::GridPoint& g : grid) {
+  for (const ConditionSummary& g : grid) {
     auto& r = range.try_emplace(g.bias_kpa, 1e9, -1e9).first->second;
     r.first = std::min(r.first, g.stiffness_mean);
     r.second = std::max(r.second, g.stiffness_mean);
@@ -150,9 +156,9 @@ double RecommendBiasFromMap(const std::vector<MapPress>& presses, const MapBox& 
   std::vector<MapSample> loops;
   for (const MapPress& p : presses) loops.push_back({p.bias_kpa, p.vacuum_kpa, p.loop_area_mj});
   const StiffnessSurface stiffness(StiffnessSamples(presses), box), loop(loops, box);
-  std::vector<host::GridPoint> lattice;
+  std::vector<ConditionSummary> lattice;
   for (const MapSample& c : Lattice(box, 9, 11)) {
-    host::GridPoint g;
+    ConditionSummary g;
     g.bias_kpa = c.bias_kpa;
     g.vacuum_kpa = c.vacuum_kpa;
     g.stiffness_mean = stiffness.Predict(c.bias_kpa, c.vacuum_kpa).mean;

@@ -62,8 +62,9 @@ QualityCheck Noise(const CheckInputs& in) {
   }
   // The press fit's residual also carries its own misfit and the jitter between a position and a
   // force reading taken a moment apart: it is held to twice the limit the sensor alone is.
-  const double value = std::max(in.tare_noise_n, press / 2);
-  const double limit = kNoiseLimitClasses * in.force_noise_class_n;
+  // In mN, the calibration file's unit of force (CheckUnit).
+  const double value = 1000 * std::max(in.tare_noise_n, press / 2);
+  const double limit = 1000 * kNoiseLimitClasses * in.force_noise_class_n;
   std::string detail = "force noise " + Num(in.tare_noise_n * 1000) + " mN RMS clear of the finger";
   if (!residuals.empty()) detail += ", " + Num(press * 1000) + " mN median press-fit residual";
   detail += "; the sensor's class is " + Num(in.force_noise_class_n * 1000) + " mN";
@@ -74,10 +75,11 @@ QualityCheck ForceZero(const CheckInputs& in) {
   double worst = 0;
   for (const MapPress& p : in.map) worst = std::max(worst, std::fabs(p.free_force_n));
   for (double f : in.free_readings) worst = std::max(worst, std::fabs(f));
-  const double limit = kZeroLimitClasses * in.force_noise_class_n;
-  return Check("force_zero", worst, limit, worst <= limit,
-               "readings clear of the finger stray up to " + Num(worst * 1000) +
-                   " mN from the tare (limit " + Num(limit * 1000) + " mN)");
+  const double worst_mn = 1000 * worst,
+               limit_mn = 1000 * kZeroLimitClasses * in.force_noise_class_n;
+  return Check("force_zero", worst_mn, limit_mn, worst_mn <= limit_mn,
+               "readings clear of the finger stray up to " + Num(worst_mn) +
+                   " mN from the tare (limit " + Num(limit_mn) + " mN)");
 }
 
 QualityCheck Leak(const CheckInputs& in) {
@@ -151,19 +153,22 @@ std::optional<QualityCheck> Previous(const CheckInputs& in, const host::Calibrat
     // The old map's conditions, where it measured: its spread there against the new surface's
     // own uncertainty there (small where the new run pressed nearby).
     // Where the new run pressed the same condition its own presses answer; elsewhere its surface.
+    // The old file's grid is in Pa and mN/mm, the rig's map in kPa and N/mm.
     const StiffnessSurface now(StiffnessSamples(in.map), in.box);
-    const std::vector<host::GridPoint> pressed = SummariseConditions(in.map);
+    const std::vector<ConditionSummary> pressed = SummariseConditions(in.map);
     for (const host::GridPoint& g : old->grid) {
-      MapPrediction p = now.Predict(g.bias_kpa, g.vacuum_kpa);
-      for (const host::GridPoint& q : pressed) {
-        if (q.bias_kpa == g.bias_kpa && q.vacuum_kpa == g.vacuum_kpa) {
+      const double bias = g.bias_pa / 1000, vacuum = g.vacuum_pa / 1000;
+      const double mean = g.stiffness_mean / 1000, spread = g.stiffness_spread / 1000;
+      MapPrediction p = now.Predict(bias, vacuum);
+      for (const ConditionSummary& q : pressed) {
+        if (FileGridPoint(q).bias_pa == g.bias_pa && FileGridPoint(q).vacuum_pa == g.vacuum_pa) {
           p = {q.stiffness_mean, q.stiffness_spread};
         }
       }
-      const double old_spread = std::max(g.stiffness_spread / g.stiffness_mean, kSpreadFloor);
+      const double old_spread = std::max(spread / mean, kSpreadFloor);
       const double new_spread = std::max(p.sd / p.mean, kSpreadFloor);
-      consider((p.mean - g.stiffness_mean) / g.stiffness_mean, std::hypot(old_spread, new_spread),
-               "bias " + Num(g.bias_kpa) + " kPa, vacuum " + Num(g.vacuum_kpa) + " kPa");
+      consider((p.mean - mean) / mean, std::hypot(old_spread, new_spread),
+               "bias " + Num(bias) + " kPa, vacuum " + Num(vacuum) + " kPa");
     }
   } else if (old->curve.size() >= 2 && fresh.curve.size() >= 2) {
     // Output curves over their common drive range, relative to the old curve's span.
@@ -172,10 +177,12 @@ std::optional<QualityCheck> Previous(const CheckInputs& in, const host::Calibrat
     for (const host::CurvePoint& q : old->curve) {
       for (size_t i = 1; i < fresh.curve.size(); ++i) {
         const host::CurvePoint &a = fresh.curve[i - 1], &b = fresh.curve[i];
-        if (q.kpa < std::min(a.kpa, b.kpa) || q.kpa > std::max(a.kpa, b.kpa)) continue;
-        const double t = (q.kpa - a.kpa) / (b.kpa - a.kpa);
+        if (q.drive_pa < std::min(a.drive_pa, b.drive_pa) ||
+            q.drive_pa > std::max(a.drive_pa, b.drive_pa))
+          continue;
+        const double t = (q.drive_pa - a.drive_pa) / (b.drive_pa - a.drive_pa);
         consider((a.output + t * (b.output - a.output) - q.output) / span, spread,
-                 Num(q.kpa) + " kPa");
+                 Num(q.drive_pa / 1000) + " kPa");
         break;
       }
     }

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <ctime>
 #include <sstream>
@@ -43,6 +44,10 @@ struct CalibrateArgs {
   std::optional<protocol::CompensatorKind> compensator;  ///< empty: the better of pi and api
   int operators = 0;     ///< 0: the protocol's default (16, or 8 with --quick)
   std::string previous;  ///< empty: DIR/SERIAL.json when there is one
+  /// A compensator that cannot be fitted leaves the static inverse alone instead of failing.
+  bool allow_fallback = false;
+  host::SimulatedPlant plant;  ///< --rig sim: the simulator's unit, seed, level and effects
+  bool plant_options = false;  ///< one of them was given
 };
 
 std::string UtcNow() {
@@ -108,6 +113,11 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
       a.quick = true;
     } else if (arg == "--apply") {
       a.apply = true;
+    } else if (arg == "--allow-fallback") {
+      a.allow_fallback = true;
+    } else if (std::string why; ParseSimPlantOption(arg, value, a.plant, &why)) {
+      if (!why.empty()) return Usage("calibrate", why);
+      a.plant_options = true;
     } else if (arg == "--rig") {
       if (!value(a.rig)) return Usage("calibrate", "--rig needs FILE or sim");
     } else if (arg == "--out") {
@@ -151,6 +161,16 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
   if (a.rig.empty() || a.finger < 0 || a.out.empty()) {
     return Usage("calibrate", "needs --rig FILE|sim, --finger N and --out DIR");
   }
+  if (a.plant_options && a.rig != "sim")
+    return Usage("calibrate", "--unit, --seed, --plant and --effects go with --rig sim");
+  // The rig's simulator takes its options from the command line, so the file can say which unit
+  // it calibrated; an environment variable it would not read must not look as if it did.
+  if (const char* env = getenv("PALPA_SIM_ARGS"); a.rig == "sim" && env != nullptr && *env) {
+    return Usage("calibrate",
+                 std::string("PALPA_SIM_ARGS ('") + env +
+                     "') is not read by --rig sim: give calibrate the simulator's options "
+                     "(--unit, --seed, --plant, --effects, --speed)");
+  }
   // The directory is made only once everything is checked: a refused command leaves nothing.
   struct stat st {};
   const bool out_exists = stat(a.out.c_str(), &st) == 0;
@@ -172,7 +192,7 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
       return Usage("calibrate", "--rig sim goes with a simulated device (--device sim[:CONFIG])");
     }
     const std::string config = c.device_uri.size() > 4 ? c.device_uri.substr(4) : "thesis-5finger";
-    sim = OpenSimRig(config, a.finger, a.speed, &error);
+    sim = OpenSimRig(config, a.finger, a.speed, a.plant, &error);
     if (!sim) return Fail("calibrate", protocol::Status::kUnavailable, error, kExitConnect);
     device = sim->device.get();
     description = sim->description;
@@ -204,6 +224,30 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
     return Fail("calibrate", protocol::Status::kBadValue,
                 "finger " + std::to_string(a.finger + 1) + " has no usable actuator serial ('" +
                     serial + "'); set it with palpa config set");
+  }
+  // What the sweep allows, said before anything runs; a compensator it cannot fit is refused
+  // now rather than after the whole run.
+  cal::ProtocolOptions options = a.quick ? cal::QuickProtocol() : cal::ProtocolOptions{};
+  if (a.protocol == "adaptive") options.map_protocol = cal::MapProtocol::kAdaptive;
+  options.compensator = a.compensator;
+  if (a.operators > 0) options.compensator_operators = a.operators;
+  options.adaptive.target_error = a.target_pct / 100;
+  options.adaptive.max_cycles = a.max_cycles;
+  options.adaptive.min_cycles = std::min(options.adaptive.min_cycles, a.max_cycles);
+  const bool jamming = device->info().fingers[a.finger].kind == protocol::FingerKind::kJamming;
+  const cal::SweepCapacity sweep = cal::SweepFor(options, jamming);
+  std::fprintf(TextOut(), "hysteresis sweep%s: %s\n", a.quick ? " (--quick)" : "",
+               sweep.Describe(options.compensator).c_str());
+  std::fflush(TextOut());
+  if (const std::string why = sweep.Refusal(options.compensator); !why.empty()) {
+    if (!a.allow_fallback) {
+      return Usage("calibrate", "--compensator: " + why +
+                                    "; ask for fewer operators, or --allow-fallback to keep the "
+                                    "static inverse alone");
+    }
+    std::fprintf(TextOut(),
+                 "  note: %s; with --allow-fallback the file will have the static inverse alone\n",
+                 why.c_str());
   }
 
   cal::DeviceBoardPort board(*device);
@@ -246,18 +290,11 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
                                     previous->actuator_serial + ", not " + serial);
     }
   }
-  const cal::RunInfo info{serial,          device->info().board_id,
-                          UtcNow(),        description->name,
-                          serial + ".csv", previous ? &*previous : nullptr};
+  cal::RunInfo info{serial,          device->info().board_id,        UtcNow(), description->name,
+                    serial + ".csv", previous ? &*previous : nullptr};
+  if (sim) info.simulation = a.plant;
   cal::CalibrationRun run;
   const auto start = std::chrono::steady_clock::now();
-  cal::ProtocolOptions options = a.quick ? cal::QuickProtocol() : cal::ProtocolOptions{};
-  if (a.protocol == "adaptive") options.map_protocol = cal::MapProtocol::kAdaptive;
-  options.compensator = a.compensator;
-  if (a.operators > 0) options.compensator_operators = a.operators;
-  options.adaptive.target_error = a.target_pct / 100;
-  options.adaptive.max_cycles = a.max_cycles;
-  options.adaptive.min_cycles = std::min(options.adaptive.min_cycles, a.max_cycles);
   const cal::RigStatus s = cal::RunCalibration(
       rig, static_cast<uint8_t>(a.finger), options, info, journal,
       [&](const cal::Progress& p) { ProgressBar(p, start); }, &run);
@@ -268,6 +305,13 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
                     "\nThe stage was retracted and the board vented. What was finished is in " +
                     base + ".journal.json; run again with --resume to continue.");
   }
+  if (!run.fit.ok() && !a.allow_fallback) {
+    return Fail("calibrate", protocol::Status::kBadValue,
+                "the compensator could not be fitted: " + run.fit.error +
+                    "\nNothing was written; the measurements are kept in " + base +
+                    ".journal.json: run again with --resume and another --compensator, or with "
+                    "--allow-fallback to keep the static inverse alone.");
+  }
   std::string csv;
   for (const std::string& row : run.csv) csv += row + "\n";
   if (!host::WriteFileWhole(base + ".csv", csv, &error) ||
@@ -277,16 +321,17 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
                 "cannot write the results in " + a.out + ": " + error);
   }
   unlink((base + ".journal.json").c_str());
-  std::fprintf(TextOut(), "calibrated %s (finger %d): %s.json, %s.csv, %s.html\n", serial.c_str(),
-               a.finger + 1, base.c_str(), base.c_str(), base.c_str());
+  std::fprintf(TextOut(), "calibrated %s (finger %d%s): %s.json, %s.csv, %s.html\n", serial.c_str(),
+               a.finger + 1, sim ? (", " + DescribeSimulatedPlant(a.plant)).c_str() : "",
+               base.c_str(), base.c_str(), base.c_str());
   if (run.file.rising_fit) {
-    std::fprintf(
-        TextOut(),
-        "  deformation branches: rising %.4f, falling %.4f mm/kPa (Table 5-4: 0.0428, 0.0475)\n",
-        run.file.rising_fit->slope, run.file.falling_fit->slope);
+    std::fprintf(TextOut(),
+                 "  deformation branches: rising %.4f, falling %.4f µm/Pa (Table 5-4: 0.0428, "
+                 "0.0475 mm/kPa, the same unit)\n",
+                 run.file.rising_fit->slope, run.file.falling_fit->slope);
   }
-  if (run.file.recommended_bias_kpa)
-    std::fprintf(TextOut(), "  recommended bias: %.0f kPa\n", *run.file.recommended_bias_kpa);
+  if (run.file.recommended_bias_pa)
+    std::fprintf(TextOut(), "  recommended bias: %.0f Pa\n", *run.file.recommended_bias_pa);
   if (run.file.quality.map_error) {
     std::fprintf(TextOut(), "  stiffness map: %s, %d cycles, cross-validated error %.1f %%\n",
                  run.file.quality.protocol.c_str(), run.file.quality.cycles,
@@ -306,34 +351,44 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
   }
   if (!run.compensator_choice.empty()) {
     std::fprintf(TextOut(), "  model chosen (auto): %s (%s)\n", run.compensator_choice.c_str(),
-                 run.file.kind == protocol::FingerKind::kJamming ? "mN/mm" : "um");
+                 run.file.kind == protocol::FingerKind::kJamming ? "mN/mm" : "µm");
   }
-  if (run.file.compensator == protocol::CompensatorKind::kNone) {
-    std::fprintf(TextOut(), "  compensator none: the static inverse alone (no model was fitted)\n");
+  if (!run.fit.ok()) {
+    std::fprintf(TextOut(), "  compensator none: the static inverse alone (--allow-fallback)\n");
   } else {
-    const bool jamming = run.file.kind == protocol::FingerKind::kJamming;
-    std::fprintf(TextOut(), "  compensator %s, fit residual %.1f RMS, %.1f max (%s)\n",
-                 host::CompensatorLabel(run.file).c_str(), 1000 * run.file.quality.residual_rms,
-                 1000 * run.file.quality.residual_max, jamming ? "mN/mm" : "um");
+    std::fprintf(TextOut(),
+                 "  compensator %s (%d of its %d operators carry a weight), fit residual %.1f "
+                 "RMS, %.1f max (%s)\n",
+                 host::CompensatorLabel(run.file).c_str(), run.fit.operators_used,
+                 run.fit.operators, run.file.quality.residual_rms, run.file.quality.residual_max,
+                 jamming ? "mN/mm" : "µm");
   }
   if (a.apply) {
     const host::Outcome o = device->ApplyCalibration(static_cast<uint8_t>(a.finger), run.file);
     if (!o.ok()) return Report(c, o, "apply calibration");
     std::fprintf(TextOut(),
                  "  applied to finger %d (static inverse, compensator, regulator correction%s)\n",
-                 a.finger + 1, run.file.recommended_bias_kpa ? ", bias" : "");
+                 a.finger + 1, run.file.recommended_bias_pa ? ", bias" : "");
   }
   if (c.json) {
     nlohmann::ordered_json checks = nlohmann::ordered_json::array();
     for (const host::QualityCheck& k : run.file.quality.checks)
       checks.push_back({{"name", k.name}, {"passed", k.passed}, {"detail", k.detail}});
-    PrintJson({{"calibrated", serial},
-               {"finger", a.finger + 1},
-               {"files", {base + ".json", base + ".csv", base + ".html"}},
-               {"compensator", host::CompensatorLabel(run.file)},
-               {"residual_rms", run.file.quality.residual_rms},
-               {"checks", checks},
-               {"applied", a.apply}});
+    nlohmann::ordered_json result = {{"calibrated", serial},
+                                     {"finger", a.finger + 1},
+                                     {"files", {base + ".json", base + ".csv", base + ".html"}},
+                                     {"compensator", host::CompensatorLabel(run.file)},
+                                     {"operators_with_weight", run.fit.operators_used},
+                                     {"residual_rms", run.file.quality.residual_rms},
+                                     {"checks", checks},
+                                     {"applied", a.apply}};
+    if (run.file.simulation) {
+      result["simulation"] = {{"actuator_unit", run.file.simulation->actuator_unit},
+                              {"seed", run.file.simulation->seed},
+                              {"plant_level", run.file.simulation->plant_level},
+                              {"effects", run.file.simulation->effects}};
+    }
+    PrintJson(result);
   }
   return kExitOk;
 }

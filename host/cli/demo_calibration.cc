@@ -51,7 +51,8 @@ class ProgressLine {
 bool CalibrateOne(const std::string& config, int finger, double speed,
                   const std::function<void(const cal::Progress&)>& progress,
                   host::CalibrationFile* out, std::string* error) {
-  std::optional<SimRig> sim = OpenSimRig(config, finger, speed, error);
+  const host::SimulatedPlant plant;  // the demo board's: palpa-sim's defaults
+  std::optional<SimRig> sim = OpenSimRig(config, finger, speed, plant, error);
   if (!sim) return false;
   const auto fc = sim->device->ReadFinger(static_cast<uint8_t>(finger), error);
   if (!fc.ok()) return false;
@@ -66,11 +67,13 @@ bool CalibrateOne(const std::string& config, int finger, double speed,
   options.compensator_operators = kDemoOperators;
   cal::Journal journal;  // nothing to resume: a failed demo is run again
   cal::CalibrationRun run;
-  const cal::RunInfo info{serial, sim->device->info().board_id, "", sim->description.name, ""};
+  cal::RunInfo info{serial, sim->device->info().board_id, "", sim->description.name, ""};
+  info.simulation = plant;
   const cal::RigStatus s = cal::RunCalibration(rig, static_cast<uint8_t>(finger), options, info,
                                                journal, progress, &run);
-  if (!s.ok) {
-    *error = s.error;
+  if (!s.ok || !run.fit.ok()) {  // as palpa calibrate: a model asked for and not fitted fails
+    *error =
+        s.ok ? "api(" + std::to_string(kDemoOperators) + ") not fitted: " + run.fit.error : s.error;
     return false;
   }
   *out = run.file;
@@ -188,8 +191,8 @@ bool ApplyCalibrations(host::Device& d, const PneumaticFingers& p,
       return false;
     }
     *compensator = "calibrated, " + host::CompensatorLabel(file);
-    std::fprintf(TextOut(), "  finger %d (%s): fit residual %.1f um RMS%s%s\n", finger + 1,
-                 file.actuator_serial.c_str(), 1000 * file.quality.residual_rms,
+    std::fprintf(TextOut(), "  finger %d (%s): fit residual %.1f µm RMS%s%s\n", finger + 1,
+                 file.actuator_serial.c_str(), file.quality.residual_rms,
                  file.quality.flags.empty() ? "" : "; note: ",
                  file.quality.flags.empty() ? "" : file.quality.flags.front().c_str());
   }

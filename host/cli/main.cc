@@ -61,19 +61,25 @@ const std::map<std::string, Command>& Commands() {
       {"calibrate",
        {CmdCalibrate,
         "calibrate --rig FILE|sim --finger N --out DIR [--protocol thesis|adaptive] [--target PCT] "
-        "[--max-cycles N] [--compensator auto|pi|api[:N]] [--previous FILE] [--resume] [--quick] "
-        "[--apply]",
+        "[--max-cycles N] [--compensator auto|pi|api[:N]] [--allow-fallback] [--previous FILE] "
+        "[--resume] [--quick] [--apply] [--speed X] [--unit N] [--seed N] [--plant LEVEL] "
+        "[--effects LIST]",
         "Runs the thesis calibration of one finger on a rig: zero, regulator correction, then a\n"
         "deformation sweep (pneumatic) or the bias x vacuum indentation grid (jamming) and a\n"
         "hysteresis sweep. Writes DIR/SERIAL.json (the calibration file), SERIAL.csv (raw "
-        "readings)\n"
-        "and SERIAL.html (report). --rig sim starts palpa-sim serving board and rig (--speed X, "
-        "1-10,\n"
-        "default 4); a rig FILE names the stage and force sensor (docs/calibration.md). A stopped\n"
-        "run keeps DIR/SERIAL.journal.json: --resume continues it. --quick: short settings.\n"
-        "--compensator: the model fitted, pi or api with N operators (default 16, 8 with "
-        "--quick);\nauto (default) fits both and keeps api where it leaves at most 3/4 of pi's "
-        "residual.\n--apply uploads the result to the finger (one staged change)."}},
+        "readings)\nand SERIAL.html (report). A rig FILE names the stage and force sensor\n"
+        "(docs/calibration.md). --rig sim starts palpa-sim serving board and rig: --speed X "
+        "(1-10,\n"
+        "default 4), --unit N (actuator unit, 0 nominal), --seed N, --plant LEVEL (0-3, default "
+        "3)\n"
+        "and --effects LIST (creep,rate,history=F) are the simulator's, recorded in the file.\n"
+        "A stopped run keeps DIR/SERIAL.journal.json: --resume continues it. --quick: short\n"
+        "settings (a 20 kPa sweep; the run says first which compensators it can fit).\n"
+        "--compensator: the model fitted, pi or api with N operators (default 16, 8 with --quick,\n"
+        "fewer when the sweep tells fewer apart); auto (default) fits both and keeps api where it\n"
+        "leaves at most 3/4 of pi's residual. A model that cannot be fitted is an error (nothing\n"
+        "written) unless --allow-fallback keeps the static inverse alone. --apply uploads the\n"
+        "result to the finger (one staged change)."}},
       {"flash",
        {CmdFlash,
         "flash PACKAGE [--resume] [--dry-run] [--reset-line CHIP:LINE] [--boot-line CHIP:LINE]",

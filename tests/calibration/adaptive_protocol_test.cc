@@ -101,7 +101,7 @@ TEST(AdaptiveProtocol, AWholeCalibrationWithItGivesAFileTheLibraryAccepts) {
   CHECK(run.file.quality.rig_time_s > 60);
   LONGS_EQUAL(4, run.file.quality.checks.size());  // no previous calibration: four detectors
   for (const ph::QualityCheck& k : run.file.quality.checks) CHECK_TEXT(k.passed, k.detail.c_str());
-  CHECK(run.file.recommended_bias_kpa.has_value());
+  CHECK(run.file.recommended_bias_pa.has_value());
   std::string error;
   CHECK_TEXT(ph::SerializeCalibration(run.file, &error).has_value(), error.c_str());
 }

@@ -112,6 +112,32 @@ TEST(ThesisProtocol, OnlyThePlayModelsAreCalibrationFits) {
   for (const std::string& f : run.file.quality.flags)
     flagged = flagged || f.find("fits pi or api") != std::string::npos;
   CHECK(flagged);
+  CHECK_FALSE(run.fit.ok());  // the run says so, for the caller to refuse or fall back
+}
+
+TEST(ThesisProtocol, AFitThatCannotHappenIsReportedAndTheFileKeepsTheStaticInverseAlone) {
+  pt::SimRig sim({"thesis-5finger", 0, 0, 21});
+  cal::Rig rig = sim.rig();
+  cal::Journal journal;
+  cal::CalibrationRun run;
+  cal::ProtocolOptions o = cal::QuickProtocol();
+  o.compensator = pp::CompensatorKind::kPrandtlIshlinskii;
+  o.compensator_operators = 16;
+  const cal::SweepCapacity sweep = cal::SweepFor(o, false);
+  LONGS_EQUAL(28, sweep.points);
+  CHECK(sweep.Refusal(o.compensator).find("pi(16) needs 36 sweep readings") != std::string::npos);
+  const cal::RigStatus s = cal::RunCalibration(rig, 0, o, Info("PN-1"), journal, nullptr, &run);
+  CHECK_TEXT(s.ok, s.error.c_str());  // the rig finished; the fit did not happen
+  CHECK_FALSE(run.fit.ok());
+  CHECK(run.fit.error.find("needs at least 36") != std::string::npos);
+  CHECK(run.file.compensator == pp::CompensatorKind::kNone);
+  DOUBLES_EQUAL(0, run.file.quality.residual_rms, 0);
+  CHECK(run.file.quality.flags.front().rfind("compensator not fitted: ", 0) == 0);
+  // Left to choose its size, the run fits what the sweep allows and tells apart.
+  o.compensator_operators = 0;
+  CHECK(cal::SweepFor(o, false).Refusal(o.compensator).empty());
+  LONGS_EQUAL(8, cal::SweepFor(o, false).operators);
+  LONGS_EQUAL(9, cal::SweepFor(cal::ProtocolOptions{}, true).operators);  // jamming, 10 kPa steps
 }
 
 TEST(ThesisProtocol, JammingFingerRecommendsTheBiasWithTheSmallerLoop) {
@@ -128,10 +154,12 @@ TEST(ThesisProtocol, JammingFingerRecommendsTheBiasWithTheSmallerLoop) {
         20000);  // within the bias line's range
   CHECK(run.file.regulator_corrections[1].points.back().command_pa < -50000);
   LONGS_EQUAL(8, run.presses.size());
-  DOUBLES_EQUAL(20, *run.file.recommended_bias_kpa, 0);  // bias shrinks the press loop (Fig 5-36)
-  // Stiffness rises with vacuum at the bias: ≈ 0.7 → 1.3 N/mm.
-  DOUBLES_EQUAL(0.7, run.file.grid[2].stiffness_mean, 0.1);
-  DOUBLES_EQUAL(1.3, run.file.grid[3].stiffness_mean, 0.15);
+  DOUBLES_EQUAL(20000, *run.file.recommended_bias_pa, 0);  // bias shrinks the loop (Fig 5-36)
+  // Stiffness rises with vacuum at the bias: ≈ 0.7 → 1.3 N/mm, in the file's mN/mm.
+  DOUBLES_EQUAL(700, run.file.grid[2].stiffness_mean, 100);
+  DOUBLES_EQUAL(1300, run.file.grid[3].stiffness_mean, 150);
+  DOUBLES_EQUAL(20000, run.file.grid[3].bias_pa, 0);
+  DOUBLES_EQUAL(-100000, run.file.grid[3].vacuum_pa, 0);
   std::string error;
   CHECK_TEXT(ph::SerializeCalibration(run.file, &error).has_value(), error.c_str());
   // Whichever model it chose, it fitted one and said why.

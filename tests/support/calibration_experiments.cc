@@ -64,11 +64,11 @@ MapScore ScoreSurface(const std::vector<cal::MapPress>& presses, SimRig& sim,
   return Score(sim, box, [&](double b, double v) { return surface.Predict(b, v).mean; });
 }
 
-MapScore ScoreBilinear(const std::vector<host::GridPoint>& grid, SimRig& sim,
+MapScore ScoreBilinear(const std::vector<cal::ConditionSummary>& grid, SimRig& sim,
                        const cal::MapBox& box) {
   std::vector<double> biases, vacuums;  // vacuum as a magnitude, ascending
   std::map<std::pair<double, double>, double> at;
-  for (const host::GridPoint& g : grid) {
+  for (const cal::ConditionSummary& g : grid) {
     biases.push_back(g.bias_kpa);
     vacuums.push_back(-g.vacuum_kpa);
     at[{g.bias_kpa, -g.vacuum_kpa}] = g.stiffness_mean;

@@ -24,7 +24,7 @@ struct MapScore {
 MapScore ScoreSurface(const std::vector<calibration::MapPress>& presses, SimRig& sim,
                       const calibration::MapBox& box = {});
 /// The thesis's own reading of a grid: bilinear between the condition means.
-MapScore ScoreBilinear(const std::vector<host::GridPoint>& grid, SimRig& sim,
+MapScore ScoreBilinear(const std::vector<calibration::ConditionSummary>& grid, SimRig& sim,
                        const calibration::MapBox& box = {});
 
 /// A whole calibration, short: quick settings and an adaptive map of 8 to 10 cycles.

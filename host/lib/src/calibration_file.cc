@@ -3,11 +3,13 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cstdlib>
 
 #include <nlohmann/json.hpp>
 
 #include "calibration_json.h"
+#include "palpa/host/calibration_units.h"
 #include "palpa/host/file_write.h"
 #include "palpa/host/json_check.h"
 #include "palpa/protocol/messages_stream.h"
@@ -26,19 +28,26 @@ json Write(const CalibrationFile& c) {
   const bool jamming = c.kind == pp::FingerKind::kJamming;
   json j;
   j["schema"] = "palpa-calibration";
-  j["schema_version"] = c.schema_version;
+  j["schema_version"] = kCalibrationSchemaVersion;  // what it reads in is written as current
   j["actuator_serial"] = c.actuator_serial;
   j["kind"] = jamming ? "jamming" : "pneumatic";
   j["board_id"] = c.board_id;
   j["finger"] = c.finger;
   j["date"] = c.date;
   j["rig"] = c.rig;
+  if (c.simulation) {
+    j["simulation"] = {{"actuator_unit", c.simulation->actuator_unit},
+                       {"seed", c.simulation->seed},
+                       {"plant_level", c.simulation->plant_level},
+                       {"effects", c.simulation->effects}};
+  }
   j["conditions"] = {
-      {"speed_mm_s", c.speed_mm_s}, {"depth_mm", c.depth_mm}, {"repeats", c.repeats}};
-  if (c.bias_kpa) j["conditions"]["bias_kpa"] = *c.bias_kpa;
+      {"speed_um_s", c.speed_um_s}, {"depth_um", c.depth_um}, {"repeats", c.repeats}};
+  if (c.bias_pa) j["conditions"]["bias_pa"] = *c.bias_pa;
   j["raw_data"] = c.raw_data;
   j["curve"] = json::array();
-  for (const CurvePoint& p : c.curve) j["curve"].push_back({{"kpa", p.kpa}, {"output", p.output}});
+  for (const CurvePoint& p : c.curve)
+    j["curve"].push_back({{"drive_pa", p.drive_pa}, {"output", p.output}});
   if (c.rising_fit || c.falling_fit) {
     j["fits"] = json::object();
     if (c.rising_fit) j["fits"]["rising"] = FitJson(*c.rising_fit);
@@ -47,8 +56,8 @@ json Write(const CalibrationFile& c) {
   if (!c.grid.empty()) {
     j["grid"] = json::array();
     for (const GridPoint& g : c.grid) {
-      j["grid"].push_back({{"bias_kpa", g.bias_kpa},
-                           {"vacuum_kpa", g.vacuum_kpa},
+      j["grid"].push_back({{"bias_pa", g.bias_pa},
+                           {"vacuum_pa", g.vacuum_pa},
                            {"cycles", g.cycles},
                            {"stiffness_mean", g.stiffness_mean},
                            {"stiffness_spread", g.stiffness_spread},
@@ -74,7 +83,7 @@ json Write(const CalibrationFile& c) {
   j["compensator"] = {
       {"kind", pp::EnumNames(pp::CompensatorKind{})[static_cast<size_t>(c.compensator)]},
       {"params", c.compensator_params}};
-  if (c.recommended_bias_kpa) j["recommended_bias_kpa"] = *c.recommended_bias_kpa;
+  if (c.recommended_bias_pa) j["recommended_bias_pa"] = *c.recommended_bias_pa;
   j["quality"] = {{"residual_rms", c.quality.residual_rms},
                   {"residual_max", c.quality.residual_max},
                   {"points", c.quality.points},
@@ -89,6 +98,7 @@ json Write(const CalibrationFile& c) {
       j["quality"]["checks"].push_back({{"name", k.name},
                                         {"value", k.value},
                                         {"limit", k.limit},
+                                        {"unit", CheckUnit(k.name)},
                                         {"passed", k.passed},
                                         {"detail", k.detail}});
     }
@@ -104,6 +114,24 @@ bool ValidSerial(const std::string& serial) {
     if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '_' && ch != '-') return false;
   }
   return true;
+}
+
+std::string SimEffectsError(const std::string& effects) {
+  size_t at = 0;
+  while (!effects.empty() && at <= effects.size()) {
+    const size_t comma = std::min(effects.find(',', at), effects.size());
+    const std::string item = effects.substr(at, comma - at);
+    if (item.rfind("history=", 0) == 0) {
+      char* end = nullptr;
+      const double h = std::strtod(item.c_str() + 8, &end);
+      if (item.size() == 8 || *end != '\0' || !(h >= 0 && h <= 0.5))
+        return "'" + item + "': history wants a fraction of 0 to 0.5";
+    } else if (item != "creep" && item != "rate") {
+      return "unknown effect '" + item + "' (expected creep, rate, history=FRACTION)";
+    }
+    at = comma + 1;
+  }
+  return {};
 }
 
 std::optional<CalibrationFile> ParseCalibration(const std::string& text, std::string* error) {
@@ -146,12 +174,14 @@ std::string DefaultCalibrationDir() {
 FingerCurves CurvesFromCalibration(const CalibrationFile& c) {
   FingerCurves curves;
   curves.source = "calibration of " + c.actuator_serial + " (" + c.date + ", " + c.rig + ")";
-  for (const CurvePoint& p : c.curve) curves.calibrated.push_back({p.kpa, p.output});
+  // The stiffness map speaks kPa, mm and N/mm; the file the board's Pa, µm and mN/mm.
+  for (const CurvePoint& p : c.curve)
+    curves.calibrated.push_back({p.drive_pa / 1000, p.output / 1000});
   if (c.kind == pp::FingerKind::kJamming) {
-    curves.stiffness_at_0 = c.curve.front().output;
-    curves.stiffness_at_full_vacuum = c.curve.back().output;
+    curves.stiffness_at_0 = c.curve.front().output / 1000;
+    curves.stiffness_at_full_vacuum = c.curve.back().output / 1000;
   } else {
-    curves.max_deformation_mm = c.curve.back().output;
+    curves.max_deformation_mm = c.curve.back().output / 1000;
   }
   return curves;
 }

@@ -1,12 +1,15 @@
 // Calibration documents from JSON, section by section, with the failing field named.
 #include "calibration_json.h"
 
+#include <algorithm>
 #include <cmath>
 #include <regex>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "palpa/core/compensator.h"
+#include "palpa/host/calibration_units.h"
 #include "palpa/host/json_check.h"
 #include "palpa/protocol/messages_stream.h"
 
@@ -19,6 +22,28 @@ namespace pp = protocol;
 using Invalid = JsonInvalid;
 using Obj = JsonObject;
 
+/// What changed between the schema's versions: version 1 wrote pressures in kPa, deformation and
+/// the conditions' lengths in mm, stiffness in N/mm and forces in N beside the board's Pa, µm and
+/// mN/mm; version 2 writes the board's units throughout (calibration_units.h). Every changed
+/// unit is a factor of 1000, and the fields whose unit is in their name were renamed with it.
+/// Error messages name the file's own fields, in its own units.
+struct Version {
+  int number = kCalibrationSchemaVersion;
+  bool v1() const { return number == 1; }
+  double factor() const { return v1() ? 1000 : 1; }  ///< to the current unit
+  const char* Key(const char* v1_key, const char* key) const { return v1() ? v1_key : key; }
+  /// A number in the current unit, its range given in the current unit. A converted value is held
+  /// to that range: it was accepted in the old unit and may only round across its edge.
+  double Number(const Obj& o, const char* v1_key, const char* key, double lo, double hi) const {
+    if (!v1()) return o.Number(key, lo, hi);
+    return std::clamp(o.Number(v1_key, lo / factor(), hi / factor()) * factor(), lo, hi);
+  }
+  /// A number whose unit did not change.
+  double Same(const Obj& o, const char* key, double lo, double hi) const {
+    return o.Number(key, lo, hi);
+  }
+};
+
 void CheckMonotone(const std::vector<double>& v, const std::string& path, int direction) {
   for (size_t i = 1; i < v.size(); ++i) {
     if (direction > 0 ? !(v[i] > v[i - 1]) : !(v[i] < v[i - 1])) {
@@ -28,20 +53,21 @@ void CheckMonotone(const std::vector<double>& v, const std::string& path, int di
   }
 }
 
-LineFit ReadFit(const json& j, const std::string& path) {
+/// A branch's line: output per Pa (mm/kPa in version 1: the same number) and its intercept.
+LineFit ReadFit(const json& j, const std::string& path, const Version& v) {
   Obj o(j, path, {"slope", "intercept", "r2"});
-  return LineFit{o.Number("slope", -1e6, 1e6), o.Number("intercept", -1e6, 1e6),
-                 o.Number("r2", 0, 1)};
+  return LineFit{v.Same(o, "slope", -1e6, 1e6), v.Number(o, "intercept", "intercept", -1e9, 1e9),
+                 v.Same(o, "r2", 0, 1)};
 }
 
 /// Schema, identity of the actuator and board, date and rig.
-void ReadIdentity(Obj& o, CalibrationFile& c) {
+Version ReadIdentity(Obj& o, CalibrationFile& c) {
   if (o.Text("schema") != "palpa-calibration")
     throw Invalid("schema: must be \"palpa-calibration\"");
   c.schema_version = static_cast<int>(o.Integer("schema_version", 1, 1000));
-  if (c.schema_version != kCalibrationSchemaVersion) {
+  if (c.schema_version < 1 || c.schema_version > kCalibrationSchemaVersion) {
     throw Invalid("schema_version: " + std::to_string(c.schema_version) +
-                  " is not the version this library reads (" +
+                  " is not a version this library reads (1 … " +
                   std::to_string(kCalibrationSchemaVersion) + ")");
   }
   c.actuator_serial = o.Text("actuator_serial");
@@ -58,51 +84,78 @@ void ReadIdentity(Obj& o, CalibrationFile& c) {
     throw Invalid("date: must be UTC ISO 8601, e.g. 2026-11-22T12:00:00Z");
   }
   c.rig = o.Text("rig");
+  return Version{c.schema_version};
+}
+
+/// The simulated plant of a calibration on palpa-sim's rig (version 2 on).
+void ReadSimulation(Obj& o, CalibrationFile& c) {
+  if (!o.Has("simulation")) return;
+  Obj s(o.At("simulation"), "simulation", {"actuator_unit", "seed", "plant_level", "effects"});
+  SimulatedPlant p;
+  p.actuator_unit = static_cast<uint32_t>(s.Integer("actuator_unit", 0, 1000));
+  p.seed = static_cast<uint32_t>(s.Integer("seed", 0, 0xFFFFFFFFL));
+  p.plant_level = static_cast<int>(s.Integer("plant_level", 0, 3));
+  const json& effects = s.At("effects");
+  if (!effects.is_string()) throw Invalid("simulation.effects: must be a string");
+  p.effects = effects.get<std::string>();
+  if (const std::string why = SimEffectsError(p.effects); !why.empty())
+    throw Invalid("simulation.effects: " + why);
+  c.simulation = p;
 }
 
 /// Sweep conditions, the raw data's file name, the measured curve and its fits.
-void ReadMeasurement(Obj& o, CalibrationFile& c, bool jamming) {
-  Obj k(o.At("conditions"), "conditions", {"speed_mm_s", "depth_mm", "repeats", "bias_kpa"});
-  c.speed_mm_s = k.Number("speed_mm_s", 1e-4, 10);
-  c.depth_mm = k.Number("depth_mm", 0, 20);
+void ReadMeasurement(Obj& o, CalibrationFile& c, bool jamming, const Version& v) {
+  const char* bias = v.Key("bias_kpa", "bias_pa");
+  Obj k(o.At("conditions"), "conditions",
+        {v.Key("speed_mm_s", "speed_um_s"), v.Key("depth_mm", "depth_um"), "repeats", bias});
+  c.speed_um_s = v.Number(k, "speed_mm_s", "speed_um_s", 0.1, 10000);
+  c.depth_um = v.Number(k, "depth_mm", "depth_um", 0, 20000);
   c.repeats = static_cast<int>(k.Integer("repeats", 0, 10000));
-  if (k.Has("bias_kpa")) c.bias_kpa = k.Number("bias_kpa", 0, 20);
-  if (jamming && !c.bias_kpa)
-    throw Invalid("conditions.bias_kpa: missing (a jamming curve depends on the bias)");
+  if (k.Has(bias)) c.bias_pa = v.Number(k, "bias_kpa", "bias_pa", 0, 20000);
+  if (jamming && !c.bias_pa) {
+    throw Invalid(std::string("conditions.") + bias +
+                  ": missing (a jamming curve depends on the bias)");
+  }
   c.raw_data = o.Text("raw_data");
   if (c.raw_data.find("..") != std::string::npos || c.raw_data.front() == '/') {
     throw Invalid("raw_data: must name a file beside the calibration (no '..', not absolute)");
   }
   const json& list = o.List("curve", 2, 256);
-  std::vector<double> kpa, out;
+  const char* drive_key = v.Key("kpa", "drive_pa");
+  std::vector<double> drive, out;
   for (size_t i = 0; i < list.size(); ++i) {
-    Obj p(list[i], o.Item("curve", i), {"kpa", "output"});
-    kpa.push_back(p.Number("kpa", jamming ? -100 : 0, jamming ? 0 : 100));
-    out.push_back(p.Number("output", 0, 1000));
-    c.curve.push_back({kpa.back(), out.back()});
+    Obj p(list[i], o.Item("curve", i), {drive_key, "output"});
+    drive.push_back(v.Number(p, "kpa", "drive_pa", jamming ? pp::kMinPressurePa : 0,
+                             jamming ? 0 : pp::kMaxPressurePa));
+    out.push_back(v.Number(p, "output", "output", 0, 1e6));
+    c.curve.push_back({drive.back(), out.back()});
   }
-  CheckMonotone(kpa, "curve.kpa", jamming ? -1 : 1);
+  CheckMonotone(drive, std::string("curve.") + drive_key, jamming ? -1 : 1);
   CheckMonotone(out, "curve.output", 1);
   if (o.Has("fits")) {
     Obj f(o.At("fits"), "fits", {"rising", "falling"});
-    if (f.Has("rising")) c.rising_fit = ReadFit(f.At("rising"), "fits.rising");
-    if (f.Has("falling")) c.falling_fit = ReadFit(f.At("falling"), "fits.falling");
+    if (f.Has("rising")) c.rising_fit = ReadFit(f.At("rising"), "fits.rising", v);
+    if (f.Has("falling")) c.falling_fit = ReadFit(f.At("falling"), "fits.falling", v);
   }
 }
 
 /// The jamming grid of bias × vacuum levels, when the procedure measured one.
-void ReadGrid(Obj& o, CalibrationFile& c) {
+void ReadGrid(Obj& o, CalibrationFile& c, const Version& v) {
   if (!o.Has("grid")) return;
   const json& list = o.List("grid", 0, 1024);
   for (size_t i = 0; i < list.size(); ++i) {
     Obj g(list[i], o.Item("grid", i),
-          {"bias_kpa", "vacuum_kpa", "cycles", "stiffness_mean", "stiffness_spread",
-           "loop_area_mean", "r2_min"});
-    c.grid.push_back(GridPoint{g.Number("bias_kpa", 0, 20), g.Number("vacuum_kpa", -100, 0),
-                               static_cast<int>(g.Integer("cycles", 1, 10000)),
-                               g.Number("stiffness_mean", 0, 1000),
-                               g.Number("stiffness_spread", 0, 1000),
-                               g.Number("loop_area_mean", 0, 1e6), g.Number("r2_min", 0, 1)});
+          {v.Key("bias_kpa", "bias_pa"), v.Key("vacuum_kpa", "vacuum_pa"), "cycles",
+           "stiffness_mean", "stiffness_spread", "loop_area_mean", "r2_min"});
+    GridPoint p;
+    p.bias_pa = v.Number(g, "bias_kpa", "bias_pa", 0, 20000);
+    p.vacuum_pa = v.Number(g, "vacuum_kpa", "vacuum_pa", pp::kMinPressurePa, 0);
+    p.cycles = static_cast<int>(g.Integer("cycles", 1, 10000));
+    p.stiffness_mean = v.Number(g, "stiffness_mean", "stiffness_mean", 0, 1e6);
+    p.stiffness_spread = v.Number(g, "stiffness_spread", "stiffness_spread", 0, 1e6);
+    p.loop_area_mean = v.Same(g, "loop_area_mean", 0, 1e6);
+    p.r2_min = v.Same(g, "r2_min", 0, 1);
+    c.grid.push_back(p);
   }
 }
 
@@ -187,12 +240,12 @@ void ReadCompensator(Obj& o, CalibrationFile& c) {
 }
 
 /// Residuals, flags, and the run's figures and detector verdicts (optional: older files load).
-void ReadQuality(Obj& o, CalibrationFile& c) {
+void ReadQuality(Obj& o, CalibrationFile& c, const Version& v) {
   Obj q(o.At("quality"), "quality",
         {"residual_rms", "residual_max", "points", "flags", "protocol", "cycles", "rig_time_s",
          "map_error", "checks"});
-  c.quality.residual_rms = q.Number("residual_rms", 0, 1e6);
-  c.quality.residual_max = q.Number("residual_max", 0, 1e6);
+  c.quality.residual_rms = v.Number(q, "residual_rms", "residual_rms", 0, 1e9);
+  c.quality.residual_max = v.Number(q, "residual_max", "residual_max", 0, 1e9);
   c.quality.points = static_cast<int>(q.Integer("points", 0, 10000000));
   const json& flags = q.List("flags", 0, 64);
   for (size_t i = 0; i < flags.size(); ++i) {
@@ -206,11 +259,21 @@ void ReadQuality(Obj& o, CalibrationFile& c) {
   if (!q.Has("checks")) return;
   const json& checks = q.List("checks", 0, 16);
   for (size_t i = 0; i < checks.size(); ++i) {
-    Obj k(checks[i], q.Item("checks", i), {"name", "value", "limit", "passed", "detail"});
+    const std::string where = q.Item("checks", i);
+    Obj k(checks[i], where,
+          v.v1() ? std::set<std::string>{"name", "value", "limit", "passed", "detail"}
+                 : std::set<std::string>{"name", "value", "limit", "unit", "passed", "detail"});
     QualityCheck check;
-    check.name = k.Text("name");
-    check.value = k.Number("value", -1e9, 1e9);
-    check.limit = k.Number("limit", -1e9, 1e9);
+    check.name = k.Choice("name", {"points", "noise", "force_zero", "leak", "previous"});
+    const std::string unit = CheckUnit(check.name);
+    if (!v.v1() && k.Text("unit") != unit)
+      throw Invalid(where + ".unit: a " + check.name + " check is in " + unit);
+    // Version 1 gave the force checks in N; their unit is now mN like every force of the file.
+    const bool force = unit == "mN";
+    check.value =
+        force ? v.Number(k, "value", "value", -1e12, 1e12) : v.Same(k, "value", -1e12, 1e12);
+    check.limit =
+        force ? v.Number(k, "limit", "limit", -1e12, 1e12) : v.Same(k, "limit", -1e12, 1e12);
     check.passed = k.Flag("passed");
     check.detail = k.Text("detail");
     c.quality.checks.push_back(check);
@@ -221,20 +284,47 @@ void ReadQuality(Obj& o, CalibrationFile& c) {
 
 CalibrationFile CalibrationFromJson(const json& root) {
   Obj o(root, "",
-        {"schema", "schema_version", "actuator_serial", "kind", "board_id", "finger", "date", "rig",
-         "conditions", "raw_data", "curve", "fits", "grid", "static_inverse",
-         "regulator_corrections", "compensator", "recommended_bias_kpa", "quality"});
+        {"schema",
+         "schema_version",
+         "actuator_serial",
+         "kind",
+         "board_id",
+         "finger",
+         "date",
+         "rig",
+         "simulation",
+         "conditions",
+         "raw_data",
+         "curve",
+         "fits",
+         "grid",
+         "static_inverse",
+         "regulator_corrections",
+         "compensator",
+         "recommended_bias_kpa",
+         "recommended_bias_pa",
+         "quality"});
   CalibrationFile c;
-  ReadIdentity(o, c);
+  const Version v = ReadIdentity(o, c);
+  // The fields the other version has.
+  for (const char* other : v.v1() ? std::vector<const char*>{"simulation", "recommended_bias_pa"}
+                                  : std::vector<const char*>{"recommended_bias_kpa"}) {
+    if (root.contains(other)) {
+      throw Invalid(std::string(other) + ": unknown field in schema version " +
+                    std::to_string(v.number));
+    }
+  }
+  const char* recommended = v.Key("recommended_bias_kpa", "recommended_bias_pa");
   const bool jamming = c.kind == pp::FingerKind::kJamming;
-  ReadMeasurement(o, c, jamming);
-  ReadGrid(o, c);
+  ReadSimulation(o, c);
+  ReadMeasurement(o, c, jamming, v);
+  ReadGrid(o, c, v);
   ReadStaticInverse(o, c, jamming);
   ReadRegulatorCorrections(o, c);
   ReadCompensator(o, c);
-  if (o.Has("recommended_bias_kpa"))
-    c.recommended_bias_kpa = o.Number("recommended_bias_kpa", 0, 20);
-  ReadQuality(o, c);
+  if (o.Has(recommended))
+    c.recommended_bias_pa = v.Number(o, "recommended_bias_kpa", "recommended_bias_pa", 0, 20000);
+  ReadQuality(o, c, v);
   return c;
 }
 

@@ -79,8 +79,8 @@ Outcome Device::ApplyCalibration(uint8_t finger, const CalibrationFile& c) {
   f.compensator = c.compensator;
   f.param_count = static_cast<uint8_t>(c.compensator_params.size());
   std::copy(c.compensator_params.begin(), c.compensator_params.end(), f.params.begin());
-  if (c.recommended_bias_kpa && f.kind == pp::FingerKind::kJamming) {
-    f.bias_pa = static_cast<int32_t>(std::lround(*c.recommended_bias_kpa * 1000));
+  if (c.recommended_bias_pa && f.kind == pp::FingerKind::kJamming) {
+    f.bias_pa = static_cast<int32_t>(std::lround(*c.recommended_bias_pa));
   }
   // One staged blob: the board validates every record and applies all of them or none.
   std::vector<uint8_t> records;

@@ -67,7 +67,7 @@ TEST(CliHostileBoard, AnInvalidCalibrationIsNamedAndStrictModeRefusesIt) {
   const std::string env = "PALPA_CALIBRATION_DIR=" + dir;
   Run r = palpa::testing::Palpa(device + "set 1=L1", env);
   LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
-  CHECK_TEXT(Has(r, "nominal thesis curves (" + file + ": schema_version: 7 is not the version"),
+  CHECK_TEXT(Has(r, "nominal thesis curves (" + file + ": schema_version: 7 is not a version"),
              r.output.c_str());
   // With --json the same reason is in what set reports it applied: the map the finger went through.
   r = palpa::testing::Palpa(device + "--json set 1=L1", env);

@@ -18,6 +18,8 @@
 
 #include "cli_run.h"
 #include "mini_client.h"
+#include "palpa/core/board_configs.h"
+#include "palpa/hal/sim/plant.h"
 
 #include "CppUTest/TestHarness.h"
 
@@ -505,6 +507,94 @@ TEST(CliCalibrate, BadArgumentsAreNamedBeforeAnythingStarts) {
   r = ExpectUsage(
       "calibrate --rig sim --finger 4 --out /tmp --previous /tmp/palpa-cli-no-such.json",
       "palpa-cli-no-such.json");
+  // The rig's simulator: its options are checked here, go with --rig sim only, and an
+  // environment variable it would not read is refused rather than ignored.
+  r = ExpectUsage(nowhere + "calibrate --rig sim --finger 1 --out /tmp --unit 1001",
+                  "--unit 1001: expected an actuator unit 0 to 1000");
+  r = ExpectUsage(nowhere + "calibrate --rig sim --finger 1 --out /tmp --plant 2.5",
+                  "--plant 2.5: expected a plant level 0 to 3");
+  r = ExpectUsage(nowhere + "calibrate --rig sim --finger 1 --out /tmp --effects creep,wind",
+                  "--effects creep,wind: unknown effect 'wind'");
+  r = ExpectUsage(nowhere + "calibrate --rig sim --finger 1 --out /tmp --effects history=0.9",
+                  "history wants a fraction of 0 to 0.5");
+  r = ExpectUsage(nowhere + "calibrate --rig lab.json --finger 1 --out /tmp --unit 2",
+                  "go with --rig sim");
+  r = Palpa("calibrate --rig sim --finger 1 --quick --out " + never, "PALPA_SIM_ARGS='--unit 2'");
+  LONGS_EQUAL_TEXT(2, r.code, r.output.c_str());
+  CHECK_TEXT(Has(r, "PALPA_SIM_ARGS ('--unit 2') is not read by --rig sim"), r.output.c_str());
+  CHECK(access(never.c_str(), F_OK) != 0);
+}
+
+TEST(CliCalibrate, ACalibrationOfSimulatedUnit2HasUnit2sOwnSlopesAndSaysSo) {
+  char pattern[] = "/tmp/palpa-cal-cli-XXXXXX";
+  const std::string dir = mkdtemp(pattern);
+  const Run r = Palpa("calibrate --rig sim --finger 1 --quick --unit 2 --out " + dir);
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  CHECK_TEXT(Has(r, "calibrated PN-1 (finger 1, simulated unit 2, seed 1, plant level 3)"),
+             r.output.c_str());
+  std::ifstream file(dir + "/PN-1.json");
+  const nlohmann::json j = nlohmann::json::parse(file);
+  CHECK(
+      j["simulation"] ==
+      nlohmann::json::parse(R"({"actuator_unit": 2, "seed": 1, "plant_level": 3, "effects": ""})"));
+  // The true branches of units 0 and 2 (finger 1 of thesis-5finger), through the readings the
+  // quick sweep takes on each branch within 10-90 kPa: the calibration must find unit 2's slopes,
+  // which differ from unit 0's by more than the rig's error.
+  auto truth = [](uint32_t unit) {
+    const auto& config = *palpa::core::FindBoardConfig("thesis-5finger");
+    palpa::sim::PlantOptions o;
+    o.unit = unit;
+    palpa::sim::Plant plant(config.lines.data(), config.line_count, config.fingers.data(),
+                            config.finger_count, o);
+    const std::vector<double> kpa = {20, 40, 60, 80};
+    auto slope = [&](float (palpa::sim::PneumaticActuator::*branch)(float) const) {
+      double sxy = 0, sxx = 0;  // least squares, mm/kPa (= µm/Pa, the file's unit)
+      for (double x : kpa) {
+        sxy += (x - 50) * (plant.pneumatic(0)->*branch)(static_cast<float>(x));
+        sxx += (x - 50) * (x - 50);
+      }
+      return sxy / sxx;
+    };
+    return std::pair<double, double>{slope(&palpa::sim::PneumaticActuator::RisingMajorMm),
+                                     slope(&palpa::sim::PneumaticActuator::FallingMajorMm)};
+  };
+  const auto [own_rising, own_falling] = truth(2);
+  const auto [nominal_rising, nominal_falling] = truth(0);
+  const double rising = j["fits"]["rising"]["slope"], falling = j["fits"]["falling"]["slope"];
+  CHECK_TEXT(std::fabs(own_rising - nominal_rising) > 0.01 * nominal_rising, "units differ");
+  CHECK_TEXT(std::fabs(rising - own_rising) < 0.4 * std::fabs(own_rising - nominal_rising),
+             (std::to_string(rising) + " against unit 2's " + std::to_string(own_rising) +
+              " and unit 0's " + std::to_string(nominal_rising))
+                 .c_str());
+  CHECK_TEXT(std::fabs(falling - own_falling) < 0.4 * std::fabs(own_falling - nominal_falling),
+             (std::to_string(falling) + " against unit 2's " + std::to_string(own_falling) +
+              " and unit 0's " + std::to_string(nominal_falling))
+                 .c_str());
+}
+
+TEST(CliCalibrate, ACompensatorTheSweepCannotFitIsAnErrorUnlessFallingBackIsAllowed) {
+  // Refused before the run: the quick sweep says what it can fit, and pi(16) is not among it.
+  const std::string never = OwnTempPath("never-fitted");
+  Run r = Palpa("calibrate --rig sim --finger 1 --quick --compensator pi:16 --out " + never);
+  LONGS_EQUAL_TEXT(2, r.code, r.output.c_str());
+  CHECK_TEXT(Has(r,
+                 "hysteresis sweep (--quick): 28 readings in 20 kPa steps (pi up to 12 "
+                 "operators, api up to 8"),
+             r.output.c_str());
+  CHECK(Has(r, "pi(16) needs 36 sweep readings; this sweep has 28"));
+  CHECK(access(never.c_str(), F_OK) != 0);  // nothing written, not even the directory
+  // Allowed to fall back, the run keeps the static inverse alone and says why, in the file too.
+  char pattern[] = "/tmp/palpa-cal-cli-XXXXXX";
+  const std::string dir = mkdtemp(pattern);
+  r = Palpa("calibrate --rig sim --finger 1 --quick --compensator pi:16 --allow-fallback --out " +
+            dir);
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  CHECK(Has(r, "compensator none: the static inverse alone (--allow-fallback)"));
+  std::ifstream file(dir + "/PN-1.json");
+  const nlohmann::json j = nlohmann::json::parse(file);
+  CHECK(j["compensator"]["kind"] == "none");
+  CHECK(j["quality"]["flags"].dump().find("compensator not fitted: sweep has 28 points; this fit "
+                                          "needs at least 36") != std::string::npos);
 }
 
 TEST(CliCalibrate, QuickCalibrationOnTheSimulatedRigWritesAValidFileRawDataAndAReport) {

@@ -53,7 +53,10 @@ TEST(CalibrationFile, SavesAtomicallyAndReadsBackEveryField) {
   const ph::CalibrationFile* back = &found.value;
   STRCMP_EQUAL("PN-1", back->actuator_serial.c_str());
   LONGS_EQUAL(5, back->curve.size());
-  DOUBLES_EQUAL(1.2, back->curve[2].output, 1e-12);
+  DOUBLES_EQUAL(1200, back->curve[2].output, 1e-12);
+  DOUBLES_EQUAL(30000, back->curve[2].drive_pa, 1e-12);
+  LONGS_EQUAL(2, back->simulation->actuator_unit);
+  STRCMP_EQUAL("creep,rate", back->simulation->effects.c_str());
   LONGS_EQUAL(30000, back->static_inverse[2].setpoint_pa);
   LONGS_EQUAL(49500, back->regulator_corrections[0].points[1].falling_pa);
   CHECK(back->compensator == pp::CompensatorKind::kPrandtlIshlinskii);
@@ -63,10 +66,10 @@ TEST(CalibrationFile, SavesAtomicallyAndReadsBackEveryField) {
   LONGS_EQUAL(17, back->quality.cycles);
   DOUBLES_EQUAL(1234.5, back->quality.rig_time_s, 1e-9);
   DOUBLES_EQUAL(0.021, *back->quality.map_error, 1e-12);
-  LONGS_EQUAL(2, back->quality.checks.size());
-  STRCMP_EQUAL("leak", back->quality.checks[1].name.c_str());
-  CHECK_FALSE(back->quality.checks[1].passed);
-  DOUBLES_EQUAL(1.7, back->quality.checks[1].value, 1e-12);
+  LONGS_EQUAL(5, back->quality.checks.size());
+  STRCMP_EQUAL("leak", back->quality.checks[3].name.c_str());
+  CHECK_FALSE(back->quality.checks[3].passed);
+  DOUBLES_EQUAL(1.7, back->quality.checks[3].value, 1e-12);
   // Only the file itself is in the directory: the temporary was renamed over it.
   LONGS_EQUAL(0, std::system(("test \"$(ls -A " + dir + ")\" = PN-1.json").c_str()));
   // An invalid calibration writes nothing, and the good file stays as it was.
@@ -94,14 +97,20 @@ TEST(CalibrationFile, EveryBadFieldIsNamedByItsPath) {
       {[](json& j) { j.erase("date"); }, "date: missing"},
       {[](json& j) { j["date"] = "yesterday"; }, "date: must be UTC"},
       {[](json& j) { j["colour"] = "red"; }, "colour: unknown field"},
-      {[](json& j) { j["schema_version"] = 2; }, "schema_version: 2 is not"},
+      {[](json& j) { j["schema_version"] = 3; }, "schema_version: 3 is not"},
+      {[](json& j) { j["recommended_bias_kpa"] = 20; },
+       "recommended_bias_kpa: unknown field in schema version 2"},
+      {[](json& j) { j["simulation"]["effects"] = "creep,wind"; }, "simulation.effects"},
+      {[](json& j) { j["simulation"]["plant_level"] = 4; }, "simulation.plant_level: 4"},
       {[](json& j) { j["actuator_serial"] = "a/b"; }, "actuator_serial"},
       {[](json& j) { j["kind"] = "hydraulic"; }, "kind: must be"},
       {[](json& j) { j["finger"] = 9; }, "finger: 9 is outside 0"},
-      {[](json& j) { j["conditions"]["speed_mm_s"] = 0; }, "conditions.speed_mm_s"},
+      {[](json& j) { j["conditions"]["speed_um_s"] = 0; }, "conditions.speed_um_s"},
+      {[](json& j) { j["conditions"]["speed_mm_s"] = 0.1; }, "conditions.speed_mm_s: unknown"},
       {[](json& j) { j["raw_data"] = "../../x.csv"; }, "raw_data"},
       {[](json& j) { j["curve"][2]["output"] = 0.1; }, "curve.output[2]: not strictly increasing"},
-      {[](json& j) { j["curve"][1]["kpa"] = "ten"; }, "curve[1].kpa: must be a number"},
+      {[](json& j) { j["curve"][1]["drive_pa"] = "ten"; }, "curve[1].drive_pa: must be a number"},
+      {[](json& j) { j["curve"][4]["drive_pa"] = 100001; }, "curve[4].drive_pa: 100001 is outside"},
       {[](json& j) { j["static_inverse"][3]["setpoint_pa"] = -120000; },
        "static_inverse[3].setpoint_pa: -120000 is outside"},
       {[](json& j) {
@@ -125,8 +134,11 @@ TEST(CalibrationFile, EveryBadFieldIsNamedByItsPath) {
        "quality.checks[0].passed: must be true or false"},
       {[](json& j) { j["quality"]["checks"][1].erase("limit"); },
        "quality.checks[1].limit: missing"},
+      {[](json& j) { j["quality"]["checks"][1]["unit"] = "N"; },
+       "quality.checks[1].unit: a noise check is in mN"},
+      {[](json& j) { j["quality"]["checks"][1]["name"] = "wind"; }, "quality.checks[1].name"},
       {[](json& j) { j["quality"]["map_error"] = -0.1; }, "quality.map_error"},
-      {[](json& j) { j["kind"] = "jamming"; }, "conditions.bias_kpa: missing"},
+      {[](json& j) { j["kind"] = "jamming"; }, "conditions.bias_pa: missing"},
   };
   for (const Case& c : cases) {
     const std::string error = ErrorAfter(c.edit);

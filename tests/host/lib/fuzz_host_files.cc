@@ -7,7 +7,8 @@
 // accepts must survive a round trip where the kind has one: a calibration serialises, parses back
 // and serialises to the same text; a package writes and reads back to the same images; a
 // configuration prints and reads back to the same one. Input byte 0 picks the kind (calibration,
-// configuration, rig, journal, package) and how its valid reference is changed:
+// configuration, rig, journal, package) and how its valid reference is changed (a calibration's
+// reference is the one written now or a schema version 1 file of either finger kind):
 //   raw bytes; one JSON value replaced by any type or magnitude, or removed; one number in the
 //   text replaced by a literal no double holds or no integer fits ("1e400", "-1e999",
 //   "99999999999999999999", ...); bytes overwritten or the text cut short.
@@ -63,6 +64,18 @@ const std::string& ValidCalibrationText() {
     return *s;
   }();
   return text;
+}
+
+/// A valid calibration to change: the reference as written now, or a file of schema version 1.
+const std::string& SomeValidCalibrationText(uint8_t pick) {
+  static const std::string v1[2] = {
+      ph::ReadFileWhole(PALPA_TEST_DATA_DIR "/calibration_v1_pneumatic.json",
+                        ph::kCalibrationFileLimits, nullptr)
+          .value(),
+      ph::ReadFileWhole(PALPA_TEST_DATA_DIR "/calibration_v1_jamming.json",
+                        ph::kCalibrationFileLimits, nullptr)
+          .value()};
+  return pick % 3 == 0 ? ValidCalibrationText() : v1[pick % 3 - 1];
 }
 
 /// Parse, and check what comes back: an error with a reason, or a calibration that round-trips.
@@ -294,7 +307,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const int variant = mode / 5 % 4;
   switch (mode % 5) {
     case 0:
-      CheckCalibration(Changed(in, variant, ValidCalibrationText()));
+      CheckCalibration(Changed(in, variant, SomeValidCalibrationText(in.Byte())));
       break;
     case 1: {
       const pc::BoardConfig& base = *pc::kBoardConfigs[in.Byte() % pc::kBoardConfigCount].config;

@@ -109,12 +109,12 @@ TEST(HostileFiles, DeepNestingIsRefusedNamingTheLimit) {
 TEST(HostileFiles, NumbersJsonCannotHoldAreNamedByTheirField) {
   std::string error;
   CHECK_FALSE(ph::ParseCalibration(
-                  Replaced(ValidText(), "\"speed_mm_s\": 0.1", "\"speed_mm_s\": 1e400"), &error)
+                  Replaced(ValidText(), "\"speed_um_s\": 100.0", "\"speed_um_s\": 1e400"), &error)
                   .has_value());
-  CHECK_TEXT(Contains(error, "conditions.speed_mm_s: "), error.c_str());
+  CHECK_TEXT(Contains(error, "conditions.speed_um_s: "), error.c_str());
   CHECK_TEXT(Contains(error, "1e400"), error.c_str());
   CHECK_FALSE(Contains(error, "[json.exception"));  // words for people, not the library's codes
-  const std::string curve = Replaced(ValidText(), "\"output\": 0.3", "\"output\": -1e999");
+  const std::string curve = Replaced(ValidText(), "\"output\": 300.0", "\"output\": -1e999");
   CHECK_FALSE(ph::ParseCalibration(curve, &error).has_value());
   CHECK_TEXT(Contains(error, "curve[1].output: "), error.c_str());
 }
@@ -181,12 +181,12 @@ TEST_GROUP(HostileCalibrations) {
 TEST(HostileCalibrations, AnInvalidCalibrationIsNamedWithItsReasonOrRefusedWhenAsked) {
   // PN-1's file exists but a field is out of range: the fallback to the nominal curves says why.
   const std::string path = dir + "/PN-1.json";
-  std::ofstream(path) << Replaced(ValidText(), "\"speed_mm_s\": 0.1", "\"speed_mm_s\": 99");
+  std::ofstream(path) << Replaced(ValidText(), "\"speed_um_s\": 100.0", "\"speed_um_s\": 99000");
   auto d = Open(false);
   ph::Outcome o = d->Set({{0, {ph::TargetKind::kLevel, 1}}});
   CHECK_TEXT(o.ok(), o.message.c_str());
   CHECK_TEXT(Contains(o.notes[0], "nominal thesis curves"), o.notes[0].c_str());
-  CHECK_TEXT(Contains(o.notes[0], path + ": conditions.speed_mm_s: 99 is outside"),
+  CHECK_TEXT(Contains(o.notes[0], path + ": conditions.speed_um_s: 99000 is outside"),
              o.notes[0].c_str());
   // A finger without a file is no error either way.
   o = d->Set({{1, {ph::TargetKind::kLevel, 1}}});
@@ -196,7 +196,7 @@ TEST(HostileCalibrations, AnInvalidCalibrationIsNamedWithItsReasonOrRefusedWhenA
   o = d->Set({{1, {ph::TargetKind::kLevel, 1}}, {0, {ph::TargetKind::kLevel, 1}}});
   LONGS_EQUAL((int)pp::Status::kBadValue, (int)o.status);
   // Named as the caller numbers fingers: this API from 0.
-  CHECK_TEXT(Contains(o.message, "finger 0: " + path + ": conditions.speed_mm_s"),
+  CHECK_TEXT(Contains(o.message, "finger 0: " + path + ": conditions.speed_um_s"),
              o.message.c_str());
   CHECK(d->Set({{1, {ph::TargetKind::kLevel, 1}}}).ok());
 }

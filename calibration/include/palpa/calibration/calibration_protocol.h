@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "palpa/calibration/hysteresis_fit.h"
 #include "palpa/calibration/map_protocols.h"
 #include "palpa/calibration/procedures.h"
 #include "palpa/calibration/sweep.h"
@@ -39,15 +40,34 @@ struct ProtocolOptions {
   SweepPlan pneumatic_sweep{100000, 5000, 4};
   SweepPlan jamming_sweep{100000, 10000, 2};
   int correction_points = 8;
-  /// The compensator fitted to the sweep, pi or api, with this many operators (both models'
-  /// residuals are in the finger's output unit, as the calibration file reports them); empty:
-  /// the better of the two on this sweep (FitBetterPlayModel).
+  /// The compensator fitted to the sweep, pi or api (both models' residuals are in the finger's
+  /// output unit, as the calibration file reports them); empty: the better of the two on this
+  /// sweep (FitBetterPlayModel).
   std::optional<protocol::CompensatorKind> compensator;
-  int compensator_operators = 16;
+  /// Its operators; 0: `default_operators`, or fewer when the sweep's steps tell fewer apart (so
+  /// every operator adds a degree of freedom; OperatorsToldApart).
+  int compensator_operators = 0;
+  int default_operators = 16;
 };
 
 /// Short settings for demonstrations and tests: fewer and faster points, two repeats.
 ProtocolOptions QuickProtocol();
+
+/// The hysteresis sweep a finger gets under these options, and what can be fitted to it.
+struct SweepCapacity {
+  SweepPlan plan;
+  size_t points = 0;      ///< settled readings
+  int pi_operators = 0;   ///< the most a pi fit may have for that many readings
+  int api_operators = 0;  ///< the same for api
+  int told_apart = 0;     ///< the most operators its steps tell apart (up to 32)
+  int operators = 0;      ///< what the run fits: the option, or its default capped as above
+  /// "28 readings in 20 kPa steps (pi up to 12 operators, api up to 8; its steps tell 10
+  /// apart): fitting pi(8) and api(8), keeping the better" — `kind` empty: auto.
+  std::string Describe(std::optional<protocol::CompensatorKind> kind) const;
+  /// Why `kind` (empty: auto, pi or api) with `operators` cannot be fitted; empty when it can.
+  std::string Refusal(std::optional<protocol::CompensatorKind> kind) const;
+};
+SweepCapacity SweepFor(const ProtocolOptions& options, bool jamming);
 
 /// What a run records as it goes; saved by the caller after every step (resume reads it back).
 struct Journal {
@@ -77,6 +97,8 @@ struct RunInfo {
   std::string rig;
   std::string raw_data;                             ///< CSV file name beside the calibration
   const host::CalibrationFile* previous = nullptr;  ///< the actuator's last calibration, if any
+  std::optional<host::SimulatedPlant> simulation =
+      std::nullopt;  ///< on palpa-sim's rig: which plant
 };
 
 struct CalibrationRun {
@@ -87,6 +109,9 @@ struct CalibrationRun {
   MapEstimate map_estimate;
   std::vector<SweepSample> sweep;
   std::string compensator_choice;  ///< when the protocol chose the model: what it compared
+  /// The compensator's fit (its operators and those carrying weight); error set when the model
+  /// asked for could not be fitted — the file then carries the static inverse alone.
+  HysteresisFit fit;
 };
 
 /// Runs (or resumes) the protocol; on a safety stop returns its reason with everything safe,

@@ -59,12 +59,24 @@ MapEstimate EstimateMap(const std::vector<MapPress>& presses, const MapBox& box)
 MapEstimate EstimateMap(const std::vector<MapPress>& presses, const StiffnessSurface& surface);
 
 std::vector<MapSample> StiffnessSamples(const std::vector<MapPress>& presses);
+
+/// One condition's presses summarised, in the rig's units (the calibration file's grid holds the
+/// same in the board's: FileGridPoint).
+struct ConditionSummary {
+  double bias_kpa = 0, vacuum_kpa = 0;
+  int cycles = 0;
+  double stiffness_mean = 0, stiffness_spread = 0;  ///< N/mm (spread: standard deviation)
+  double loop_area_mean = 0;                        ///< mJ
+  double r2_min = 1;
+};
 /// The presses summarised per condition, in the order the conditions were first taken.
-std::vector<host::GridPoint> SummariseConditions(const std::vector<MapPress>& presses);
+std::vector<ConditionSummary> SummariseConditions(const std::vector<MapPress>& presses);
+/// As the calibration file's grid holds it: Pa and mN/mm.
+host::GridPoint FileGridPoint(const ConditionSummary& c);
 
 /// The bias with the least mean press loop area among those that keep at least 80 % of the
 /// widest stiffness range (DESIGN §5: bias shrinks the loop; the range must stay).
-double RecommendBias(const std::vector<host::GridPoint>& grid);
+double RecommendBias(const std::vector<ConditionSummary>& grid);
 
 /// The bias recommended from a scattered map: over the lattice, the least mean press loop among
 /// the biases keeping 80 % of the widest stiffness range (RecommendBias on fitted surfaces).

@@ -14,37 +14,44 @@
 
 namespace palpa::host {
 
-inline constexpr int kCalibrationSchemaVersion = 1;
+/// Version 2: one unit per quantity, the board's (calibration_units.h); version 1 files (kPa, mm,
+/// N/mm and N beside the board's Pa, µm and mN/mm) are still read, converted on loading.
+inline constexpr int kCalibrationSchemaVersion = 2;
 /// The largest valid calibration (1024 grid points, 256 curve points, every optional part,
 /// pretty-printed) is about 310 KiB.
 inline constexpr FileLimits kCalibrationFileLimits{"calibration file", 1024 * 1024};
 
-/// One point of the calibrated output curve: the output (mm, or N/mm) the actuator gives at a
-/// drive (kPa; negative for vacuum), on the mid-line between the rising and falling branches.
+// Units: every member below is in the file's unit (calibration_units.h): pressures in Pa,
+// deformation in µm, stiffness in mN/mm, forces in mN. "Output" is the finger's output unit —
+// µm of deformation (pneumatic) or mN/mm of stiffness (jamming) — as the board's targets are.
+
+/// One point of the calibrated output curve: the output the actuator gives at a drive (negative
+/// for vacuum), on the mid-line between the rising and falling branches.
 struct CurvePoint {
-  double kpa = 0;
+  double drive_pa = 0;
   double output = 0;
 };
 
-/// A straight-line fit of one branch or condition, with its goodness.
+/// A straight-line fit of one branch, with its goodness.
 struct LineFit {
-  double slope = 0;
-  double intercept = 0;
+  double slope = 0;      ///< output per Pa (µm/Pa is mm/kPa, the thesis's unit)
+  double intercept = 0;  ///< output
   double r2 = 0;
 };
 
 /// One (bias, vacuum) point of an indentation grid: N cycles summarised.
 struct GridPoint {
-  double bias_kpa = 0;
-  double vacuum_kpa = 0;
+  double bias_pa = 0;
+  double vacuum_pa = 0;  ///< negative
   int cycles = 0;
-  double stiffness_mean = 0;    ///< N/mm
-  double stiffness_spread = 0;  ///< standard deviation, N/mm
+  double stiffness_mean = 0;    ///< mN/mm
+  double stiffness_spread = 0;  ///< standard deviation, mN/mm
   double loop_area_mean = 0;    ///< mJ
   double r2_min = 0;
 };
 
-/// One failure detector's verdict: its figure against its limit (docs/calibration.md).
+/// One failure detector's verdict: its figure against its limit (docs/calibration.md), both in
+/// the check's unit (CheckUnit: a count, mN, or a ratio).
 struct QualityCheck {
   std::string name;  ///< points, noise, force_zero, leak, previous
   double value = 0;
@@ -54,7 +61,7 @@ struct QualityCheck {
 };
 
 struct CalibrationQuality {
-  double residual_rms = 0;  ///< of the output curve's fit, output unit
+  double residual_rms = 0;  ///< the compensator's fit residual, output unit
   double residual_max = 0;
   int points = 0;                   ///< settled readings the fits used
   std::vector<std::string> flags;   ///< detectors that fired and other warnings (empty: clean)
@@ -70,21 +77,31 @@ struct RegulatorCorrection {
   std::vector<protocol::CorrectionPoint> points;  ///< command → measured, rising and falling
 };
 
+/// The simulated plant a calibration on palpa-sim's rig was taken on (`--rig sim`): which unit,
+/// so evaluations on held-out units can tell their calibrations apart.
+struct SimulatedPlant {
+  uint32_t actuator_unit = 0;  ///< palpa-sim --unit: 0 nominal, others differ as real units do
+  uint32_t seed = 1;           ///< --seed: regulator and sensor units, noise
+  int plant_level = 3;         ///< --plant, 0..3
+  std::string effects;         ///< --effects as given: empty, or e.g. "creep,rate,history=0.2"
+};
+
 struct CalibrationFile {
-  int schema_version = kCalibrationSchemaVersion;
+  int schema_version = kCalibrationSchemaVersion;  ///< as read; always written as the current
   std::string actuator_serial;
   protocol::FingerKind kind = protocol::FingerKind::kPneumatic;
   uint32_t board_id = 0;
   uint8_t finger = 0;
-  std::string date;  ///< ISO 8601, UTC
-  std::string rig;   ///< the rig's name (or "sim")
+  std::string date;                          ///< ISO 8601, UTC
+  std::string rig;                           ///< the rig's name (or "sim")
+  std::optional<SimulatedPlant> simulation;  ///< taken on palpa-sim's rig
   // Conditions of the run.
-  double speed_mm_s = 0.1;
-  double depth_mm = 3;
+  double speed_um_s = 100;
+  double depth_um = 3000;
   int repeats = 0;
-  std::optional<double> bias_kpa;                  ///< jamming: the bias the curve was taken at
+  std::optional<double> bias_pa;                   ///< jamming: the bias the curve was taken at
   std::string raw_data;                            ///< CSV file beside this one
-  std::vector<CurvePoint> curve;                   ///< strictly monotone in kpa and output
+  std::vector<CurvePoint> curve;                   ///< strictly monotone in drive and output
   std::optional<LineFit> rising_fit, falling_fit;  ///< pneumatic deformation branches
   std::vector<GridPoint> grid;                     ///< jamming indentation grid
   std::vector<protocol::InversePoint> static_inverse;
@@ -92,7 +109,7 @@ struct CalibrationFile {
       regulator_corrections;  ///< one per line of the finger, at most two
   protocol::CompensatorKind compensator = protocol::CompensatorKind::kNone;
   std::vector<float> compensator_params;
-  std::optional<double> recommended_bias_kpa;
+  std::optional<double> recommended_bias_pa;
   CalibrationQuality quality;
 };
 
@@ -109,6 +126,10 @@ bool SaveCalibration(const CalibrationFile& c, const std::string& path, std::str
 
 /// Serials name files: 1–11 characters of [A-Za-z0-9_-] (they also fit ConfigureFinger's field).
 bool ValidSerial(const std::string& serial);
+
+/// What is wrong with palpa-sim's effects list ("creep,rate,history=0.2", or empty), naming the
+/// item; empty when it is one palpa-sim takes (history a fraction of 0 to 0.5).
+std::string SimEffectsError(const std::string& effects);
 
 /// The directory the library looks in: $PALPA_CALIBRATION_DIR, else $XDG_DATA_HOME/palpa/
 /// calibrations, else ~/.local/share/palpa/calibrations.
