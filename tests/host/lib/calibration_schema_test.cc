@@ -127,7 +127,11 @@ TEST(CalibrationSchema, EveryNumericFieldOfAWrittenFileHasADeclaredUnit) {
 TEST(CalibrationSchema, EachQuantityHasOneUnitAcrossTheFile) {
   for (const json& file : WrittenExamples()) {
     std::map<std::string, std::set<std::string>> units;  // quantity → units seen
-    for (const auto& [path, unit] : NumericFields(file)) units[kQuantity.at(unit)].insert(unit);
+    for (const auto& [path, unit] : NumericFields(file)) {
+      const auto quantity = kQuantity.find(unit);
+      CHECK_TEXT(quantity != kQuantity.end(), ("unit '" + unit + "' of " + path).c_str());
+      units[quantity->second].insert(unit);
+    }
     for (const auto& [quantity, seen] : units) {
       std::string list;
       for (const std::string& u : seen) list += u + " ";
