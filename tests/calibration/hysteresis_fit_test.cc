@@ -93,14 +93,14 @@ TEST(HysteresisFit, EveryOperatorAddsADegreeOfFreedomOnTheSweepsPalpaUses) {
     for (size_t i = 1; i < r.size(); ++i) DOUBLES_EQUAL(r[0], r[i] - r[i - 1], 1e-9);
   }
   // Each sweep with the sizes fitted on it: the benchmark's (2.5 kPa), the calibration's
-  // (pneumatic 5 kPa, --quick 20 kPa; jamming --quick 20 kPa), every operator its own.
+  // (pneumatic 5 kPa, --quick 10 kPa; jamming --quick 10 kPa), every operator its own.
   struct Use {
     cal::SweepPlan plan;
     int most;
   };
   for (const Use& use :
        {Use{cal::SweepPlan{100000, 2500, 4}, 32}, Use{cal::SweepPlan{100000, 5000, 4}, 16},
-        Use{cal::SweepPlan{100000, 20000, 2}, 8}, Use{cal::SweepPlan{100000, 20000, 1}, 8}}) {
+        Use{cal::SweepPlan{100000, 10000, 2}, 8}, Use{cal::SweepPlan{100000, 10000, 1}, 8}}) {
     const auto staircase = cal::SweepDrives(use.plan);
     for (int n = 1; n <= use.most; n *= 2) {
       LONGS_EQUAL_TEXT(n, cal::DistinctOperators(staircase, cal::EvenThresholds(n, 100000)),
