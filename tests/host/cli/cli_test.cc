@@ -18,6 +18,7 @@
 
 #include "cli_run.h"
 #include "mini_client.h"
+#include "palpa/calibration/calibration_protocol.h"
 #include "palpa/core/board_configs.h"
 #include "palpa/hal/sim/plant.h"
 
@@ -605,6 +606,36 @@ TEST(CliCalibrate, ACompensatorTheSweepCannotFitIsAnErrorUnlessFallingBackIsAllo
   CHECK(j["compensator"]["kind"] == "none");
   CHECK(j["quality"]["flags"].dump().find("compensator not fitted: sweep has 53 points; this fit "
                                           "needs at least 68") != std::string::npos);
+}
+
+TEST(CliCalibrate, AFitThatFailsAfterTheRunExits1AndKeepsTheJournal) {
+  // A journal holding the whole quick sweep, one reading's drive past the range (as a sensor out
+  // of calibration could read it): resumed, the run measures nothing more and the fit refuses it.
+  char pattern[] = "/tmp/palpa-cal-cli-XXXXXX";
+  const std::string dir = mkdtemp(pattern);
+  nlohmann::json sweep = nlohmann::json::array();
+  for (const double pa :
+       palpa::calibration::SweepDrives(palpa::calibration::QuickProtocol().pneumatic_sweep)) {
+    sweep.push_back({pa, 0.01 * pa});  // µm
+  }
+  sweep[29][0] = 110000.0;
+  const std::string journal = dir + "/PN-1.journal.json";
+  std::ofstream(journal) << nlohmann::json{{"sweep", sweep}}.dump();
+  Run r = Palpa("calibrate --rig sim --finger 1 --quick --compensator pi:8 --resume --out " + dir);
+  LONGS_EQUAL_TEXT(1, r.code, r.output.c_str());
+  CHECK_TEXT(Has(r, "the compensator could not be fitted: sweep point 29: drive 110000"),
+             r.output.c_str());
+  CHECK(access((dir + "/PN-1.json").c_str(), F_OK) != 0);  // nothing written
+  CHECK(access(journal.c_str(), F_OK) == 0);               // the measurements kept
+  // Allowed to fall back, the same journal gives the static inverse alone.
+  r = Palpa(
+      "calibrate --rig sim --finger 1 --quick --compensator pi:8 --resume --allow-fallback "
+      "--out " +
+      dir);
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  std::ifstream file(dir + "/PN-1.json");
+  CHECK(nlohmann::json::parse(file)["compensator"]["kind"] == "none");
+  std::system(("rm -rf " + dir).c_str());
 }
 
 TEST(CliCalibrate, QuickCalibrationOnTheSimulatedRigWritesAValidFileRawDataAndAReport) {
