@@ -4,7 +4,6 @@
 #include <cstdio>
 
 #include "cli.h"
-#include "palpa/core/board_config.h"
 #include "palpa/host/config_json.h"
 #include "palpa/host/json_check.h"
 #include "palpa/host/json_fields.h"
@@ -15,47 +14,14 @@ namespace {
 namespace pp = palpa::protocol;
 using nlohmann::json;
 
-/// The board's whole live configuration, read section by section.
-bool ReadAll(host::Device& d, core::BoardConfig& config, std::string* error) {
-  const pp::HelloReply b = d.info();
-  auto board = d.ReadBoard(error);
-  if (!board.ok()) return false;
-  config.board = board.value;
-  config.line_count = b.line_count;
-  for (uint8_t i = 0; i < b.line_count; ++i) {
-    auto line = d.ReadLine(i, error);
-    if (!line.ok()) return false;
-    config.lines[i] = line.value;
-  }
-  config.finger_count = b.finger_count;
-  for (uint8_t f = 0; f < b.finger_count; ++f) {
-    auto finger = d.ReadFinger(f, error);
-    if (!finger.ok()) return false;
-    config.fingers[f] = finger.value;
-  }
-  return true;
-}
-
-/// Validates like the board would, then sends everything staged so it applies at once.
-int Upload(Context& c, host::Device& d, const core::BoardConfig& config,
+/// Sends `config` staged so it applies at once, once the library has checked it as the board
+/// would (a configuration it refuses is a usage error: nothing was sent).
+int Upload(Context& c, host::Device& d, const host::BoardConfig& config,
            const nlohmann::ordered_json& changes) {
-  core::ConfigError error;
-  if (core::ValidateConfig(config, &error) != pp::Status::kOk) {
-    return Fail("config", pp::Status::kOutOfRange,
-                std::string("the configuration is not valid: ") +
-                    pp::kConfigSectionNames[static_cast<int>(error.section)] + " " +
-                    std::to_string(error.index + 1u) + ": " + error.reason + " (nothing was sent)",
-                kExitUsage);
-  }
-  std::vector<uint8_t> blob(core::kMaxConfigBlob);
-  const auto size = core::EncodeConfigBlob(config, blob.data(), blob.size());
-  if (!size.ok() || size.value > pp::kMaxStagedBytes) {
-    return Fail("config", pp::Status::kOverflow,
-                "the configuration is too large for one staged upload (" +
-                    std::to_string(size.value) + " bytes; nothing was sent)",
-                kExitUsage);
-  }
-  const host::Outcome applied = d.ConfigureStaged(blob.data(), size.value);
+  std::vector<uint8_t> records;
+  if (const host::Outcome o = d.EncodeConfig(config, &records); !o.ok())
+    return Fail("config", o.status, o.message, kExitUsage);
+  const host::Outcome applied = d.ConfigureStaged(records.data(), records.size());
   if (!applied.ok()) return Report(c, applied, "config");
   if (c.json) {
     PrintJson({{"applied", changes}, {"saved", false}});
@@ -68,7 +34,7 @@ int Upload(Context& c, host::Device& d, const core::BoardConfig& config,
 /// "board.FIELD=V", "lineN.FIELD=V", "fingerN.FIELD=V" (N from 1) applied onto `config`;
 /// false with a message naming the argument (once) and, for a field that does not exist, the
 /// fields there are.
-bool SetFromArgument(const std::string& arg, core::BoardConfig& config,
+bool SetFromArgument(const std::string& arg, host::BoardConfig& config,
                      nlohmann::ordered_json& changes, std::string* error) {
   const size_t eq = arg.find('='), dot = arg.find('.');
   if (eq == std::string::npos || dot == std::string::npos || dot > eq) {
@@ -165,9 +131,10 @@ int CmdConfig(Context& c, const std::vector<std::string>& args) {
     }
     return kExitOk;
   }
-  core::BoardConfig config{};
   std::string error;
-  if (!ReadAll(*d, config, &error)) return Fail("config", pp::Status::kIoError, error);
+  auto read = d->ReadConfig(&error);
+  if (!read.ok()) return Fail("config", pp::Status::kIoError, error);
+  host::BoardConfig& config = read.value;
   if (what == "show") {
     std::printf("%s\n", host::ConfigToJson(config).dump(c.json ? -1 : 2).c_str());
     return kExitOk;

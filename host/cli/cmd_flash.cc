@@ -7,7 +7,6 @@
 #include <thread>
 
 #include "cli.h"
-#include "palpa/core/flash_layout.h"
 #include "palpa/hal/linux/gpio_output.h"
 #include "palpa/host/boot_pins.h"
 #include "palpa/host/file_write.h"
@@ -188,26 +187,14 @@ int CmdPackage(Context&, const std::vector<std::string>& args) {
   if (!known)
     return Usage("package", "--kind " + kind_text + ": expected sim, mps2-an386, stm32f4 or linux");
   spec.rollback_counter = counter;
-  // An MCU's vector table follows the header and must be aligned to its size: pad to 256 bytes.
-  spec.header_size =
-      spec.board_kind == pp::BoardKind::kSim || spec.board_kind == pp::BoardKind::kLinux
-          ? pp::kImageHeaderSize
-          : 256;
   host::UpdatePackage package;
-  const core::FlashLayout& layout = core::kDefaultLayout;
   for (uint8_t slot = 0; slot < 2; ++slot) {
     std::string error;
     if (!ReadBytes(bodies[slot], host::kSlotBinaryLimits, &spec.body, &error))
       return Usage("package", error);
-    if (pp::ImageSize(static_cast<uint32_t>(spec.body.size()), spec.header_size) >
-        layout.slot_size) {
-      return Usage("package", bodies[slot] + ": " + std::to_string(spec.body.size()) +
-                                  " bytes do not fit a slot of " +
-                                  std::to_string(layout.slot_size));
-    }
-    spec.slot = slot;
-    spec.load_address = layout.xip_base + layout.slot_offset[slot];
-    package.slot_image[slot] = host::BuildImage(spec);
+    auto image = host::BuildSlotImage(spec, slot, &error);
+    if (!image) return Usage("package", bodies[slot] + ": " + error);
+    package.slot_image[slot] = std::move(*image);
   }
   const std::vector<uint8_t> bytes = host::WritePackage(package);
   std::string error;

@@ -3,7 +3,7 @@
 #include <cstdio>
 
 #include "cli.h"
-#include "palpa/core/board_configs.h"
+#include "palpa/host/device_uri.h"
 #include "sim_state.h"
 
 namespace palpa::cli {
@@ -26,12 +26,8 @@ int Start(const std::vector<std::string>& args) {
     if (!OptionValue(args, i, value, &error)) return Usage("sim", "start: " + error);
     ++i;
     if (a == "--config") {
-      if (core::FindBoardConfig(value.c_str()) == nullptr) {
-        std::string known;
-        for (uint8_t k = 0; k < core::kBoardConfigCount; ++k)
-          known += std::string(k ? ", " : "") + core::kBoardConfigs[k].name;
-        return Usage("sim", "start: --config " + value + ": unknown configuration (" + known + ")");
-      }
+      if (const std::string why = host::SimConfigError(value); !why.empty())
+        return Usage("sim", "start: --config " + value + ": " + why);
       config = value;
     } else if (a == "--flash") {
       flash = value;

@@ -3,6 +3,8 @@
 
 #include <cstdlib>
 
+#include "palpa/core/board_configs.h"
+
 namespace palpa::host {
 namespace {
 
@@ -80,6 +82,14 @@ Status ParseDeviceUri(const std::string& uri, DeviceUri& out, std::string* error
   }
   return Fail(error, uri,
               "unknown scheme '" + scheme + "' (expected sim, serial, tcp, hid or usb)");
+}
+
+std::string SimConfigError(const std::string& config) {
+  if (core::FindBoardConfig(config.c_str()) != nullptr) return "";
+  std::string known;
+  for (uint8_t k = 0; k < core::kBoardConfigCount; ++k)
+    known += std::string(k ? ", " : "") + core::kBoardConfigs[k].name;
+  return "unknown configuration (" + known + ")";
 }
 
 }  // namespace palpa::host

@@ -3,6 +3,8 @@
 
 #include <cstring>
 
+#include "palpa/core/flash_layout.h"
+
 namespace palpa::host {
 namespace {
 
@@ -104,6 +106,25 @@ std::optional<UpdatePackage> ReadPackage(const std::vector<uint8_t>& bytes, std:
   if (at != bytes.size())
     return fail("package has " + std::to_string(bytes.size() - at) + " bytes after its images");
   return p;
+}
+
+std::optional<std::vector<uint8_t>> BuildSlotImage(ImageSpec spec, uint8_t slot,
+                                                   std::string* error) {
+  // An MCU's vector table follows the header and must be aligned to its size: pad to 256 bytes.
+  spec.header_size =
+      spec.board_kind == protocol::BoardKind::kSim || spec.board_kind == protocol::BoardKind::kLinux
+          ? protocol::kImageHeaderSize
+          : 256;
+  const core::FlashLayout& layout = core::kDefaultLayout;
+  if (protocol::ImageSize(static_cast<uint32_t>(spec.body.size()), spec.header_size) >
+      layout.slot_size) {
+    *error = std::to_string(spec.body.size()) + " bytes do not fit a slot of " +
+             std::to_string(layout.slot_size);
+    return std::nullopt;
+  }
+  spec.slot = slot;
+  spec.load_address = layout.xip_base + layout.slot_offset[slot];
+  return BuildImage(spec);
 }
 
 }  // namespace palpa::host

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "palpa/core/board_config.h"
 #include "palpa/host/link.h"
 #include "palpa/host/stiffness_map.h"
 
@@ -17,6 +18,10 @@ class AtomicFile;
 }
 
 namespace palpa::host {
+
+/// A board's whole configuration (board, lines, fingers) as the host holds it: the firmware's own
+/// type, so the host validates and encodes it exactly as the board will.
+using BoardConfig = core::BoardConfig;
 
 struct DeviceOptions {
   LinkOptions link{};
@@ -106,6 +111,16 @@ class Device {
   Result<pp::ConfigureLine> ReadLine(uint8_t line, std::string* error = nullptr);
   Result<pp::ConfigureFinger> ReadFinger(uint8_t finger, std::string* error = nullptr);
   Result<pp::ConfigureBoard> ReadBoard(std::string* error = nullptr);
+  /// The board's whole live configuration (board, every line, every finger), read section by
+  /// section; ConfigToJson (config_json.h) gives it as palpa config show prints it.
+  Result<BoardConfig> ReadConfig(std::string* error = nullptr);
+  /// `config` checked with the firmware's own validation (kOutOfRange, naming the section) and
+  /// encoded as the staged upload's records (kOverflow when they do not fit the board's staging
+  /// buffer): what ApplyConfig sends, found wrong before anything is sent.
+  Outcome EncodeConfig(const BoardConfig& config, std::vector<uint8_t>* records) const;
+  /// EncodeConfig, then ConfigureStaged: the board validates the whole configuration and applies
+  /// all or none of it (live, not saved: SaveConfig keeps it across resets).
+  Outcome ApplyConfig(const BoardConfig& config);
   Result<pp::Diagnostics> Diagnostics(std::string* error = nullptr);
   Result<pp::LoopStats> LoopStats(std::string* error = nullptr);
 

@@ -21,4 +21,8 @@ struct DeviceUri {
 
 protocol::Status ParseDeviceUri(const std::string& uri, DeviceUri& out, std::string* error);
 
+/// Empty when palpa-sim knows the board configuration `config` (sim:CONFIG); else
+/// "unknown configuration (thesis-pneumatic-3, ...)", naming those it knows.
+std::string SimConfigError(const std::string& config);
+
 }  // namespace palpa::host

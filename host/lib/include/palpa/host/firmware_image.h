@@ -27,6 +27,13 @@ struct ImageSpec : protocol::ImageFields {
 /// Header, body, protected TLVs (kind, slot, counter), TLVs (SHA-256).
 std::vector<uint8_t> BuildImage(const ImageSpec& spec);
 
+/// The image of `slot` in a release (spec's board kind, version, rollback counter and the body
+/// linked for that slot), laid out for the board kind's flash: the header padded to 256 bytes
+/// where an MCU's vector table follows it, loaded where the slot appears in its address map.
+/// Empty with *error ("N bytes do not fit a slot of M") when the body is too large for a slot.
+std::optional<std::vector<uint8_t>> BuildSlotImage(ImageSpec spec, uint8_t slot,
+                                                   std::string* error);
+
 /// Verifies an image held in memory (as the board would, for any slot size).
 protocol::Status VerifyImageBytes(const std::vector<uint8_t>& image, protocol::ImageInfo* info,
                                   protocol::ImageError* error);
