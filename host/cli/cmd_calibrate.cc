@@ -2,28 +2,17 @@
 // with a progress bar and time remaining, a journal to resume from, and the calibration file,
 // raw data and an HTML report written to the output directory.
 #include <sys/stat.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
-#include <ctime>
-#include <sstream>
 
 #include "cli.h"
-#include "palpa/calibration/calibration_protocol.h"
-#include "palpa/calibration/device_rig.h"
-#include "palpa/calibration/report.h"
-#include "palpa/calibration/rig_file.h"
-#include "palpa/host/calibration_file.h"
-#include "palpa/host/file_write.h"
-#include "palpa/host/svg_chart.h"
-#include "palpa/host/transport.h"
-#include "sim_rig.h"
+#include "palpa/calibration/board_rig.h"
+#include "palpa/calibration/session.h"
+#include "sim_options.h"
 
 namespace palpa::cli {
 namespace {
@@ -49,13 +38,6 @@ struct CalibrateArgs {
   host::SimulatedPlant plant;  ///< --rig sim: the simulator's unit, seed, level and effects
   bool plant_options = false;  ///< one of them was given
 };
-
-std::string UtcNow() {
-  const std::time_t t = std::time(nullptr);
-  char b[32];
-  std::strftime(b, sizeof(b), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
-  return b;
-}
 
 void ProgressBar(const cal::Progress& p, std::chrono::steady_clock::time_point start) {
   const double elapsed =
@@ -97,8 +79,10 @@ bool ParseCompensator(const std::string& text, std::optional<protocol::Compensat
   return true;
 }
 
-int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
-  CalibrateArgs a;
+namespace {
+
+/// The command line into `a`; a usage error's exit code when it is malformed, else kExitOk.
+int ParseCalibrateArgs(const std::vector<std::string>& args, CalibrateArgs& a) {
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
     auto value = [&](std::string& out) {
@@ -158,6 +142,12 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
       return Usage("calibrate", "unexpected argument '" + arg + "'");
     }
   }
+  return kExitOk;
+}
+
+/// What the arguments say together, and the output directory, checked before anything starts:
+/// a refused command leaves nothing (the directory is made only once everything is checked).
+int CheckCalibrateArgs(const CalibrateArgs& a) {
   if (a.rig.empty() || a.finger < 0 || a.out.empty()) {
     return Usage("calibrate", "needs --rig FILE|sim, --finger N and --out DIR");
   }
@@ -171,7 +161,6 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
                      "') is not read by --rig sim: give calibrate the simulator's options "
                      "(--unit, --seed, --plant, --effects, --speed)");
   }
-  // The directory is made only once everything is checked: a refused command leaves nothing.
   struct stat st {};
   const bool out_exists = stat(a.out.c_str(), &st) == 0;
   if (out_exists && !S_ISDIR(st.st_mode))
@@ -179,151 +168,141 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
   if (!out_exists && a.resume)
     return Usage("calibrate",
                  "--resume: --out " + a.out + " does not exist (no journal to resume)");
+  return kExitOk;
+}
 
-  // The rig and the board: palpa-sim serving both, or a rig file and --device.
+/// The board and the rig on it: palpa-sim serving both, or a rig file and --device.
+struct OpenedRig {
+  std::optional<cal::BoardRig> rig;
+  host::Device* device = nullptr;
+  std::string serial;
+};
+
+/// Opens the rig and reads the finger's actuator serial; an exit code when it cannot.
+int OpenRig(Context& c, const CalibrateArgs& a, OpenedRig& r) {
   std::string error;
   std::optional<cal::RigDescription> description;
-  host::Device* device = nullptr;
-  std::optional<SimRig> sim;
-  std::optional<cal::RigDevices> lab_devices;
-  cal::RigDevices* devices = nullptr;
   if (a.rig == "sim") {
     if (!c.device_uri.empty() && c.device_uri.rfind("sim", 0) != 0) {
       return Usage("calibrate", "--rig sim goes with a simulated device (--device sim[:CONFIG])");
     }
     const std::string config = c.device_uri.size() > 4 ? c.device_uri.substr(4) : "thesis-5finger";
-    sim = OpenSimRig(config, a.finger, a.speed, a.plant, &error);
-    if (!sim) return Fail("calibrate", protocol::Status::kUnavailable, error, kExitConnect);
-    device = sim->device.get();
-    description = sim->description;
-    devices = &sim->devices;
+    // Fingers numbered as the command line numbers them.
+    r.rig = cal::OpenSimulatedRig(config, a.finger, a.speed, a.plant, 1, &error);
+    if (!r.rig) return Fail("calibrate", protocol::Status::kUnavailable, error, kExitConnect);
+    r.device = r.rig->device;
   } else {
     description = cal::LoadRigDescription(a.rig, &error);
     if (!description) return Usage("calibrate", "--rig " + error);
-    device = c.Device();
-    if (device == nullptr) return kExitConnect;
+    r.device = c.Device();
+    if (r.device == nullptr) return kExitConnect;
   }
-  if (a.finger >= device->info().finger_count) {
-    return Usage("calibrate", "--finger " + std::to_string(a.finger + 1) + ": the board has " +
-                                  std::to_string(device->info().finger_count) + " fingers");
+  const host::Outcome serial =
+      cal::ReadActuatorSerial(*r.device, static_cast<uint8_t>(a.finger), &r.serial);
+  if (serial.status == protocol::Status::kInvalidArgument)
+    return Usage("calibrate", "--finger " + std::to_string(a.finger + 1) + ": " + serial.message);
+  if (serial.status == protocol::Status::kBadValue) {
+    return Fail("calibrate", serial.status, serial.message + "; set it with palpa config set");
   }
-  if (devices == nullptr) {
-    lab_devices = cal::OpenRigDevices(*description, &error);
-    if (!lab_devices) {
-      return Fail("calibrate", protocol::Status::kUnavailable,
-                  "rig " + description->name + ": " + error, kExitConnect);
-    }
-    devices = &*lab_devices;
+  if (!serial.ok()) return Fail("calibrate", serial.status, serial.message);
+  if (!r.rig) {
+    r.rig = cal::OpenBoardRig(*r.device, *description, &error);
+    if (!r.rig) return Fail("calibrate", protocol::Status::kUnavailable, error, kExitConnect);
   }
-  const auto finger_config = device->ReadFinger(static_cast<uint8_t>(a.finger), &error);
-  if (!finger_config.ok()) return Fail("calibrate", finger_config.status, error);
-  const std::string serial(finger_config.value.actuator_serial.data(),
-                           strnlen(finger_config.value.actuator_serial.data(),
-                                   finger_config.value.actuator_serial.size()));
-  if (!host::ValidSerial(serial)) {
-    return Fail("calibrate", protocol::Status::kBadValue,
-                "finger " + std::to_string(a.finger + 1) + " has no usable actuator serial ('" +
-                    serial + "'); set it with palpa config set");
-  }
-  // What the sweep allows, said before anything runs; a compensator it cannot fit is refused
-  // now rather than after the whole run.
-  cal::ProtocolOptions options = a.quick ? cal::QuickProtocol() : cal::ProtocolOptions{};
+  return kExitOk;
+}
+
+cal::SessionOptions SessionOptionsOf(const CalibrateArgs& a, bool simulated) {
+  cal::SessionOptions s;
+  s.finger = static_cast<uint8_t>(a.finger);
+  cal::ProtocolOptions& options = s.protocol;
+  options = a.quick ? cal::QuickProtocol() : cal::ProtocolOptions{};
   if (a.protocol == "adaptive") options.map_protocol = cal::MapProtocol::kAdaptive;
   options.compensator = a.compensator;
   if (a.operators > 0) options.compensator_operators = a.operators;
   options.adaptive.target_error = a.target_pct / 100;
   options.adaptive.max_cycles = a.max_cycles;
   options.adaptive.min_cycles = std::min(options.adaptive.min_cycles, a.max_cycles);
-  const bool jamming = device->info().fingers[a.finger].kind == protocol::FingerKind::kJamming;
-  const cal::SweepCapacity sweep = cal::SweepFor(options, jamming);
-  std::fprintf(TextOut(), "hysteresis sweep%s: %s\n", a.quick ? " (--quick)" : "",
-               sweep.Describe(options.compensator).c_str());
-  std::fflush(TextOut());
-  if (const std::string why = sweep.Refusal(options.compensator); !why.empty()) {
-    if (!a.allow_fallback) {
-      return Usage("calibrate", "--compensator: " + why +
-                                    "; ask for fewer operators, or --allow-fallback to keep the "
-                                    "static inverse alone");
-    }
-    std::fprintf(TextOut(),
-                 "  note: %s; with --allow-fallback the file will have the static inverse alone\n",
+  s.out_dir = a.out;
+  s.resume = a.resume;
+  s.previous = a.previous;
+  s.allow_fallback = a.allow_fallback;
+  if (simulated) s.simulation = a.plant;
+  s.journal_not_saved = [](const std::string& why) {
+    std::fprintf(stderr, "\npalpa calibrate: journal not saved (%s): a stopped run cannot resume\n",
                  why.c_str());
-  }
-
-  cal::DeviceBoardPort board(*device);
-  cal::BoardTime time(*device);
-  cal::Rig rig{*devices->stage,   *devices->force,           board, time, description->limits,
-               description->name, description->force_noise_n};
-  // Another run (of another finger) may have made it meanwhile: only a failure to have it counts.
-  if (!out_exists && mkdir(a.out.c_str(), 0755) != 0 &&
-      !(errno == EEXIST && stat(a.out.c_str(), &st) == 0 && S_ISDIR(st.st_mode))) {
-    return Fail("calibrate", protocol::Status::kIoError,
-                "cannot create --out " + a.out + ": " + std::strerror(errno));
-  }
-  const std::string base = a.out + "/" + serial;
-  cal::Journal journal;
-  if (a.resume) {
-    const std::string path = base + ".journal.json";
-    struct stat journal_stat;
-    if (lstat(path.c_str(), &journal_stat) != 0)
-      return Usage("calibrate", "--resume: no journal " + path);
-    auto state = cal::LoadJournal(path, &error);
-    if (!state) return Usage("calibrate", "--resume: " + error + " (nothing was started)");
-    journal.state = std::move(*state);
-  }
-  journal.save = [&base](const cal::Journal& j) {
-    std::string why;
-    if (!host::WriteFileWhole(base + ".journal.json", j.state.dump(), &why)) {
-      std::fprintf(stderr,
-                   "\npalpa calibrate: journal not saved (%s): a stopped run cannot resume\n",
-                   why.c_str());
-    }
   };
-  // The actuator's last calibration, for the detector that notices it changed.
-  std::optional<host::CalibrationFile> previous;
-  const std::string previous_path = a.previous.empty() ? base + ".json" : a.previous;
-  if (!a.previous.empty() || access(previous_path.c_str(), F_OK) == 0) {
-    previous = host::LoadCalibration(previous_path, &error);
-    if (!previous) return Usage("calibrate", "previous calibration " + error);
-    if (previous->actuator_serial != serial) {
-      return Usage("calibrate", "--previous " + previous_path + ": calibrates " +
-                                    previous->actuator_serial + ", not " + serial);
-    }
+  return s;
+}
+
+/// What the sweep allows, said before anything runs; a compensator it cannot fit is refused
+/// now rather than after the whole run.
+int AnnounceSweep(const CalibrateArgs& a, const cal::Session& session) {
+  const cal::SweepCapacity sweep = session.Sweep();
+  std::fprintf(TextOut(), "hysteresis sweep%s: %s\n", a.quick ? " (--quick)" : "",
+               sweep.Describe(a.compensator).c_str());
+  std::fflush(TextOut());
+  const std::string why = sweep.Refusal(a.compensator);
+  if (why.empty()) return kExitOk;
+  if (!session.CheckSweep().ok()) {
+    return Usage("calibrate", "--compensator: " + why +
+                                  "; ask for fewer operators, or --allow-fallback to keep the "
+                                  "static inverse alone");
   }
-  cal::RunInfo info{serial,          device->info().board_id,        UtcNow(), description->name,
-                    serial + ".csv", previous ? &*previous : nullptr};
-  if (sim) info.simulation = a.plant;
-  cal::CalibrationRun run;
+  std::fprintf(TextOut(),
+               "  note: %s; with --allow-fallback the file will have the static inverse alone\n",
+               why.c_str());
+  return kExitOk;
+}
+
+/// The output directory, the journal to resume and the previous calibration, in that order.
+int PrepareSession(const CalibrateArgs& a, cal::Session& session) {
+  if (const host::Outcome o = session.OpenOutput(); !o.ok())
+    return Fail("calibrate", o.status, o.message);
+  if (a.resume) {
+    const host::Outcome o = session.Resume();
+    if (o.status == protocol::Status::kNotFound)
+      return Usage("calibrate", "--resume: " + o.message);
+    if (!o.ok()) return Usage("calibrate", "--resume: " + o.message + " (nothing was started)");
+  }
+  const host::Outcome previous = session.LoadPrevious();
+  if (previous.status == protocol::Status::kInvalidArgument)
+    return Usage("calibrate", "--previous " + previous.message);
+  if (!previous.ok()) return Usage("calibrate", previous.message);
+  return kExitOk;
+}
+
+/// The run and its files; the journal is kept when it stops, for --resume.
+int RunSession(cal::Session& session) {
+  const std::string journal = session.base() + ".journal.json";
   const auto start = std::chrono::steady_clock::now();
-  const cal::RigStatus s = cal::RunCalibration(
-      rig, static_cast<uint8_t>(a.finger), options, info, journal,
-      [&](const cal::Progress& p) { ProgressBar(p, start); }, &run);
+  const host::Outcome run = session.Run([&](const cal::Progress& p) { ProgressBar(p, start); });
   std::fprintf(stderr, "\n");
-  if (!s.ok) {
-    return Fail("calibrate", protocol::Status::kUnavailable,
-                "stopped: " + s.error +
+  if (run.status == protocol::Status::kUnavailable) {
+    return Fail("calibrate", run.status,
+                "stopped: " + run.message +
                     "\nThe stage was retracted and the board vented. What was finished is in " +
-                    base + ".journal.json; run again with --resume to continue.");
+                    journal + "; run again with --resume to continue.");
   }
-  if (!run.fit.ok() && !a.allow_fallback) {
-    return Fail("calibrate", protocol::Status::kBadValue,
-                "the compensator could not be fitted: " + run.fit.error +
-                    "\nNothing was written; the measurements are kept in " + base +
-                    ".journal.json: run again with --resume and another --compensator, or with "
+  if (!run.ok()) {
+    return Fail("calibrate", run.status,
+                run.message + "\nNothing was written; the measurements are kept in " + journal +
+                    ": run again with --resume and another --compensator, or with "
                     "--allow-fallback to keep the static inverse alone.");
   }
-  std::string csv;
-  for (const std::string& row : run.csv) csv += row + "\n";
-  if (!host::WriteFileWhole(base + ".csv", csv, &error) ||
-      !host::SaveCalibration(run.file, base + ".json", &error) ||
-      !host::WriteFileWhole(base + ".html", cal::RenderReport(run), &error)) {
-    return Fail("calibrate", protocol::Status::kIoError,
-                "cannot write the results in " + a.out + ": " + error);
-  }
-  unlink((base + ".journal.json").c_str());
-  std::fprintf(TextOut(), "calibrated %s (finger %d%s): %s.json, %s.csv, %s.html\n", serial.c_str(),
-               a.finger + 1, sim ? (", " + DescribeSimulatedPlant(a.plant)).c_str() : "",
-               base.c_str(), base.c_str(), base.c_str());
+  if (const host::Outcome o = session.Write(); !o.ok())
+    return Fail("calibrate", o.status, o.message);
+  return kExitOk;
+}
+
+/// The files, the fits and the detectors' verdicts, as a person reads them.
+void PrintResult(const CalibrateArgs& a, const cal::Session& session, bool simulated) {
+  const cal::CalibrationRun& run = session.result();
+  const std::string base = session.base();
+  std::fprintf(TextOut(), "calibrated %s (finger %d%s): %s.json, %s.csv, %s.html\n",
+               session.serial().c_str(), a.finger + 1,
+               simulated ? (", " + DescribeSimulatedPlant(a.plant)).c_str() : "", base.c_str(),
+               base.c_str(), base.c_str());
   if (run.file.rising_fit) {
     std::fprintf(TextOut(),
                  "  deformation branches: rising %.4f, falling %.4f µm/Pa (Table 5-4: 0.0428, "
@@ -361,35 +340,36 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
                  "RMS, %.1f max (%s)\n",
                  host::CompensatorLabel(run.file).c_str(), run.fit.operators_used,
                  run.fit.operators, run.file.quality.residual_rms, run.file.quality.residual_max,
-                 jamming ? "mN/mm" : "µm");
+                 session.jamming() ? "mN/mm" : "µm");
   }
+}
+
+}  // namespace
+
+int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
+  CalibrateArgs a;
+  if (const int rc = ParseCalibrateArgs(args, a); rc != kExitOk) return rc;
+  if (const int rc = CheckCalibrateArgs(a); rc != kExitOk) return rc;
+  OpenedRig opened;
+  if (const int rc = OpenRig(c, a, opened); rc != kExitOk) return rc;
+  host::Device& device = *opened.device;
+  const bool jamming = device.info().fingers[a.finger].kind == protocol::FingerKind::kJamming;
+  const bool simulated = opened.rig->simulated();
+  cal::Session session(opened.rig->rig(), opened.serial, device.info().board_id, jamming,
+                       SessionOptionsOf(a, simulated));
+  if (const int rc = AnnounceSweep(a, session); rc != kExitOk) return rc;
+  if (const int rc = PrepareSession(a, session); rc != kExitOk) return rc;
+  if (const int rc = RunSession(session); rc != kExitOk) return rc;
+  PrintResult(a, session, simulated);
   if (a.apply) {
-    const host::Outcome o = device->ApplyCalibration(static_cast<uint8_t>(a.finger), run.file);
+    const host::Outcome o =
+        device.ApplyCalibration(static_cast<uint8_t>(a.finger), session.result().file);
     if (!o.ok()) return Report(c, o, "apply calibration");
     std::fprintf(TextOut(),
                  "  applied to finger %d (static inverse, compensator, regulator correction%s)\n",
-                 a.finger + 1, run.file.recommended_bias_pa ? ", bias" : "");
+                 a.finger + 1, session.result().file.recommended_bias_pa ? ", bias" : "");
   }
-  if (c.json) {
-    nlohmann::ordered_json checks = nlohmann::ordered_json::array();
-    for (const host::QualityCheck& k : run.file.quality.checks)
-      checks.push_back({{"name", k.name}, {"passed", k.passed}, {"detail", k.detail}});
-    nlohmann::ordered_json result = {{"calibrated", serial},
-                                     {"finger", a.finger + 1},
-                                     {"files", {base + ".json", base + ".csv", base + ".html"}},
-                                     {"compensator", host::CompensatorLabel(run.file)},
-                                     {"operators_with_weight", run.fit.operators_used},
-                                     {"residual_rms", run.file.quality.residual_rms},
-                                     {"checks", checks},
-                                     {"applied", a.apply}};
-    if (run.file.simulation) {
-      result["simulation"] = {{"actuator_unit", run.file.simulation->actuator_unit},
-                              {"seed", run.file.simulation->seed},
-                              {"plant_level", run.file.simulation->plant_level},
-                              {"effects", run.file.simulation->effects}};
-    }
-    PrintJson(result);
-  }
+  if (c.json) PrintJson(session.Summary(a.apply, 1));
   return kExitOk;
 }
 

@@ -10,9 +10,9 @@
 #include <thread>
 
 #include "cli.h"
-#include "palpa/calibration/calibration_protocol.h"
+#include "palpa/calibration/board_rig.h"
+#include "palpa/calibration/session.h"
 #include "palpa/host/field_text.h"
-#include "sim_rig.h"
 
 namespace palpa::cli {
 namespace {
@@ -52,31 +52,28 @@ bool CalibrateOne(const std::string& config, int finger, double speed,
                   const std::function<void(const cal::Progress&)>& progress,
                   host::CalibrationFile* out, std::string* error) {
   const host::SimulatedPlant plant;  // the demo board's: palpa-sim's defaults
-  std::optional<SimRig> sim = OpenSimRig(config, finger, speed, plant, error);
+  std::optional<cal::BoardRig> sim = cal::OpenSimulatedRig(config, finger, speed, plant, 1, error);
   if (!sim) return false;
   const auto fc = sim->device->ReadFinger(static_cast<uint8_t>(finger), error);
   if (!fc.ok()) return false;
-  const std::string serial = host::FieldText(fc.value.actuator_serial);
-  cal::DeviceBoardPort board(*sim->device);
-  cal::BoardTime time(*sim->device);
-  cal::Rig rig{
-      *sim->devices.stage,   *sim->devices.force,           board, time, sim->description.limits,
-      sim->description.name, sim->description.force_noise_n};
-  cal::ProtocolOptions options = cal::QuickProtocol();
-  options.compensator = protocol::CompensatorKind::kAsymmetricPi;
-  options.compensator_operators = kDemoOperators;
-  cal::Journal journal;  // nothing to resume: a failed demo is run again
-  cal::CalibrationRun run;
-  cal::RunInfo info{serial, sim->device->info().board_id, "", sim->description.name, ""};
-  info.simulation = plant;
-  const cal::RigStatus s = cal::RunCalibration(rig, static_cast<uint8_t>(finger), options, info,
-                                               journal, progress, &run);
-  if (!s.ok || !run.fit.ok()) {  // as palpa calibrate: a model asked for and not fitted fails
-    *error =
-        s.ok ? "api(" + std::to_string(kDemoOperators) + ") not fitted: " + run.fit.error : s.error;
+  cal::SessionOptions options;
+  options.finger = static_cast<uint8_t>(finger);
+  options.protocol = cal::QuickProtocol();
+  options.protocol.compensator = protocol::CompensatorKind::kAsymmetricPi;
+  options.protocol.compensator_operators = kDemoOperators;
+  options.date = "";  // nothing written and nothing to resume: a failed demo is run again
+  options.simulation = plant;
+  cal::Session session(sim->rig(), host::FieldText(fc.value.actuator_serial),
+                       sim->device->info().board_id, false, options);
+  const host::Outcome o = session.Run(progress);
+  if (!o.ok()) {  // as palpa calibrate: a model asked for and not fitted fails
+    *error = o.status == protocol::Status::kBadValue
+                 ? "api(" + std::to_string(kDemoOperators) +
+                       ") not fitted: " + session.result().fit.error
+                 : o.message;
     return false;
   }
-  *out = run.file;
+  *out = session.result().file;
   return true;
 }
 

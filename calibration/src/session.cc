@@ -1,0 +1,161 @@
+// A calibration session: the output directory, the journal, the previous calibration, the run
+// and its files, in the order palpa calibrate and applications run them.
+#include "palpa/calibration/session.h"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <ctime>
+
+#include "palpa/calibration/report.h"
+#include "palpa/host/file_write.h"
+
+namespace palpa::calibration {
+namespace {
+
+using protocol::Status;
+
+std::string UtcNow() {
+  const std::time_t t = std::time(nullptr);
+  char b[32];
+  std::strftime(b, sizeof(b), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
+  return b;
+}
+
+host::Outcome Failed(Status status, std::string message) {
+  return host::Outcome{status, std::move(message), {}};
+}
+
+}  // namespace
+
+Session::Session(const Rig& rig, std::string serial, uint32_t board_id, bool jamming,
+                 SessionOptions options)
+    : rig_(rig),
+      serial_(std::move(serial)),
+      board_id_(board_id),
+      jamming_(jamming),
+      options_(std::move(options)) {}
+
+SweepCapacity Session::Sweep() const { return SweepFor(options_.protocol, jamming_); }
+
+host::Outcome Session::CheckSweep() const {
+  const std::string why = Sweep().Refusal(options_.protocol.compensator);
+  if (why.empty() || options_.allow_fallback) return {};
+  return Failed(Status::kInvalidArgument, why);
+}
+
+host::Outcome Session::OpenOutput() {
+  if (options_.out_dir.empty()) return {};
+  struct stat st {};
+  // Another run (of another finger) may have made it meanwhile: only a failure to have it counts.
+  if (stat(options_.out_dir.c_str(), &st) != 0 && mkdir(options_.out_dir.c_str(), 0755) != 0 &&
+      !(errno == EEXIST && stat(options_.out_dir.c_str(), &st) == 0 && S_ISDIR(st.st_mode))) {
+    return Failed(Status::kIoError,
+                  "cannot create " + options_.out_dir + ": " + std::strerror(errno));
+  }
+  const std::string path = base() + ".journal.json";
+  journal_.save = [path, notify = options_.journal_not_saved](const Journal& j) {
+    std::string why;
+    if (!host::WriteFileWhole(path, j.state.dump(), &why) && notify) notify(why);
+  };
+  return {};
+}
+
+host::Outcome Session::Resume() {
+  const std::string path = base() + ".journal.json";
+  struct stat journal_stat;
+  if (options_.out_dir.empty() || lstat(path.c_str(), &journal_stat) != 0)
+    return Failed(Status::kNotFound, "no journal " + path);
+  std::string error;
+  auto state = LoadJournal(path, &error);
+  if (!state) return Failed(Status::kBadValue, error);
+  journal_.state = std::move(*state);
+  return {};
+}
+
+host::Outcome Session::LoadPrevious() {
+  const std::string path = options_.previous.empty() ? base() + ".json" : options_.previous;
+  if (options_.previous.empty() && (options_.out_dir.empty() || access(path.c_str(), F_OK) != 0))
+    return {};
+  std::string error;
+  previous_ = host::LoadCalibration(path, &error);
+  if (!previous_) return Failed(Status::kBadValue, "previous calibration " + error);
+  if (previous_->actuator_serial != serial_) {
+    const std::string other = previous_->actuator_serial;
+    previous_.reset();
+    return Failed(Status::kInvalidArgument, path + ": calibrates " + other + ", not " + serial_);
+  }
+  return {};
+}
+
+host::Outcome Session::Run(const std::function<void(const Progress&)>& progress) {
+  RunInfo info{serial_,
+               board_id_,
+               options_.date ? *options_.date : UtcNow(),
+               rig_.name,
+               options_.out_dir.empty() ? "" : serial_ + ".csv",
+               previous_ ? &*previous_ : nullptr};
+  info.simulation = options_.simulation;
+  run_ = CalibrationRun{};
+  const RigStatus s =
+      RunCalibration(rig_, options_.finger, options_.protocol, info, journal_, progress, &run_);
+  if (!s.ok) return Failed(Status::kUnavailable, s.error);
+  if (!run_.fit.ok() && !options_.allow_fallback)
+    return Failed(Status::kBadValue, "the compensator could not be fitted: " + run_.fit.error);
+  return {};
+}
+
+host::Outcome Session::Write() {
+  if (options_.out_dir.empty()) return {};
+  std::string csv, error;
+  for (const std::string& row : run_.csv) csv += row + "\n";
+  if (!host::WriteFileWhole(base() + ".csv", csv, &error) ||
+      !host::SaveCalibration(run_.file, base() + ".json", &error) ||
+      !host::WriteFileWhole(base() + ".html", RenderReport(run_), &error)) {
+    return Failed(Status::kIoError,
+                  "cannot write the results in " + options_.out_dir + ": " + error);
+  }
+  unlink((base() + ".journal.json").c_str());
+  return {};
+}
+
+host::Outcome Session::Calibrate(const std::function<void(const Progress&)>& progress) {
+  host::Outcome o = CheckSweep();
+  if (o.ok()) o = OpenOutput();
+  if (o.ok() && options_.resume) o = Resume();
+  if (o.ok()) o = LoadPrevious();
+  if (o.ok()) o = Run(progress);
+  if (o.ok()) o = Write();
+  return o;
+}
+
+std::vector<std::string> Session::files() const {
+  if (options_.out_dir.empty()) return {};
+  return {base() + ".json", base() + ".csv", base() + ".html"};
+}
+
+nlohmann::ordered_json Session::Summary(bool applied, int number_from) const {
+  const host::CalibrationFile& file = run_.file;
+  nlohmann::ordered_json checks = nlohmann::ordered_json::array();
+  for (const host::QualityCheck& k : file.quality.checks)
+    checks.push_back({{"name", k.name}, {"passed", k.passed}, {"detail", k.detail}});
+  nlohmann::ordered_json result = {{"calibrated", serial_},
+                                   {"finger", options_.finger + number_from},
+                                   {"files", files()},
+                                   {"compensator", host::CompensatorLabel(file)},
+                                   {"operators_with_weight", run_.fit.operators_used},
+                                   {"residual_rms", file.quality.residual_rms},
+                                   {"checks", checks},
+                                   {"applied", applied}};
+  if (file.simulation) {
+    result["simulation"] = {{"actuator_unit", file.simulation->actuator_unit},
+                            {"seed", file.simulation->seed},
+                            {"plant_level", file.simulation->plant_level},
+                            {"effects", file.simulation->effects}};
+  }
+  return result;
+}
+
+}  // namespace palpa::calibration
