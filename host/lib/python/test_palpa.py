@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """CTest for the Python module: open a simulated board through the C ABI, read info, set fingers,
 monitor telemetry (and drain it without waiting), record, EStop, and get clear errors for wrong
-requests — checked in Python, naming the finger as the caller numbered it, before anything is sent."""
+requests — checked in Python, naming the finger as the caller numbered it, before anything is sent;
+read and change the configuration; calibrate a finger on palpa-sim's rig."""
 import json
 import os
 import sys
@@ -79,6 +80,30 @@ def main():
         assert len(rows) > 100, len(rows)
 
         board.estop()
+
+        # The configuration as palpa config shows it; a change laid over it and read back; a
+        # refusal that names the field, with nothing sent.
+        config = board.config()
+        assert config["board"]["host_timeout_us"] == 100000, config["board"]
+        assert len(config["fingers"]) == 5, config
+        board.apply_config({"board": {"host_timeout_us": 120000}})
+        assert board.config()["board"]["host_timeout_us"] == 120000
+        refused(palpa.PalpaError, lambda: board.apply_config({"lines": [{"line": 0, "slew": 1}]}),
+                "invalid_argument", "slew", "nothing was sent")
+        assert board.config()["board"]["host_timeout_us"] == 120000
+
+    # A quick calibration on palpa-sim's rig, as palpa calibrate --rig sim --quick runs it (at half
+    # its default speed: the board's host-silence timeout is then 50 ms of real time, room for a
+    # host sharing loaded cores with the simulator).
+    out = tempfile.mkdtemp()
+    summary = palpa.calibrate_simulated(1, out, quick=True, compensator="api", sim={"seed": 2, "speed": 2})
+    assert summary["calibrated"] == "PN-2" and summary["finger"] == 1, summary
+    assert summary["compensator"] == "api(8)", summary
+    assert sorted(os.listdir(out)) == ["PN-2.csv", "PN-2.html", "PN-2.json"], os.listdir(out)
+    with open(os.path.join(out, "PN-2.json")) as f:
+        assert json.load(f)["simulation"]["seed"] == 2
+    refused(palpa.PalpaError, lambda: palpa.calibrate_simulated(1, out, compensator="branch"),
+            "invalid_argument", "compensator")
     try:
         palpa.Device("tcp:127.0.0.1:1")
         raise AssertionError("opening nothing must fail")

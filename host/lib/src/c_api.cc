@@ -11,8 +11,11 @@
 #include <string>
 #include <vector>
 
+#include "palpa/calibration/calibrate_json.h"
+#include "palpa/host/config_json.h"
 #include "palpa/host/device.h"
 #include "palpa/host/field_text.h"
+#include "palpa/host/json_check.h"
 #include "palpa/protocol/faults.h"
 
 namespace ph = palpa::host;
@@ -75,6 +78,19 @@ constexpr size_t kMaxQueuedSamples = PALPA_SAMPLE_QUEUE_LIMIT;
 int Report(palpa_device* d, const ph::Outcome& o) {
   if (!o.ok()) d->error = o.message;
   return static_cast<int>(o.status);
+}
+
+/// `text` into the caller's buffer (see palpa.h): kOverflow when it does not fit with its NUL.
+int CopyText(const std::string& text, char* out, size_t capacity, size_t* length) {
+  if (length != nullptr) *length = text.size();
+  if (out == nullptr || text.size() >= capacity) return static_cast<int>(pp::Status::kOverflow);
+  std::memcpy(out, text.c_str(), text.size() + 1);
+  return PALPA_OK;
+}
+
+int Invalid(palpa_device* d, std::string message) {
+  (d == nullptr ? g_open_error : d->error) = std::move(message);
+  return static_cast<int>(pp::Status::kInvalidArgument);
 }
 
 int Set(palpa_device* d, uint8_t finger, ph::TargetKind kind, double value) {
@@ -232,6 +248,57 @@ int palpa_record_start(palpa_device* d, const char* path) {
 int palpa_record_stop(palpa_device* d) {
   return d == nullptr ? static_cast<int>(pp::Status::kInvalidArgument)
                       : Report(d, d->device->StopRecording());
+}
+
+int palpa_config_read(palpa_device* d, char* out, size_t capacity, size_t* length) {
+  if (d == nullptr) return static_cast<int>(pp::Status::kInvalidArgument);
+  auto config = d->device->ReadConfig(&d->error);
+  if (!config.ok()) return static_cast<int>(config.status);
+  const int status = CopyText(ph::ConfigToJson(config.value).dump(), out, capacity, length);
+  if (status != PALPA_OK) d->error = "palpa_config_read: the configuration does not fit the buffer";
+  return status;
+}
+
+int palpa_config_apply(palpa_device* d, const char* json) {
+  if (d == nullptr || json == nullptr)
+    return Invalid(d, "palpa_config_apply: json must not be NULL");
+  std::string error;
+  const auto patch = ph::ParseJson(json, &error);
+  if (!patch) return Invalid(d, "palpa_config_apply: " + error + " (nothing was sent)");
+  auto config = d->device->ReadConfig(&d->error);
+  if (!config.ok()) return static_cast<int>(config.status);
+  try {
+    ph::ApplyConfigJson(*patch, config.value);
+  } catch (const std::exception& e) {
+    return Invalid(d, std::string("palpa_config_apply: ") + e.what() + " (nothing was sent)");
+  }
+  return Report(d, d->device->ApplyConfig(config.value));
+}
+
+int palpa_config_save(palpa_device* d) {
+  return d == nullptr ? static_cast<int>(pp::Status::kInvalidArgument)
+                      : Report(d, d->device->SaveConfig());
+}
+
+int palpa_calibrate(palpa_device* d, const char* rig, const char* options_json, char* out,
+                    size_t capacity, size_t* length) {
+  if (rig == nullptr || options_json == nullptr)
+    return Invalid(d, "palpa_calibrate: rig and options_json must not be NULL");
+  std::string error;
+  const auto options = ph::ParseJson(options_json, &error);
+  if (!options) return Invalid(d, "palpa_calibrate: options: " + error);
+  nlohmann::ordered_json summary;
+  const ph::Outcome o = palpa::calibration::CalibrateFromJson(
+      d == nullptr ? nullptr : d->device.get(), rig, *options, &summary);
+  if (!o.ok()) {
+    (d == nullptr ? g_open_error : d->error) = o.message;
+    return static_cast<int>(o.status);
+  }
+  const int status = CopyText(summary.dump(), out, capacity, length);
+  if (status != PALPA_OK)
+    (d == nullptr ? g_open_error : d->error) =
+        "palpa_calibrate: the summary does not fit the buffer";
+  return status;
 }
 
 }  // extern "C"

@@ -14,6 +14,7 @@ then the system's library path.
 """
 import ctypes
 import ctypes.util
+import json
 import math
 import numbers
 import os
@@ -99,6 +100,12 @@ def _load():
     lib.palpa_samples_dropped.restype = ctypes.c_uint64
     lib.palpa_record_start.argtypes = [ctypes.c_void_p, ctypes.c_char_p]
     lib.palpa_record_stop.argtypes = [ctypes.c_void_p]
+    lib.palpa_config_read.argtypes = [ctypes.c_void_p, ctypes.c_char_p, ctypes.c_size_t,
+                                      ctypes.POINTER(ctypes.c_size_t)]
+    lib.palpa_config_apply.argtypes = [ctypes.c_void_p, ctypes.c_char_p]
+    lib.palpa_config_save.argtypes = [ctypes.c_void_p]
+    lib.palpa_calibrate.argtypes = [ctypes.c_void_p, ctypes.c_char_p, ctypes.c_char_p, ctypes.c_char_p,
+                                    ctypes.c_size_t, ctypes.POINTER(ctypes.c_size_t)]
     return lib
 
 
@@ -148,6 +155,41 @@ class PalpaError(Exception):
     def __init__(self, status, message):
         super().__init__(f"{status}: {message}")
         self.status = status
+
+
+def _text_call(call, check, capacity=64 * 1024, again=True):
+    """A C call that copies JSON text out (palpa.h); with `again`, called again with a larger
+    buffer when the text did not fit."""
+    while True:
+        buffer, length = ctypes.create_string_buffer(capacity), ctypes.c_size_t()
+        status = call(buffer, capacity, ctypes.byref(length))
+        if again and status == 14 and length.value >= capacity:  # PALPA_STATUS_OVERFLOW
+            capacity = length.value + 1
+            continue
+        check(status)
+        return json.loads(buffer.value.decode())
+
+
+def _calibrate(lib, handle, rig, finger, out, options, check):
+    options = dict(options, finger=finger, out=os.fspath(out))
+    # A summary is a few KiB: a calibration is never run twice for a larger buffer.
+    return _text_call(lambda b, n, length: lib.palpa_calibrate(
+        handle, rig.encode(), json.dumps(options).encode(), b, n, length), check,
+        capacity=1024 * 1024, again=False)
+
+
+def calibrate_simulated(finger, out, **options):
+    """Calibrates finger `finger` (from 0) of a simulated board on palpa-sim's rig, as
+    `palpa calibrate --rig sim` does, writing SERIAL.json, .csv and .html to `out`; returns the
+    summary (files, compensator, residual, checks). Options as palpa_calibrate's JSON (palpa.h):
+    quick, protocol, compensator, operators, allow_fallback, resume, previous, and
+    sim={"config", "speed", "unit", "seed", "plant", "effects"}."""
+    lib = _library()
+
+    def check(status):
+        if status != 0:
+            raise PalpaError(lib.palpa_status_name(status).decode(), lib.palpa_last_error(None).decode())
+    return _calibrate(lib, None, "sim", finger, out, options, check)
 
 
 class Device:
@@ -275,3 +317,23 @@ class Device:
             time.sleep(seconds)
         finally:
             self._check(self._lib.palpa_record_stop(self._handle))
+
+    def config(self):
+        """The board's whole live configuration, as `palpa config show` prints it (lines and
+        fingers numbered from 0)."""
+        return _text_call(lambda b, n, length: self._lib.palpa_config_read(self._handle, b, n, length),
+                          self._check)
+
+    def apply_config(self, patch):
+        """Lays a (partial) configuration, in config()'s shape, over the live one: checked field
+        by field and as the board would, then applied all at once or not at all. Not saved."""
+        self._check(self._lib.palpa_config_apply(self._handle, json.dumps(patch).encode()))
+
+    def save_config(self):
+        """Keeps the live configuration across resets."""
+        self._check(self._lib.palpa_config_save(self._handle))
+
+    def calibrate(self, rig_file, finger, out, **options):
+        """Calibrates finger `finger` (from 0) of this board on the rig `rig_file` names, as
+        `palpa calibrate --rig FILE` does; options and result as calibrate_simulated's."""
+        return _calibrate(self._lib, self._handle, os.fspath(rig_file), finger, out, options, self._check)

@@ -2,6 +2,7 @@
 #ifndef PALPA_C_PALPA_H_
 #define PALPA_C_PALPA_H_
 
+#include <stddef.h>
 #include <stdint.h>
 
 #ifdef __cplusplus
@@ -110,7 +111,8 @@ typedef struct {
  */
 int palpa_open(const char* uri, palpa_device** out);
 void palpa_close(palpa_device* device);
-/* The last error message of this device (or of the last failed open, for NULL); never NULL. */
+/* The last error message of this device (or of the last failed open or device-less call, for
+   NULL); never NULL. */
 const char* palpa_last_error(const palpa_device* device);
 const char* palpa_status_name(int status);
 
@@ -149,6 +151,32 @@ uint64_t palpa_samples_dropped(const palpa_device* device);
 
 int palpa_record_start(palpa_device* device, const char* csv_path);
 int palpa_record_stop(palpa_device* device);
+
+/* Text results (JSON) are copied NUL-terminated into `out` when their length is below
+   `capacity`; else the call returns PALPA_STATUS_OVERFLOW having done its work. *length (when not
+   NULL) receives the text's length, without the NUL, either way: call again with a larger buffer
+   for a read; keep the size for next time after a calibration. */
+
+/* Configuration, as `palpa config` reads and writes it (docs/configuration.md; lines and fingers
+   numbered from 0). palpa_config_read: the board's whole live configuration as JSON.
+   palpa_config_apply: a (partial) configuration in the same JSON laid over the live one, checked
+   field by field and as the board would (nothing is sent when a check fails: the error names the
+   field or section), then sent staged so the board applies all of it or none. Not saved:
+   palpa_config_save keeps the live configuration across resets. */
+int palpa_config_read(palpa_device* device, char* out, size_t capacity, size_t* length);
+int palpa_config_apply(palpa_device* device, const char* json);
+int palpa_config_save(palpa_device* device);
+
+/* Calibration of one finger, as `palpa calibrate` does it (docs/calibration.md). `rig` is a rig
+   file (its stage and force sensor, beside `device`), or "sim": palpa-sim started for the run
+   with a rig on the finger (`device` may be NULL; its errors are then palpa_last_error(NULL)'s).
+   `options_json`: {"finger": 0, "out": "DIR"} and optionally "quick", "protocol", "compensator",
+   "operators", "target_pct", "max_cycles", "allow_fallback", "resume", "previous", "apply" and
+   for "sim" {"sim": {"config", "speed", "unit", "seed", "plant", "effects"}}. Takes minutes
+   (seconds of it per sweep point); writes DIR/SERIAL.json, .csv and .html, and on success the
+   summary JSON (palpa calibrate --json's: files, compensator, residual, checks) to `out`. */
+int palpa_calibrate(palpa_device* device, const char* rig, const char* options_json, char* out,
+                    size_t capacity, size_t* length);
 
 #ifdef __cplusplus
 }
