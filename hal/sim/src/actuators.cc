@@ -102,8 +102,6 @@ void JammingActuator::Reset() {
 }
 
 float JammingActuator::StaticStiffness(float bias_pa, float vacuum_pa) const {
-  const float k0 = p::kJammingStiffnessAt0NPerMm;
-  const float span = p::kJammingStiffnessAtFullVacuumNPerMm - k0;
   const float x = std::clamp(-vacuum_pa / 100000.0f, 0.0f, 1.0f);
   const float b = std::clamp(bias_pa / p::kJammingBiasForLinearPa, 0.0f, 1.0f);
   const float c = p::kJammingCurvature;
@@ -113,6 +111,18 @@ float JammingActuator::StaticStiffness(float bias_pa, float vacuum_pa) const {
     return 1.0f / (1.0f + std::exp(-(v - p::kJammingNoBiasCenter) / p::kJammingNoBiasWidth));
   };
   const float abrupt = (logistic(x) - logistic(0)) / (logistic(1) - logistic(0));
+  // The air cushion by itself: a small rise, nearly all there within a few kPa (§5.4.3: the
+  // curves above 0 kPa almost overlap). With vacuum it widens the span, in proportion to the bias.
+  auto air = [this](float pa) {
+    return p::kJammingBiasAirStiffening * effects_.bias_stiffening *
+           (1.0f - std::exp(-std::max(0.0f, pa) / p::kJammingBiasAirSaturationPa));
+  };
+  const float widening = p::kJammingBiasSpanWidening * effects_.bias_widening;
+  // Anchored at the bias the thesis chose (20 kPa): the axis range of Fig 5-36(c) there.
+  const float anchor = p::kJammingBiasForLinearPa;
+  const float k0 = p::kJammingStiffnessAt0NPerMm * (1.0f + air(bias_pa)) / (1.0f + air(anchor));
+  const float span = (p::kJammingStiffnessAtFullVacuumNPerMm - p::kJammingStiffnessAt0NPerMm) *
+                     (1.0f + widening * b) / (1.0f + widening);
   return unit_gain_ * (k0 + span * (b * linear + (1.0f - b) * abrupt));
 }
 

@@ -380,6 +380,53 @@ TEST(JammingStiffness, EndPointsAndShapeFollowFig536) {
   CHECK(max_slope_none > 2 * max_slope_bias);  // "more abrupt" without bias
 }
 
+TEST(JammingStiffness, AirAloneStiffensALittleAndTheCurvesAboveZeroAlmostOverlap) {
+  // §5.4.3, Fig 5-36(a): without vacuum, air in the cushion raised the stiffness a little; the
+  // curves for 5, 10 and 20 kPa almost overlapped.
+  ps::Plant plant = MakePlant(2);
+  ps::JammingActuator* j = plant.jamming(3);
+  const float none = j->StaticStiffness(0, 0);
+  CHECK_TEXT(j->StaticStiffness(20000, 0) > 1.01f * none, std::to_string(none).c_str());
+  CHECK(j->StaticStiffness(20000, 0) < 1.06f * none);  // "a little"
+  for (float bias : {5000.0f, 10000.0f}) {
+    CHECK(j->StaticStiffness(bias, 0) > 1.01f * none);
+    CHECK(std::fabs(j->StaticStiffness(bias, 0) / j->StaticStiffness(20000, 0) - 1) < 0.015f);
+  }
+}
+
+TEST(JammingStiffness, BiasWidensTheVacuumSpanWhileTheTopBarelyRises) {
+  // §5.4.3, §5.5.2: with vacuum, the inflated cushion amplified the stiffness variation and spread
+  // the vacuum levels' curves apart, while the maximum force barely rose.
+  ps::Plant plant = MakePlant(2);
+  ps::JammingActuator* j = plant.jamming(3);
+  auto span = [&](float bias) {
+    return j->StaticStiffness(bias, -100000) - j->StaticStiffness(bias, 0);
+  };
+  CHECK_TEXT(span(20000) > 1.05f * span(0),
+             (std::to_string(span(20000)) + " vs " + std::to_string(span(0))).c_str());
+  CHECK(span(15000) > span(0) && span(15000) < span(20000));
+  const float top = j->StaticStiffness(20000, -100000) / j->StaticStiffness(0, -100000);
+  CHECK(top > 1.0f && top < 1.1f);
+}
+
+TEST(JammingStiffness, TheBiasAssumptionsSweepAsTheirFactorsSay) {
+  auto at = [](float stiffening, float widening, float bias, float vacuum) {
+    ps::Effects e;
+    e.bias_stiffening = stiffening;
+    e.bias_widening = widening;
+    ps::Plant plant = MakePlant(2, 0, 1, false, e);
+    return plant.jamming(3)->StaticStiffness(bias, vacuum);
+  };
+  // Anchored at 20 kPa bias: the axis range stays there whatever the factors.
+  for (float f : {0.5f, 2.0f}) {
+    DOUBLES_EQUAL(0.7, at(f, f, 20000, 0), 1e-4);
+    DOUBLES_EQUAL(1.3, at(f, f, 20000, -100000), 1e-4);
+  }
+  const float rise_half = at(0.5f, 1, 20000, 0) / at(0.5f, 1, 0, 0) - 1;
+  const float rise_double = at(2, 1, 20000, 0) / at(2, 1, 0, 0) - 1;
+  DOUBLES_EQUAL(4.0, rise_double / rise_half, 0.2);
+}
+
 TEST(JammingStiffness, VacuumHistoryShowsWithinItsSweptSize) {
   for (float fraction : {0.05f, 0.1f, 0.2f}) {
     ps::Effects e;

@@ -8,11 +8,14 @@
 
 namespace palpa::sim {
 
-/// Which second-order effects are on (palpa-sim --effects).
+/// Which second-order effects are on (palpa-sim --effects), and factors on the jamming bias's
+/// assumed [A] numbers for sweeping them (1: the plant's own).
 struct Effects {
   bool creep = false;
   bool rate = false;
   float history = -1;  ///< jamming history effect as a fraction of the stiffness range; <0: default
+  float bias_stiffening = 1;  ///< × the air cushion's own stiffening at no vacuum
+  float bias_widening = 1;    ///< × how much the cushion widens the vacuum span
 };
 
 /// How one pneumatic unit differs from the nominal one (all 1 or 0 for the nominal unit). Units
@@ -59,7 +62,8 @@ class JammingActuator {
   /// Advances with the chamber pressures (bias Pa ≥ 0, vacuum Pa ≤ 0); returns N/mm.
   float Step(float bias_pa, float vacuum_pa);
   float stiffness() const { return stiffness_; }
-  /// Stiffness without history, for a steady vacuum and bias.
+  /// Stiffness without history, for a steady vacuum and bias. Anchored at the user study's
+  /// 20 kPa bias; the air cushion stiffens a little by itself and widens the vacuum's span.
   float StaticStiffness(float bias_pa, float vacuum_pa) const;
   float history_fraction() const { return history_fraction_; }
   /// Fault injection: the unit changed since it was calibrated (worn, damaged, swapped).
