@@ -46,14 +46,15 @@ Plant::Plant(const protocol::ConfigureLine* lines, uint8_t line_count,
     line.counts = line.sensor->Read(0, 0);
     lines_.push_back(std::move(line));
   }
-  // Actuator units: unit 0 is the nominal actuator; others differ by the thesis's spread — a
+  // Actuator units: unit 0 is the nominal actuator; others differ by the assumed unit spread — a
   // jamming chamber by its size (a gain, §5.4.1), a pneumatic film in gain, growth and width.
   // The shape comes from a stream of its own, so each unit's gains are what they always were.
   std::mt19937 unit_rng(options.unit * 7919u + 3u);
   std::mt19937 shape_rng(options.unit * 104729u + 11u);
-  std::normal_distribution<float> spread(1.0f, p::kPneumaticUnitSpread);
-  std::normal_distribution<float> growth(0.0f, p::kPneumaticUnitGrowthSpread);
-  std::normal_distribution<float> width(1.0f, p::kPneumaticUnitWidthSpread);
+  const float unit_spread = p::kPneumaticUnitSpread * options.effects.unit_spread;
+  std::normal_distribution<float> spread(1.0f, unit_spread);
+  std::normal_distribution<float> growth(0.0f, p::kPneumaticUnitGrowthShare * unit_spread);
+  std::normal_distribution<float> width(1.0f, p::kPneumaticUnitWidthShare * unit_spread);
   for (uint8_t f = 0; f < finger_count; ++f) {
     Finger finger;
     finger.config = fingers[f];
@@ -62,7 +63,7 @@ Plant::Plant(const protocol::ConfigureLine* lines, uint8_t line_count,
     PneumaticUnit pneumatic;
     if (!nominal) {
       // The same draw, scaled to the part of the spread that is a plain gain.
-      pneumatic.gain = 1.0f + (gain - 1.0f) * p::kPneumaticUnitGainSpread / p::kPneumaticUnitSpread;
+      pneumatic.gain = 1.0f + (gain - 1.0f) * p::kPneumaticUnitGainShare;
       pneumatic.growth = growth(shape_rng);
       pneumatic.width = width(shape_rng);
     }

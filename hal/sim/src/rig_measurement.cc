@@ -9,7 +9,17 @@
 namespace palpa::sim {
 namespace p = params;
 
-RigMeasurement::RigMeasurement(uint32_t seed, bool ideal) : force_(ideal, seed), ideal_(ideal) {}
+RigMeasurement::RigMeasurement(uint32_t seed, bool ideal)
+    : force_(ideal, seed), ideal_(ideal), repeat_rng_(seed * 48271u + 7u) {}
+
+float RigMeasurement::Deformation(float true_deformation_mm) {
+  float reading = true_deformation_mm;
+  if (!ideal_) {
+    std::normal_distribution<float> repeat(0.0f, p::kRigRepeatability);
+    reading *= 1.0f + repeat(repeat_rng_);
+  }
+  return SurfaceHeight(reading) - zero_mm_;
+}
 
 float RigMeasurement::SurfaceHeight(float true_height_mm) {
   if (ideal_) return true_height_mm;

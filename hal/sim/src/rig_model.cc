@@ -9,7 +9,14 @@ namespace palpa::sim {
 namespace p = params;
 
 RigModel::RigModel(Plant& plant, uint8_t finger, uint32_t seed, float start_mm)
-    : plant_(plant), finger_(finger), force_(plant.options().level < 3, seed) {
+    : plant_(plant),
+      finger_(finger),
+      force_(plant.options().level < 3, seed),
+      repeat_rng_(seed * 48271u + 7u) {
+  if (plant.options().level >= 3) {
+    std::normal_distribution<float> repeat(0.0f, p::kRigRepeatability);
+    touch_error_ = repeat(repeat_rng_);
+  }
   stage_.MoveTo(start_mm, 1000.0f);
   stage_.Step(1.0f);
 }
@@ -28,9 +35,15 @@ void RigModel::Step(float dt_s) {
     true_force_n_ = std::max(0.0f, true_force_n_);
     last_depth_mm_ = depth;
   } else {
-    // The film's bump rises to the deformation; the soft contact pushes back linearly.
-    const float surface = plant_.Truth().fingers[finger_].deformation_mm;
+    // The film's bump rises to the deformation; the soft contact pushes back linearly. Each
+    // touch finds it off by the rig's repeatability (thesis: 2.82 % per point), relative.
+    const float surface = plant_.Truth().fingers[finger_].deformation_mm * (1.0f + touch_error_);
+    const bool touching = true_force_n_ > 0;
     true_force_n_ = p::kRigContactStiffnessNPerMm * std::max(0.0f, surface - tip);
+    if (touching && true_force_n_ <= 0 && plant_.options().level >= 3) {
+      std::normal_distribution<float> repeat(0.0f, p::kRigRepeatability);
+      touch_error_ = repeat(repeat_rng_);  // the indenter left: the next touch is another reading
+    }
   }
 }
 

@@ -8,14 +8,15 @@
 
 namespace palpa::sim {
 
-/// Which second-order effects are on (palpa-sim --effects), and factors on the jamming bias's
-/// assumed [A] numbers for sweeping them (1: the plant's own).
+/// Which second-order effects are on (palpa-sim --effects), and factors on assumed [A] numbers
+/// for sweeping them (1: the plant's own).
 struct Effects {
   bool creep = false;
   bool rate = false;
   float history = -1;  ///< jamming history effect as a fraction of the stiffness range; <0: default
   float bias_stiffening = 1;  ///< × the air cushion's own stiffening at no vacuum
   float bias_widening = 1;    ///< × how much the cushion widens the vacuum span
+  float unit_spread = 1;      ///< × the assumed spread between actuator units
 };
 
 /// How one pneumatic unit differs from the nominal one (all 1 or 0 for the nominal unit). Units

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <random>
 
 #include "palpa/hal/sim/plant.h"
 #include "palpa/hal/sim/sensors.h"
@@ -35,6 +36,9 @@ class RigModel {
   float true_force_n_ = 0;
   float press_max_depth_mm_ = 0;  ///< deepest point of the current press (jamming)
   float last_depth_mm_ = 0;
+  /// A pneumatic film's reading is off by the rig's repeatability, relative, drawn per touch.
+  std::mt19937 repeat_rng_;
+  float touch_error_ = 0;
 };
 
 }  // namespace palpa::sim
