@@ -83,7 +83,9 @@ pb::Chart MajorLoop() {
 
 pb::Chart Stiffness() {
   pb::Chart chart;
-  chart.title = "Jamming finger: stiffness against vacuum (thesis Fig 5-36(c): 0.7 -> 1.3 N/mm)";
+  chart.title =
+      "Jamming finger: stiffness against vacuum (20 kPa curve anchored at Fig 5-36(c)'s axis "
+      "range, 0.7 -> 1.3 N/mm: an assumption)";
   chart.x_label = "vacuum (kPa)";
   chart.y_label = "stiffness (N/mm)";
   ps::Plant plant = MakePlant();

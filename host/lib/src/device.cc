@@ -52,7 +52,7 @@ void Device::AttachCalibrations() {
     }
     // Every request through these curves says why they are the nominal ones.
     note += "nominal curves (" + error + ")";
-    curves_[f].source = "nominal thesis curves (" + error + ")";
+    curves_[f].source = "nominal thesis curves (" + error + "; " + kNominalCurvesBasis + ")";
     if (c.status != Status::kNotFound) calibration_problems_[f] = error;  // a file, unusable
   }
 }

@@ -31,9 +31,10 @@ std::string Num(double v) {
   return b;
 }
 
-/// Which range a curve-bound value is held to: a calibration's only when one is loaded.
-std::string CurveRange(const FingerCurves& c) {
-  return c.calibrated.empty() ? "the nominal curve's range" : "the calibrated range";
+/// Which range a curve-bound value is held to: a calibration's only when one is loaded, else
+/// the nominal curve's, named with what it stands on (`nominal`).
+std::string CurveRange(const FingerCurves& c, const char* nominal) {
+  return c.calibrated.empty() ? nominal : "the calibrated range";
 }
 
 /// Keeps v in [lo, hi] under the policy; false (with *error) when refused. A value that is not
@@ -182,7 +183,11 @@ Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& leve
       }
       double v = request.value;
       if (!InRange(v, curves.stiffness_at_0, curves.stiffness_at_full_vacuum, policy,
-                   "stiffness (N/mm)", CurveRange(curves), &m.note, &m.error)) {
+                   "stiffness (N/mm)",
+                   CurveRange(curves,
+                              "the nominal curve's range (Fig 5-36(c)'s axis range, an "
+                              "assumption until the finger is calibrated)"),
+                   &m.note, &m.error)) {
         return Refuse(m.error);
       }
       m.target = static_cast<int32_t>(std::lround(v * 1000));
@@ -196,7 +201,10 @@ Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& leve
             Status::kBadValue);
       }
       double v = request.value;
-      if (!InRange(v, 0, curves.max_deformation_mm, policy, "deformation (mm)", CurveRange(curves),
+      if (!InRange(v, 0, curves.max_deformation_mm, policy, "deformation (mm)",
+                   CurveRange(curves,
+                              "the nominal curve's range (Table 5-4's bare film, no top "
+                              "layer)"),
                    &m.note, &m.error))
         return Refuse(m.error);
       m.target = static_cast<int32_t>(std::lround(v * 1000));
@@ -219,7 +227,7 @@ Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& leve
     // A calibrated curve covers what was measured, no more.
     const double a = curves.calibrated.front().first, b = curves.calibrated.back().first;
     if (kpa != 0 && !InRange(kpa, std::min(a, b), std::max(a, b), policy, "level pressure (kPa)",
-                             CurveRange(curves), &m.note, &m.error)) {
+                             "the calibrated range", &m.note, &m.error)) {
       return Refuse(m.error);
     }
   }

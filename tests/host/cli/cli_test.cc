@@ -161,13 +161,19 @@ TEST(CliBoard, SetChecksUnitsPerFingerKind) {
   Run r = Palpa(device + "set 1=L2 2=0.5 3=1.2mm 4=0.9N/mm 5=-10kPa");
   LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
   CHECK(Has(r, "nominal thesis curves"));
+  // Uncalibrated, the notes say what the nominal curves stand on: the bare film, an axis range.
+  CHECK_TEXT(Has(r, "Table 5-4's bare film without the top layer"), r.output.c_str());
+  CHECK_TEXT(Has(r, "Fig 5-36(c)'s axis range, an assumption"), r.output.c_str());
   r = Palpa(device + "set 1=0.9N/mm");
   LONGS_EQUAL(1, r.code);
   CHECK(Has(r, "N/mm means nothing for a pneumatic finger"));
   r = Palpa(device + "set 4=2.0N/mm");
   LONGS_EQUAL(1, r.code);
-  // No calibration is loaded: the range is the nominal curve's, and says so.
-  CHECK_TEXT(Has(r, "outside the nominal curve's range 0.7 … 1.3"), r.output.c_str());
+  // No calibration is loaded: the range is the nominal curve's, and says so — Fig 5-36(c)'s axis,
+  // an assumption.
+  CHECK_TEXT(Has(r, "outside the nominal curve's range (Fig 5-36(c)'s axis range, an assumption"),
+             r.output.c_str());
+  CHECK_TEXT(Has(r, "calibrated) 0.7 … 1.3"), r.output.c_str());
   CHECK_FALSE(Has(r, "calibrated range"));
   // A finger this board does not have: its own range, not the protocol's.
   r = ExpectUsage(device + "set 9=L1", "finger 9: this thesis-5finger board has fingers 1 to 5");

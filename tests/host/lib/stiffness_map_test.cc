@@ -56,6 +56,8 @@ TEST(StiffnessMap, OutsideTheCalibratedRangeIsRefusedOrClampedNeverExtrapolated)
   const ph::Mapped refused = Map(jamming, ph::TargetKind::kStiffnessNPerMm, 1.5);
   LONGS_EQUAL((int)pp::Status::kOutOfRange, (int)refused.status);
   CHECK(refused.error.find("0.7 … 1.3") != std::string::npos);
+  // Uncalibrated, the range is the nominal map's: Fig 5-36(c)'s axis, labelled as an assumption.
+  CHECK(refused.error.find("axis range, an assumption") != std::string::npos);
   const ph::Mapped clamped =
       Map(jamming, ph::TargetKind::kStiffnessNPerMm, 1.5, ph::RangePolicy::kClamp);
   LONGS_EQUAL(1300, clamped.target);

@@ -31,16 +31,25 @@ struct LevelTables {
 
 /// How a finger's output unit relates to pressure: the nominal thesis curves until a
 /// calibration replaces them (CurvesFromCalibration in calibration_file.h).
+/// What the nominal curves stand on, said with every request that uses them.
+inline constexpr const char* kNominalCurvesBasis =
+    "Table 5-4's bare film without the top layer; Fig 5-36(c)'s axis range, an assumption";
+
 struct FingerCurves {
-  std::string source = "nominal thesis curves (no calibration)";
+  std::string source =
+      std::string("nominal thesis curves (no calibration: ") + kNominalCurvesBasis + ")";
   /// A calibration's curve, (kPa, output in mm or N/mm), monotone: when present it replaces the
   /// nominal lines below, read by linear interpolation and never extrapolated.
   std::vector<std::pair<double, double>> calibrated;
-  // Pneumatic: deformation (mm) = max(0, slope * kPa + intercept) — Table 5-4, all data.
+  // Pneumatic: deformation (mm) = max(0, slope * kPa + intercept) — Table 5-4, all data, which
+  // was measured on the bare film, without the 3 mm top layer worn in service (a film-deformation
+  // equivalent, not the height of the surface a finger touches; a calibration measures that).
   double deformation_slope_mm_per_kpa = 0.0458;
   double deformation_intercept_mm = -0.2098;
   double max_deformation_mm = 4.370;
-  // Jamming at the bias: stiffness (N/mm) from 0 kPa to full vacuum — Fig 5-36(c), near linear.
+  // Jamming at the bias: stiffness (N/mm) from 0 kPa to full vacuum, near linear. 0.7 and 1.3 are
+  // the ends of Fig 5-36(c)'s stiffness axis, not measured end points: an axis-range assumption
+  // until a calibration replaces them.
   double stiffness_at_0 = 0.7;
   double stiffness_at_full_vacuum = 1.3;
 };
