@@ -1,5 +1,5 @@
 // libFuzzer target: the files the host reads — calibration files, configuration files, rig
-// files, calibration journals and update packages.
+// files, calibration journals, stimulus sets and update packages.
 //
 // Whatever the bytes, a reader must return a result or an error that says what is wrong and
 // where (never throw, crash or invoke undefined behaviour, and never hand on a JSON library's own
@@ -7,8 +7,8 @@
 // accepts must survive a round trip where the kind has one: a calibration serialises, parses back
 // and serialises to the same text; a package writes and reads back to the same images; a
 // configuration prints and reads back to the same one. Input byte 0 picks the kind (calibration,
-// configuration, rig, journal, package) and how its valid reference is changed (a calibration's
-// reference is the one written now or a schema version 1 file of either finger kind):
+// configuration, rig, journal, stimulus set, package) and how its valid reference is changed (a
+// calibration's reference is the one written now or a schema version 1 file of either finger kind):
 //   raw bytes; one JSON value replaced by any type or magnitude, or removed; one number in the
 //   text replaced by a literal no double holds or no integer fits ("1e400", "-1e999",
 //   "99999999999999999999", ...); bytes overwritten or the text cut short.
@@ -31,6 +31,7 @@
 #include "palpa/host/config_json.h"
 #include "palpa/host/firmware_image.h"
 #include "palpa/host/json_check.h"
+#include "palpa/host/stimulus_set.h"
 
 namespace cal = palpa::calibration;
 namespace pc = palpa::core;
@@ -299,13 +300,43 @@ std::string Changed(Bytes& in, int variant, const std::string& valid) {
   }
 }
 
+/// A stimulus set: refused with a reason, or accepted with every stimulus inside its levels and
+/// fingers and following the tumour rule it states.
+void CheckStimulusSet(const std::string& text) {
+  std::string error;
+  const auto set = ph::ParseStimulusSet(text, &error);
+  if (!set) {
+    CheckReason("stimulus set", error, text);
+    return;
+  }
+  for (const ph::Stimulus& s : set->stimuli) {
+    if (s.levels.size() != static_cast<size_t>(set->fingers))
+      Fail("an accepted stimulus has the wrong finger count", set->name);
+    for (int l : s.levels) {
+      if (l < 0 || static_cast<size_t>(l) >= set->levels.size())
+        Fail("an accepted stimulus names no level", set->name);
+    }
+    const auto rule = ph::TumourFingers(s.levels);
+    if (!rule || *rule != s.tumour) Fail("an accepted stimulus breaks the rule", set->name);
+  }
+}
+
+/// A shipped stimulus set's text, picked by the input.
+std::string ShippedStimulusSet(Bytes& in) {
+  const auto names = ph::ShippedStimulusSets();
+  const std::string name = names[in.Byte() % names.size()];
+  std::string error;
+  if (!ph::LoadStimulusSet(name, &error)) Fail("a shipped stimulus set does not load", error);
+  return ph::ShippedStimulusSetText(name);
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   Bytes in(data, size);
   const uint8_t mode = in.Byte();
-  const int variant = mode / 5 % 4;
-  switch (mode % 5) {
+  const int variant = mode / 6 % 4;
+  switch (mode % 6) {
     case 0:
       CheckCalibration(Changed(in, variant, SomeValidCalibrationText(in.Byte())));
       break;
@@ -320,6 +351,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     case 3:
       CheckJournal(Changed(in, variant, ValidJournalText()));
       break;
+    case 4: {
+      const std::string shipped = ShippedStimulusSet(in);
+      CheckStimulusSet(Changed(in, variant, shipped));
+      break;
+    }
     default: {
       std::vector<uint8_t> bytes;
       if (variant == 0) {

@@ -17,6 +17,7 @@
 #include "palpa/host/calibration_file.h"
 #include "palpa/host/device.h"
 #include "palpa/host/stiffness_map.h"
+#include "palpa/host/stimulus_set.h"
 
 #include "CppUTest/TestHarness.h"
 
@@ -90,6 +91,14 @@ TEST(HostileFiles, AFileLargerThanItsKindAllowsIsRefusedNamingTheLimit) {
   CHECK_FALSE(ph::LoadCalibration(path, &error).has_value());
   CHECK_TEXT(Contains(error, path + ": larger than the"), error.c_str());
   CHECK_TEXT(Contains(error, "limit for a calibration file"), error.c_str());
+  // A stimulus set likewise, and one that is a device is never read from.
+  const std::string set =
+      Write("set.json", ph::ShippedStimulusSetText("thesis-jamming-8") + std::string(1 << 20, ' '));
+  CHECK_FALSE(ph::LoadStimulusSet(set, &error).has_value());
+  CHECK_TEXT(Contains(error, set + ": larger than the 256 KiB limit for a stimulus set"),
+             error.c_str());
+  CHECK_FALSE(ph::LoadStimulusSet("/dev/zero", &error).has_value());
+  CHECK_TEXT(Contains(error, "/dev/zero: not a regular file"), error.c_str());
 }
 
 TEST(HostileFiles, DeepNestingIsRefusedNamingTheLimit) {
