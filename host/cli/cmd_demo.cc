@@ -9,9 +9,9 @@
 #include "cli.h"
 #include "demo_calibration.h"
 #include "demo_pass.h"
-#include "demo_stimuli.h"
 #include "demo_truth.h"
 #include "palpa/host/file_write.h"
+#include "palpa/host/stimulus_set.h"
 #include "palpa/host/svg_chart.h"
 
 namespace palpa::cli {
@@ -22,9 +22,32 @@ constexpr const char* kConfig = "thesis-5finger";
 struct DemoArgs {
   std::string out = "palpa-demo.svg";
   double speed = 4;
-  bool calibrate = true;        ///< the second, compensated pass
-  std::string calibration_dir;  ///< its calibrations from files instead of the simulated rig
+  bool calibrate = true;             ///< the second, compensated pass
+  std::string calibration_dir;       ///< its calibrations from files instead of the simulated rig
+  std::vector<std::string> stimuli;  ///< sets by name or file; the full thesis sets by default
 };
+
+/// A stimulus set by name or file, for the fingers the demo's board has of its kind; false
+/// (printed) when it cannot be read or does not fit them.
+bool LoadSet(const std::string& name, std::optional<host::StimulusSet>& pneumatic,
+             std::optional<host::StimulusSet>& jamming) {
+  std::string error;
+  std::optional<host::StimulusSet> set = host::LoadStimulusSet(name, &error);
+  if (!set) {
+    Usage("demo", "--stimuli " + error);
+    return false;
+  }
+  const bool is_jamming = set->fingers_kind == host::StimulusFingers::kJamming;
+  const int wanted = is_jamming ? 2 : 3;  // thesis-5finger: fingers 1-3 pneumatic, 4-5 jamming
+  if (set->fingers != wanted) {
+    Usage("demo", "--stimuli " + name + ": a set for " + std::to_string(set->fingers) + " " +
+                      (is_jamming ? "jamming" : "pneumatic") + " fingers; the demo's board has " +
+                      std::to_string(wanted));
+    return false;
+  }
+  (is_jamming ? jamming : pneumatic) = std::move(set);
+  return true;
+}
 
 }  // namespace
 
@@ -59,6 +82,9 @@ int CmdDemo(Context& c, const std::vector<std::string>& args) {
       a.calibration_dir = args[++i];
       if (!std::filesystem::is_directory(a.calibration_dir))
         return Usage("demo", "--calibration " + a.calibration_dir + ": not a directory");
+    } else if (args[i] == "--stimuli") {
+      if (!has_value) return Usage("demo", "--stimuli needs a set's name or a stimulus-set file");
+      a.stimuli.push_back(args[++i]);
     } else if (args[i] == "--nominal-only") {
       a.calibrate = false;
     } else {
@@ -72,6 +98,13 @@ int CmdDemo(Context& c, const std::vector<std::string>& args) {
     return Usage("demo",
                  "--out " + a.out + ": the chart is an SVG drawing; give a name ending in .svg");
   }
+  std::optional<host::StimulusSet> pneumatic_set, jamming_set;
+  for (const std::string& name : a.stimuli) {
+    if (!LoadSet(name, pneumatic_set, jamming_set)) return kExitUsage;
+  }
+  if (!pneumatic_set && !LoadSet("thesis-pneumatic-18", pneumatic_set, jamming_set))
+    return kExitFailed;
+  if (!jamming_set && !LoadSet("thesis-jamming-9", pneumatic_set, jamming_set)) return kExitFailed;
   // Checked before the run, not after it: the chart is written at the end.
   const std::filesystem::path chart_dir = std::filesystem::path(a.out).parent_path();
   const std::string dir = chart_dir.empty() ? "." : chart_dir.string();
@@ -95,6 +128,7 @@ int CmdDemo(Context& c, const std::vector<std::string>& args) {
   host::DeviceOptions options;
   options.use_calibrations = false;
   options.number_from = 1;
+  options.levels = host::LevelTablesFor(&*pneumatic_set, &*jamming_set);
   auto device = host::Device::Attach(std::move(transport.value), options, &error);
   if (!device.ok()) return Fail("demo", device.status, error, kExitConnect);
   host::Device& d = *device.value;
@@ -110,20 +144,34 @@ int CmdDemo(Context& c, const std::vector<std::string>& args) {
     if (!files) return kExitFailed;
   }
   std::vector<Step> pneumatic, all;
-  for (const auto& combo : TumourCombinations(3, 3)) pneumatic.push_back({combo, false});
+  for (const host::Stimulus& st : pneumatic_set->stimuli)
+    pneumatic.push_back({st.levels, false, host::LevelNames(*pneumatic_set, st)});
   all = pneumatic;
-  for (const auto& combo : TumourCombinations(2, 3)) all.push_back({combo, true});
+  for (const host::Stimulus& st : jamming_set->stimuli)
+    all.push_back({st.levels, true, host::LevelNames(*jamming_set, st)});
+  auto describe = [](const host::StimulusSet& set) {
+    std::string levels;
+    for (const host::StimulusLevel& l : set.levels) {
+      char v[16];
+      std::snprintf(v, sizeof(v), "%g", l.kpa);
+      levels += (levels.empty() ? "" : "/") + std::string(v);
+    }
+    return set.name + ": " + std::to_string(set.stimuli.size()) + " of " + levels + " kPa on " +
+           std::to_string(set.fingers) + " fingers";
+  };
   std::fprintf(
       TextOut(),
-      "stimuli: %zu three-finger pneumatic combinations of 0/10/30 kPa, %zu two-finger jamming "
-      "combinations\n"
-      "of 0/-10/-100 kPa at 20 kPa bias (a tumour: one finger or two adjacent fingers stiffer than "
-      "the rest)\n\n"
+      "stimuli: %s; %s at %g kPa bias\n"
+      "(a tumour: one finger or two adjacent fingers stiffer than the rest), each played on all\n"
+      "its fingers at once (the thesis's multi-finger condition). Deformation is the bare film's\n"
+      "in mm, as thesis Table 5-4 measured it without the top silicone layer (the simulator\n"
+      "models the film alone); stiffness in N/mm.\n\n"
       "pass 1: the nominal thesis curves, no hysteresis compensation (the `none` compensator)\n",
-      pneumatic.size(), all.size() - pneumatic.size());
+      describe(*pneumatic_set).c_str(), describe(*jamming_set).c_str(), jamming_set->bias_kpa);
+  const host::LevelTables& levels = options.levels;
   std::vector<host::Series> targets(d.info().finger_count);
   PassFigures nominal, calibrated;
-  if (!PlaySteps(d, truth, all, targets, nominal)) return kExitFailed;
+  if (!PlaySteps(d, truth, levels, all, targets, nominal)) return kExitFailed;
   const double first_pass_end_s = truth.now_s();
   std::vector<host::Series> second_targets(d.info().finger_count);
   double second_pass_s = 0;
@@ -138,7 +186,7 @@ int CmdDemo(Context& c, const std::vector<std::string>& args) {
                  "\npass 2: the pneumatic stimuli again, each finger on its own calibration and "
                  "compensated\n");
     second_pass_s = truth.now_s();
-    if (!PlaySteps(d, truth, pneumatic, second_targets, calibrated)) return kExitFailed;
+    if (!PlaySteps(d, truth, levels, pneumatic, second_targets, calibrated)) return kExitFailed;
   }
   // The chart leaves out the board time spent calibrating (the fingers held still meanwhile):
   // the second pass is drawn 2 s after the first, and the gap is marked.

@@ -13,18 +13,12 @@ namespace {
 
 namespace pp = palpa::protocol;
 
-std::string Levels(const std::vector<int>& c) {
-  std::string s;
-  for (int l : c) s += "L" + std::to_string(l) + " ";
-  return s;
-}
-
 }  // namespace
 
-bool PlaySteps(host::Device& d, TruthReader& truth, const std::vector<Step>& steps,
-               std::vector<host::Series>& targets, PassFigures& figures) {
+bool PlaySteps(host::Device& d, TruthReader& truth, const host::LevelTables& levels,
+               const std::vector<Step>& steps, std::vector<host::Series>& targets,
+               PassFigures& figures) {
   const pp::HelloReply board = d.info();
-  const host::LevelTables levels = host::LevelTables::Shipped();
   std::fprintf(
       TextOut(),
       "  step  fingers      target                         achieved (true)                settled  "
@@ -40,6 +34,8 @@ bool PlaySteps(host::Device& d, TruthReader& truth, const std::vector<Step>& ste
       requests.push_back({finger, level});
       const host::Mapped m =
           host::MapRequest(board.fingers[finger], levels, d.curves(finger), level);
+      // Level 0 of a jamming finger is "off" (released vacuum): the nominal map's stiffness there,
+      // 0.7 N/mm, the bottom of Fig 5-36(c)'s axis (an axis-range assumption).
       want[finger] = s.jamming ? (m.target == 0 ? 0.7 : m.target / 1000.0) : m.target / 1000.0;
     }
     const double t0 = truth.now_s();
@@ -88,9 +84,8 @@ bool PlaySteps(host::Device& d, TruthReader& truth, const std::vector<Step>& ste
       targets[f].points.push_back({t0 + hold_s, want[f]});
     }
     std::fprintf(TextOut(), "  %2zu/%zu  %-12s %-4s %-25s %-4s %-25s %5.2f s  %5.1f ms\n", n + 1,
-                 steps.size(), Levels(s.levels).c_str(), s.jamming ? "N/mm" : "mm",
-                 target_text.c_str(), s.jamming ? "N/mm" : "mm", achieved_text.c_str(), settled_s,
-                 latency_ms);
+                 steps.size(), s.names.c_str(), s.jamming ? "N/mm" : "mm", target_text.c_str(),
+                 s.jamming ? "N/mm" : "mm", achieved_text.c_str(), settled_s, latency_ms);
     std::fflush(stdout);
   }
   return true;

@@ -16,6 +16,7 @@ namespace palpa::cli {
 struct Step {
   std::vector<int> levels;
   bool jamming;
+  std::string names;  ///< the levels by their names in the stimulus set
 };
 
 /// What one pass of the stimuli measured, pneumatic and jamming fingers apart.
@@ -29,10 +30,11 @@ struct PassFigures {
   double Rms(int k) const { return count[k] > 0 ? std::sqrt(sum_sq_pct[k] / count[k]) : 0; }
 };
 
-/// Plays `steps`, printing a row each and adding each finger's target to `targets`; false
-/// (printed) when the board refuses one.
-bool PlaySteps(host::Device& d, TruthReader& truth, const std::vector<Step>& steps,
-               std::vector<host::Series>& targets, PassFigures& figures);
+/// Plays `steps` (levels through `levels`, the device's tables), printing a row each and adding
+/// each finger's target to `targets`; false (printed) when the board refuses one.
+bool PlaySteps(host::Device& d, TruthReader& truth, const host::LevelTables& levels,
+               const std::vector<Step>& steps, std::vector<host::Series>& targets,
+               PassFigures& figures);
 
 /// The figures of the nominal pass, and of the calibrated one beside them when there is one.
 void PrintSummary(const PassFigures& nominal, const PassFigures* calibrated,

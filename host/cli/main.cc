@@ -111,12 +111,15 @@ const std::map<std::string, Command>& Commands() {
         "--speed X (0.01-100) and --plant N (0-3) as palpa-sim takes them.\n"
         "Without it, each command starts a throwaway simulated board of its own, and says so."}},
       {"demo",
-       {CmdDemo, "demo [--out FILE.svg] [--speed X] [--calibration DIR | --nominal-only]",
-        "Starts a simulated thesis-5finger board and plays the thesis's discrimination stimuli:\n"
-        "18 three-finger pneumatic combinations and 9 two-finger jamming ones, on the nominal\n"
-        "curves; then calibrates the pneumatic fingers on simulated rigs (quick protocol, api) "
-        "and\n"
-        "plays their stimuli again, compensated. Prints target against achieved, settling and\n"
+       {CmdDemo,
+        "demo [--out FILE.svg] [--speed X] [--stimuli NAME|FILE]... [--calibration DIR | "
+        "--nominal-only]",
+        "Starts a simulated thesis-5finger board and plays discrimination stimuli: by default\n"
+        "the full thesis sets, 18 three-finger pneumatic combinations and 9 two-finger jamming\n"
+        "ones (--stimuli picks a shipped set, e.g. thesis-pneumatic-14, or a stimulus-set file),\n"
+        "on the nominal curves; then calibrates the pneumatic fingers on simulated rigs (quick\n"
+        "protocol, api) and plays their stimuli again, compensated. Prints target against "
+        "achieved, settling and\n"
         "latency, the two passes' errors side by side, and plots the traces. --calibration DIR\n"
         "uses the calibration files in DIR instead (SERIAL.json); --nominal-only stops after the\n"
         "first pass. --speed X: 0.1-10, default 4."}},

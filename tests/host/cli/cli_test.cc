@@ -22,6 +22,8 @@
 #include "palpa/core/board_configs.h"
 #include "palpa/hal/sim/plant.h"
 
+#include "palpa/host/stimulus_set.h"
+
 #include "CppUTest/TestHarness.h"
 
 using palpa::testing::ExpectUsage;
@@ -65,6 +67,31 @@ TEST(CliUsage, MalformedCommandLinesNameTheArgumentAndSendNothing) {
   r = ExpectUsage("demo --calibration /nonexistent-dir",
                   "--calibration /nonexistent-dir: not a directory");
   r = ExpectUsage("demo --nominal-only --calibration /tmp", "exclude each other");
+  // Stimulus sets: by name or file, the bad field named, the right fingers for the board.
+  r = ExpectUsage("demo --stimuli", "--stimuli needs");
+  r = ExpectUsage("demo --stimuli thesis-pneumatic-15", "no stimulus set \"thesis-pneumatic-15\"");
+  const std::string set_file = OwnTempPath("set.json");
+  {
+    std::string text = palpa::host::ShippedStimulusSetText("thesis-pneumatic-14");
+    text.replace(text.find("\"L2\""), 4, "\"L9\"");  // the level's name, not the stimuli's
+    std::ofstream(set_file) << text;
+  }
+  r = ExpectUsage("demo --stimuli " + set_file, "stimuli[2].levels[0]: \"L2\" is not a level");
+  {
+    std::string text = palpa::host::ShippedStimulusSetText("thesis-pneumatic-14");
+    const std::string marked = "\"tumour\": [\n        2";
+    text.replace(text.find(marked) + marked.size() - 1, 1, "1");
+    std::ofstream(set_file) << text;
+  }
+  r = ExpectUsage("demo --stimuli " + set_file, "is not what the rule gives");
+  std::ofstream(set_file) << R"({"schema": "palpa-stimuli", "schema_version": 1, "name": "two",
+    "description": "d", "finger_kind": "pneumatic", "fingers": 2,
+    "levels": [{"name": "a", "kpa": 0}, {"name": "b", "kpa": 5}], "rule": "tumour",
+    "conditions": ["multi-finger"], "selection": {"how": "x"},
+    "stimuli": [{"levels": ["a", "b"], "tumour": [2]}]})";
+  r = ExpectUsage("demo --stimuli " + set_file,
+                  "a set for 2 pneumatic fingers; the demo's board has 3");
+  std::remove(set_file.c_str());
   const std::string bad = OwnTempPath("bad.json");
   std::ofstream(bad) << "{\"board\": {\"host_timeout_us\": 1e3.5}";
   r = Palpa(nowhere + "config load " + bad);
@@ -764,6 +791,9 @@ TEST(CliDemo, CalibratedFingersFollowTheirTargetsWhereNominalOnesShowTheirLoops)
   LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
   CHECK(plotted);
   CHECK(Has(r, "pass 2"));
+  // Its millimetres say whose they are: Table 5-4's film, without the top layer.
+  CHECK(Has(r, "Deformation is the bare film's"));
+  CHECK(Has(r, "without the top silicone layer"));
   CHECK_TEXT(Has(r, "calibrated, api(8)"), r.output.c_str());
   const auto worst = SummaryRow(r, "pneumatic fingers: largest |error| / target");
   const auto gap = SummaryRow(r, "level 1 from above minus from below");
