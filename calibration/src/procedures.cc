@@ -243,8 +243,13 @@ RigStatus DeformationSweep(Rig& rig, uint8_t finger, const std::vector<double>& 
     if (!s.ok) return AbortSafe(rig, "board: " + s.error);
     rig.time.Wait(dwell_s);
     double surface = 0, measured = 0;
-    s = FindSurface(rig, expected, o, &surface);
-    if (!s.ok) return s;
+    for (int t = 0; t < std::max(1, o.touches); ++t) {
+      double touch = 0;
+      s = FindSurface(rig, t == 0 ? expected : surface / t, o, &touch);
+      if (!s.ok) return s;
+      surface += touch;
+    }
+    surface /= std::max(1, o.touches);
     s = rig.board.MeasuredKpa(line, &measured);
     if (!s.ok) return AbortSafe(rig, "board: " + s.error);
     out->push_back({measured * 1000, (surface - zero_mm) * 1000});

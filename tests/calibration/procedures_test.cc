@@ -9,6 +9,8 @@
 #include "palpa/calibration/procedures.h"
 #include "sim_rig.h"
 
+#include "palpa/hal/sim/plant_params.h"
+
 #include "CppUTest/TestHarness.h"
 
 namespace cal = palpa::calibration;
@@ -27,11 +29,24 @@ TEST(Procedures, ZeroAndSurfaceHeightsFollowTheFilm) {
   DOUBLES_EQUAL(0, zero, 0.06);  // the detection lag: threshold / contact stiffness
   CHECK(sim.SetDrive(0, 40, 0).ok);
   sim.Wait(3);
-  double surface = 0;
-  CHECK(cal::FindSurface(rig, zero, o, &surface).ok);
+  // Each touch reads the film within the rig's repeatability (2.82 % per reading, thesis): eight
+  // touches average within 10 µm and three standard errors of the truth, and scatter about that.
   const double truth = sim.board().sim().plant().Truth().fingers[0].deformation_mm;
-  DOUBLES_EQUAL(truth, surface - zero, 0.01);
   CHECK(truth > 1.0);
+  constexpr int kTouches = 8;
+  double sum = 0, sum2 = 0;
+  for (int k = 0; k < kTouches; ++k) {
+    double surface = 0;
+    CHECK(cal::FindSurface(rig, zero, o, &surface).ok);
+    const double e = (surface - zero - truth) / truth;
+    sum += e;
+    sum2 += e * e;
+  }
+  const double r = palpa::sim::params::kRigRepeatability;
+  const double mean = sum / kTouches, sd = std::sqrt(sum2 / kTouches - mean * mean);
+  CHECK_TEXT(std::fabs(mean) * truth < 0.01 + 3 * r * truth / std::sqrt(kTouches),
+             std::to_string(mean).c_str());
+  CHECK_TEXT(sd > 0.3 * r && sd < 2.5 * r, std::to_string(sd).c_str());
 }
 
 TEST(Procedures, AFastApproachFindsTheSurfaceAsASlowOneDoesWhenReadingsArriveLate) {

@@ -1,6 +1,7 @@
 // The simulated finger rig: protocol frames into an in-process board, rig model for readings.
 #include "finger_rig.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace palpa::testing {
@@ -31,8 +32,12 @@ double FingerRig::MeasuredDrive() const {
 
 double FingerRig::RigOutput() {
   if (jamming_) return 1000.0 * rig_.Stiffness(*board_.sim().plant().jamming(options_.finger));
-  return 1000.0 *
-         rig_.Deformation(board_.sim().plant().Truth().fingers[options_.finger].deformation_mm);
+  // As the calibration reads a sweep point: the mean of its touches (the rig's repeatability).
+  const int touches = std::max(1, calibration::ContactOptions{}.touches);
+  double sum = 0;
+  for (int t = 0; t < touches; ++t)
+    sum += rig_.Deformation(board_.sim().plant().Truth().fingers[options_.finger].deformation_mm);
+  return 1000.0 * sum / touches;
 }
 
 double FingerRig::TruthOutput() const {

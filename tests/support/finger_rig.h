@@ -9,6 +9,7 @@
 
 #include "in_process_board.h"
 #include "palpa/calibration/hysteresis_fit.h"
+#include "palpa/calibration/procedures.h"
 #include "palpa/calibration/sweep.h"
 #include "palpa/hal/sim/rig_measurement.h"
 

@@ -680,9 +680,11 @@ TEST(CliCalibrate, QuickCalibrationOnTheSimulatedRigWritesAValidFileRawDataAndAR
   CHECK(Has(r, "applied to finger 1"));
   std::ifstream file(dir + "/PN-1.json");
   const nlohmann::json j = nlohmann::json::parse(file);
-  // Left to choose, calibration fits both play models and keeps api on the film's loop.
-  CHECK(j["compensator"]["kind"] == "api");
-  CHECK(Has(r, "model chosen (auto): api: api(8) "));
+  // Left to choose, calibration fits both play models, keeps one and says what it compared (with
+  // the rig's 2.82 % repeatability most of either residual is scatter, so it may keep pi).
+  CHECK(j["compensator"]["kind"] == "api" || j["compensator"]["kind"] == "pi");
+  CHECK_TEXT(Has(r, "model chosen (auto): ") && Has(r, "api(8) ") && Has(r, "pi(8)"),
+             r.output.c_str());
   CHECK(j["static_inverse"].size() >= 8);
   std::ifstream html(dir + "/PN-1.html");
   std::string report((std::istreambuf_iterator<char>(html)), std::istreambuf_iterator<char>());

@@ -18,6 +18,10 @@ struct ContactOptions {
   double threshold_n = 0.01;  ///< contact: the force crosses this
   double approach_mm = 0.3;   ///< a fast move stops this far above the expected surface
   double fast_mm_s = 2.0;
+  /// Touches averaged per reading of a deformation sweep: the rig repeats to 2.82 % per reading
+  /// (thesis Table 5-4's protocol, which averaged five repeats per point), so one touch would put
+  /// that much scatter into every point the fits see.
+  int touches = 5;
 };
 
 /// Moves to `mm` at `speed` and waits until the stage stops, polling force and position every
