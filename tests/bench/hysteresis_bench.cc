@@ -5,6 +5,7 @@
 // directory, writes hysteresis.svg (error against Cortex-M instructions per step) and the table
 // block of hysteresis.md.
 //   palpa_hysteresis_bench [--quick] [--cost NAME=INSTRUCTIONS ...] [DOCS_DIR]
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -15,6 +16,7 @@
 
 #include "doc_block.h"
 #include "hysteresis_experiments.h"
+#include "palpa/hal/sim/plant_params.h"
 #include "palpa/host/file_write.h"
 #include "palpa/host/svg_chart.h"
 
@@ -53,6 +55,66 @@ struct JammingRow {
   pt::LevelResult own_levels;  ///< the unit the parameters were identified on, new rig noise
   double injected = 0;
 };
+
+/// The held-out figures with the assumed unit spread scaled (the sweep of that assumption): a few
+/// methods on the pneumatic finger (gap, absolute error at the reads, demo stimuli) and the
+/// jamming finger at h = 10 % (level error on the identified and on the held-out unit).
+struct SpreadRow {
+  double factor = 1;
+  std::map<std::string, pt::GapResult> gap;
+  std::map<std::string, pt::TrackingResult> demo;
+  std::map<std::string, pt::LevelResult> jam_own, jam_held_out;
+};
+
+const char* const kSpreadMethods[] = {"none", "pi(16)", "api(8)"};
+
+SpreadRow SpreadSweep(double factor, int dwell, int seconds, palpa::sim::Effects effects) {
+  SpreadRow row;
+  row.factor = factor;
+  effects.unit_spread = static_cast<float>(factor);
+  pt::FingerRig identify_rig({0, 1, 11, effects});
+  const pt::Identified id = pt::Identify(identify_rig, cal::SweepPlan{}, dwell);
+  palpa::sim::Effects jam_effects;
+  jam_effects.history = 0.10f;
+  jam_effects.unit_spread = static_cast<float>(factor);
+  pt::FingerRig identify_jam({3, 1, 13, jam_effects});
+  const pt::Identified jid =
+      pt::Identify(identify_jam, cal::SweepPlan{identify_jam.drive_max(), 5000, 4}, 3 * dwell);
+  if (!id.error.empty() || !jid.error.empty()) {
+    std::fprintf(stderr, "unit spread x%g: identification failed: %s%s\n", factor, id.error.c_str(),
+                 jid.error.c_str());
+    std::exit(1);
+  }
+  for (const pt::Method& m : pt::AllMethods()) {
+    if (std::find(std::begin(kSpreadMethods), std::end(kSpreadMethods), m.name) ==
+        std::end(kSpreadMethods))
+      continue;
+    const cal::HysteresisFit fit = pt::FitMethod(m, id, identify_rig.drive_max());
+    {
+      pt::FingerRig rig({0, 2, 22, effects});
+      rig.Configure(id.inverse, m.kind, fit.params);
+      row.gap[m.name] = pt::BranchGap(rig, id.inverse, dwell);
+    }
+    {
+      pt::FingerRig rig({0, 2, 22, effects});
+      rig.Configure(id.inverse, m.kind, fit.params);
+      row.demo[m.name] = pt::Track(rig, id.inverse, pt::InputSet::kDemoStimuli, seconds, 1);
+    }
+    if (m.name == "api(8)") continue;
+    const cal::HysteresisFit jfit = pt::FitMethod(m, jid, identify_jam.drive_max());
+    {
+      pt::FingerRig rig({3, 2, 24, jam_effects});
+      rig.Configure(jid.inverse, m.kind, jfit.params);
+      row.jam_held_out[m.name] = pt::SettledLevels(rig, jid.inverse, 20, 3 * dwell, 5);
+    }
+    {
+      pt::FingerRig rig({3, 1, 25, jam_effects});
+      rig.Configure(jid.inverse, m.kind, jfit.params);
+      row.jam_own[m.name] = pt::SettledLevels(rig, jid.inverse, 20, 3 * dwell, 6);
+    }
+  }
+  return row;
+}
 
 }  // namespace
 
@@ -195,6 +257,38 @@ int main(int argc, char** argv) {
       jamming.push_back(row);
     }
   }
+  // --- the unit spread halved and doubled: how the held-out figures move --------------------
+  std::vector<SpreadRow> spread;
+  {
+    SpreadRow own;  // the runs above are the factor 1
+    for (const Row& r : rows) {
+      own.gap[r.method.name] = r.gap;
+      own.demo[r.method.name] = r.demo;
+    }
+    for (const JammingRow& r : jamming) {
+      if (r.history != 0.10 || r.method.name == "api(8)") continue;  // as the sweep's rows
+      own.jam_own[r.method.name] = r.own_levels;
+      own.jam_held_out[r.method.name] = r.levels;
+    }
+    spread.push_back(SpreadSweep(0.5, dwell, seconds, effects));
+    spread.push_back(own);
+    spread.push_back(SpreadSweep(2, dwell, seconds, effects));
+  }
+  std::printf("\n== hysteresis: the unit spread (%.1f %%) halved and doubled, held-out unit 2 ==\n",
+              100 * palpa::sim::params::kPneumaticUnitSpread);
+  for (const SpreadRow& r : spread) {
+    for (const char* name : kSpreadMethods) {
+      std::printf("  x%-4g %-8s gap %6.1f um, at reads %6.1f um, demo rms %6.1f um", r.factor, name,
+                  r.gap.at(name).major_gap, r.gap.at(name).mean_abs_error, r.demo.at(name).rms);
+      if (r.jam_held_out.count(name)) {
+        std::printf(" | jamming h 10 %%: own %.1f / %.1f %%, held-out %.1f / %.1f %%",
+                    100 * r.jam_own.at(name).mean_relative, 100 * r.jam_own.at(name).max_relative,
+                    100 * r.jam_held_out.at(name).mean_relative,
+                    100 * r.jam_held_out.at(name).max_relative);
+      }
+      std::printf("\n");
+    }
+  }
   if (docs.empty()) return 0;
 
   // --- chart: error against Cortex-M4F instructions per step ---------------------------------
@@ -280,6 +374,28 @@ int main(int argc, char** argv) {
           " % | " + Figure(100 * r.own_levels.mean_relative) + " / " +
           Figure(100 * r.own_levels.max_relative) + " % | " + Figure(100 * r.levels.mean_relative) +
           " / " + Figure(100 * r.levels.max_relative) + " % |\n";
+  }
+  md += "\nThe assumed unit spread (" + Figure(100 * palpa::sim::params::kPneumaticUnitSpread) +
+        " % per point, [plant](plant.md)) halved and doubled, everything else as above: held-out "
+        "unit 2, identified on unit 1 (both drawn with the scaled spread).\n\n";
+  md +=
+      "| unit spread | method | pneumatic gap (um) | abs error at reads (um) | demo rms (um) | "
+      "jamming h = 10 %: own unit (mean / max) | held-out unit (mean / max) |\n";
+  md += "|---:|---|---:|---:|---:|---:|---:|\n";
+  for (const SpreadRow& r : spread) {
+    for (const char* name : kSpreadMethods) {
+      md += "| " + Figure(100 * palpa::sim::params::kPneumaticUnitSpread * r.factor) + " % | " +
+            name + " | " + Figure(r.gap.at(name).major_gap) + " | " +
+            Figure(r.gap.at(name).mean_abs_error) + " | " + Figure(r.demo.at(name).rms) + " | ";
+      if (r.jam_held_out.count(name)) {
+        md += Figure(100 * r.jam_own.at(name).mean_relative) + " / " +
+              Figure(100 * r.jam_own.at(name).max_relative) + " % | " +
+              Figure(100 * r.jam_held_out.at(name).mean_relative) + " / " +
+              Figure(100 * r.jam_held_out.at(name).max_relative) + " % |\n";
+      } else {
+        md += "- | - |\n";
+      }
+    }
   }
   if (!palpa::bench::ReplaceBlock(docs + "/hysteresis.md", "hysteresis-bench", md)) {
     std::fprintf(stderr, "cannot update the bench block of %s/hysteresis.md\n", docs.c_str());
