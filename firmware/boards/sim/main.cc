@@ -3,6 +3,7 @@
 #include <signal.h>
 #include <time.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -135,6 +136,8 @@ int main(int argc, char** argv) {
   const auto start = std::chrono::steady_clock::now();
   palpa::sim::RealTimePacer pacer(cmd.speed);
   std::vector<pollfd> fds;
+  uint64_t host_frame_us = 0;     // the board's stamp of the host's last frame
+  double host_frame_wall_us = 0;  // the real time of the wake that brought it in
   while (!g_stop) {
     const double wall_us =
         std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
@@ -143,21 +146,39 @@ int main(int argc, char** argv) {
     truth.Pump();
     rig_server.Pump();
     netft.Serve();
+    // The board reads what came in before its clock moves on: a frame that arrived while it was
+    // held at the host-silence deadline counts before the next tick can judge the host silent.
+    sim->Serve();
     const palpa::core::Board& board = sim->board();
     pacer.HoldToRealTime(palpa::sim::HostNearSilenceTimeout(board.session_open(), sim->now_us(),
                                                             board.last_host_frame_us(),
                                                             board.config().board.host_timeout_us),
                          wall_us, sim->now_us());
-    const uint64_t target_us = pacer.Target(wall_us, sim->now_us());
+    // The host's silence in real time: since the wake that brought its last frame in.
+    if (board.last_host_frame_us() != host_frame_us) {
+      host_frame_us = board.last_host_frame_us();
+      host_frame_wall_us = wall_us;
+    }
+    const uint64_t limit_us = palpa::sim::HostSilenceLimitUs(board.session_open(), host_frame_us,
+                                                             board.config().board.host_timeout_us,
+                                                             wall_us - host_frame_wall_us);
+    const uint64_t target_us = std::min(pacer.Target(wall_us, sim->now_us()), limit_us);
     while (sim->now_us() + palpa::sim::RealTimePacer::kStepUs <= target_us && !g_stop) {
       sim->AdvanceTo(sim->now_us() + palpa::sim::RealTimePacer::kStepUs);
       netft.Stream();  // one record per board millisecond while streaming
     }
-    sim->AdvanceTo(target_us);  // between steps: serves what the host sent without a tick
-    link.Pump();                // what the board wrote (the buffer holds far more than a batch)
+    // Between steps, or held at the host-silence deadline: serves what the host sent, no tick.
+    if (target_us > sim->now_us()) {
+      sim->AdvanceTo(target_us);
+    } else {
+      sim->Serve();
+    }
+    link.Pump();  // what the board wrote (the buffer holds far more than a batch)
 
     // Sleep until the next batch of steps is due, or until the host or the rig sends something.
-    const double wait_us = pacer.WaitUs(wall_us, sim->now_us());
+    // Held at the deadline, the next wake is the host's frame or a step's worth of real time.
+    const double wait_us = sim->now_us() >= limit_us ? palpa::sim::RealTimePacer::kWakeUs
+                                                     : pacer.WaitUs(wall_us, sim->now_us());
     fds.clear();
     for (int fd : link.PollFds()) fds.push_back(pollfd{fd, POLLIN, 0});
     for (int fd : rig_server.PollFds()) fds.push_back(pollfd{fd, POLLIN, 0});

@@ -1,5 +1,5 @@
-// palpa-sim's real-time pacing: virtual time from real time, slips, batched wakes and the hold
-// near the host-silence deadline.
+// palpa-sim's real-time pacing: virtual time from real time, slips, batched wakes, the hold near
+// the host-silence deadline and the host's silence judged in real time.
 #include "real_time_pacer.h"
 
 namespace palpa::sim {
@@ -46,6 +46,12 @@ bool HostNearSilenceTimeout(bool session_open, uint64_t now_us, uint64_t last_ho
   if (!session_open || now_us < last_host_frame_us) return false;
   const uint64_t silent_us = now_us - last_host_frame_us;
   return silent_us > host_timeout_us / 2 && silent_us <= host_timeout_us;
+}
+
+uint64_t HostSilenceLimitUs(bool session_open, uint64_t last_host_frame_us,
+                            uint32_t host_timeout_us, double silent_wall_us) {
+  if (!session_open || silent_wall_us >= static_cast<double>(host_timeout_us)) return UINT64_MAX;
+  return last_host_frame_us + host_timeout_us;  // the board faults only once past this
 }
 
 }  // namespace palpa::sim

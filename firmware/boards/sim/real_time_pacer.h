@@ -1,6 +1,7 @@
 // palpa-sim's mapping from real time to the board's virtual time: scaled by --speed, slipping
-// instead of racing when the process falls behind, waking once per batch of steps, and back at
-// real time while a host that holds a session has been silent for half its timeout.
+// instead of racing when the process falls behind, waking once per batch of steps, back at real
+// time while a host that holds a session has been silent for half its timeout, and never past the
+// host-silence deadline before the host has been silent that long in real time.
 #pragma once
 
 #include <cstdint>
@@ -56,5 +57,15 @@ class RealTimePacer {
 /// deadline left to protect).
 bool HostNearSilenceTimeout(bool session_open, uint64_t now_us, uint64_t last_host_frame_us,
                             uint32_t host_timeout_us);
+
+/// The latest board time the loop may advance to while a host holds a session: the host's silence
+/// is judged in real time as well as in board time. Faster than real time a host that is merely
+/// descheduled (a loaded machine: tens of milliseconds between its frames) would otherwise look
+/// silent to the board for the whole timeout; held here, the board's deadline (`last_host_frame_us`
+/// + the timeout) comes only once `silent_wall_us`, the real time since that frame arrived, has
+/// reached the timeout too. A host that is gone meets the timeout in real time, as on hardware.
+/// UINT64_MAX when nothing holds the board (no session, or silent in real time for the timeout).
+uint64_t HostSilenceLimitUs(bool session_open, uint64_t last_host_frame_us,
+                            uint32_t host_timeout_us, double silent_wall_us);
 
 }  // namespace palpa::sim

@@ -61,6 +61,9 @@ class SimBoard {
   /// at every step).
   void AdvanceTo(uint64_t us);
   void Advance(uint64_t us) { AdvanceTo(now_us_ + us); }
+  /// One board loop pass at the current time (no tick falls due): serves what the host sent
+  /// while virtual time is held.
+  void Serve() { StepBoard(); }
   uint64_t now_us() const { return now_us_; }
 
   core::Board& board() { return *board_; }

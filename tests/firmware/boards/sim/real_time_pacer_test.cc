@@ -1,5 +1,5 @@
-// palpa-sim's real-time pacing: the virtual clock it targets, its slips, its batched wakes and
-// its hold to real time near the host-silence deadline.
+// palpa-sim's real-time pacing: the virtual clock it targets, its slips, its batched wakes, its
+// hold to real time near the host-silence deadline and the host's silence judged in real time.
 #include "real_time_pacer.h"
 
 #include "CppUTest/TestHarness.h"
@@ -77,4 +77,16 @@ TEST(RealTimePacer, HoldsOnlyBetweenHalfTheHostTimeoutAndTheTimeout) {
   CHECK_FALSE(HostNearSilenceTimeout(true, 201000, 100000, timeout));   // past it: board safe
   CHECK_FALSE(HostNearSilenceTimeout(false, 170000, 100000, timeout));  // no session
   CHECK_FALSE(HostNearSilenceTimeout(true, 90000, 100000, timeout));    // frame stamped ahead
+}
+
+TEST(RealTimePacer, TheHostsSilenceIsJudgedInRealTimeToo) {
+  using palpa::sim::HostSilenceLimitUs;
+  const uint32_t timeout = 100000;
+  // Last frame at board 1 s, 25 ms of real time ago (100 board ms at 4x): the board may reach
+  // the deadline but not pass it, so a descheduled host is not yet silent for the board.
+  CHECK_EQUAL(1100000u, HostSilenceLimitUs(true, 1000000, timeout, 25000));
+  CHECK_EQUAL(1100000u, HostSilenceLimitUs(true, 1000000, timeout, 99999));
+  // Silent for the timeout in real time as well: nothing holds the board, which faults.
+  CHECK_EQUAL(UINT64_MAX, HostSilenceLimitUs(true, 1000000, timeout, 100000));
+  CHECK_EQUAL(UINT64_MAX, HostSilenceLimitUs(false, 1000000, timeout, 0));  // no session
 }
