@@ -117,11 +117,16 @@ void BoardTime::Wait(double seconds) {
     return;
   }
   const uint64_t until_us = elapsed_us_ + static_cast<uint64_t>(seconds * 1e6 + 0.5);
-  const auto give_up = std::chrono::steady_clock::now() +
-                       std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                           real + std::chrono::seconds(1));
   wake_at_us_ = until_us;
-  advanced_.wait_until(lock, give_up, [&] { return elapsed_us_ >= until_us; });
+  // Bounded by the clock's progress, not by a deadline in real time: a loaded machine slows
+  // palpa-sim's clock (it slips, and holds short of the host-silence deadline while the host is
+  // descheduled), and a dwell cut short would leave the film still moving when it is touched.
+  uint64_t last_look_us = elapsed_us_;
+  while (
+      !advanced_.wait_for(lock, std::chrono::seconds(1), [&] { return elapsed_us_ >= until_us; })) {
+    if (elapsed_us_ == last_look_us) break;  // stopped for a second: the rig's checks say why
+    last_look_us = elapsed_us_;
+  }
   wake_at_us_ = UINT64_MAX;
 }
 

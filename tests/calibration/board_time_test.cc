@@ -1,6 +1,6 @@
 // The rig's clock on a real-time board: waits count the board's time from its telemetry, so a
-// simulator that falls behind (here: stopped) does not cut a dwell short, and a board whose clock
-// stops does not hold a wait forever.
+// simulator that falls behind (here: stopped, or crawling) does not cut a dwell short, and a board
+// whose clock stops does not hold a wait forever.
 #include <signal.h>
 
 #include <atomic>
@@ -80,7 +80,34 @@ TEST(BoardTime, AWaitLastsItsBoardTimeWhenTheSimulatorFallsBehind) {
   CHECK_TEXT(advanced >= 0.2, ("board time advanced " + std::to_string(advanced) + " s").c_str());
 }
 
-TEST(BoardTime, AWaitOnABoardWhoseClockStoppedEndsAfterItsScaledTimeAndOneSecond) {
+TEST(BoardTime, AWaitLastsItsBoardTimeWhileTheClockCrawlsForLongerThanASecond) {
+  // A loaded machine: palpa-sim runs 10 ms in every 410 (stopped between), so its clock moves
+  // in every second but slowly. 1 board second is 100 ms of real time at 10x and takes seconds
+  // here; a wait bounded at its scaled time plus a second would end with the board short of it,
+  // and a dwell would be cut.
+  Open();
+  cal::BoardTime time(*device);
+  for (int i = 0; i < 100 && time.Now() == 0; ++i) time.Wait(0.01);
+  const double before = time.Now();
+  const auto started = std::chrono::steady_clock::now();
+  std::atomic<bool> waited{false};
+  std::thread crawl([&] {
+    for (int i = 0; i < 100 && !waited; ++i) {
+      kill(sim.pid(), SIGSTOP);
+      std::this_thread::sleep_for(std::chrono::milliseconds(400));
+      kill(sim.pid(), SIGCONT);
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+  });
+  time.Wait(1.0);
+  waited = true;
+  crawl.join();
+  CHECK(Seconds(started) > 1.1);
+  const double advanced = time.Now() - before;
+  CHECK_TEXT(advanced >= 1.0, ("board time advanced " + std::to_string(advanced) + " s").c_str());
+}
+
+TEST(BoardTime, AWaitOnABoardWhoseClockStoppedEndsAfterASecondWithoutProgress) {
   Open();
   cal::BoardTime time(*device);
   for (int i = 0; i < 100 && time.Now() == 0; ++i) time.Wait(0.01);
@@ -88,7 +115,7 @@ TEST(BoardTime, AWaitOnABoardWhoseClockStoppedEndsAfterItsScaledTimeAndOneSecond
   Pause pause(sim.pid(), 3000);
   std::this_thread::sleep_for(std::chrono::milliseconds(20));  // its last frames are in
   const double stopped_at = time.Now();
-  time.Wait(0.2);                  // 20 ms scaled, then at most 1 s more
+  time.Wait(0.2);                  // 20 ms scaled; ends once a second passes with no progress
   CHECK_FALSE(pause.continued());  // returned while the board was still stopped
   CHECK(time.Now() - stopped_at < 0.2);
   CHECK(stopped_at >= before);

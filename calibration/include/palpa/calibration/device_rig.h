@@ -48,9 +48,9 @@ class BoardTime final : public RigTime {
   ~BoardTime() override;
   /// Seconds of board time since the first telemetry frame (0 before it).
   double Now() override;
-  /// Until the board's clock has advanced `seconds`. Bounded in real time (the scaled duration
-  /// plus 1 s): the clock stops with the telemetry (link lost, board reset), and the rig's checks
-  /// then say why. Before the first frame: scaled real time.
+  /// Until the board's clock has advanced `seconds`, however slowly it runs. Ended early only
+  /// when the clock stops for a second of real time (telemetry lost: link lost, board reset),
+  /// and the rig's checks then say why. Before the first frame: scaled real time.
   void Wait(double seconds) override;
 
  private:
