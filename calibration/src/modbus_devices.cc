@@ -64,7 +64,18 @@ RigStatus ModbusDevice::Command(const char* register_name, const char* command) 
 }
 
 RigStatus ModbusStage::MoveTo(double mm, double speed_mm_s) {
-  RigStatus s = device_->Write("speed", speed_mm_s);
+  // A plain move never stops on force: a limit left armed by an earlier move is cleared.
+  RigStatus s = stops_on_force() ? device_->Write("stop_force", 0) : RigStatus{};
+  if (s.ok) s = device_->Write("speed", speed_mm_s);
+  if (s.ok) s = device_->Write("target", mm);
+  if (s.ok) s = device_->Command("command", "move");
+  return s;
+}
+
+RigStatus ModbusStage::MoveUntilForce(double mm, double speed_mm_s, double stop_n) {
+  if (!stops_on_force()) return Stage::MoveUntilForce(mm, speed_mm_s, stop_n);
+  RigStatus s = device_->Write("stop_force", stop_n);
+  if (s.ok) s = device_->Write("speed", speed_mm_s);
   if (s.ok) s = device_->Write("target", mm);
   if (s.ok) s = device_->Command("command", "move");
   return s;

@@ -13,6 +13,8 @@ namespace {
 /// The last stretch onto a surface is crept at the thesis's indentation speed, however fast the
 /// approach (see FindSurface).
 constexpr double kFinalApproachMmS = 0.1;
+/// A stage that stops on force and stands further above its floor than this stopped on contact.
+constexpr double kStopShortMm = 0.002;
 
 std::string Num(double v) {
   char b[32];
@@ -74,23 +76,41 @@ RigStatus GuardedMove(Rig& rig, double mm, double speed_mm_s, double poll_s) {
 }
 
 /// Creeps down towards `floor_mm` at `speed_mm_s` until the force reaches the threshold; returns
-/// the position read at contact and `clear_mm`, a height the stage passed before its last reading
+/// the position at contact and `clear_mm`, a height the stage passed before its last reading
 /// clear of contact was taken (so above where the contact began: the position read at the poll
-/// before that reading).
+/// before that reading). A stage that stops on force stops itself at the threshold, and the
+/// contact is where it stopped, however late the host looks; otherwise the host stops it when it
+/// sees the force, and the contact is the position read then.
 RigStatus CreepToContact(Rig& rig, double floor_mm, double speed_mm_s, const ContactOptions& o,
                          double* contact_mm, double* clear_mm) {
   double before_last = 0, last = 0;
   RigStatus s = rig.stage.Position(&last);
   if (!s.ok) return AbortSafe(rig, "stage lost: " + s.error);
   before_last = last;
-  s = rig.stage.MoveTo(floor_mm, speed_mm_s);
+  const bool stage_stops = rig.stage.stops_on_force();
+  s = stage_stops ? rig.stage.MoveUntilForce(floor_mm, speed_mm_s, o.threshold_n)
+                  : rig.stage.MoveTo(floor_mm, speed_mm_s);
   if (!s.ok) return AbortSafe(rig, "stage: " + s.error);
   const double poll = 0.001;  // one force reading per millisecond: 0.1 µm of travel at 0.1 mm/s
   for (;;) {
     double force = 0, position = 0;
     s = Watch(rig, &force, &position);
     if (!s.ok) return AbortSafe(rig, s.error);
-    if (force >= o.threshold_n) {
+    bool moving = false;
+    if (stage_stops) {
+      s = rig.stage.Moving(&moving);
+      if (!s.ok) return AbortSafe(rig, "stage lost: " + s.error);
+      if (!moving) {
+        s = rig.stage.Position(&position);  // stopped: where it stopped, whenever it is read
+        if (!s.ok) return AbortSafe(rig, "stage lost: " + s.error);
+        // Stopped short of the floor: by its force limit (a stage stops early for nothing else).
+        if (position <= floor_mm + kStopShortMm)
+          return AbortSafe(rig, "no contact down to " + Num(floor_mm) + " mm");
+        *contact_mm = position;
+        *clear_mm = before_last;
+        return {};
+      }
+    } else if (force >= o.threshold_n) {
       rig.stage.Stop();
       *contact_mm = position;
       *clear_mm = before_last;
@@ -98,9 +118,10 @@ RigStatus CreepToContact(Rig& rig, double floor_mm, double speed_mm_s, const Con
     }
     before_last = last;
     last = position;
-    bool moving = false;
-    rig.stage.Moving(&moving);
-    if (!moving) return AbortSafe(rig, "no contact down to " + Num(floor_mm) + " mm");
+    if (!stage_stops) {
+      rig.stage.Moving(&moving);
+      if (!moving) return AbortSafe(rig, "no contact down to " + Num(floor_mm) + " mm");
+    }
     rig.time.Wait(poll);
   }
 }
@@ -127,12 +148,18 @@ RigStatus FindSurface(Rig& rig, double expected_mm, const ContactOptions& o, dou
   if (!s.ok) return s;
   if (o.speed_mm_s > kFinalApproachMmS) {
     // The host sees contact only with its next reading, and a busy host later still, by which
-    // time the moving stage is deeper (30 µm at 1 mm/s for a reading 30 ms late). A fast approach
-    // only finds where the surface is; the stage goes back above it and creeps the last stretch
-    // at the thesis's speed, where the same lateness costs a tenth as much. Back above, the
-    // contact loads afresh, as a granular surface must (it unloads along another curve).
+    // time the moving stage is deeper (30 µm at 1 mm/s for a reading 30 ms late; a stage that
+    // stops on force is not, but its filter lags with the speed). A fast approach only finds
+    // where the surface is; the stage goes back above it and creeps the last stretch at the
+    // thesis's speed, where the same lateness costs a tenth as much. Back above, the contact
+    // loads afresh, as a granular surface must (it unloads along another curve).
     constexpr double kMarginMm = 0.01;  // for a clear reading that was noise
-    double above = clear + kMarginMm;
+    // A stage that stopped on force stopped where the force reached the threshold, whenever the
+    // host looked: it backs off a fixed distance from there, clear of a soft contact (the
+    // simulated film's reaches the threshold 33 µm in), so the run is the same however late the
+    // host's readings came (from a polled position it would not be).
+    constexpr double kBackOffMm = 0.05;
+    double above = rig.stage.stops_on_force() ? contact + kBackOffMm : clear + kMarginMm;
     for (int tries = 0;; ++tries) {
       s = GuardedMove(rig, above, o.fast_mm_s);
       if (!s.ok) return s;
@@ -140,7 +167,11 @@ RigStatus FindSurface(Rig& rig, double expected_mm, const ContactOptions& o, dou
       s = rig.force.Read(&force);
       if (!s.ok) return AbortSafe(rig, "force sensor lost: " + s.error);
       if (force < o.threshold_n) break;
-      if (tries == 4) return AbortSafe(rig, "still in contact well above where contact was seen");
+      if (tries == 4) {
+        return AbortSafe(rig, "still in contact (" + Num(force) + " N) at " + Num(above) +
+                                  " mm, well above where contact was seen (" + Num(contact) +
+                                  " mm)");
+      }
       above += 0.1;
     }
     s = CreepToContact(rig, floor, kFinalApproachMmS, o, &contact, &clear);

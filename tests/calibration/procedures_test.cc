@@ -71,6 +71,41 @@ TEST(Procedures, AFastApproachFindsTheSurfaceAsASlowOneDoesWhenReadingsArriveLat
   for (double kpa : {0.0, 40.0}) DOUBLES_EQUAL(surface(0, kpa), surface(0.03, kpa), 0.02);
 }
 
+TEST(Procedures, AStageThatStopsOnForceFindsTheSameSurfaceHoweverLateTheHostReads) {
+  // A loaded machine: each force reading reaches the host 0.1 or 0.3 s of board time late (25 or
+  // 75 ms at the demo's 4x). Polled, the stage is then deeper when the host sees contact — tens
+  // of µm even on the last stretch at 0.1 mm/s. A stage that stops itself on its load cell
+  // stops where the force reached the threshold, on the rig's clock: the zero and the surface
+  // over the film at 40 kPa are where they are with prompt readings, to a µm.
+  cal::ContactOptions o;
+  o.speed_mm_s = 1.0;  // the quick protocol's approach
+  struct Found {
+    double zero, surface;
+  };
+  auto find = [&o](bool force_stop, double latency_s) {
+    pt::SimRig sim({"thesis-5finger", 0, 1, 3});
+    sim.force_stop = force_stop;
+    sim.force_latency_s = latency_s;
+    cal::Rig rig = sim.rig();
+    Found f{};
+    CHECK(cal::ZeroOnVentedSurface(rig, 0, o, &f.zero).ok);
+    CHECK(sim.SetDrive(0, 40, 0).ok);
+    sim.Wait(3);
+    const cal::RigStatus s = cal::FindSurface(rig, f.zero, o, &f.surface);
+    CHECK_TEXT(s.ok, s.error.c_str());
+    return f;
+  };
+  const Found prompt = find(true, 0), polled_prompt = find(false, 0);
+  for (double latency : {0.03, 0.1, 0.2, 0.3}) {
+    const Found late = find(true, latency);
+    DOUBLES_EQUAL(prompt.zero, late.zero, 0.002);  // two encoder counts
+    // The film itself moves by a few µm with the line's pressure noise between the two runs.
+    DOUBLES_EQUAL(prompt.surface, late.surface, 0.01);
+    // Polled, the zero alone moves 13 to 54 µm: what a loaded machine did to the demo.
+    CHECK(std::fabs(find(false, latency).zero - polled_prompt.zero) > 0.01);
+  }
+}
+
 TEST(Procedures, RegulatorCorrectionShowsTheStaticErrorAndTheBoardTakesIt) {
   pt::SimRig sim({"thesis-5finger", 0, 1, 4});
   cal::Rig rig = sim.rig();

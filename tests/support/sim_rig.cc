@@ -26,6 +26,15 @@ void SimRig::Wait(double seconds) {
 
 RigStatus SimRig::MoveTo(double mm, double speed_mm_s) {
   if (stage_lost) return RigStatus::Fail("no answer from the stage");
+  model_->StopOnForce(0);
+  model_->stage().MoveTo(static_cast<float>(mm), static_cast<float>(speed_mm_s));
+  return {};
+}
+
+RigStatus SimRig::MoveUntilForce(double mm, double speed_mm_s, double stop_n) {
+  if (!force_stop) return Stage::MoveUntilForce(mm, speed_mm_s, stop_n);
+  if (stage_lost) return RigStatus::Fail("no answer from the stage");
+  model_->StopOnForce(static_cast<float>(stop_n));
   model_->stage().MoveTo(static_cast<float>(mm), static_cast<float>(speed_mm_s));
   return {};
 }
@@ -43,6 +52,7 @@ RigStatus SimRig::Moving(bool* moving) {
 }
 
 RigStatus SimRig::Stop() {
+  model_->StopOnForce(0);
   model_->stage().MoveTo(model_->stage().position_mm(), 1.0f);
   return {};
 }

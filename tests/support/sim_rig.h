@@ -39,6 +39,10 @@ class SimRig final : public calibration::RigTime,
   /// Time that passes before each force reading reaches the host (a busy or slow host): the
   /// stage keeps moving meanwhile.
   double force_latency_s = 0;
+  /// The stage stops itself on its load cell (palpa-sim's rig does; a rig file without a
+  /// stop_force register does not): off by default, as the host's polling on free-running
+  /// virtual time is never late unless force_latency_s says so.
+  bool force_stop = false;
   /// The actuator under the indenter changed by this factor since its last calibration.
   void ScaleActuator(float factor);
   /// A line of the board leaks (RegulatorLine::set_leak).
@@ -52,6 +56,8 @@ class SimRig final : public calibration::RigTime,
   calibration::RigStatus Position(double* mm) override;
   calibration::RigStatus Moving(bool* moving) override;
   calibration::RigStatus Stop() override;
+  bool stops_on_force() const override { return force_stop; }
+  calibration::RigStatus MoveUntilForce(double mm, double speed_mm_s, double stop_n) override;
   // ForceSensor
   calibration::RigStatus Read(double* newtons) override;
   calibration::RigStatus Tare() override;

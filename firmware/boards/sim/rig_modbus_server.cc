@@ -15,8 +15,8 @@
 namespace palpa::sim {
 namespace {
 
-constexpr int kPosition = 0, kMoving = 2, kTarget = 10, kSpeed = 12, kCommand = 13, kForce = 20,
-              kTare = 30;
+constexpr int kPosition = 0, kMoving = 2, kTarget = 10, kSpeed = 12, kCommand = 13, kStopForce = 14,
+              kForce = 20, kTare = 30;
 
 void PutI32(uint16_t* regs, int at, int32_t v) {
   const uint32_t u = static_cast<uint32_t>(v);
@@ -107,9 +107,11 @@ void RigModbusServer::Refresh() {
 void RigModbusServer::TakeWrites() {
   uint16_t* h = map_->tab_registers;
   if (h[kCommand] == 1) {
+    rig_->StopOnForce(static_cast<float>(h[kStopForce]) / 1000.0f);
     rig_->stage().MoveTo(static_cast<float>(GetI32(h, kTarget)) / 1000.0f,
                          static_cast<float>(h[kSpeed]) / 1000.0f);
   } else if (h[kCommand] == 2) {
+    rig_->StopOnForce(0);
     rig_->stage().MoveTo(rig_->stage().position_mm(), 1.0f);
   }
   h[kCommand] = 0;

@@ -6,6 +6,8 @@
 //   holding 10-11 target, int32 µm
 //   holding 12   speed, uint16 µm/s
 //   holding 13   command: 1 move to target at speed, 2 stop (reads back 0 once taken)
+//   holding 14   stop force, uint16 mN: a move commanded after it stops itself when the
+//                controller's load-cell reading reaches it (0: none)
 //   input   20-21 force, float32 N (compressive positive, after the tare)
 //   holding 30   tare: write 1 to tare (reads back 0 once taken)
 #pragma once

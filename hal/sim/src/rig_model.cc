@@ -12,6 +12,7 @@ RigModel::RigModel(Plant& plant, uint8_t finger, uint32_t seed, float start_mm)
     : plant_(plant),
       finger_(finger),
       force_(plant.options().level < 3, seed),
+      stop_sensor_(plant.options().level < 3, seed * 69069u + 1u),
       repeat_rng_(seed * 48271u + 7u) {
   if (plant.options().level >= 3) {
     std::normal_distribution<float> repeat(0.0f, p::kRigRepeatability);
@@ -38,11 +39,27 @@ void RigModel::Step(float dt_s) {
     // The film's bump rises to the deformation; the soft contact pushes back linearly. Each
     // touch finds it off by the rig's repeatability (thesis: 2.82 % per point), relative.
     const float surface = plant_.Truth().fingers[finger_].deformation_mm * (1.0f + touch_error_);
-    const bool touching = true_force_n_ > 0;
     true_force_n_ = p::kRigContactStiffnessNPerMm * std::max(0.0f, surface - tip);
-    if (touching && true_force_n_ <= 0 && plant_.options().level >= 3) {
+    if (true_force_n_ > 0) touched_ = true;
+    if (touched_ && tip - surface > kNewTouchMm && plant_.options().level >= 3) {
+      // The indenter went well clear: the next touch is another reading. Backing off a little
+      // to creep onto the surface again is the same touch (the reading does not jump under it).
       std::normal_distribution<float> repeat(0.0f, p::kRigRepeatability);
-      touch_error_ = repeat(repeat_rng_);  // the indenter left: the next touch is another reading
+      touch_error_ = repeat(repeat_rng_);
+      touched_ = false;
+    }
+  }
+  // The controller reads its load cell every step, armed or not, so its readings follow the
+  // rig's clock alone.
+  stop_readings_[stop_next_] = stop_sensor_.Read(true_force_n_);
+  stop_next_ = (stop_next_ + 1) % kStopFilter;
+  stop_taken_ = std::min(stop_taken_ + 1, kStopFilter);
+  if (stop_force_n_ > 0 && stage_.moving() && stop_taken_ == kStopFilter) {
+    float mean = 0;
+    for (float f : stop_readings_) mean += f / kStopFilter;
+    if (mean >= stop_force_n_) {
+      stage_.MoveTo(stage_.position_mm(), 1.0f);
+      stop_force_n_ = 0;
     }
   }
 }

@@ -37,6 +37,9 @@ class ModbusStage final : public Stage {
   RigStatus Position(double* mm) override { return device_->Read("position", mm); }
   RigStatus Moving(bool* moving) override;
   RigStatus Stop() override { return device_->Command("command", "stop"); }
+  /// With a "stop_force" register (N; 0 disarms it) the controller stops a move on its load cell.
+  bool stops_on_force() const override { return device_->map().Find("stop_force") != nullptr; }
+  RigStatus MoveUntilForce(double mm, double speed_mm_s, double stop_n) override;
 
  private:
   std::unique_ptr<ModbusDevice> device_;

@@ -32,6 +32,16 @@ class Stage {
   virtual RigStatus Position(double* mm) = 0;
   virtual RigStatus Moving(bool* moving) = 0;
   virtual RigStatus Stop() = 0;
+  /// Whether the stage's controller can stop a move by itself on its load cell (a force-limit
+  /// stop, as motorised test stands have): where the surface is then does not depend on how late
+  /// the host reads the force.
+  virtual bool stops_on_force() const { return false; }
+  /// Starts a move to `mm` that the controller stops the moment its force reading reaches
+  /// `stop_n` (newtons, compressive, after the tare). Only where stops_on_force().
+  virtual RigStatus MoveUntilForce(double mm, double speed_mm_s, double stop_n) {
+    (void)mm, (void)speed_mm_s, (void)stop_n;
+    return RigStatus::Fail("this stage has no force-limit stop");
+  }
 };
 
 class ForceSensor {

@@ -24,7 +24,17 @@ class RigModel {
   float PositionMm() const { return stage_.encoder_mm(); }
   /// What the force sensor reads now (N, compressive positive, after its tare).
   float ReadForceN() { return force_.Read(true_force_n_); }
-  void Tare() { force_.Tare(true_force_n_); }
+  void Tare() {
+    force_.Tare(true_force_n_);
+    stop_sensor_.Tare(true_force_n_);
+  }
+  /// The stage controller's force-limit stop: the stage stops itself at the first step its
+  /// filtered force reading reaches `n` (N, after the tare), then the limit is disarmed; 0 disarms
+  /// it. Judged on the rig's own clock, so where it stops does not depend on the host.
+  void StopOnForce(float n) {
+    stop_force_n_ = n;
+    stop_taken_ = 0;  // judged on readings taken since: none from before the move counts
+  }
   /// The true contact force (N), for scoring and the rig's own safety model only.
   float true_force_n() const { return true_force_n_; }
 
@@ -33,12 +43,23 @@ class RigModel {
   uint8_t finger_;
   LinearStage stage_;
   ForceSensor force_;
+  /// The controller's own readings of the load cell, one per step (a stream of their own, so
+  /// the host's readings stay what they were), averaged over kStopFilter steps of the move.
+  static constexpr int kStopFilter = 8;
+  ForceSensor stop_sensor_;
+  float stop_readings_[kStopFilter] = {};
+  int stop_next_ = 0;
+  int stop_taken_ = 0;  ///< readings since the limit was armed
+  float stop_force_n_ = 0;
   float true_force_n_ = 0;
   float press_max_depth_mm_ = 0;  ///< deepest point of the current press (jamming)
   float last_depth_mm_ = 0;
   /// A pneumatic film's reading is off by the rig's repeatability, relative, drawn per touch.
   std::mt19937 repeat_rng_;
   float touch_error_ = 0;
+  bool touched_ = false;
+  /// A touch ends when the indenter is this far above the surface (a new approach).
+  static constexpr float kNewTouchMm = 0.1f;
 };
 
 }  // namespace palpa::sim
