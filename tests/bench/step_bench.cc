@@ -65,6 +65,7 @@ class Session {
 
   StepResult Run(const Step& s) {
     pp::SetLineSetpoints sp{};
+    sp.session = 1;  // the Hello's nonce
     sp.generation = ++generation_;
     sp.entry_count = 1;
     sp.entries[0] = {s.line, static_cast<int32_t>(s.to_pa)};
@@ -74,7 +75,7 @@ class Session {
     double last_outside = 0, sum_sensor = 0, sum_true = 0;
     int n = 0;
     for (int ms = 1; ms <= s.hold_ms; ++ms) {
-      if (ms % 20 == 0) Send(pp::Heartbeat{++generation_}, false);
+      if (ms % 20 == 0) Send(pp::Heartbeat{1, ++generation_}, false);
       sim_->Advance(1000);
       link_.tx.clear();
       const double truth = sim_->plant().Truth().lines[s.line].chamber_pa;

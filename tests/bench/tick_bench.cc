@@ -58,6 +58,7 @@ int main(int argc, char** argv) {
   follow_model();
   Send(link, pp::Hello{1, 0}, 0, 0);
   pp::SetFingerTargets targets{};
+  targets.session = 1;  // the Hello's nonce
   targets.generation = 1;
   for (uint8_t f = 0; f < config->finger_count; ++f) {
     const bool jamming = config->fingers[f].kind == pp::FingerKind::kJamming;
@@ -68,7 +69,7 @@ int main(int argc, char** argv) {
   uint32_t generation = 1;
   for (long t = 0; t < ticks; ++t) {
     clock.Advance(pc::Board::kTickUs);
-    if (t % 20 == 0) Send(link, pp::Heartbeat{++generation}, 0, 0);
+    if (t % 20 == 0) Send(link, pp::Heartbeat{1, ++generation}, 0, 0);
     board.Step();
     link.tx.clear();
     follow_model();

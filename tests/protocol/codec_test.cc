@@ -45,6 +45,7 @@ void CheckError(const pp::FieldError& e, pp::Status status, const char* field) {
 
 pp::SetLineSetpoints TwoSetpoints() {
   pp::SetLineSetpoints m{};
+  m.session = 0x0A0B0C0D;
   m.generation = 3;
   m.entry_count = 2;
   m.entries[0] = {1, 10000};
@@ -58,8 +59,8 @@ TEST_GROUP(Codec){};
 
 TEST(Codec, LittleEndianFieldByField) {
   const auto body = Body(TwoSetpoints());
-  const std::vector<uint8_t> expected = {3, 0, 0, 0,    2,    1,    0x10, 0x27,
-                                         0, 0, 2, 0x78, 0xEC, 0xFF, 0xFF};
+  const std::vector<uint8_t> expected = {0x0D, 0x0C, 0x0B, 0x0A, 3, 0,    0,    0,    2,   1,
+                                         0x10, 0x27, 0,    0,    2, 0x78, 0xEC, 0xFF, 0xFF};
   CHECK(body == expected);
 }
 
@@ -95,13 +96,13 @@ TEST(Codec, OutOfRangeSetpointIsRejectedOnBothSidesNamingTheField) {
   m.entries[1].setpoint_pa = 100001;
   CheckError(EncodeError(m), pp::Status::kOutOfRange, "setpoint_pa");
   auto body = Body(TwoSetpoints());
-  body[11] = 0xA1;  // -5000 → 0xFFFFECA1 ... make it 100001 = 0x000186A1
-  body[12] = 0x86;
-  body[13] = 0x01;
-  body[14] = 0x00;
+  body[15] = 0xA1;  // -5000 → 0xFFFFECA1 ... make it 100001 = 0x000186A1
+  body[16] = 0x86;
+  body[17] = 0x01;
+  body[18] = 0x00;
   const auto e = DecodeError<pp::SetLineSetpoints>(body);
   CheckError(e, pp::Status::kOutOfRange, "setpoint_pa");
-  LONGS_EQUAL(11, e.offset);
+  LONGS_EQUAL(15, e.offset);
 }
 
 TEST(Codec, LineIndexBeyondEightIsOutOfRange) {
@@ -171,22 +172,22 @@ TEST(Codec, TextIsAlwaysTerminated) {
 
 TEST(Codec, ShortBodyNamesTheFieldThatIsCutOff) {
   auto body = Body(TwoSetpoints());
-  body.resize(8);
+  body.resize(12);
   CheckError(DecodeError<pp::SetLineSetpoints>(body), pp::Status::kBadLength, "setpoint_pa");
-  CheckError(DecodeError<pp::SetLineSetpoints>({}), pp::Status::kBadLength, "generation");
+  CheckError(DecodeError<pp::SetLineSetpoints>({}), pp::Status::kBadLength, "session");
 }
 
 TEST(Codec, TrailingBytesAreRejected) {
-  auto body = Body(pp::Heartbeat{1});
+  auto body = Body(pp::Heartbeat{7, 1});
   body.push_back(0);
   const auto e = DecodeError<pp::Heartbeat>(body);
   LONGS_EQUAL((int)pp::Status::kBadLength, (int)e.status);
-  LONGS_EQUAL(4, e.offset);
+  LONGS_EQUAL(8, e.offset);
 }
 
 TEST(Codec, ArrayCountBeyondCapacityIsRejected) {
   auto body = Body(TwoSetpoints());
-  body[4] = 9;
+  body[8] = 9;
   CheckError(DecodeError<pp::SetLineSetpoints>(body), pp::Status::kOutOfRange, "entries");
 }
 

@@ -48,7 +48,7 @@ TEST(FrameDecoder, DecodesBackToBackFramesAndCountsThem) {
   Feed f;
   std::vector<uint8_t> stream;
   for (uint32_t g = 1; g <= 5; ++g) {
-    const auto frame = FrameOf(pp::Heartbeat{g});
+    const auto frame = FrameOf(pp::Heartbeat{0, g});
     stream.insert(stream.end(), frame.begin(), frame.end());
   }
   f.Bytes(stream);
@@ -60,7 +60,7 @@ TEST(FrameDecoder, DecodesBackToBackFramesAndCountsThem) {
 TEST(FrameDecoder, LeadingGarbageIsDroppedAndTheNextFrameDecodes) {
   Feed f;
   f.Bytes({0x13, 0x37, 0x42});
-  const auto frame = FrameOf(pp::Heartbeat{9});
+  const auto frame = FrameOf(pp::Heartbeat{0, 9});
   f.Bytes(frame);  // garbage glued to the front of the frame: both discarded together
   CHECK(f.generations.empty());
   UNSIGNED_LONGS_EQUAL(1, f.decoder.counters().garbage + f.decoder.counters().crc_errors);
@@ -71,7 +71,7 @@ TEST(FrameDecoder, LeadingGarbageIsDroppedAndTheNextFrameDecodes) {
 TEST(FrameDecoder, DelimiterBeforeGarbageResynchronises) {
   Feed f;
   f.Bytes({0x13, 0x37, 0x00});
-  f.Bytes(FrameOf(pp::Heartbeat{3}));
+  f.Bytes(FrameOf(pp::Heartbeat{0, 3}));
   CHECK((f.generations == std::vector<uint32_t>{3}));
 }
 
@@ -87,13 +87,13 @@ TEST(FrameDecoder, OversizeFrameIsCountedOnceAndDecoderRecovers) {
   f.Bytes(std::vector<uint8_t>(5000, 0x7F));
   f.Bytes({0x00});
   UNSIGNED_LONGS_EQUAL(1, f.decoder.counters().oversize);
-  f.Bytes(FrameOf(pp::Heartbeat{4}));
+  f.Bytes(FrameOf(pp::Heartbeat{0, 4}));
   CHECK((f.generations == std::vector<uint32_t>{4}));
 }
 
 TEST(FrameDecoder, CrcErrorIsCounted) {
   Feed f;
-  auto frame = FrameOf(pp::Heartbeat{0x01020304});
+  auto frame = FrameOf(pp::Heartbeat{0, 0x01020304});
   frame[1] ^= 0x10;  // a data byte (frame[0] and frame[3] are COBS code bytes)
   f.Bytes(frame);
   UNSIGNED_LONGS_EQUAL(1, f.decoder.counters().crc_errors);
@@ -125,7 +125,7 @@ TEST(FrameDecoder, TooShortForHeaderAndCrcIsGarbage) {
 }
 
 TEST(FrameDecoder, EveryTruncationIsRejected) {
-  const auto frame = FrameOf(pp::Heartbeat{77});
+  const auto frame = FrameOf(pp::Heartbeat{0, 77});
   for (size_t cut = 1; cut < frame.size() - 1; ++cut) {
     Feed f;
     std::vector<uint8_t> part(frame.begin(), frame.begin() + static_cast<long>(cut));
@@ -144,7 +144,7 @@ TEST(FrameDecoder, RandomBytesNeverYieldAFrameThatFailsItsCrc) {
   // A random frame passes a 32-bit CRC with probability 2^-32: none expected here.
   UNSIGNED_LONGS_EQUAL(0, f.decoder.counters().frames);
   f.Bytes({0x00});
-  f.Bytes(FrameOf(pp::Heartbeat{5}));
+  f.Bytes(FrameOf(pp::Heartbeat{0, 5}));
   CHECK((f.generations == std::vector<uint32_t>{5}));
 }
 

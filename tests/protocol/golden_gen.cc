@@ -83,6 +83,8 @@ void Bootstrap() {
   Add("nack_out_of_range", pp::Nack{0xA5A5F00D, 0x21, pp::Status::kOutOfRange, 2}, 0, board);
   Add("nack_seq_gap", pp::Nack{0xA5A5F00D, 0x30, pp::Status::kSeqGap, 9}, 11, board);
   Add("nack_no_session", pp::Nack{0, 0x20, pp::Status::kNoSession, 0}, 0, board);
+  // A second host's Hello while a session is open: busy, with the board's host-silence timeout.
+  Add("nack_hello_busy", pp::Nack{0xA5A5F00D, 0x01, pp::Status::kBusy, 100000}, 0, board);
   Add("estop", pp::EStop{}, 0, 0);
   Add("update_enter", pp::UpdateEnter{1, 65536}, 0, reliable);
   Add("update_erase", pp::UpdateErase{1, 0, 65536}, 1, reliable);
@@ -114,9 +116,11 @@ void Bootstrap() {
 }
 
 void Streams() {
-  Add("heartbeat", pp::Heartbeat{1}, 0, 0);
-  Add("heartbeat_generation_wrap", pp::Heartbeat{0xFFFFFFFF}, 0, 0);
+  // Every stream frame names its session: the nonce of the Hello that opened it.
+  Add("heartbeat", pp::Heartbeat{0x12345678, 1}, 0, 0);
+  Add("heartbeat_generation_wrap", pp::Heartbeat{0x12345678, 0xFFFFFFFF}, 0, 0);
   pp::SetLineSetpoints sp{};
+  sp.session = 0x12345678;
   sp.generation = 17;
   sp.entry_count = 3;
   sp.entries[0] = {0, 10000};
@@ -124,17 +128,22 @@ void Streams() {
   sp.entries[2] = {6, -100000};
   Add("set_line_setpoints", sp, 0, 0);
   pp::SetLineSetpoints full{};
+  full.session = 0xDEADBEEF;
   full.generation = 18;
   full.entry_count = 8;
   for (uint8_t i = 0; i < 8; ++i) full.entries[i] = {i, 100000};
   Add("set_line_setpoints_all_lines_max", full, 0, 0);
   pp::SetFingerTargets t{};
+  t.session = 0x12345678;
   t.generation = 5;
   t.entry_count = 2;
   t.entries[0] = {0, pp::OutputUnit::kDeformationMicrometre, 1200};
   t.entries[1] = {3, pp::OutputUnit::kStiffnessMilliNewtonPerMm, 900};
   Add("set_finger_targets", t, 0, 0);
   Add("set_finger_mode_raw", pp::SetFingerMode{4, pp::FingerMode::kRaw}, 12, pp::flags::kReliable);
+  Add("close", pp::Close{0x12345678}, 0, 0);
+  Add("release", pp::Release{0x12345678}, 0, 0);
+  Add("ack_close", pp::Ack{0xA5A5F00D, 0x24}, 0, pp::flags::kFromBoard);
 }
 
 void Configuration() {

@@ -87,7 +87,9 @@ void TestBoard::Handle(const pp::Frame& frame, std::vector<std::vector<uint8_t>>
   const pp::Status decoded = pp::DispatchFrame(frame, [&](const auto& m, const pp::Header&) {
     using M = std::decay_t<decltype(m)>;
     if constexpr (std::is_same_v<M, pp::Hello>) {
-      if (session_.OnHello(m)) ++sessions;  // a repeated Hello is only answered again
+      const auto verdict = session_.OnHello(m);  // a repeated Hello is only answered again
+      if (verdict == pp::BoardSession::HelloVerdict::kBusy) return;
+      if (verdict == pp::BoardSession::HelloVerdict::kOpened) ++sessions;
       pp::HelloReply r{};
       r.host_nonce = m.host_nonce;
       r.boot_nonce = boot_nonce;
@@ -102,8 +104,18 @@ void TestBoard::Handle(const pp::Frame& frame, std::vector<std::vector<uint8_t>>
         applied.push_back(Applied{boot_nonce, m.mask});
       }
     } else if constexpr (std::is_same_v<M, pp::Heartbeat>) {
-      session_.heartbeat().Accept(m.generation);
+      if (session_.Owns(m.session)) session_.heartbeat().Accept(m.generation);
     } else if constexpr (std::is_same_v<M, pp::EStop>) {
+      Reply(pp::Ack{boot_nonce, type}, seq, 0, out);
+    } else if constexpr (std::is_same_v<M, pp::Close> || std::is_same_v<M, pp::Release>) {
+      if (!session_.Owns(m.session)) {
+        Reply(pp::Nack{boot_nonce, type, pp::Status::kNoSession, 0}, seq, 0, out);
+        return;
+      }
+      if constexpr (std::is_same_v<M, pp::Close>) {
+        session_.End();
+        ++closes;
+      }
       Reply(pp::Ack{boot_nonce, type}, seq, 0, out);
     }
   });

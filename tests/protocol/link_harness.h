@@ -51,6 +51,9 @@ class TestBoard {
   /// Feeds bytes from the host; appends the board's frames to `out`.
   void Receive(const std::vector<uint8_t>& bytes, std::vector<std::vector<uint8_t>>& out);
   void Reboot();
+  /// The session's host went silent for the board's timeout: the session ends (a new host's
+  /// Hello is busy until then).
+  void SilenceEndsTheSession() { session_.End(); }
 
   struct Applied {
     uint32_t boot_nonce;
@@ -60,6 +63,7 @@ class TestBoard {
   uint32_t boot_nonce() const { return session_.boot_nonce(); }
   uint32_t applied_heartbeat() const { return session_.heartbeat().applied(); }
   uint32_t sessions = 0;
+  uint32_t closes = 0;  ///< sessions ended by their host's Close
 
  private:
   void Handle(const pp::Frame& frame, std::vector<std::vector<uint8_t>>& out);

@@ -182,6 +182,7 @@ TEST(ReliableChannel, HostRestartOpensAFreshSession) {
   fresh.QueueCommands(10001, 200);
   LossyChannel to_board(faults, 41), to_host(faults, 42);
   uint64_t now = run.now_us + 1'000'000;  // stale frames of the dead host are long gone
+  run.board.SilenceEndsTheSession();      // and so is its session, by the board's timeout
   const size_t old_applied = run.board.applied.size();
   while (fresh.outcomes.size() < 200 && now < run.now_us + 120'000'000) {
     std::vector<std::vector<uint8_t>> replies;
@@ -228,7 +229,7 @@ TEST(LatestWins, ReorderedStreamConvergesToTheLatestValue) {
   uint64_t now = 0;
   uint32_t last_seen = 0;
   for (uint32_t g = 1; g <= 2000; ++g, now += 100) {
-    n = pp::EncodeMessageFrame(pp::Heartbeat{g}, 0, 0, frame, sizeof(frame));
+    n = pp::EncodeMessageFrame(pp::Heartbeat{5, g}, 0, 0, frame, sizeof(frame));
     link.Send(frame, n.value, now);
     board.Receive(link.Deliver(now), ignored);
     CHECK(board.applied_heartbeat() >= last_seen);  // never goes backwards

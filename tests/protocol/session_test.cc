@@ -19,20 +19,47 @@ TEST(BoardSession, OnlyHelloAndEStopBeforeASession) {
   });
 }
 
+using Verdict = pp::BoardSession::HelloVerdict;
+
 TEST(BoardSession, RepeatedHelloIsAnsweredWithoutRewindingTheSequence) {
   pp::BoardSession s(1);
-  CHECK(s.OnHello(pp::Hello{42, 250}));
+  CHECK(s.OnHello(pp::Hello{42, 250}) == Verdict::kOpened);
   const pp::CachedOutcome* cached = nullptr;
   CHECK(s.receiver().Classify(250, &cached) == pp::ReliableReceiver::Verdict::kApply);
   s.receiver().Complete(0x3A, pp::Status::kOk, 0, false);
   CHECK(s.setpoints().Accept(7));
-  CHECK_FALSE(s.OnHello(pp::Hello{42, 250}));  // the same Hello again: no reset
+  CHECK(s.OnHello(pp::Hello{42, 250}) == Verdict::kRepeat);  // the same Hello again: no reset
   LONGS_EQUAL(251, s.receiver().expected());
   LONGS_EQUAL(7, s.setpoints().applied());
-  CHECK(s.OnHello(pp::Hello{43, 9}));  // a new host session: everything restarts
+  s.End();  // closed: a new host session, and everything restarts
+  CHECK(s.OnHello(pp::Hello{43, 9}) == Verdict::kOpened);
   LONGS_EQUAL(9, s.receiver().expected());
   CHECK_FALSE(s.setpoints().has_applied());
   CHECK(s.receiver().Classify(250, &cached) == pp::ReliableReceiver::Verdict::kIgnore);
+}
+
+TEST(BoardSession, AnotherHostsHelloIsBusyWhileTheSessionIsOpen) {
+  pp::BoardSession s(1);
+  CHECK(s.OnHello(pp::Hello{42, 0}) == Verdict::kOpened);
+  CHECK(s.OnHello(pp::Hello{43, 7}) == Verdict::kBusy);
+  CHECK(s.Owns(42));
+  CHECK_FALSE(s.Owns(43));
+  LONGS_EQUAL(0, s.receiver().expected());  // nothing of the open session changed
+  s.End();
+  CHECK_FALSE(s.Owns(42));
+  CHECK(s.OnHello(pp::Hello{43, 7}) == Verdict::kOpened);
+  CHECK(s.Owns(43));
+}
+
+TEST(BoardSession, ANonceReusedOnceItsHostWasHeardIsAnotherHost) {
+  // Until the host is heard in the session its Hello may be a retry (the reply lost); after
+  // that, a Hello with the same nonce is a second host reusing it and inherits nothing.
+  pp::BoardSession s(1);
+  CHECK(s.OnHello(pp::Hello{42, 0}) == Verdict::kOpened);
+  CHECK(s.OnHello(pp::Hello{42, 0}) == Verdict::kRepeat);
+  s.Heard();
+  CHECK(s.OnHello(pp::Hello{42, 0}) == Verdict::kBusy);
+  CHECK(s.open());
 }
 
 TEST(BoardSession, GapIsSignalledOncePerExpectedSeq) {
@@ -63,4 +90,21 @@ TEST(HostSession, NoticesABoardResetFromTheBootNonce) {
   LONGS_EQUAL((int)pp::HostSession::BootCheck::kReset, (int)h.CheckBootNonce(6));
   LONGS_EQUAL((int)pp::Status::kOk, (int)h.Admit(0x21));
   LONGS_EQUAL((int)pp::Status::kStale, (int)h.OnHelloReply(r));  // answered once only
+}
+
+TEST(HostSession, NoticesAnotherHostsReplyFromItsBoard) {
+  pp::HostSession h;
+  h.BeginHello(9);
+  pp::HelloReply r{};
+  r.host_nonce = 9;
+  r.boot_nonce = 5;
+  r.catalog_hash = pp::kCatalogHash;
+  CHECK_FALSE(h.TakenOverBy(r));  // no session yet
+  LONGS_EQUAL((int)pp::Status::kOk, (int)h.OnHelloReply(r));
+  LONGS_EQUAL(9, h.session_tag());
+  CHECK_FALSE(h.TakenOverBy(r));  // our own reply again
+  r.host_nonce = 10;
+  CHECK(h.TakenOverBy(r));  // the board gave another host a session
+  r.boot_nonce = 6;
+  CHECK_FALSE(h.TakenOverBy(r));  // another board's reply (or a reset: noticed by the nonce)
 }

@@ -59,6 +59,7 @@ std::vector<calibration::SweepSample> FingerRig::Sweep(const std::vector<double>
   std::vector<calibration::SweepSample> out;
   for (double drive : drives) {
     pp::SetLineSetpoints sp{};
+    sp.session = InProcessBoard::kSession;
     sp.generation = board_.next_generation();
     if (jamming_) {
       sp.entries[sp.entry_count++] = {f.line_a, f.bias_pa};
@@ -103,6 +104,7 @@ void FingerRig::Follow(double target, int ms, const std::function<void(double)>&
     target_mode_ = true;
   }
   pp::SetFingerTargets t{};
+  t.session = InProcessBoard::kSession;
   t.generation = board_.next_generation();
   t.entries[t.entry_count++] = {options_.finger,
                                 jamming_ ? pp::OutputUnit::kStiffnessMilliNewtonPerMm

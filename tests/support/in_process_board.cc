@@ -22,14 +22,14 @@ sim::SimBoardOptions PlantBoardOptions(const std::string& config, uint32_t unit,
 InProcessBoard::InProcessBoard(const sim::SimBoardOptions& options) {
   std::string error;
   sim_ = sim::SimBoard::Create(options, link_, &error);
-  Send(pp::Hello{1, 0}, false);
+  Send(pp::Hello{kSession, 0}, false);
   Run(5);
 }
 
 void InProcessBoard::Run(int ms) {
   for (int k = 0; k < ms; ++k) {
     if (since_heartbeat_ms_ <= 0) {
-      Send(pp::Heartbeat{next_generation()}, false);
+      Send(pp::Heartbeat{kSession, next_generation()}, false);
       since_heartbeat_ms_ = 20;
     }
     --since_heartbeat_ms_;

@@ -37,6 +37,8 @@ class InProcessBoard {
   /// The line's pressure as its sensor reads it (Pa), through the configured transfer function.
   double SensorPa(uint8_t line) const;
   uint32_t next_generation() { return ++generation_; }
+  /// The session every stream frame names: the nonce of this board's Hello.
+  static constexpr uint32_t kSession = 1;
 
   sim::SimBoard& sim() { return *sim_; }
   const sim::SimBoard& sim() const { return *sim_; }

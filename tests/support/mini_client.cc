@@ -120,6 +120,7 @@ std::string MiniClient::ReadText(int timeout_ms) {
 }
 
 pp::Result<pp::HelloReply> MiniClient::Hello(uint32_t nonce, int timeout_ms) {
+  session_ = nonce;
   Send(pp::Hello{nonce, next_seq_});
   const int64_t deadline = NowMs() + timeout_ms;
   while (NowMs() < deadline) {

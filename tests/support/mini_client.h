@@ -32,8 +32,12 @@ class MiniClient {
   void Close();
 
   void SendBytes(const std::vector<uint8_t>& bytes);
+  /// A message naming a session with none named (0) names this client's: its last Hello's nonce.
   template <class M>
-  void Send(const M& m, uint8_t seq = 0, uint8_t flags = 0) {
+  void Send(M m, uint8_t seq = 0, uint8_t flags = 0) {
+    if constexpr (requires { m.session; }) {
+      if (m.session == 0) m.session = session_;
+    }
     uint8_t frame[pp::kMaxFrameSize];
     const auto n = pp::EncodeMessageFrame(m, seq, flags, frame, sizeof(frame));
     SendBytes(std::vector<uint8_t>(frame, frame + n.value));
@@ -64,6 +68,7 @@ class MiniClient {
  private:
   pp::Status WaitAnswer(uint8_t seq, uint8_t type, int timeout_ms);
   int fd_ = -1;
+  uint32_t session_ = 0;
   std::unique_ptr<BytePipe> pipe_;
   uint8_t next_seq_ = 0;
   int keepalive_ms_ = 0;

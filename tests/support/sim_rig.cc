@@ -92,6 +92,7 @@ uint8_t SimRig::driven_line(uint8_t finger) {
 RigStatus SimRig::SetDrive(uint8_t finger, double kpa_a, double kpa_b) {
   const pp::ConfigureFinger& f = board_.config().fingers[finger];
   pp::SetLineSetpoints sp{};
+  sp.session = InProcessBoard::kSession;
   sp.generation = board_.next_generation();
   sp.entries[sp.entry_count++] = {f.line_a, static_cast<int32_t>(std::lround(kpa_a * 1000))};
   if (f.line_b != pp::kNoLine)
@@ -129,6 +130,7 @@ RigStatus SimRig::Faults(uint32_t* bitmap) {
 
 RigStatus SimRig::VentAll() {
   pp::SetLineSetpoints sp{};
+  sp.session = InProcessBoard::kSession;
   sp.generation = board_.next_generation();
   for (uint8_t i = 0; i < board_.config().line_count; ++i) sp.entries[sp.entry_count++] = {i, 0};
   board_.Send(sp);

@@ -187,8 +187,10 @@ int main() {
     const auto n = palpa::protocol::EncodeMessageFrame(message, 0, 0, frame, sizeof(frame));
     g_uart.Inject(frame, n.value);
   };
-  inject(palpa::protocol::Hello{1, 0});
+  constexpr uint32_t kSession = 1;  // the Hello's nonce, which every stream frame names
+  inject(palpa::protocol::Hello{kSession, 0});
   palpa::protocol::SetFingerTargets targets{};
+  targets.session = kSession;
   targets.generation = 1;
   for (uint8_t f = 0; f < config->finger_count; ++f) {
     const bool jamming = config->fingers[f].kind == palpa::protocol::FingerKind::kJamming;
@@ -207,7 +209,7 @@ int main() {
     const uint64_t now = g_clock.NowMicros();
 #ifdef PALPA_BENCH
     if (now >= next_heartbeat_us) {
-      inject(palpa::protocol::Heartbeat{++heartbeat});
+      inject(palpa::protocol::Heartbeat{kSession, ++heartbeat});
       next_heartbeat_us += 20000;
     }
 #endif

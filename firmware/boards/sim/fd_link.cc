@@ -30,7 +30,7 @@ std::string LinkTarget(const std::string& path) {
 }  // namespace
 
 FdLink::~FdLink() {
-  Disconnect();
+  for (Peer& c : clients_) close(c.fd);
   if (listen_fd_ >= 0) close(listen_fd_);
   if (pty_slave_ >= 0) close(pty_slave_);
   // Only the link this process made: whatever someone put there meanwhile stays.
@@ -90,7 +90,7 @@ bool FdLink::Open(const std::string& spec, std::string* error) {
       return false;
     }
     NonBlocking(master);
-    io_fd_ = master;
+    clients_.push_back(Peer{master, {}, {}});
     is_pty_ = true;
     address_ = "serial:" + symlink_;
     return true;
@@ -99,49 +99,61 @@ bool FdLink::Open(const std::string& spec, std::string* error) {
   return false;
 }
 
-void FdLink::Disconnect() {
-  if (io_fd_ >= 0 && !is_pty_) {
-    close(io_fd_);
-    io_fd_ = -1;
-  }
-  tx_.clear();
-}
-
-void FdLink::Pump() {
-  if (!is_pty_ && io_fd_ < 0 && listen_fd_ >= 0) {
-    const int client = accept(listen_fd_, nullptr, nullptr);
-    if (client >= 0) {
-      NonBlocking(client);
-      const int one = 1;
-      setsockopt(client, IPPROTO_TCP, TCP_NODELAY, &one, sizeof(one));
-      io_fd_ = client;
-    }
-  }
-  if (io_fd_ < 0) return;
+bool FdLink::ReadFrom(Peer& peer) {
   uint8_t buffer[4096];
   // Bounded: a host that sends faster than the board reads waits (TCP and the pty push back).
   while (rx_.size() - rx_read_ < kRxCapacity) {
-    const ssize_t n = read(io_fd_, buffer, sizeof(buffer));
-    if (n > 0) {
-      rx_.insert(rx_.end(), buffer, buffer + n);
+    const ssize_t n = read(peer.fd, buffer, sizeof(buffer));
+    if (n == 0 && !is_pty_) return false;  // the host closed the connection
+    if (n <= 0) return true;               // EAGAIN, or EIO on a pty with no client
+    for (ssize_t i = 0; i < n; ++i) {
+      peer.partial.push_back(buffer[i]);
+      if (buffer[i] == 0) {  // a whole frame: to the board, never interleaved with another's
+        rx_.insert(rx_.end(), peer.partial.begin(), peer.partial.end());
+        peer.partial.clear();
+      } else if (peer.partial.size() > kMaxPartial) {
+        peer.partial.clear();
+      }
+    }
+  }
+  return true;
+}
+
+void FdLink::WriteTo(Peer& peer) {
+  while (!peer.tx.empty()) {
+    const ssize_t n = write(peer.fd, peer.tx.data(), peer.tx.size());
+    if (n <= 0) break;
+    peer.tx.erase(peer.tx.begin(), peer.tx.begin() + n);
+  }
+  if (is_pty_ && peer.tx.size() > kTxCapacity / 2) peer.tx.clear();  // nobody reading the pty
+}
+
+void FdLink::Pump() {
+  for (int client; listen_fd_ >= 0 && (client = accept(listen_fd_, nullptr, nullptr)) >= 0;) {
+    if (clients_.size() >= kMaxClients) {  // a board has few hosts; the rest are turned away
+      close(client);
       continue;
     }
-    if (n == 0 && !is_pty_) Disconnect();  // the host closed the connection
-    break;                                 // EAGAIN, or EIO on a pty with no client
+    NonBlocking(client);
+    const int one = 1;
+    setsockopt(client, IPPROTO_TCP, TCP_NODELAY, &one, sizeof(one));
+    clients_.push_back(Peer{client, {}, {}});
   }
-  if (io_fd_ < 0) return;
-  while (!tx_.empty()) {
-    const ssize_t n = write(io_fd_, tx_.data(), tx_.size());
-    if (n <= 0) break;
-    tx_.erase(tx_.begin(), tx_.begin() + n);
+  for (size_t i = 0; i < clients_.size();) {
+    if (ReadFrom(clients_[i])) {
+      WriteTo(clients_[i]);
+      ++i;
+    } else {
+      close(clients_[i].fd);
+      clients_.erase(clients_.begin() + static_cast<long>(i));
+    }
   }
-  if (is_pty_ && tx_.size() > kTxCapacity / 2) tx_.clear();  // nobody reading the pty
 }
 
 std::vector<int> FdLink::PollFds() const {
   std::vector<int> fds;
-  if (io_fd_ >= 0) fds.push_back(io_fd_);
-  if (listen_fd_ >= 0 && io_fd_ < 0) fds.push_back(listen_fd_);
+  for (const Peer& c : clients_) fds.push_back(c.fd);
+  if (listen_fd_ >= 0) fds.push_back(listen_fd_);
   return fds;
 }
 
@@ -156,14 +168,21 @@ size_t FdLink::DoRead(uint8_t* out, size_t capacity) {
 }
 
 size_t FdLink::DoWrite(const uint8_t* data, size_t size) {
-  if (io_fd_ < 0) return size;  // no host: the bytes go nowhere, as on an unplugged UART
+  if (clients_.empty()) return size;  // no host: the bytes go nowhere, as on an unplugged UART
   const size_t n = size < DoWriteSpace() ? size : DoWriteSpace();
-  tx_.insert(tx_.end(), data, data + n);
+  // Every host hears the board; one that reads too slowly loses what does not fit its buffer
+  // (its decoder resynchronises at the next delimiter) without holding back the others.
+  for (Peer& c : clients_) {
+    const size_t fits = kTxCapacity - c.tx.size() < n ? kTxCapacity - c.tx.size() : n;
+    c.tx.insert(c.tx.end(), data, data + fits);
+  }
   return n;
 }
 
 size_t FdLink::DoWriteSpace() const {
-  return tx_.size() < kTxCapacity ? kTxCapacity - tx_.size() : 0;
+  size_t emptiest = kTxCapacity;  // back-pressure follows the host that keeps up best
+  for (const Peer& c : clients_) emptiest = c.tx.size() < emptiest ? c.tx.size() : emptiest;
+  return clients_.empty() ? kTxCapacity : kTxCapacity - emptiest;
 }
 
 }  // namespace palpa::sim

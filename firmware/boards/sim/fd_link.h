@@ -1,5 +1,7 @@
-// The simulated board's link to the host: a non-blocking file descriptor behind a TCP listener
-// or a pseudo-terminal, with a bounded transmit buffer so back-pressure is real.
+// The simulated board's link to the host: a pseudo-terminal, or TCP connections — up to eight, as
+// hosts sharing one line: each host's frames reach the board whole, and everything the board
+// sends reaches every host (so a second host hears busy, and the first sees it lose the board).
+// Bounded transmit buffers, so back-pressure is real.
 #pragma once
 
 #include <cstdint>
@@ -22,31 +24,40 @@ class FdLink final : public hal::ByteLink {
   /// Where a host connects: "tcp:127.0.0.1:40123" or "serial:/path/to/link".
   const std::string& address() const { return address_; }
 
-  /// Accepts a waiting client, reads what has arrived, writes what is queued. Never blocks.
+  /// Accepts waiting clients, reads what has arrived, writes what is queued. Never blocks.
   void Pump();
-  /// File descriptors worth waiting on (listener or client, pty), for poll().
+  /// File descriptors worth waiting on (listener, clients, pty), for poll().
   std::vector<int> PollFds() const;
-  bool connected() const { return io_fd_ >= 0; }
+  bool connected() const { return is_pty_ || !clients_.empty(); }
 
  private:
   size_t DoRead(uint8_t* out, size_t capacity) override;
   size_t DoWrite(const uint8_t* data, size_t size) override;
   size_t DoWriteSpace() const override;
-  void Disconnect();
+
+  struct Peer {
+    int fd = -1;
+    std::vector<uint8_t> partial;  ///< bytes of a frame not yet ended by its delimiter
+    std::vector<uint8_t> tx;
+  };
+  /// Reads what `peer` sent; complete frames go to the board. False when it hung up.
+  bool ReadFrom(Peer& peer);
+  void WriteTo(Peer& peer);
   bool MayReplace(const std::string& spec, std::string* error) const;
 
   static constexpr size_t kTxCapacity = 64 * 1024;
   static constexpr size_t kRxCapacity = 64 * 1024;
+  static constexpr size_t kMaxClients = 8;     ///< TCP hosts at once (more are closed on arrival)
+  static constexpr size_t kMaxPartial = 4096;  ///< a "frame" longer than this is noise: dropped
   int listen_fd_ = -1;
-  int io_fd_ = -1;      ///< TCP client, or the pty master
-  int pty_slave_ = -1;  ///< kept open so the master never sees a hang-up between clients
+  std::vector<Peer> clients_;  ///< TCP connections, or the pty master alone
+  int pty_slave_ = -1;         ///< kept open so the master never sees a hang-up between clients
   bool is_pty_ = false;
   std::string symlink_;
   std::string pty_name_;  ///< /dev/pts/N, where symlink_ points
   std::string address_;
   std::vector<uint8_t> rx_;
   size_t rx_read_ = 0;
-  std::vector<uint8_t> tx_;
 };
 
 }  // namespace palpa::sim

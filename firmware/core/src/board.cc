@@ -137,6 +137,18 @@ void Board::Hold() {
   RefreshLineFlags();
 }
 
+void Board::EndSession() {
+  Hold();
+  safe_ = true;  // Critical for safety: as for EStop, the next tick's outputs are safe codes
+  session_.End();
+  if (io_.update != nullptr) io_.update->LeaveUpdateMode();
+}
+
+void Board::HeardFromHost(uint64_t now_us) {
+  session_.Heard();
+  last_host_frame_us_ = now_us;
+}
+
 void Board::RefreshLineFlags() {
   line_flags_ = {};
   for (uint8_t f = 0; f < live_.finger_count; ++f) {

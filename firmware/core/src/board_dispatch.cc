@@ -56,7 +56,8 @@ void BoardDispatch::OnFrame(const protocol::Frame& frame, uint64_t now_us) {
     return Answer(h.type, h.seq, answer_flags, Status::kUnsupported, 0);
   const Status admitted = b_.session_.Admit(h.type);
   if (admitted != Status::kOk) return Answer(h.type, h.seq, answer_flags, admitted, 0);
-  if (b_.session_.open()) b_.last_host_frame_us_ = now_us;  // any valid frame of the session
+  // A frame proves its host alive only when it is fresh for the session: each handler says so
+  // (HeardFromHost); a repeat, a stale generation or another session's frame never does.
 
   protocol::ReliableReceiver& receiver = b_.session_.receiver();
   if (reliable && h.type != static_cast<uint8_t>(MessageType::kHello)) {
@@ -80,6 +81,9 @@ void BoardDispatch::OnFrame(const protocol::Frame& frame, uint64_t now_us) {
   const Outcome outcome = Handle(frame, now_us);
   if (reliable && h.type != static_cast<uint8_t>(MessageType::kHello)) {
     receiver.Complete(h.type, outcome.status, outcome.detail, outcome.replied);
+    // Applied in sequence: the commanding host. Timed after the work, which may be long (an
+    // erase of flash), so the silence it took is not the host's.
+    b_.HeardFromHost(b_.io_.clock.NowMicros());
     if (!outcome.replied) Answer(h.type, h.seq, flags::kReliable, outcome.status, outcome.detail);
   } else if (outcome.status != Status::kOk) {
     Answer(h.type, h.seq, 0, outcome.status, outcome.detail);
@@ -97,7 +101,16 @@ Outcome BoardDispatch::Handle(const protocol::Frame& frame, uint64_t now_us) {
 }
 
 Outcome BoardDispatch::Apply(const protocol::Hello& m, const protocol::Header& h) {
-  if (b_.session_.OnHello(m)) {  // a new host inherits no actuation, and no update, from an old one
+  using Verdict = protocol::BoardSession::HelloVerdict;
+  Verdict verdict = b_.session_.OnHello(m);
+  if (verdict == Verdict::kBusy && b_.identity_.recovery) {
+    // Recovery mode holds nothing for anyone (every line is safe): the newest host has it.
+    b_.session_.End();
+    verdict = b_.session_.OnHello(m);
+  }
+  // Another host's session is alive: refused, with the timeout after which a silent one ends.
+  if (verdict == Verdict::kBusy) return {Status::kBusy, b_.live_.board.host_timeout_us};
+  if (verdict == Verdict::kOpened) {  // a new host inherits no actuation, and no update
     b_.Hold();
     if (b_.io_.update != nullptr) b_.io_.update->LeaveUpdateMode();
   }
@@ -107,6 +120,9 @@ Outcome BoardDispatch::Apply(const protocol::Hello& m, const protocol::Header& h
 }
 
 Outcome BoardDispatch::Apply(const protocol::EStop&, const protocol::Header& h) {
+  // Latched before the Ack: a setpoint that follows the Ack is refused, not applied for the
+  // moment until the next tick. The tick reports it (estop_requested_).
+  LatchFault(b_.supervisor_, protocol::Fault::kEStopCommand, now_us_, 0);
   b_.estop_requested_ = true;
   b_.safe_ = true;  // Critical for safety: the next tick writes safe codes, this one already won't
   b_.Hold();
@@ -114,12 +130,32 @@ Outcome BoardDispatch::Apply(const protocol::EStop&, const protocol::Header& h) 
   return {Status::kOk, 0, true};
 }
 
+Outcome BoardDispatch::Apply(const protocol::Close& m, const protocol::Header& h) {
+  // Another session's Close, or one repeated after this one ended: that session is over.
+  if (!b_.session_.Owns(m.session)) return {Status::kNoSession};
+  b_.EndSession();  // a deliberate end: outputs safe, no fault, an update left resumable
+  Answer(static_cast<uint8_t>(MessageType::kClose), h.seq, 0, Status::kOk, 0);
+  return {Status::kOk, 0, true};
+}
+
+Outcome BoardDispatch::Apply(const protocol::Release& m, const protocol::Header& h) {
+  if (!b_.session_.Owns(m.session)) return {Status::kNoSession};
+  b_.Hold();  // outputs safe until the host sends new setpoints or targets; no fault
+  b_.safe_ = true;
+  Answer(static_cast<uint8_t>(MessageType::kRelease), h.seq, 0, Status::kOk, 0);
+  return {Status::kOk, 0, true};
+}
+
 Outcome BoardDispatch::Apply(const protocol::Heartbeat& m, const protocol::Header&) {
-  b_.session_.heartbeat().Accept(m.generation);
+  // Only a newer generation of this session's heartbeat: a repeated or foreign one, however
+  // often it comes, keeps nothing alive.
+  if (b_.session_.Owns(m.session) && b_.session_.heartbeat().Accept(m.generation))
+    b_.HeardFromHost(now_us_);
   return {};
 }
 
 Outcome BoardDispatch::Apply(const protocol::SetLineSetpoints& m, const protocol::Header&) {
+  if (!b_.session_.Owns(m.session)) return {};  // another session's: dropped, as a stale one
   if (b_.supervisor_.latched != 0) return {Status::kFaulted, b_.supervisor_.latched};
   if (b_.io_.update != nullptr && b_.io_.update->in_update_mode()) return {Status::kBusy, 0};
   if (!b_.session_.setpoints().WouldAccept(m.generation)) return {};  // stale: dropped silently
@@ -139,10 +175,12 @@ Outcome BoardDispatch::Apply(const protocol::SetLineSetpoints& m, const protocol
     b_.setpoint_pa_[m.entries[i].line] = static_cast<float>(m.entries[i].setpoint_pa);
   }
   b_.released_ = true;
+  b_.HeardFromHost(now_us_);
   return {};
 }
 
 Outcome BoardDispatch::Apply(const protocol::SetFingerTargets& m, const protocol::Header&) {
+  if (!b_.session_.Owns(m.session)) return {};
   if (b_.supervisor_.latched != 0) return {Status::kFaulted, b_.supervisor_.latched};
   if (b_.io_.update != nullptr && b_.io_.update->in_update_mode()) return {Status::kBusy, 0};
   if (!b_.session_.targets().WouldAccept(m.generation)) return {};
@@ -160,6 +198,7 @@ Outcome BoardDispatch::Apply(const protocol::SetFingerTargets& m, const protocol
     b_.finger_state_[m.entries[i].finger].target = static_cast<float>(m.entries[i].target);
   }
   b_.released_ = true;
+  b_.HeardFromHost(now_us_);
   return {};
 }
 

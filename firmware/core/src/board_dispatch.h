@@ -26,6 +26,8 @@ class BoardDispatch {
   Outcome Handle(const protocol::Frame& frame, uint64_t now_us);
   Outcome Apply(const protocol::Hello& m, const protocol::Header& h);
   Outcome Apply(const protocol::EStop&, const protocol::Header&);
+  Outcome Apply(const protocol::Close& m, const protocol::Header& h);
+  Outcome Apply(const protocol::Release& m, const protocol::Header& h);
   Outcome Apply(const protocol::Heartbeat& m, const protocol::Header&);
   Outcome Apply(const protocol::SetLineSetpoints& m, const protocol::Header&);
   Outcome Apply(const protocol::SetFingerTargets& m, const protocol::Header&);

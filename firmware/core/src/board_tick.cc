@@ -16,12 +16,16 @@ void Board::Tick(uint64_t now_us) {
   ReadInputs(now_us, in);
   CheckConfigIntegrity(now_us);
   in.config_intact = config_intact_;
-  if (estop_requested_) {
-    LatchFault(supervisor_, Fault::kEStopCommand, now_us, 0);
-    estop_requested_ = false;
-  }
+  // An EStop latched its fault when it arrived; this tick's telemetry reports it.
+  const bool estop_arrived = estop_requested_;
+  estop_requested_ = false;
   ObserveSlowSlot();
   const uint32_t newly = Supervise(settings_, supervisor_, in);
+  // Silence ends the session (the fault, if any, is latched above), once this tick's telemetry
+  // has reported it; the outputs are safe this tick already. The bootloader's recovery mode,
+  // which never actuates, keeps its session for a flasher that pauses.
+  const bool silent = supervisor_.host_silent && !identity_.recovery;
+  if (silent) Hold();
   const bool was_safe = safe_;
   // Update mode keeps every line safe from Enter until the reboot or the next session (DESIGN §9).
   const bool updating =
@@ -32,7 +36,8 @@ void Board::Tick(uint64_t now_us) {
   ComputeSetpoints(now_us);
   StepLines();
   WriteOutputs();
-  SampleTelemetry(now_us, newly != 0);
+  SampleTelemetry(now_us, newly != 0 || estop_arrived);
+  if (silent) EndSession();
   pacer_.EndTick(io_.clock.NowMicros());
 }
 
@@ -40,6 +45,7 @@ void Board::ReadInputs(uint64_t now_us, SupervisorInput& in) {
   in.now_us = now_us;
   in.session_open = session_.open();
   in.last_host_frame_us = last_host_frame_us_;
+  in.actuating = released_;
   in.estop_pin = io_.estop != nullptr && io_.estop->Read();
   in.safe = safe_;
   if (io_.adc == nullptr) return;

@@ -56,7 +56,9 @@ uint32_t Supervise(const SupervisorSettings& settings, SupervisorState& s,
     active |= FaultBit(f);
   };
 
-  if (in.session_open && in.now_us - in.last_host_frame_us > settings.host_timeout_us) {
+  // A host that vanished from a board it left safe is no fault: the session just ends.
+  s.host_silent = HostSilent(settings, in);
+  if (s.host_silent && in.actuating) {
     raise(Fault::kHostSilence, static_cast<int32_t>((in.now_us - in.last_host_frame_us) / 1000));
   }
   if (in.estop_pin) raise(Fault::kEStopPin, 0);

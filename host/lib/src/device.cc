@@ -122,7 +122,32 @@ Outcome Device::ApplyCalibration(uint8_t finger, const CalibrationFile& c) {
   return o;
 }
 
-Device::~Device() { StopRecording(); }
+Device::~Device() { Close(); }
+
+Outcome Device::Close() {
+  StopRecording();
+  const Status s = link_->Close();
+  if (s == Status::kOk) return {};
+  if (s == Status::kCatalogMismatch) {
+    return Outcome{s,
+                   "close: the board runs other firmware, so no Close was sent; it ends the "
+                   "session by its host-silence timeout (nothing was actuated)",
+                   {}};
+  }
+  return Outcome{s,
+                 "close: the board did not answer the Close; it ends the session by its "
+                 "host-silence timeout instead (safe either way)",
+                 {}};
+}
+
+Outcome Device::Release() {
+  const Status s = link_->Release();
+  if (s == Status::kOk) return {};
+  return Outcome{s,
+                 std::string("release: ") + pp::StatusName(s) +
+                     (s == Status::kNoSession ? " (" + link_->session_end() + ")" : ""),
+                 {}};
+}
 
 std::string Device::FingerName(uint8_t finger) const {
   return "finger " + std::to_string(finger + options_.number_from);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <deque>
+#include <optional>
 #include <thread>
 
 namespace palpa::host {
@@ -24,6 +25,33 @@ FlashReport Fail(FlashReport report, Status status, std::string message) {
   report.status = status;
   report.message = std::move(message);
   return report;
+}
+
+/// A command that did not complete because the session ended under it.
+bool SessionLost(Status s) { return s == Status::kOutcomeUnknown || s == Status::kNoSession; }
+constexpr int kMaxResumes = 3;
+
+/// Where to go on writing after the session ended mid-write: once the link has a session again,
+/// update mode anew and the board's written prefix if it is the image's (else from 0, erased
+/// again). Empty when the board cannot be reached or refuses.
+std::optional<uint32_t> ResumePoint(Link& link, uint8_t slot, const std::vector<uint8_t>& image,
+                                    const FlashOptions& o) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (!link.session_open()) {
+    if (link.ended() || std::chrono::steady_clock::now() > deadline) return std::nullopt;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  const auto size = static_cast<uint32_t>(image.size());
+  if (link.Command(pp::UpdateEnter{slot, size}).status != Status::kOk) return std::nullopt;
+  pp::UpdateStatus st{};
+  const CommandResult q = link.Command(pp::UpdateQuery{slot});
+  if (q.status == Status::kOk && q.Reply(st) && st.written_bytes <= size && st.written_bytes > 0 &&
+      st.written_sha256 == pp::Sha256Of(image.data(), st.written_bytes)) {
+    return st.written_bytes;
+  }
+  if (link.Command(pp::UpdateErase{slot, 0, size}, o.erase_timeout_ms).status != Status::kOk)
+    return std::nullopt;
+  return 0;
 }
 
 }  // namespace
@@ -133,6 +161,14 @@ FlashReport FlashPackage(Link& link, const UpdatePackage& package, const FlashOp
       drain();  // the board has less than we thought (it reset): from there
       next = r.detail;
       continue;
+    }
+    if (SessionLost(r.status) && report.resumed_after_session_loss < kMaxResumes) {
+      drain();  // what the board holds decides where to go on
+      if (const auto point = ResumePoint(link, slot, image, o)) {
+        ++report.resumed_after_session_loss;
+        next = *point;
+        continue;
+      }
     }
     if (r.status != Status::kOk) {
       drain();

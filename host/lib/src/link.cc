@@ -46,28 +46,43 @@ Result<std::unique_ptr<Link>> Link::Open(std::unique_ptr<Transport> transport, L
   std::unique_ptr<Link> link(new Link(std::move(transport), options));
   link->reader_ = std::thread(&Link::ReaderLoop, link.get());
   link->dispatcher_ = std::thread(&Link::DispatchLoop, link.get());
-  // Heartbeats start with the first Hello: a board that opened the session must not see silence
-  // while its reply (the longest frame of the handshake) is being retried.
+  // Heartbeats start with the session: the board counts only those naming it, and until its
+  // reply arrives the Hello, resent with the same nonce, is what keeps the board's timer.
   link->heartbeat_ = std::thread(&Link::HeartbeatLoop, link.get());
   {
     std::unique_lock<std::mutex> lock(link->mutex_);
     const auto deadline =
         std::chrono::steady_clock::now() +
         std::chrono::milliseconds(options.hello_timeout_ms * options.hello_attempts);
-    link->changed_.wait_until(lock, deadline, [&] { return link->session_.open() || link->stop_; });
+    // Busy for longer than a silent host's session lasts (the board's timeout, in board time,
+    // which runs at least as fast as ours), plus two Hello periods: the other host is alive.
+    auto busy_for_good = [&] {
+      if (link->busy_since_s_ < 0) return false;
+      return SteadySeconds() - link->busy_since_s_ >
+             link->busy_timeout_us_ / 1e6 + 2 * options.hello_timeout_ms / 1000.0;
+    };
+    while (!link->session_.open() && !link->stop_ && !busy_for_good() &&
+           std::chrono::steady_clock::now() < deadline) {
+      link->changed_.wait_for(lock, std::chrono::milliseconds(options.hello_timeout_ms));
+    }
     if (!link->session_.open()) {
+      const bool busy = link->busy_since_s_ >= 0;
       if (error != nullptr) {
-        *error = link->description_ + ": no answer to Hello (" +
-                 std::to_string(options.hello_attempts) +
-                 " tries); is it a palpa board, and is it powered?";
+        *error = busy ? "busy: another host holds the board (" + link->description_ +
+                            "); it is free once that host closes its session, or goes silent "
+                            "for the board's host-silence timeout"
+                      : link->description_ + ": no answer to Hello (" +
+                            std::to_string(options.hello_attempts) +
+                            " tries); is it a palpa board, and is it powered?";
       }
-      return Status::kTimeout;
+      return busy ? Status::kBusy : Status::kTimeout;
     }
   }
   return link;
 }
 
 Link::~Link() {
+  Close();
   {
     std::lock_guard<std::mutex> lock(mutex_);
     stop_ = true;
@@ -92,6 +107,16 @@ bool Link::catalog_matches() const {
 bool Link::session_open() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return session_.open();
+}
+
+bool Link::ended() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return !session_.open() && !hello_wanted_;
+}
+
+std::string Link::session_end() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return session_.open() ? std::string() : session_end_;
 }
 
 std::string Link::Versions() const {
@@ -142,8 +167,16 @@ uint32_t Link::SubmitPacket(uint8_t type, const uint8_t* body, size_t size, int 
     pending_[cookie] = Pending{true, std::move(r)};
     return cookie;
   };
-  if (!changed_.wait_until(lock, deadline, [&] { return session_.open() || stop_; }) || stop_) {
-    return fail(CommandResult{Status::kNoSession, 0, 0, {}, "no session with the board"});
+  // Waits for a session being opened; none is when this host closed it or lost the board.
+  if (!changed_.wait_until(lock, deadline,
+                           [&] { return session_.open() || stop_ || !hello_wanted_; }) ||
+      !session_.open()) {
+    return fail(CommandResult{
+        Status::kNoSession,
+        0,
+        0,
+        {},
+        "no session with the board" + (session_end_.empty() ? "" : " (" + session_end_ + ")")});
   }
   const Status admitted = session_.Admit(type);
   if (admitted != Status::kOk) {
@@ -224,9 +257,9 @@ void Link::DispatchLoop() {
 void Link::HeartbeatLoop() {
   std::unique_lock<std::mutex> lock(mutex_);
   while (!stop_) {
-    if (session_.open() || hello_sent_s_ >= 0) {
+    if (session_.open() && !closed_) {
       ++counters_.heartbeats;
-      const pp::Heartbeat hb{++heartbeat_generation_};
+      const pp::Heartbeat hb{session_.session_tag(), ++heartbeat_generation_};
       lock.unlock();
       SendUnsequenced(hb);
       lock.lock();
@@ -248,11 +281,13 @@ void Link::SetHostTimeout(uint32_t host_timeout_us) {
 template <class M>
 uint32_t Link::StreamLatest(Stream& stream, M m) {
   std::lock_guard<std::mutex> lock(mutex_);
+  m.session = session_.session_tag();
   m.generation = ++stream.generation;
   uint8_t frame[pp::kMaxFrameSize];
   const auto n = pp::EncodeMessageFrame(m, 0, 0, frame, sizeof(frame));
-  if (!n.ok()) {
-    stream.refused = n.status;
+  if (!n.ok() || !session_.open()) {  // nothing goes out without a session to carry it
+    stream.refused = n.ok() ? Status::kNoSession : n.status;
+    stream.refused_detail = 0;
     stream.refused_generation = m.generation;
     return m.generation;
   }
@@ -267,13 +302,14 @@ uint32_t Link::StreamSetpoints(pp::SetLineSetpoints m) { return StreamLatest(set
 
 uint32_t Link::StreamTargets(pp::SetFingerTargets m) { return StreamLatest(targets_, m); }
 
-Status Link::WaitApplied(bool setpoints, uint32_t generation, int timeout_ms) {
+Status Link::WaitApplied(bool setpoints, uint32_t generation, int timeout_ms, uint32_t* detail) {
   std::unique_lock<std::mutex> lock(mutex_);
   Stream& s = setpoints ? setpoints_ : targets_;
   Status result = Status::kTimeout;
   changed_.wait_for(lock, std::chrono::milliseconds(timeout_ms), [&] {
     if (s.refused_generation == generation) {
       result = s.refused;
+      if (detail != nullptr) *detail = s.refused_detail;
       return true;
     }
     if (s.applied == generation || pp::GenerationNewer(s.applied, generation)) {
@@ -289,11 +325,11 @@ Status Link::WaitApplied(bool setpoints, uint32_t generation, int timeout_ms) {
   return result;
 }
 
-Status Link::WaitSetpointsApplied(uint32_t generation, int timeout_ms) {
-  return WaitApplied(true, generation, timeout_ms);
+Status Link::WaitSetpointsApplied(uint32_t generation, int timeout_ms, uint32_t* detail) {
+  return WaitApplied(true, generation, timeout_ms, detail);
 }
-Status Link::WaitTargetsApplied(uint32_t generation, int timeout_ms) {
-  return WaitApplied(false, generation, timeout_ms);
+Status Link::WaitTargetsApplied(uint32_t generation, int timeout_ms, uint32_t* detail) {
+  return WaitApplied(false, generation, timeout_ms, detail);
 }
 
 Status Link::EStop() {
@@ -311,6 +347,51 @@ Status Link::EStop() {
     }
   }
   return Status::kTimeout;
+}
+
+template <class M>
+bool Link::RepeatUntilAnswered(std::unique_lock<std::mutex>& lock, const M& m, bool& answered) {
+  answered = false;
+  for (int attempt = 0; attempt < options_.close_attempts && !stop_; ++attempt) {
+    lock.unlock();
+    SendUnsequenced(m);
+    lock.lock();
+    if (changed_.wait_for(lock, std::chrono::milliseconds(options_.close_resend_ms),
+                          [&] { return answered || stop_; }) &&
+        answered) {
+      return true;
+    }
+  }
+  return answered;
+}
+
+Status Link::Close() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  if (closed_) return Status::kOk;
+  closed_ = true;  // heartbeats stop; no Hello, no reconnection from now on
+  hello_wanted_ = false;
+  setpoints_.active = targets_.active = false;
+  changed_.notify_all();
+  if (!session_.open()) return Status::kOk;
+  if (!session_.catalog_matches()) {  // its Close may mean something else: silence ends it
+    EndSession("closed by this host (without Close: the board runs other firmware)", false);
+    return Status::kCatalogMismatch;
+  }
+  const bool heard = RepeatUntilAnswered(lock, pp::Close{session_.session_tag()}, close_answered_);
+  EndSession(heard ? "closed by this host"
+                   : "closed by this host; the board did not answer the Close, its host-silence "
+                     "timeout ends the session",
+             false);
+  return heard ? Status::kOk : Status::kTimeout;
+}
+
+Status Link::Release() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  if (!session_.open() || closed_) return Status::kNoSession;
+  setpoints_.active = targets_.active = false;  // a resend must not actuate again
+  release_status_ = Status::kTimeout;
+  RepeatUntilAnswered(lock, pp::Release{session_.session_tag()}, release_answered_);
+  return release_status_;
 }
 
 int Link::Subscribe(std::function<void(const TelemetryFrame&)> callback) {

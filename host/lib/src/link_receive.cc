@@ -100,6 +100,26 @@ void Link::Service(double now) {  // mutex_ held
   }
 }
 
+void Link::EndSession(const std::string& why, bool reconnect) {  // mutex_ held
+  sender_.AbandonAll([&](const pp::CommandOutcome& o) {
+    auto it = pending_.find(o.cookie);
+    if (it != pending_.end()) {
+      it->second.done = true;
+      it->second.result = CommandResult{
+          Status::kOutcomeUnknown, 0, 0, {}, "the session ended while this command was in flight"};
+      host_timeout_.OnUnknown(o.cookie);
+      ++counters_.outcome_unknown;
+    }
+  });
+  if (session_.open() && !closed_) events_.push_back(why);
+  session_end_ = why;
+  session_.Close();
+  setpoints_.active = targets_.active = false;
+  hello_sent_s_ = -1;
+  hello_wanted_ = reconnect && options_.reconnect && !closed_;
+  changed_.notify_all();
+}
+
 void Link::OnBoardReset(const std::string& why) {  // mutex_ held
   size_t unknown = 0;
   sender_.AbandonAll([&](const pp::CommandOutcome& o) {
@@ -118,11 +138,12 @@ void Link::OnBoardReset(const std::string& why) {  // mutex_ held
     events_.push_back(why + ": " + std::to_string(unknown) +
                       " command(s) in flight have an unknown outcome");
   }
+  session_end_ = why;
   session_.Close();
   // Streams are not replayed into a new session: the application decides what to actuate.
   setpoints_.active = targets_.active = false;
   hello_sent_s_ = -1;
-  hello_wanted_ = options_.reconnect;
+  hello_wanted_ = options_.reconnect && !closed_;
   changed_.notify_all();
 }
 
@@ -132,7 +153,14 @@ void Link::OnFrame(const pp::Frame& frame, double now) {  // mutex_ held
   pp::DispatchFrame(frame, [&](const auto& m, const pp::Header& h) {
     using M = std::decay_t<decltype(m)>;
     if constexpr (std::is_same_v<M, pp::HelloReply>) {
+      if (session_.TakenOverBy(m)) {  // our board gave another host a session: ours is over
+        EndSession("another host opened a session with the board (Hello nonce " +
+                       std::to_string(m.host_nonce) + "): this host no longer holds it",
+                   false);
+        return;
+      }
       if (session_.OnHelloReply(m) == Status::kStale) return;
+      busy_since_s_ = -1;
       hello_wanted_ = false;
       host_timeout_.OnSession(m.host_timeout_us, m.time_scale);
       // The board answers within a few ticks: cap the back-off at 0.5 s so a command that lost
@@ -145,6 +173,17 @@ void Link::OnFrame(const pp::Frame& frame, double now) {  // mutex_ held
       }
       changed_.notify_all();
     } else if constexpr (requires { m.boot_nonce; }) {
+      if constexpr (std::is_same_v<M, pp::Nack>) {
+        // Our Hello refused: another host's session is alive. Retried until it has been busy
+        // for longer than a silent host's session lasts (Open).
+        if (m.refused_type == static_cast<uint8_t>(pp::MessageType::kHello) &&
+            m.status == Status::kBusy && !session_.open() && hello_wanted_) {
+          if (busy_since_s_ < 0) busy_since_s_ = now;
+          busy_timeout_us_ = m.detail;
+          changed_.notify_all();
+          return;
+        }
+      }
       if (!session_.open()) return;
       if (session_.CheckBootNonce(m.boot_nonce) == pp::HostSession::BootCheck::kReset) {
         OnBoardReset("the board restarted");
@@ -156,8 +195,34 @@ void Link::OnFrame(const pp::Frame& frame, double now) {  // mutex_ held
       }
       if constexpr (std::is_same_v<M, pp::Ack>) {
         if (m.acked_type == static_cast<uint8_t>(pp::MessageType::kEStop)) estop_acked_ = true;
+        if (m.acked_type == static_cast<uint8_t>(pp::MessageType::kClose)) close_answered_ = true;
+        if (m.acked_type == static_cast<uint8_t>(pp::MessageType::kRelease)) {
+          release_status_ = Status::kOk;
+          release_answered_ = true;
+        }
+        changed_.notify_all();
       }
       if constexpr (std::is_same_v<M, pp::Nack>) {
+        // A Close is heard whatever the answer: no_session (already over) or a bootloader's
+        // unsupported (it keeps no session to end). So is a Release refused by a bootloader,
+        // whose lines are always safe.
+        if (m.refused_type == static_cast<uint8_t>(pp::MessageType::kClose)) {
+          close_answered_ = true;
+          changed_.notify_all();
+          return;
+        }
+        if (m.refused_type == static_cast<uint8_t>(pp::MessageType::kRelease)) {
+          release_status_ = m.status == Status::kUnsupported ? Status::kOk : m.status;
+          release_answered_ = true;
+          changed_.notify_all();
+        }
+        if (m.status == Status::kNoSession) {  // the board holds no session of ours any more
+          EndSession(
+              "the board ended the session: it heard nothing fresh from this host within its "
+              "host-silence timeout",
+              true);
+          return;
+        }
         if ((h.flags & pp::flags::kReliable) == 0) {  // a refused stream message
           Stream* s = m.refused_type == static_cast<uint8_t>(pp::MessageType::kSetLineSetpoints)
                           ? &setpoints_
@@ -166,6 +231,7 @@ void Link::OnFrame(const pp::Frame& frame, double now) {  // mutex_ held
                           : nullptr;
           if (s != nullptr) {
             s->refused = m.status;
+            s->refused_detail = m.detail;
             s->refused_generation = s->generation;
             changed_.notify_all();
           }

@@ -55,7 +55,7 @@ TEST(HostSilence, SafeCommandWrittenWithinTimeoutPlusOneTickInRandomTrials) {
     }
     CHECK_FALSE(h.board->safe());
     h.clock.Advance(rng() % pc::Board::kTickUs);  // last frame anywhere inside a tick
-    h.Send(pp::Heartbeat{++h.generation}, false);
+    h.Send(pp::Heartbeat{h.hello_nonce, ++h.generation}, false);
     const uint64_t last_frame = h.clock.now_us;
     uint64_t safe_at = 0;
     while (safe_at == 0 && h.clock.now_us < last_frame + 1000000) {
@@ -443,7 +443,7 @@ TEST(BoardConfiguration, AChannelTheConfigurationDropsIsLeftAtItsSafeCode) {
     h.FollowModel();
   }
   h.Send(pp::ClearFault{});  // the new line's sensor read nothing before it was configured
-  h.Send(pp::SetLineSetpoints{1, 1, {{{7, 40000}}}});
+  h.Send(pp::SetLineSetpoints{h.hello_nonce, 1, 1, {{{7, 40000}}}});
   for (int i = 0; i < 500; ++i) {
     h.Run(1, i % 20 == 0);
     h.FollowModel();

@@ -54,6 +54,12 @@ def whole_image(body_size, rollback_counter):
     return out + update_op(3)
 
 
+def end_session(what, foreign=False, other=0):
+    """Opcode 10: 0 Close, 1 Release, 2 a second host's Hello, 3 Close twice; bit 4 names another
+    session (its nonce the session's + 1 + other)."""
+    return [10, what | (0x10 if foreign else 0)] + ([other] if foreign else []) + ([other, 0] if what == 2 else [])
+
+
 def play(finger, api, operators):
     """A PI or API compensator: small offset, w0 ≈ 0.01, thresholds every 4 kPa, weights ≈ 1e-3."""
     out = [7, finger, 2 if api else 1, operators - 1]
@@ -101,6 +107,12 @@ def main():
         "silence_and_estop": session(THESIS_5FINGER, target(0, 800), ticks(100),
                                      [6, 3, 0x10, 0x27], ticks(100), [6, 1, 1, 0], ticks(50),
                                      clear(), ticks(50)),
+        "close_release_busy": session(THESIS_5FINGER, target(0, 800), ticks(100), end_session(2, other=5),
+                                      end_session(0, foreign=True, other=1), end_session(1), ticks(50),
+                                      target(0, 600), ticks(100), end_session(3), ticks(50), connect(),
+                                      target(1, 700), ticks(50), end_session(0)),
+        "close_during_update": session(THESIS_5FINGER, target(0, 800), ticks(50), update(2), end_session(0),
+                                       connect(), update_op(0), ticks(20)),
     }
     for name, data in seeds.items():
         with open(os.path.join(corpus, name), "wb") as f:

@@ -19,6 +19,8 @@ BoardHarness::BoardHarness(const char* config_name, pp::ResetCause reset_cause,
 }
 
 pp::HelloReply BoardHarness::Connect(uint8_t initial_seq) {
+  // The session's host closes it, as hosts do, so a new one can open (no Close: busy).
+  if (board->session_open()) Send(pp::Close{hello_nonce});
   next_seq = initial_seq;
   Send(pp::Hello{++hello_nonce, initial_seq});  // a new nonce: a new session
   for (const BoardFrame& f : Drain()) {
@@ -30,7 +32,7 @@ pp::HelloReply BoardHarness::Connect(uint8_t initial_seq) {
 void BoardHarness::Run(uint32_t ms, bool heartbeat) {
   for (uint32_t i = 0; i < ms; ++i) {
     clock.Advance(pc::Board::kTickUs);
-    if (heartbeat && i % 20 == 0) Send(pp::Heartbeat{++generation}, false);
+    if (heartbeat && i % 20 == 0) Send(pp::Heartbeat{hello_nonce, ++generation}, false);
     board->Step();
   }
 }

@@ -42,9 +42,13 @@ struct BoardHarness {
   uint8_t next_seq = 0;
   uint32_t generation = 0;
 
-  /// Sends a message (reliable ones get the next seq) and runs one loop pass.
+  /// Sends a message (reliable ones get the next seq) and runs one loop pass. A message naming a
+  /// session with none named (0) names the harness's: the nonce of its last Hello.
   template <class M>
-  void Send(const M& m, bool reliable = M::kInfo.delivery == pp::Delivery::kReliable) {
+  void Send(M m, bool reliable = M::kInfo.delivery == pp::Delivery::kReliable) {
+    if constexpr (requires { m.session; }) {
+      if (m.session == 0) m.session = hello_nonce;
+    }
     uint8_t frame[pp::kMaxFrameSize];
     const uint8_t seq = reliable ? next_seq++ : 0;
     const auto n =
@@ -52,7 +56,7 @@ struct BoardHarness {
     link.Inject(frame, n.value);
     board->Step();
   }
-  /// Opens a session (Hello) and returns the HelloReply.
+  /// Opens a session (Hello; the open one, if any, closed first) and returns the HelloReply.
   pp::HelloReply Connect(uint8_t initial_seq = 0);
   /// Runs `ms` milliseconds of virtual time, one loop pass per 1 ms tick (plus heartbeats if
   /// asked).

@@ -63,6 +63,7 @@ TEST(DispatchProperty, OutOfLimitSetpointsAreNackedAndTheDacStaysWithinLimits) {
     size_t n = 0;
     if (kind < 45) {  // setpoints, a third of them out of limit
       pp::SetLineSetpoints m{};
+      m.session = h.hello_nonce;
       m.generation = ++g.generation;
       m.entry_count = static_cast<uint8_t>(1 + g.rng() % 3);
       for (uint8_t i = 0; i < m.entry_count; ++i) {
@@ -75,6 +76,7 @@ TEST(DispatchProperty, OutOfLimitSetpointsAreNackedAndTheDacStaysWithinLimits) {
       out_of_limit_sent += expect_nack;
     } else if (kind < 65) {  // finger targets, some beyond the curve or with the wrong unit
       pp::SetFingerTargets m{};
+      m.session = h.hello_nonce;
       m.generation = ++g.generation;
       m.entry_count = 1;
       const uint8_t f = static_cast<uint8_t>(g.rng() % config.finger_count);
@@ -96,7 +98,9 @@ TEST(DispatchProperty, OutOfLimitSetpointsAreNackedAndTheDacStaysWithinLimits) {
     } else if (kind < 93) {
       n = pp::EncodeMessageFrame(pp::EStop{}, 0, 0, frame, sizeof(frame)).value;
     } else {
-      n = pp::EncodeMessageFrame(pp::Heartbeat{++g.generation}, 0, 0, frame, sizeof(frame)).value;
+      n = pp::EncodeMessageFrame(pp::Heartbeat{h.hello_nonce, ++g.generation}, 0, 0, frame,
+                                 sizeof(frame))
+              .value;
     }
     h.link.Inject(frame, n);
     h.board->Step();

@@ -10,7 +10,11 @@
 //  * every commanded pressure is finite;
 //  * while an update is under way every line holds its safe code, no update message ever
 //    changes the bootloader or the running image's slot, and an activated slot holds a valid
-//    image the rollback floor allows (board_fuzz_update.cc).
+//    image the rollback floor allows (board_fuzz_update.cc);
+//  * a Close of the session ends it and a Release keeps it, both with every line at its safe
+//    code from the next tick and no fault latched for them; a Close during an update leaves what
+//    was written resumable; a Close or Release of another session, a repeated Close and a second
+//    host's Hello change nothing (no_session, busy).
 // Each operation is an opcode byte followed by its arguments (missing bytes read as 0).
 #include <algorithm>
 #include <cmath>
@@ -125,8 +129,8 @@ struct Fuzzer {
       h.clock.Advance(pc::Board::kTickUs);
       if (heartbeat && i % 20 == 0) {
         uint8_t frame[pp::kMaxFrameSize];
-        const auto n =
-            pp::EncodeMessageFrame(pp::Heartbeat{++h.generation}, 0, 0, frame, sizeof(frame));
+        const auto n = pp::EncodeMessageFrame(pp::Heartbeat{h.hello_nonce, ++h.generation}, 0, 0,
+                                              frame, sizeof(frame));
         h.link.Inject(frame, n.value);
       }
       Step(plant);
@@ -259,8 +263,102 @@ struct Fuzzer {
       SendReliable(static_cast<uint8_t>(pp::MessageType::kConfigureFinger), body, n.value);
   }
 
+  /// Every configured line at its safe code (a failing DAC keeps its old codes: not judged).
+  void CheckAllSafe(const char* what) {
+    const pc::BoardConfig& c = h.board->config();
+    if (h.dac.fail) return;
+    for (uint8_t i = 0; i < c.line_count; ++i) {
+      if (std::fabs(PressureOfCounts(c.lines[i], h.dac.counts[i]) -
+                    static_cast<float>(c.lines[i].safe_pa)) > PressurePerCount(c.lines[i]))
+        Fail(what, i);
+    }
+  }
+
+  /// An unsequenced message, one loop pass, and the board's answer to it.
+  template <class M>
+  pp::Status SendUnsequenced(const M& m) {
+    uint8_t body[pp::kMaxBodySize];
+    const auto n = pp::EncodeBody(m, body, sizeof(body));
+    uint8_t packet[pp::kMaxPacketSize];
+    pp::WriteHeader(pp::Header{pp::kProtocolVersion, static_cast<uint8_t>(M::kInfo.type), 0, 0},
+                    packet);
+    std::memcpy(packet + pp::kHeaderSize, body, n.value);
+    // A delimiter first: raw bytes an earlier operation sent may have left a frame unfinished.
+    uint8_t frame[1 + pp::kMaxFrameSize] = {pp::kFrameDelimiter};
+    const auto f = pp::EncodeFrame(packet, pp::kHeaderSize + n.value, frame + 1, sizeof(frame) - 1);
+    h.link.Inject(frame, 1 + f.value);
+    Step(0);
+    const auto answers = h.Drain();
+    return BoardHarness::AnswerFor(answers, M::kInfo.type);
+  }
+
+  /// Close and Release of this session or another, repeated, during an update; a second host's
+  /// Hello. Neither Close nor Release latches a fault; both leave every line safe at the next tick.
+  void EndSession(Script& s) {
+    Step(0);  // a tick due now runs first (host silence may end the session there, rightly)
+    h.link.tx.clear();
+    const uint8_t what = s.Byte();
+    const bool foreign = (what & 0x10) != 0;
+    // The session's own nonce: the harness's Hello's, or a raw Hello's a packet opened one with.
+    const uint32_t own = h.board->session_nonce();
+    const uint32_t tag = foreign ? own + 1 + s.Byte() : own;
+    const bool was_open = h.board->session_open();
+    const bool updating = update.engine().in_update_mode();
+    const uint8_t slot = update.engine().inactive_slot();
+    const uint32_t written = update.engine().Query(slot).written_bytes;
+    const uint32_t latched = h.board->latched_faults();
+    const uint32_t not_for_this =
+        pp::FaultBit(pp::Fault::kHostSilence) | pp::FaultBit(pp::Fault::kEStopCommand);
+    pp::Status answer = pp::Status::kOk;
+    switch (what % 4) {
+      case 0:
+      case 3:  // a Close, or a Close and its repeat
+        answer = SendUnsequenced(pp::Close{tag});
+        if (was_open && !foreign) {
+          if (answer != pp::Status::kOk)
+            Fail("the session's Close was refused", static_cast<unsigned>(answer));
+          if (h.board->session_open()) Fail("a Close left the session open", 0);
+          if (updating && update.engine().in_update_mode())
+            Fail("a Close left the board in update mode", 0);
+          if (update.engine().Query(slot).written_bytes != written)
+            Fail("a Close lost what the update had written", written);
+          if (what % 4 == 3 && SendUnsequenced(pp::Close{tag}) != pp::Status::kNoSession)
+            Fail("a repeated Close was not answered no_session", 0);
+        }
+        break;
+      case 1:
+        answer = SendUnsequenced(pp::Release{tag});
+        if (was_open && !foreign) {
+          if (answer != pp::Status::kOk)
+            Fail("the session's Release was refused", static_cast<unsigned>(answer));
+          if (!h.board->session_open()) Fail("a Release ended the session", 0);
+        }
+        break;
+      default:  // a second host's Hello while this session is open
+        answer = SendUnsequenced(pp::Hello{own + 1 + s.Byte(), s.Byte()});
+        if (was_open && answer != pp::Status::kBusy)
+          Fail("a second host's Hello was not refused busy", static_cast<unsigned>(answer));
+        if (was_open && !h.board->session_open()) Fail("a second host's Hello ended a session", 0);
+        h.link.tx.clear();
+        return;
+    }
+    if (was_open && foreign) {
+      if (answer != pp::Status::kNoSession)
+        Fail("another session's Close or Release", static_cast<unsigned>(answer));
+      if (!h.board->session_open()) Fail("another session's Close ended this one", 0);
+      return;
+    }
+    if ((h.board->latched_faults() & ~latched & not_for_this) != 0)
+      Fail("a Close or Release latched a fault", h.board->latched_faults());
+    if (!was_open) return;
+    h.clock.Advance(pc::Board::kTickUs);
+    Step(0);
+    h.link.tx.clear();
+    CheckAllSafe("a line is not safe the tick after Close or Release");
+  }
+
   void Operate(Script& s) {
-    switch (s.Byte() % 10) {
+    switch (s.Byte() % 11) {
       case 0:  // a new session
         h.Connect(s.Byte());
         break;
@@ -324,6 +422,9 @@ struct Fuzzer {
         update.Send(s, [this](uint8_t type, const uint8_t* body, size_t size) {
           SendReliable(type, body, size);
         });
+        break;
+      case 10:
+        EndSession(s);
         break;
       default:  // clear faults, or go back to the factory configuration
         h.Send(pp::ClearFault{});

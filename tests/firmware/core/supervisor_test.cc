@@ -59,8 +59,10 @@ TEST_GROUP(Supervisor){};
 
 TEST(Supervisor, HostSilenceLatchesAfterTheTimeoutAndClearsOnlyWhenTheHostIsBack) {
   Fixture f;
+  f.in.actuating = true;
   f.in.last_host_frame_us = 1000000;
   LONGS_EQUAL(0, f.At(1100000));
+  CHECK_FALSE(pc::HostSilent(f.settings, f.in));
   LONGS_EQUAL(FaultBit(Fault::kHostSilence), f.At(1100001));
   LONGS_EQUAL((int)pp::Status::kConditionPersists, (int)pc::ClearFaults(f.state, pp::kAllFaults));
   f.in.last_host_frame_us = 1200000;
@@ -71,8 +73,23 @@ TEST(Supervisor, HostSilenceLatchesAfterTheTimeoutAndClearsOnlyWhenTheHostIsBack
 
 TEST(Supervisor, NoHostSilenceWithoutASession) {
   Fixture f;
+  f.in.actuating = true;
   f.in.session_open = false;
   LONGS_EQUAL(0, f.At(100000000));
+  CHECK_FALSE(pc::HostSilent(f.settings, f.in));
+}
+
+TEST(Supervisor, ASilentHostThatLeftTheBoardSafeIsNoFault) {
+  // The session ends (HostSilent, which the board acts on) but nothing latches: the host left
+  // nothing actuated.
+  Fixture f;
+  f.in.actuating = false;
+  f.in.last_host_frame_us = 1000000;
+  LONGS_EQUAL(0, f.At(1100001));
+  CHECK(pc::HostSilent(f.settings, f.in));
+  CHECK(f.state.host_silent);  // what the board ends the session on
+  LONGS_EQUAL(0, f.state.latched);
+  LONGS_EQUAL(0, f.state.active);
 }
 
 TEST(Supervisor, OverLimitReadingLatchesAtOnce) {

@@ -13,6 +13,7 @@
 #include "palpa/protocol/messages_bootstrap.h"
 #include "palpa/protocol/messages_config.h"
 #include "palpa/protocol/messages_report.h"
+#include "palpa/protocol/messages_session.h"
 #include "palpa/protocol/messages_stream.h"
 #include "palpa/protocol/messages_update.h"
 #include "palpa/protocol/wire.h"
@@ -29,8 +30,8 @@ struct MessageList {
 using Catalog =
     MessageList<Hello, HelloReply, Ack, Nack, EStop, UpdateEnter, UpdateErase, UpdateWrite,
                 UpdateQuery, UpdateStatus, UpdateActivate, UpdateReboot, UpdateConfirm, SlotsQuery,
-                SlotsReport, Heartbeat, SetLineSetpoints, SetFingerTargets, SetFingerMode,
-                ConfigureLine, ConfigureFinger, ConfigureBoard, StagedBegin, StagedPart,
+                SlotsReport, Heartbeat, SetLineSetpoints, SetFingerTargets, SetFingerMode, Close,
+                Release, ConfigureLine, ConfigureFinger, ConfigureBoard, StagedBegin, StagedPart,
                 StagedCommit, GetConfig, ConfigReport, SaveConfig, FactoryReset, ClearFault,
                 Telemetry, GetLoopStats, LoopStats, GetDiagnostics, Diagnostics>;
 

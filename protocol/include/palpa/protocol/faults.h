@@ -6,7 +6,7 @@
 namespace palpa::protocol {
 
 enum class Fault : uint8_t {
-  kHostSilence = 0,        ///< no valid frame within the host-silence timeout
+  kHostSilence = 0,        ///< the commanding host went silent while the board was actuated
   kOverLimit = 1,          ///< a raw reading beyond the line's limits
   kImplausibleSensor = 2,  ///< sensor disagrees with the regulator model, or stuck
   kConfigCrc = 3,          ///< live configuration no longer matches its CRC

@@ -27,6 +27,8 @@ enum class MessageType : uint8_t {
   kSetLineSetpoints = 0x21,
   kSetFingerTargets = 0x22,
   kSetFingerMode = 0x23,
+  kClose = 0x24,
+  kRelease = 0x25,
   kConfigureLine = 0x30,
   kConfigureFinger = 0x31,
   kConfigureBoard = 0x32,
@@ -53,7 +55,7 @@ enum class Sender : uint8_t { kHost, kBoard };
 
 /// How a message is delivered.
 enum class Delivery : uint8_t {
-  kUnsequenced,  ///< host→board, outside the window, acted on at once (Hello, EStop)
+  kUnsequenced,  ///< host→board, outside the window, acted on at once (Hello, EStop, Close)
   kReliable,     ///< host→board, go-back-N window, applied exactly once in order
   kStream,       ///< host→board, latest-wins by u32 generation
   kResponse,     ///< board→host, answers one host message

@@ -12,12 +12,19 @@ namespace palpa::protocol {
 /// Largest finger target in any output unit (10 mm deformation, 1000 N/mm stiffness).
 inline constexpr int32_t kMaxFingerTarget = 1000000;
 
+// Every host-to-board stream frame names the session it belongs to: the nonce of the Hello that
+// opened it. The board applies (and counts as its host being alive) only frames of its current
+// session, so a stale or second host can neither actuate a line nor keep one actuated.
+
 struct Heartbeat {
   static constexpr MessageInfo kInfo{MessageType::kHeartbeat, "Heartbeat", Sender::kHost,
-                                     Delivery::kStream, "keeps the host-silence timer from firing"};
+                                     Delivery::kStream,
+                                     "keeps the session's host-silence timer from firing"};
+  uint32_t session = 0;  ///< host_nonce of the session's Hello
   uint32_t generation = 0;
   template <class V, class M>
   static constexpr void Fields(V& v, M& m) {
+    v.Field("session", m.session);
     v.Field("generation", m.generation);
   }
 };
@@ -36,11 +43,13 @@ struct SetLineSetpoints {
   static constexpr MessageInfo kInfo{MessageType::kSetLineSetpoints, "SetLineSetpoints",
                                      Sender::kHost, Delivery::kStream,
                                      "raw setpoints for lines of fingers in raw mode"};
+  uint32_t session = 0;  ///< host_nonce of the session's Hello
   uint32_t generation = 0;
   uint8_t entry_count = 0;
   std::array<LineSetpoint, kMaxLines> entries{};
   template <class V, class M>
   static constexpr void Fields(V& v, M& m) {
+    v.Field("session", m.session);
     v.Field("generation", m.generation);
     v.Array("entries", m.entries, m.entry_count);
   }
@@ -62,11 +71,13 @@ struct SetFingerTargets {
   static constexpr MessageInfo kInfo{MessageType::kSetFingerTargets, "SetFingerTargets",
                                      Sender::kHost, Delivery::kStream,
                                      "targets in each finger's output unit (target mode)"};
+  uint32_t session = 0;  ///< host_nonce of the session's Hello
   uint32_t generation = 0;
   uint8_t entry_count = 0;
   std::array<FingerTarget, kMaxFingers> entries{};
   template <class V, class M>
   static constexpr void Fields(V& v, M& m) {
+    v.Field("session", m.session);
     v.Field("generation", m.generation);
     v.Array("entries", m.entries, m.entry_count);
   }

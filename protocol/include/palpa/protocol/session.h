@@ -22,27 +22,52 @@ constexpr Status BoardAdmit(bool session_open, uint8_t type) {
 }
 
 /// Board side of a session: the boot nonce, the host's Hello, the reliable receiver and the
-/// latest-wins gates, all reset together by a new Hello.
+/// latest-wins gates, all reset together by a new Hello. A session belongs to one host: its
+/// identity is the nonce of the Hello that opened it, which every stream frame, Close and Release
+/// carries. It ends by Close or by silence; until then another host's Hello is refused busy.
 class BoardSession {
  public:
   explicit BoardSession(uint32_t boot_nonce) : boot_nonce_(boot_nonce) {}
 
-  /// Applies a Hello. A repeat of the open session's Hello (same nonce) changes nothing, so a
-  /// retried or duplicated Hello never rewinds the sequence. Returns true when a session started.
-  bool OnHello(const Hello& hello) {
-    if (open_ && hello.host_nonce == host_nonce_) return false;
+  enum class HelloVerdict : uint8_t {
+    kOpened,  ///< a new session: sequence state and stream generations start afresh
+    kRepeat,  ///< the open session's own Hello, retried before its host was heard: answered again
+    kBusy,    ///< a session of another host is open: refused with busy, nothing changes
+  };
+
+  /// Applies a Hello. The open session's Hello repeated before its host has been heard in the
+  /// session (its reply may be lost) changes nothing, so a retried or duplicated Hello can never
+  /// rewind the sequence; once heard, the same nonce again is another host reusing it, and busy.
+  HelloVerdict OnHello(const Hello& hello) {
+    if (open_) {
+      return hello.host_nonce == host_nonce_ && !heard_ ? HelloVerdict::kRepeat
+                                                        : HelloVerdict::kBusy;
+    }
     open_ = true;
+    heard_ = false;
     host_nonce_ = hello.host_nonce;
     receiver_.Reset(hello.initial_seq);
     setpoints_.Reset();
     targets_.Reset();
     heartbeat_.Reset();
-    return true;
+    return HelloVerdict::kOpened;
   }
 
   Status Admit(uint8_t type) const { return BoardAdmit(open_, type); }
 
+  /// Does a frame naming `session` belong to the open session?
+  bool Owns(uint32_t session) const { return open_ && session == host_nonce_; }
+  /// A fresh frame of the session arrived: its host has the reply, so a Hello with its nonce is
+  /// no longer a retry.
+  void Heard() { heard_ = true; }
+  /// Close or host silence: the session is over; everything but Hello and EStop is refused.
+  void End() {
+    open_ = false;
+    heard_ = false;
+  }
+
   bool open() const { return open_; }
+  bool heard() const { return heard_; }
   uint32_t boot_nonce() const { return boot_nonce_; }
   uint32_t host_nonce() const { return host_nonce_; }
   ReliableReceiver& receiver() { return receiver_; }
@@ -57,6 +82,7 @@ class BoardSession {
   uint32_t boot_nonce_;
   uint32_t host_nonce_ = 0;
   bool open_ = false;
+  bool heard_ = false;
   ReliableReceiver receiver_;
   GenerationGate setpoints_;
   GenerationGate targets_;
@@ -72,6 +98,7 @@ class HostSession {
 
   /// Remembers the Hello we are about to send.
   void BeginHello(uint32_t host_nonce) {
+    if (host_nonce != host_nonce_) previous_nonce_ = host_nonce_;
     host_nonce_ = host_nonce;
     hello_pending_ = true;
   }
@@ -79,6 +106,15 @@ class HostSession {
   /// Returns kOk (session open), kCatalogMismatch (open for the bootstrap set only) or
   /// kStale (a reply to some other Hello; ignore it).
   Status OnHelloReply(const HelloReply& reply);
+
+  /// A reply to another host's Hello from the board of this open session: the board has ended
+  /// our session (it went silent, or closed) and belongs to that host now.
+  bool TakenOverBy(const HelloReply& reply) const {
+    return open_ && reply.boot_nonce == board_.boot_nonce && reply.host_nonce != host_nonce_ &&
+           reply.host_nonce != previous_nonce_;  // a late reply to our own earlier Hello
+  }
+  /// What this host's stream frames, Close and Release carry: its Hello's nonce.
+  uint32_t session_tag() const { return host_nonce_; }
 
   enum class BootCheck : uint8_t { kSame, kReset, kNoSession };
   /// Compares the boot nonce of a board frame with the session's. kReset: the board rebooted;
@@ -104,6 +140,7 @@ class HostSession {
  private:
   uint32_t local_catalog_;
   uint32_t host_nonce_ = 0;
+  uint32_t previous_nonce_ = 0;
   bool hello_pending_ = false;
   bool open_ = false;
   HelloReply board_{};

@@ -35,15 +35,29 @@ TEST(QemuBoard, BehavesAsTheProtocolSays) {
 }
 
 /// The mps2 image with time paced by instructions, 32 ns each (about the MPS2's 25 MHz): the
-/// loop's own figures are then the firmware's, not the host's scheduling.
-std::unique_ptr<ph::Device> OpenAtTheBoardsOwnSpeed(palpa::testing::QemuProcess& qemu) {
+/// loop's own figures are then the firmware's, not the host's scheduling. That time is not real
+/// time (a free core runs ahead of 25 MHz; align=on holds it back but it catches up after a late
+/// spell), so the session gets a 10 s host-silence timeout, as the host's real-time heartbeats
+/// would miss 100 ms now and then. *setup_overruns: the periods that change skipped (a
+/// configuration is applied between two ticks).
+std::unique_ptr<ph::Device> OpenAtTheBoardsOwnSpeed(palpa::testing::QemuProcess& qemu,
+                                                    uint32_t* setup_overruns = nullptr) {
   CHECK_TEXT(
       access(PALPA_MPS2_IMAGE, R_OK) == 0 &&
-          qemu.Start(PALPA_QEMU, {"-icount", "shift=5,sleep=off", "-kernel", PALPA_MPS2_IMAGE}),
+          qemu.Start(PALPA_QEMU, {"-icount", "shift=5,align=on", "-kernel", PALPA_MPS2_IMAGE}),
       "QEMU or the mps2 image is missing (build the mps2 preset)");
   std::string error;
   auto opened = ph::Device::Open(qemu.address(), {}, &error);
   CHECK_TEXT(opened.ok(), error.c_str());
+  auto board = opened.value->ReadBoard(&error);
+  CHECK_TEXT(board.ok(), error.c_str());
+  const auto before = opened.value->LoopStats(&error);
+  CHECK_TEXT(before.ok(), error.c_str());
+  board.value.host_timeout_us = 10000000;
+  CHECK(opened.value->ConfigureBoard(board.value).ok());
+  const auto after = opened.value->LoopStats(&error);
+  CHECK_TEXT(after.ok(), error.c_str());
+  if (setup_overruns != nullptr) *setup_overruns = after.value.overruns - before.value.overruns;
   return std::move(opened.value);
 }
 
@@ -73,7 +87,8 @@ TEST(QemuBoard, AtTheBoardsOwnSpeedTheLoopMissesNoDeadline) {
   // Start-up, a host reading the whole configuration (the heaviest polls) and a stream of
   // setpoints must not cost a tick.
   palpa::testing::QemuProcess qemu;
-  const auto device = OpenAtTheBoardsOwnSpeed(qemu);
+  uint32_t setup_overruns = 0;
+  const auto device = OpenAtTheBoardsOwnSpeed(qemu, &setup_overruns);
   ph::Device& d = *device;
   std::string error;
   ReadWholeConfig(d);
@@ -84,7 +99,7 @@ TEST(QemuBoard, AtTheBoardsOwnSpeedTheLoopMissesNoDeadline) {
   const auto stats = d.LoopStats(&error);
   CHECK_TEXT(stats.ok(), error.c_str());
   CHECK(stats.value.ticks > 100);
-  LONGS_EQUAL(0, stats.value.overruns);
+  LONGS_EQUAL(0, stats.value.overruns - setup_overruns);
   CHECK_TEXT(stats.value.worst_tick_us < stats.value.period_us,
              std::to_string(stats.value.worst_tick_us).c_str());
 }

@@ -34,7 +34,7 @@ bool Connect(MiniClient& client, const std::string& address) {
 pp::Telemetry Stream(MiniClient& client, int ms, uint32_t& generation) {
   pp::Telemetry last{};
   for (int t = 0; t < ms; t += 20) {
-    client.Send(pp::Heartbeat{++generation});
+    client.Send(pp::Heartbeat{0, ++generation});
     for (const ReceivedFrame& f : client.Read(20)) {
       if (f.Is<pp::Telemetry>()) last = f.As<pp::Telemetry>();
     }
@@ -66,14 +66,15 @@ void ExerciseBoard(const std::string& address) {
   LONGS_EQUAL(0, t.fault_bitmap);
   DOUBLES_EQUAL(30000, t.samples[t.sample_count - 7].measured_pa, 1500);  // the plant follows
 
-  // The host goes quiet: the board must go safe on its own.
+  // The host goes quiet: the board must go safe on its own, and say why in the session's last
+  // telemetry frame (its last tick: the line safe).
   const auto frames = client.Read(600);
   bool safe = false;
   for (const ReceivedFrame& f : frames) {
     if (!f.Is<pp::Telemetry>()) continue;
     const auto s = f.As<pp::Telemetry>();
     safe |= (s.fault_bitmap & pp::FaultBit(pp::Fault::kHostSilence)) != 0 &&
-            (s.samples[0].status & pp::line_status::kSafe) != 0;
+            (s.samples[(s.tick_count - 1) * s.line_count].status & pp::line_status::kSafe) != 0;
   }
   CHECK(safe);
 }
@@ -83,7 +84,7 @@ void ExerciseBoard(const std::string& address) {
 bool HeartbeatsKeepTheSession(MiniClient& client, int ms, uint32_t& generation) {
   bool silent = false;
   for (int t = 0; t < ms; t += 2) {
-    client.Send(pp::Heartbeat{++generation});
+    client.Send(pp::Heartbeat{0, ++generation});
     for (const ReceivedFrame& f : client.Read(2)) {
       if (f.Is<pp::Telemetry>())
         silent |= (f.As<pp::Telemetry>().fault_bitmap & pp::FaultBit(pp::Fault::kHostSilence)) != 0;
@@ -113,6 +114,14 @@ TEST(PalpaSimProcess, AtHighSpeedAStalledHostKeepsItsSessionAndAGoneOneDoesNot) 
   board.host_timeout_us = 100000;
   board.telemetry_batch = 2;
   LONGS_EQUAL((int)pp::Status::kOk, (int)client.Reliable(board));
+  // A line actuated: a host that vanishes now leaves a fault (one that left it safe would not).
+  LONGS_EQUAL((int)pp::Status::kOk,
+              (int)client.Reliable(pp::SetFingerMode{0, pp::FingerMode::kRaw}));
+  pp::SetLineSetpoints sp{};
+  sp.generation = 1;
+  sp.entry_count = 1;
+  sp.entries[0] = {0, 30000};
+  client.Send(sp);
   uint32_t generation = 0;
   CHECK(HeartbeatsKeepTheSession(client, 200, generation));
   // 15 ms of real time without a frame: 150 board ms at 10x, were it not for the hold.

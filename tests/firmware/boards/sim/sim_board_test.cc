@@ -29,8 +29,10 @@ struct Rig {
     Send(pp::Hello{42, 0});
     sim->Advance(2000);
   }
+  /// A message naming a session names this one's (the Hello's nonce, 42).
   template <class M>
-  void Send(const M& m, bool reliable = false) {
+  void Send(M m, bool reliable = false) {
+    if constexpr (requires { m.session; }) m.session = 42;
     uint8_t frame[pp::kMaxFrameSize];
     const auto n = pp::EncodeMessageFrame(
         m, reliable ? seq++ : 0, reliable ? pp::flags::kReliable : 0, frame, sizeof(frame));
@@ -39,7 +41,7 @@ struct Rig {
   /// Runs with heartbeats every 20 ms.
   void Run(uint32_t ms) {
     for (uint32_t i = 0; i < ms; ++i) {
-      if (i % 20 == 0) Send(pp::Heartbeat{++generation});
+      if (i % 20 == 0) Send(pp::Heartbeat{42, ++generation});
       sim->Advance(1000);
       link.tx.clear();
     }

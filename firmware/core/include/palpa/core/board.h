@@ -80,8 +80,12 @@ class Board {
   bool config_is_default() const { return config_is_default_; }
   bool config_saved() const { return config_saved_; }
   bool config_unsaved() const { return config_unsaved_; }
+  /// When the session's host last sent a fresh frame (Hello, a newer heartbeat, an applied
+  /// command or stream frame): what the host-silence timer counts from.
   uint64_t last_host_frame_us() const { return last_host_frame_us_; }
   bool session_open() const { return session_.open(); }
+  /// The open session's identity: its Hello's nonce, which its frames carry.
+  uint32_t session_nonce() const { return session_.host_nonce(); }
   uint32_t applied_setpoint_generation() const { return session_.setpoints().applied(); }
   /// UpdateReboot was acknowledged: the shell resets the board once the Ack is sent.
   bool reboot_requested() const { return reboot_requested_; }
@@ -114,6 +118,11 @@ class Board {
   [[gnu::noinline]] void Poll(uint64_t now_us);
   void ApplyLive(uint64_t now_us);
   void Hold();  ///< outputs safe until new setpoints arrive; compensators re-home
+  /// Close or host silence: outputs safe from this tick on, no new session state, an update
+  /// abandoned (what it wrote stays, so it can be resumed).
+  void EndSession();
+  /// A fresh frame of the session at `now_us`: the host-silence timer starts again.
+  void HeardFromHost(uint64_t now_us);
   /// Every line's DAC resolution and signal range are what the board's DAC reports: a 16-bit
   /// line on a 12-bit DAC, or 4–20 mA on a 0–10 V output, would command the wrong pressure.
   bool DacMatches(const BoardConfig& config, ConfigError* error) const;
@@ -131,7 +140,7 @@ class Board {
   protocol::BoardSession session_;
   protocol::OwningFrameDecoder decoder_;
   TxQueue tx_;
-  uint64_t last_host_frame_us_ = 0;
+  uint64_t last_host_frame_us_ = 0;  ///< the session's last fresh frame
 
   TickPacer pacer_{kTickUs};
   SupervisorSettings settings_{};
@@ -140,7 +149,8 @@ class Board {
   /// changes, so lines beyond the count stay unconfigured.
   SupervisorInput supervisor_input_{};
   SupervisorState supervisor_{};
-  bool released_ = false;  ///< new setpoints arrived since the last shutdown or clear
+  bool released_ =
+      false;  ///< new setpoints arrived since Hello, the last shutdown, clear or release
   bool safe_ = true;
   bool estop_requested_ = false;
   bool reboot_requested_ = false;

@@ -64,7 +64,10 @@ inline void NoteReading(ReadingSummary& summary, uint8_t line, LineReading readi
 struct SupervisorInput {
   uint64_t now_us = 0;
   bool session_open = false;
-  uint64_t last_host_frame_us = 0;
+  uint64_t last_host_frame_us = 0;  ///< the session's last fresh frame (Hello included)
+  /// Something was applied since the session's Hello, the last clear or release: the outputs
+  /// are out of their safe state on this host's behalf (a jamming finger's bias included).
+  bool actuating = false;
   bool estop_pin = false;
   bool config_intact = true;   ///< the periodic CRC of the live configuration matched
   bool safe = false;           ///< outputs are in the safe state this tick
@@ -90,6 +93,9 @@ struct SupervisorState {
   std::array<LineMonitor, protocol::kMaxLines> lines{};
   uint8_t slow_slot = 0;  ///< the line slot the slow monitors visit this tick
   bool pump_on = false;
+  /// The session's host was silent beyond the timeout at the last Supervise: the board ends the
+  /// session (a fault only if it was actuating).
+  bool host_silent = false;
   uint64_t pump_on_since = 0;
   std::array<protocol::FaultRecord, protocol::kMaxFaultRecords> history{};  ///< ring
   uint8_t history_count = 0;
@@ -99,6 +105,12 @@ struct SupervisorState {
 /// The line slot the slow monitors (implausible against the model, stuck, leak) visit at the
 /// next Supervise: one a tick, each slot every kMaxLines ticks.
 inline uint8_t SlowSlot(const SupervisorState& s) { return s.slow_slot; }
+
+/// The session's host has sent nothing fresh for longer than the timeout: the session is over.
+/// It latches host_silence only when the host left the board actuating (Supervise).
+inline bool HostSilent(const SupervisorSettings& settings, const SupervisorInput& in) {
+  return in.session_open && in.now_us - in.last_host_frame_us > settings.host_timeout_us;
+}
 
 /// Latches a fault (and records it) — the single entry into the safe state.
 void LatchFault(SupervisorState& s, protocol::Fault fault, uint64_t now_us, int32_t detail);

@@ -80,6 +80,7 @@ class Device {
   /// Opens a session over a transport the caller made (tests, fault injection).
   static Result<std::unique_ptr<Device>> Attach(std::unique_ptr<Transport> transport,
                                                 DeviceOptions options, std::string* error);
+  /// Closes the session (see Close).
   ~Device();
 
   pp::HelloReply info() const { return link_->board(); }
@@ -98,6 +99,12 @@ class Device {
   Outcome SetLines(const std::vector<std::pair<uint8_t, double>>& kpa, bool wait = true);
   Outcome EStop();
   Outcome ClearFault(uint32_t mask = 0xFFFFFFFFu);
+  /// Ends the session: every output safe at once, no fault latched, the board free for another
+  /// host (the destructor does it too). Recording stops. Later calls fail with no_session.
+  Outcome Close();
+  /// Every output safe at once, no fault latched; the session stays open and a later Set
+  /// actuates again.
+  Outcome Release();
 
   Outcome ConfigureLine(const pp::ConfigureLine& line);
   /// Sent staged when it does not fit one packet (large compensators).

@@ -35,13 +35,17 @@ struct FlashReport {
   uint8_t slot = 0;            ///< the slot written
   uint32_t bytes_written = 0;  ///< this run (less than the image when resumed)
   uint32_t resumed_from = 0;
+  /// The session ended mid-write (the host stalled past the board's host-silence timeout, or
+  /// the board reset) and the write went on from what the board reported, this many times.
+  int resumed_after_session_loss = 0;
   double write_seconds = 0;
 };
 
 /// "1.2.3".
 std::string VersionText(uint8_t major, uint8_t minor, unsigned patch);
 
-/// Runs the update on an open link (its session reconnects across the reboot).
+/// Runs the update on an open link (its session reconnects across the reboot, and across a session
+/// the board ended mid-write: the write resumes from what the board reports, a few times at most).
 FlashReport FlashPackage(Link& link, const UpdatePackage& package, const FlashOptions& options);
 
 }  // namespace palpa::host

@@ -1,6 +1,7 @@
-// The host side of the protocol: a reader thread that never waits on the application, sessions,
-// reliable commands, latest-wins streams resent until applied, heartbeats from their own thread,
-// EStop, telemetry to subscribers, and board time mapped to host time.
+// The host side of the protocol: a reader thread that never waits on the application, sessions
+// (opened, closed, lost to another host), reliable commands, latest-wins streams resent until
+// applied, heartbeats from their own thread, EStop and Release, telemetry to subscribers, and
+// board time mapped to host time.
 #pragma once
 
 #include <condition_variable>
@@ -31,6 +32,10 @@ struct LinkOptions {
   bool reconnect = true;           ///< open a new session after a board reset
   size_t subscriber_queue = 8192;  ///< telemetry frames queued before the slowest drops some
   int stream_resend_ms = 50;       ///< resend a stream value not yet shown applied
+  /// Close and Release are repeated this often until the board answers, this many times; an
+  /// unanswered Close leaves the board to its host-silence timeout, which ends it as safely.
+  int close_resend_ms = 20;
+  int close_attempts = 10;
   /// Opens the transport again after it was lost (a USB board unplugged and plugged back in):
   /// tried every reopen_interval_ms until it succeeds or the link is closed, then a new session
   /// opens as after a board reset. Empty: a lost transport ends the link. Device::Open sets it
@@ -83,9 +88,13 @@ struct LinkCounters {
 class Link {
  public:
   /// Opens a session over `transport` (Hello, with retries). A catalog mismatch still opens:
-  /// then only the bootstrap set works, and catalog_matches() is false.
+  /// then only the bootstrap set works, and catalog_matches() is false. A board whose session
+  /// belongs to another host answers busy: the Hello is retried for as long as a silent host's
+  /// session would take to end (the board's timeout), then Open fails with kBusy and "busy:
+  /// another host holds the board".
   static Result<std::unique_ptr<Link>> Open(std::unique_ptr<Transport> transport,
                                             LinkOptions options, std::string* error);
+  /// Closes the session (Close) and stops the link's threads.
   ~Link();
   Link(const Link&) = delete;
   Link& operator=(const Link&) = delete;
@@ -146,13 +155,27 @@ class Link {
   /// telemetry shows it applied. Returns the generation.
   uint32_t StreamSetpoints(pp::SetLineSetpoints m);
   uint32_t StreamTargets(pp::SetFingerTargets m);
-  /// Waits until telemetry shows the generation applied (kOk), it is Nacked (the status), or
-  /// the timeout passes (kTimeout).
-  Status WaitSetpointsApplied(uint32_t generation, int timeout_ms);
-  Status WaitTargetsApplied(uint32_t generation, int timeout_ms);
+  /// Waits until telemetry shows the generation applied (kOk), it is Nacked (the status, and in
+  /// *detail the Nack's: the latched faults for kFaulted, the entry otherwise), or the timeout
+  /// passes (kTimeout).
+  Status WaitSetpointsApplied(uint32_t generation, int timeout_ms, uint32_t* detail = nullptr);
+  Status WaitTargetsApplied(uint32_t generation, int timeout_ms, uint32_t* detail = nullptr);
 
   /// Sends EStop at once and repeats it until the board acknowledges (kOk) or gives up.
   Status EStop();
+
+  /// Ends the session on purpose: streams stop, heartbeats stop, and Close is repeated until the
+  /// board answers — every output safe within a tick, no fault latched, the board free for the
+  /// next host. kOk once heard (an Ack; a no_session or a bootloader's unsupported count too);
+  /// kTimeout when unanswered (the board's silence timeout ends the session instead);
+  /// kCatalogMismatch: not sent, since that id may mean something else to other firmware
+  /// (nothing was actuated; silence ends the session quietly). No reconnection follows; later
+  /// commands fail with no_session. Called again, it returns at once.
+  Status Close();
+  /// Every output safe within a tick, no fault latched, the session kept (a server that stops
+  /// actuating without leaving): streams stop being resent; new ones actuate again. kOk once the
+  /// board acknowledged; a recovery-mode board's unsupported counts (its lines are safe).
+  Status Release();
 
   /// Calls `callback` with every telemetry frame, on a thread of its own: a slow callback
   /// delays only itself (frames beyond the queue are dropped and counted).
@@ -167,6 +190,12 @@ class Link {
   /// Events worth telling a person (board reset, outcome unknown, reconnects), oldest first.
   std::vector<std::string> TakeEvents();
   bool session_open() const;
+  /// Why the session is not open (closed by this host, ended by the board, lost to another
+  /// host), or empty while it is.
+  std::string session_end() const;
+  /// The session is over for good: closed by this host, or the board belongs to another host (a
+  /// board that reset or ended a silent session is reconnected to instead).
+  bool ended() const;
 
  private:
   explicit Link(std::unique_ptr<Transport> transport, LinkOptions options);
@@ -182,12 +211,19 @@ class Link {
   void OnFrame(const pp::Frame& frame, double now_s);
   void OnTelemetry(const pp::Telemetry& t, double now_s);
   void OnBoardReset(const std::string& why);
+  /// The session ended without a board reset (the board ended it, another host holds the board,
+  /// or this host closed it): what was in flight has an unknown outcome; `reconnect` opens anew.
+  void EndSession(const std::string& why, bool reconnect);
+  /// Sends an unsequenced session message (Close or Release) until `answered` (or the attempts
+  /// are spent); mutex_ held by `lock`.
+  template <class M>
+  bool RepeatUntilAnswered(std::unique_lock<std::mutex>& lock, const M& m, bool& answered);
   void SendHello();
   void Service(double now_s);
   void WriteFrame(const uint8_t* frame, size_t size);
   template <class M>
   void SendUnsequenced(const M& m);
-  Status WaitApplied(bool setpoints, uint32_t generation, int timeout_ms);
+  Status WaitApplied(bool setpoints, uint32_t generation, int timeout_ms, uint32_t* detail);
 
   std::unique_ptr<Transport> transport_;  ///< replaced only by the reader, under write_mutex_
   const std::string description_;
@@ -213,6 +249,7 @@ class Link {
     uint32_t generation = 0;
     uint32_t applied = 0;
     Status refused = Status::kOk;
+    uint32_t refused_detail = 0;
     uint32_t refused_generation = 0;
     double sent_s = 0;
     std::vector<uint8_t> frame;
@@ -223,6 +260,14 @@ class Link {
   uint32_t StreamLatest(Stream& stream, M m);
   uint32_t heartbeat_generation_ = 0;
   bool estop_acked_ = false;
+  bool closed_ = false;  ///< Close() was called: no heartbeats, no reconnection
+  bool close_answered_ = false;
+  bool release_answered_ = false;
+  Status release_status_ = Status::kOk;
+  /// Busy answers to our Hello: when the first came, and the board's host-silence timeout.
+  double busy_since_s_ = -1;
+  uint32_t busy_timeout_us_ = 0;
+  std::string session_end_;
   LinkCounters counters_;
   std::vector<std::string> events_;
   uint64_t expected_next_sample_us_ = 0;
