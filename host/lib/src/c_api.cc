@@ -62,6 +62,7 @@ static_assert(PALPA_FINGER_JAMMING == static_cast<int>(pp::FingerKind::kJamming)
 struct palpa_device {
   std::unique_ptr<ph::Device> device;
   std::string error;
+  uint32_t faults = 0;  ///< of the last failed call
   mutable std::mutex mutex;
   std::condition_variable arrived;
   std::deque<palpa_sample> samples;
@@ -76,7 +77,10 @@ thread_local std::string g_open_error;
 constexpr size_t kMaxQueuedSamples = PALPA_SAMPLE_QUEUE_LIMIT;
 
 int Report(palpa_device* d, const ph::Outcome& o) {
-  if (!o.ok()) d->error = o.message;
+  if (!o.ok()) {
+    d->error = o.message;
+    d->faults = o.faults;
+  }
   return static_cast<int>(o.status);
 }
 
@@ -158,12 +162,22 @@ int palpa_open(const char* uri, palpa_device** out) {
 void palpa_close(palpa_device* d) {
   if (d == nullptr) return;
   d->device->Unsubscribe(d->subscription);
+  d->device->Close();  // the destructor would too; this way before the samples queue goes
   d->device.reset();
   delete d;
 }
 
 const char* palpa_last_error(const palpa_device* d) {
   return d == nullptr ? g_open_error.c_str() : d->error.c_str();
+}
+
+uint32_t palpa_last_faults(const palpa_device* d) { return d == nullptr ? 0 : d->faults; }
+
+const char* palpa_fault_name(int bit) {
+  if (bit >= 0 && bit < static_cast<int>(pp::Fault::kCount)) return pp::kFaultNames[bit];
+  thread_local std::string name;  // valid until this thread's next call
+  name = "fault_" + std::to_string(bit);
+  return name.c_str();
 }
 
 const char* palpa_status_name(int status) {
@@ -216,6 +230,10 @@ int palpa_estop(palpa_device* d) {
 int palpa_clear_fault(palpa_device* d) {
   return d == nullptr ? static_cast<int>(pp::Status::kInvalidArgument)
                       : Report(d, d->device->ClearFault());
+}
+int palpa_release(palpa_device* d) {
+  return d == nullptr ? static_cast<int>(pp::Status::kInvalidArgument)
+                      : Report(d, d->device->Release());
 }
 
 int palpa_read_samples(palpa_device* d, palpa_sample* out, int capacity, int timeout_ms) {

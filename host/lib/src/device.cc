@@ -10,6 +10,7 @@
 #include "palpa/host/calibration_file.h"
 #include "palpa/host/device_uri.h"
 #include "palpa/host/field_text.h"
+#include "palpa/host/fault_text.h"
 
 namespace palpa::host {
 
@@ -183,6 +184,31 @@ Result<std::unique_ptr<Device>> Device::Open(const std::string& uri, DeviceOptio
   return Attach(std::move(transport.value), std::move(options), error);
 }
 
+std::string Device::FaultText(uint32_t bitmap, bool persist) {
+  const auto diagnostics = Diagnostics();
+  const std::string faults =
+      DescribeFaults(bitmap, diagnostics.ok() ? &diagnostics.value : nullptr);
+  const bool several = (bitmap & (bitmap - 1)) != 0;
+  if (persist) {
+    return faults + (several ? ". Their causes are" : ". Its cause is") +
+           " still present: deal with " + (several ? "them" : "it") + ", then clear again";
+  }
+  return "faulted: " + faults + (several ? ". Clear the faults" : ". Clear the fault") +
+         " (palpa clear; ClearFault in the library) once the cause is gone, then send again";
+}
+
+Outcome Device::StreamRefused(Status s, uint32_t detail, const char* what,
+                              std::vector<std::string> notes) {
+  Outcome o{s, std::string(what) + ": " + pp::StatusName(s), std::move(notes)};
+  if (s == Status::kFaulted && detail != 0) {
+    o.faults = detail;
+    o.message = std::string(what) + ": " + FaultText(detail, false);
+  } else if (s == Status::kNoSession && !link_->session_end().empty()) {
+    o.message += " (" + link_->session_end() + ")";
+  }
+  return o;
+}
+
 Outcome Device::FromCommand(const CommandResult& r, const char* what) {
   Outcome o;
   o.status = r.status;
@@ -268,19 +294,18 @@ Outcome Device::Set(const std::vector<FingerRequest>& requests, bool wait,
     }
   }
   const int timeout = options_.link.command_timeout_ms;
+  uint32_t detail = 0;
   if (targets.entry_count > 0) {
     const uint32_t g = link_->StreamTargets(targets);
-    const Status s = wait ? link_->WaitTargetsApplied(g, timeout) : Status::kOk;
+    const Status s = wait ? link_->WaitTargetsApplied(g, timeout, &detail) : Status::kOk;
     if (s != Status::kOk)
-      return Outcome{s, std::string("the board did not apply the targets: ") + pp::StatusName(s),
-                     out.notes};
+      return StreamRefused(s, detail, "the board did not apply the targets", out.notes);
   }
   if (lines.entry_count > 0) {
     const uint32_t g = link_->StreamSetpoints(lines);
-    const Status s = wait ? link_->WaitSetpointsApplied(g, timeout) : Status::kOk;
+    const Status s = wait ? link_->WaitSetpointsApplied(g, timeout, &detail) : Status::kOk;
     if (s != Status::kOk)
-      return Outcome{s, std::string("the board did not apply the setpoints: ") + pp::StatusName(s),
-                     out.notes};
+      return StreamRefused(s, detail, "the board did not apply the setpoints", out.notes);
   }
   return out;
 }
@@ -317,11 +342,11 @@ Outcome Device::SetLines(const std::vector<std::pair<uint8_t, double>>& kpa, boo
     lines.entries[lines.entry_count++] = pp::LineSetpoint{line, static_cast<int32_t>(pa)};
   }
   const uint32_t g = link_->StreamSetpoints(lines);
-  const Status s =
-      wait ? link_->WaitSetpointsApplied(g, options_.link.command_timeout_ms) : Status::kOk;
+  uint32_t detail = 0;
+  const Status s = wait ? link_->WaitSetpointsApplied(g, options_.link.command_timeout_ms, &detail)
+                        : Status::kOk;
   if (s != Status::kOk)
-    return Outcome{
-        s, std::string("the board did not apply the setpoints: ") + pp::StatusName(s), {}};
+    return StreamRefused(s, detail, "the board did not apply the setpoints", {});
   return {};
 }
 
@@ -332,7 +357,13 @@ Outcome Device::EStop() {
 
 Outcome Device::ClearFault(uint32_t mask) {
   // The board keeps its outputs safe after clearing until new setpoints arrive.
-  return FromCommand(link_->Command(pp::ClearFault{mask}), "clear fault");
+  const CommandResult r = link_->Command(pp::ClearFault{mask});
+  Outcome o = FromCommand(r, "clear fault");
+  if (r.status == Status::kConditionPersists && r.detail != 0) {  // detail: the faults that stay
+    o.faults = r.detail;
+    o.message = "clear fault: condition_persists: " + FaultText(r.detail, true);
+  }
+  return o;
 }
 
 Result<pp::Diagnostics> Device::Diagnostics(std::string* error) {

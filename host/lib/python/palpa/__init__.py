@@ -7,7 +7,10 @@
         board.set(3, n_per_mm=1.0)       # a jamming finger
         for sample in board.monitor(seconds=1.0):
             print(sample["measured_pa"], sample["finger_output"])
-        board.estop()
+    # leaving the block closes the session: every output safe at once, no fault latched
+
+A refusal raises PalpaError: .status names it ("faulted", "busy", ...); for latched faults
+.faults lists them ("host_silence", ...) and the message says when each latched and what to do.
 
 The library is found through $PALPA_LIBRARY, then where the install put it beside this package,
 then the system's library path.
@@ -86,6 +89,10 @@ def _load():
     lib.palpa_close.argtypes = [ctypes.c_void_p]
     lib.palpa_last_error.argtypes = [ctypes.c_void_p]
     lib.palpa_last_error.restype = ctypes.c_char_p
+    lib.palpa_last_faults.argtypes = [ctypes.c_void_p]
+    lib.palpa_last_faults.restype = ctypes.c_uint32
+    lib.palpa_fault_name.argtypes = [ctypes.c_int]
+    lib.palpa_fault_name.restype = ctypes.c_char_p
     lib.palpa_status_name.argtypes = [ctypes.c_int]
     lib.palpa_status_name.restype = ctypes.c_char_p
     lib.palpa_get_info.argtypes = [ctypes.c_void_p, ctypes.POINTER(_Info)]
@@ -95,6 +102,7 @@ def _load():
         getattr(lib, name).argtypes = [ctypes.c_void_p, ctypes.c_uint8, arg]
     lib.palpa_estop.argtypes = [ctypes.c_void_p]
     lib.palpa_clear_fault.argtypes = [ctypes.c_void_p]
+    lib.palpa_release.argtypes = [ctypes.c_void_p]
     lib.palpa_read_samples.argtypes = [ctypes.c_void_p, ctypes.POINTER(_Sample), ctypes.c_int, ctypes.c_int]
     lib.palpa_samples_dropped.argtypes = [ctypes.c_void_p]
     lib.palpa_samples_dropped.restype = ctypes.c_uint64
@@ -150,11 +158,17 @@ def _library():
 
 
 class PalpaError(Exception):
-    """A palpa call failed: .status is the shared status name, the message says why."""
+    """A palpa call failed: .status is the shared status name, the message says why; .faults
+    names the latched faults it was refused for (empty when it was not)."""
 
-    def __init__(self, status, message):
+    def __init__(self, status, message, faults=()):
         super().__init__(f"{status}: {message}")
         self.status = status
+        self.faults = list(faults)
+
+
+def _fault_names(lib, bitmap):
+    return [lib.palpa_fault_name(bit).decode() for bit in range(32) if bitmap & (1 << bit)]
 
 
 def _text_call(call, check, capacity=64 * 1024, again=True):
@@ -205,10 +219,16 @@ class Device:
 
     def _check(self, status):
         if status != 0:
+            if not self._handle:
+                raise PalpaError("no_session", "the device is closed")
             raise PalpaError(self._lib.palpa_status_name(status).decode(),
-                             self._lib.palpa_last_error(self._handle).decode())
+                             self._lib.palpa_last_error(self._handle).decode(),
+                             _fault_names(self._lib, self._lib.palpa_last_faults(self._handle)))
 
     def close(self):
+        """Ends the session: every output safe at once, no fault latched, the board free for the
+        next host. `with` does it on the way out, exceptions included; so does garbage collection
+        of a forgotten device."""
         if self._handle:
             self._lib.palpa_close(self._handle)
             self._handle = None
@@ -218,6 +238,12 @@ class Device:
 
     def __exit__(self, *exc):
         self.close()
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:  # interpreter shutdown: the board's timeout ends the session instead
+            pass
 
     def info(self):
         info = _Info()
@@ -284,6 +310,11 @@ class Device:
 
     def clear_fault(self):
         self._check(self._lib.palpa_clear_fault(self._handle))
+
+    def release(self):
+        """Every output safe at once, no fault latched; the session stays and set() actuates
+        again."""
+        self._check(self._lib.palpa_release(self._handle))
 
     def monitor(self, seconds=1.0):
         """Yields telemetry samples (dicts), one per board tick, for `seconds`; seconds=0 yields

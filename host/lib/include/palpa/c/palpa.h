@@ -110,10 +110,20 @@ typedef struct {
    "hid:1209:0001", "usb:1209:0001"). On failure *out is NULL and palpa_last_error(NULL) says why.
  */
 int palpa_open(const char* uri, palpa_device** out);
+/* Ends the session (every output safe at once, no fault latched, the board free for another host)
+   and frees the device. A process that exits without it leaves the board to its host-silence
+   timeout: safe as well, but a fault if fingers were actuated. */
 void palpa_close(palpa_device* device);
 /* The last error message of this device (or of the last failed open or device-less call, for
-   NULL); never NULL. */
+   NULL); never NULL. A refusal for latched faults names each, when it latched (board time) and
+   what to do. */
 const char* palpa_last_error(const palpa_device* device);
+/* The latched faults (bits, as in palpa_info.fault_bitmap) the last failed call was refused for;
+   0 when it was not refused for faults. */
+uint32_t palpa_last_faults(const palpa_device* device);
+/* A fault bit's name ("host_silence", "leak", ...); "fault_N" for one this library does not know
+   (that text stays valid until the calling thread's next call). */
+const char* palpa_fault_name(int bit);
 const char* palpa_status_name(int status);
 
 int palpa_get_info(palpa_device* device, palpa_info* info);
@@ -135,6 +145,8 @@ int palpa_set_deformation(palpa_device* device, uint8_t finger, double mm); /* p
 int palpa_set_pressure(palpa_device* device, uint8_t finger, double kpa);   /* raw mode */
 int palpa_estop(palpa_device* device);
 int palpa_clear_fault(palpa_device* device);
+/* Every output safe at once, no fault latched; the session stays open and a later set actuates. */
+int palpa_release(palpa_device* device);
 
 /* Telemetry. From palpa_open on, every sample (one per board tick: 1 kHz by default) is queued
    for the device, up to PALPA_SAMPLE_QUEUE_LIMIT; when the queue is full the oldest sample is

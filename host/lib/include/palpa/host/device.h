@@ -50,6 +50,10 @@ struct Outcome {
   Status status = Status::kOk;
   std::string message;
   std::vector<std::string> notes;  ///< e.g. "finger 2: nominal thesis curves (no calibration)"
+  /// Refused for latched faults (faulted), or a clear refused while their cause persists
+  /// (condition_persists): which ones (fault bits). The message names them, when each latched
+  /// (board time) and what to do.
+  uint32_t faults = 0;
   bool ok() const { return status == Status::kOk; }
 };
 
@@ -168,6 +172,12 @@ class Device {
   template <class M>
   Result<M> ReadSection(pp::ConfigSection section, uint8_t index, std::string* error);
   static Outcome FromCommand(const CommandResult& r, const char* what);
+  /// A stream the board did not apply: why, in words; for latched faults each one named with
+  /// when it latched (read from the board's fault history) and what to do.
+  Outcome StreamRefused(Status s, uint32_t detail, const char* what,
+                        std::vector<std::string> notes);
+  /// "faulted: <faults described>; clear them ..." for the faults in `bitmap`.
+  std::string FaultText(uint32_t bitmap, bool persist);
 
   std::unique_ptr<Link> link_;
   DeviceOptions options_;
