@@ -97,7 +97,21 @@ Result<std::unique_ptr<Transport>> OpenSerial(const DeviceUri& uri, std::string*
     *error = "serial:" + uri.path + ": baud " + std::to_string(uri.baud) + " is not supported";
     return Status::kInvalidArgument;
   }
+  // One host per port: the lock file first (it names its holder), then an exclusive open.
+  auto lock = std::make_unique<SerialLock>();
+  std::string holder;
+  if (lock->Acquire(uri.path, &holder) == Status::kBusy) {
+    *error =
+        "busy: another host holds the board (serial:" + uri.path + " is locked by " + holder + ")";
+    return Status::kBusy;
+  }
   const int fd = open(uri.path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK);
+  if (fd < 0 && errno == EBUSY) {  // opened exclusively by a process that took no lock
+    holder = SerialHolder(uri.path);
+    *error = "busy: another host holds the board (serial:" + uri.path + " is open exclusively" +
+             (holder.empty() ? "" : " by " + holder) + ")";
+    return Status::kBusy;
+  }
   if (fd < 0) {
     *error = "serial:" + uri.path + ": " + std::strerror(errno);
     return errno == ENOENT ? Status::kNotFound : Status::kIoError;
@@ -114,7 +128,8 @@ Result<std::unique_ptr<Transport>> OpenSerial(const DeviceUri& uri, std::string*
   t.c_cflag |= CLOCAL | CREAD;
   tcsetattr(fd, TCSANOW, &t);
   tcflush(fd, TCIOFLUSH);
-  return std::unique_ptr<Transport>(new FdTransport(fd, "serial:" + uri.path));
+  MakeExclusive(fd);  // a second open by anyone but root now fails with EBUSY
+  return std::unique_ptr<Transport>(new SerialTransport(fd, "serial:" + uri.path, std::move(lock)));
 }
 
 namespace {

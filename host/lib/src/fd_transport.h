@@ -2,11 +2,13 @@
 #pragma once
 
 #include <sys/types.h>
+#include <unistd.h>
 
 #include <string>
 
 #include "palpa/host/device_uri.h"
 #include "palpa/host/transport.h"
+#include "serial_lock.h"
 
 namespace palpa::host {
 
@@ -21,6 +23,20 @@ class FdTransport : public Transport {
  protected:
   int fd_;
   std::string description_;
+};
+
+/// A serial port opened exclusively: its lock file goes when it closes.
+class SerialTransport final : public FdTransport {
+ public:
+  SerialTransport(int fd, std::string description, std::unique_ptr<SerialLock> lock)
+      : FdTransport(fd, std::move(description)), lock_(std::move(lock)) {}
+  ~SerialTransport() override {
+    if (fd_ >= 0) close(fd_);  // the port first, then its lock
+    fd_ = -1;
+  }
+
+ private:
+  std::unique_ptr<SerialLock> lock_;
 };
 
 /// A palpa-sim child process and a TCP connection to it; the child is stopped on close.
