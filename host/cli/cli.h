@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli_signals.h"
 #include "palpa/host/device.h"
 
 namespace palpa::cli {
@@ -31,6 +32,7 @@ struct Context {
   /// Opens the device on first use; prints the error and returns nullptr when it cannot.
   host::Device* Device();
   std::unique_ptr<host::Device> device;
+  std::unique_ptr<ClosedOnSignal> closed_on_signal;  ///< released before the device closes
 };
 
 /// --json: every command prints JSON, errors included. Set once, before a command runs.

@@ -175,6 +175,8 @@ int CheckCalibrateArgs(const CalibrateArgs& a) {
 struct OpenedRig {
   std::optional<cal::BoardRig> rig;
   host::Device* device = nullptr;
+  /// The simulator's board, closed on a signal (--device: Context's); gone before the rig is.
+  std::optional<ClosedOnSignal> closed_on_signal;
   std::string serial;
 };
 
@@ -191,6 +193,7 @@ int OpenRig(Context& c, const CalibrateArgs& a, OpenedRig& r) {
     r.rig = cal::OpenSimulatedRig(config, a.finger, a.speed, a.plant, 1, &error);
     if (!r.rig) return Fail("calibrate", protocol::Status::kUnavailable, error, kExitConnect);
     r.device = r.rig->device;
+    r.closed_on_signal.emplace(r.device);
   } else {
     description = cal::LoadRigDescription(a.rig, &error);
     if (!description) return Usage("calibrate", "--rig " + error);

@@ -132,6 +132,7 @@ int CmdDemo(Context& c, const std::vector<std::string>& args) {
   auto device = host::Device::Attach(std::move(transport.value), options, &error);
   if (!device.ok()) return Fail("demo", device.status, error, kExitConnect);
   host::Device& d = *device.value;
+  const ClosedOnSignal closed_on_signal(&d);
   TruthReader truth;
   if (!truth.Connect(truth_address)) {
     return Fail("demo", protocol::Status::kUnavailable,

@@ -137,6 +137,12 @@ int CmdFlash(Context& c, const std::vector<std::string>& args) {
         "  %u bytes written%s in %.2f s (%.1f KiB/s)\n", r.bytes_written,
         r.resumed_from > 0 ? (" (resumed at " + std::to_string(r.resumed_from) + ")").c_str() : "",
         r.write_seconds, r.write_seconds > 0 ? r.bytes_written / r.write_seconds / 1024 : 0.0);
+    if (r.resumed_after_session_loss > 0) {
+      std::printf(
+          "  the board ended the session mid-write %d time(s) (this host was silent past "
+          "its timeout); each time the write went on from what the board had\n",
+          r.resumed_after_session_loss);
+    }
   }
   return kExitOk;
 }

@@ -1,9 +1,7 @@
 // palpa monitor, palpa record: telemetry live on a terminal, as JSON lines, or to CSV.
 #include <unistd.h>
 
-#include <atomic>
 #include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <mutex>
 #include <string>
@@ -18,7 +16,6 @@ namespace palpa::cli {
 namespace {
 
 namespace pp = palpa::protocol;
-std::atomic<bool> g_stop{false};
 
 struct TelemetryOptions {
   double rate = 0;  ///< 0: not given
@@ -164,17 +161,22 @@ int CmdMonitor(Context& c, const std::vector<std::string>& args) {
     }
     std::fflush(stdout);
   });
-  std::signal(SIGINT, [](int) { g_stop = true; });
+  const PollsInterruption polls;
   const auto start = std::chrono::steady_clock::now();
   std::string last_event;
-  while (!g_stop && (o.duration == 0 || std::chrono::steady_clock::now() - start <
-                                            std::chrono::duration<double>(o.duration))) {
+  while (!Interrupted() && (o.duration == 0 || std::chrono::steady_clock::now() - start <
+                                                   std::chrono::duration<double>(o.duration))) {
     std::this_thread::sleep_for(std::chrono::duration<double>(1.0 / std::min(rate, 10.0)));
     // What happened to the link (a board reset, a cable pulled and plugged back in), on stderr so
     // that JSON lines on stdout stay clean.
     for (const std::string& e : d->link().TakeEvents()) {
       std::fprintf(stderr, "palpa monitor: %s\n", e.c_str());
       last_event = e;
+    }
+    if (d->link().ended()) {  // e.g. another host holds the board now
+      d->Unsubscribe(id);
+      std::fprintf(stderr, "palpa monitor: %s\n", d->link().session_end().c_str());
+      return kExitFailed;
     }
     if (c.json) continue;
     std::lock_guard<std::mutex> lock(mutex);
@@ -200,9 +202,9 @@ int CmdRecord(Context& c, const std::vector<std::string>& args) {
       o.long_layout ? host::RecordLayout::kLong : host::RecordLayout::kWide;
   const int started = Report(c, d->StartRecording(o.file, layout), "record");
   if (started != kExitOk) return started;
-  std::signal(SIGINT, [](int) { g_stop = true; });
+  const PollsInterruption polls;
   const auto start = std::chrono::steady_clock::now();
-  while (!g_stop &&
+  while (!Interrupted() &&
          std::chrono::steady_clock::now() - start < std::chrono::duration<double>(o.duration)) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }

@@ -1,7 +1,6 @@
 // palpa set, palpa line: fingers in people's terms, raw line setpoints.
 #include <algorithm>
 #include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <thread>
 
@@ -10,8 +9,6 @@
 
 namespace palpa::cli {
 namespace {
-
-volatile std::sig_atomic_t g_interrupted = 0;
 
 /// Any finger or line number that fits the wire; each board's own range is checked once open.
 constexpr uint8_t kAnyNumber = 255;
@@ -32,19 +29,24 @@ bool TakeHold(std::vector<std::string>& args, double& hold_s, std::string* error
   return true;
 }
 
-/// Keeps the session (and so the actuation) alive; the board goes safe once palpa has gone quiet.
+/// Keeps the session (and so the actuation) for `hold_s`; palpa's exit then closes the session,
+/// which returns every output to its safe state at once.
 void Hold(const Context& c, double hold_s) {
   if (hold_s <= 0) {
     if (!c.json) {
       std::printf(
-          "note: the board returns to its safe state within its host-silence timeout once palpa "
-          "exits;\n"
-          "      use --hold SECONDS, or keep a session open (palpa monitor), to hold it.\n");
+          "note: the fingers return to safe now, as palpa exits and closes its session;\n"
+          "      --hold SECONDS keeps them there that long (Ctrl-C ends it early).\n");
     }
     return;
   }
-  std::signal(SIGINT, [](int) { g_interrupted = 1; });
-  for (double t = 0; t < hold_s && !g_interrupted; t += 0.05)
+  if (!c.json) {
+    std::printf("holding for %g s (Ctrl-C ends it early); the fingers return to safe then\n",
+                hold_s);
+    std::fflush(stdout);
+  }
+  const PollsInterruption polls;
+  for (double t = 0; t < hold_s && !Interrupted(); t += 0.05)
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
 }
 

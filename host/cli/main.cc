@@ -43,11 +43,14 @@ const std::map<std::string, Command>& Commands() {
         "-10kPa (raw pressure or vacuum). Units are checked per finger kind. Example on\n"
         "thesis-5finger: palpa set 1=L2 2=0.5 3=1.2mm 4=0.9N/mm 5=-10kPa\n"
         "A finger whose calibration file exists but cannot be used falls back to the nominal\n"
-        "curves and the reason is printed; --strict-calibration makes that an error (nothing "
-        "sent)."}},
+        "curves and the reason is printed; --strict-calibration makes that an error (nothing\n"
+        "sent). The fingers return to safe as palpa exits and closes its session; --hold S\n"
+        "keeps them actuated S seconds first (Ctrl-C, SIGTERM or SIGHUP end the hold early)."}},
       {"line",
        {CmdLine, "line L=VALUE ... [--hold S]",
-        "Raw setpoints in kPa for lines (numbered from 1): palpa line 1=30 6=-40"}},
+        "Raw setpoints in kPa for lines (numbered from 1): palpa line 1=30 6=-40\n"
+        "The lines return to safe as palpa exits and closes its session; --hold S keeps them\n"
+        "there S seconds first (Ctrl-C, SIGTERM or SIGHUP end the hold early)."}},
       {"monitor",
        {CmdMonitor, "monitor [--rate HZ] [--duration S]",
         "A live table of every line (one JSON object per sample with --json); Ctrl-C ends it."}},
@@ -142,7 +145,9 @@ void PrintUsage(FILE* out) {
       out,
       "\nFingers and lines are numbered from 1. palpa COMMAND --help explains a command.\n"
       "Exit codes: 0 ok, 1 refused or failed, 2 bad command line (nothing sent), 3 cannot\n"
-      "open the device.\n");
+      "open the device or another host holds it (busy). Every command closes its session with\n"
+      "the board when it ends, on Ctrl-C, SIGTERM and SIGHUP too: the board's outputs go safe,\n"
+      "no fault latched.\n");
 }
 
 /// Commands that run without a device, or on simulators of their own whatever --device says.
@@ -164,13 +169,16 @@ host::Device* Context::Device() {
   options.number_from = 1;  // as the command line numbers fingers and lines
   auto opened = host::Device::Open(device_uri, options, &error);
   if (!opened.ok()) {
-    // The transports' messages name the device already, most of them.
+    // The transports' messages name the device already, most of them; a busy board's says
+    // "busy: another host holds the board (...)" and stands alone.
     const bool named = error.find(device_uri) != std::string::npos;
-    Fail("", opened.status, "cannot open " + (named ? error : device_uri + ": " + error),
-         kExitConnect);
+    const bool busy = opened.status == protocol::Status::kBusy;
+    Fail("", opened.status,
+         busy ? error : "cannot open " + (named ? error : device_uri + ": " + error), kExitConnect);
     return nullptr;
   }
   device = std::move(opened.value);
+  closed_on_signal = std::make_unique<ClosedOnSignal>(device.get());
   if (!device->link().catalog_matches()) {  // on stderr: with --json too
     std::fprintf(stderr, "palpa: %s runs other firmware: %s. Only flashing is possible.\n",
                  device_uri.c_str(), device->link().Versions().c_str());
@@ -182,6 +190,7 @@ host::Device* Context::Device() {
 
 int main(int argc, char** argv) {
   using namespace palpa::cli;
+  StartSignalWatch();  // first: every thread after it leaves the signals to the watch
   Context context;
   std::string device_option;
   int i = 1;

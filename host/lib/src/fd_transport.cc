@@ -253,6 +253,11 @@ Result<std::unique_ptr<Transport>> LaunchSim(const std::string& config,
   }
   const pid_t child = fork();
   if (child == 0) {
+    // A caller that leaves signals to a thread of its own blocks them (the palpa CLI does): the
+    // simulator must still stop on SIGTERM, its parent's death included.
+    sigset_t none;
+    sigemptyset(&none);
+    sigprocmask(SIG_SETMASK, &none, nullptr);
     prctl(PR_SET_PDEATHSIG, SIGTERM);  // never outlive the process that started it
     dup2(out[1], STDOUT_FILENO);
     close(out[0]);
