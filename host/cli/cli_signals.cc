@@ -47,14 +47,15 @@ void Watch() {
     siginfo_t info;
     sigtimedwait(&set, &info, &grace);
   }
+  size_t closed = 0;
   {
     std::lock_guard<std::mutex> lock(g_mutex);
-    for (host::Device* d : g_devices) d->link().Close();
+    for (host::Device* d : g_devices) closed += d->link().Close() == protocol::Status::kOk;
   }
   char text[160];
-  const int n = std::snprintf(text, sizeof(text),
-                              "palpa: %s: the session is closed, the board's outputs are safe\n",
-                              strsignal(signal));
+  const int n =
+      std::snprintf(text, sizeof(text), "palpa: %s%s\n", strsignal(signal),
+                    closed > 0 ? ": the session is closed, the board's outputs are safe" : "");
   if (n > 0 && write(STDERR_FILENO, text, static_cast<size_t>(n)) < 0) {
   }
   _exit(128 + signal);
