@@ -38,9 +38,13 @@ int main(int argc, char** argv) {
       "ms)\n",
       r.vented_in_time, r.trials, Percentile(r.vented_after_ms, 0.5),
       Percentile(r.vented_after_ms, 1.0));
+  std::printf("  host_silence latched (a killed host cannot close its session): %d / %d\n",
+              r.host_silence, r.trials);
   std::printf(
       "  attempts run again (the host was starved and the board went safe before the kill): %d;"
       " safe state never seen: %d\n",
       r.not_pressurised, r.not_observed);
-  return r.safe_in_time == r.trials && r.vented_in_time == r.trials ? 0 : 1;
+  return r.safe_in_time == r.trials && r.vented_in_time == r.trials && r.host_silence == r.trials
+             ? 0
+             : 1;
 }

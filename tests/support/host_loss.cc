@@ -23,7 +23,7 @@ constexpr double kTickUs = 1000;
 constexpr double kSettlingUs = 300000;
 
 /// The child: a host that connects, clears faults, pressurises every line and keeps heartbeating
-/// until it is killed.
+/// until it is killed (SIGKILL: it cannot close its session, so the board latches host_silence).
 [[noreturn]] void Host(const std::string& address, int ready_fd) {
   std::string error;
   auto device = host::Device::Open(address, host::DeviceOptions{}, &error);
@@ -39,6 +39,7 @@ constexpr double kSettlingUs = 300000;
 struct TruthLine {
   double t_us = 0;
   bool safe = false;
+  uint32_t faults = 0;
   double last_frame_us = 0;
   double max_command_pa = 0;
   double max_chamber_pa = 0;
@@ -49,6 +50,7 @@ bool Parse(const std::string& text, TruthLine& out) {
   if (j.is_discarded() || !j.contains("board")) return false;
   out.t_us = j["board_time_us"].get<double>();
   out.safe = j["board"]["safe"].get<bool>();
+  out.faults = j["board"]["faults"].get<uint32_t>();
   out.last_frame_us = j["board"]["last_host_frame_us"].get<double>();
   out.max_command_pa = out.max_chamber_pa = 0;
   for (const auto& l : j["lines"]) {
@@ -122,11 +124,13 @@ HostLossResult RunHostLossTrials(int trials, uint32_t seed, double speed) {
     kill(child, SIGKILL);
     waitpid(child, nullptr, 0);
     double last_frame = 0, safe_at = -1, vented_at = -1;
+    bool silence = false;
     const int observe_ms = 3000;  // returns as soon as both moments are seen
     ReadTruth(truth, pending, observe_ms, [&](const TruthLine& l) {
       last_frame = std::max(last_frame, l.last_frame_us);
       if (l.t_us <= last_frame) return true;
       if (safe_at < 0 && l.safe && l.max_command_pa == 0) safe_at = l.t_us;
+      silence |= (l.faults & 1u) != 0;  // bit 0: host_silence
       if (vented_at < 0 && l.max_chamber_pa < 5000) vented_at = l.t_us;
       return vented_at < 0 || safe_at < 0;
     });
@@ -140,6 +144,7 @@ HostLossResult RunHostLossTrials(int trials, uint32_t seed, double speed) {
       ++result.not_observed;
       continue;
     }
+    result.host_silence += silence;
     result.safe_after_ms.push_back((safe_at - last_frame) / 1000);
     result.vented_after_ms.push_back((vented_at - last_frame) / 1000);
     result.safe_in_time += safe_at - last_frame <= kTimeoutUs + kTickUs + 1000;

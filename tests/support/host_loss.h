@@ -12,6 +12,7 @@ struct HostLossResult {
   int trials = 0;
   int safe_in_time = 0;    ///< safe command written within timeout + 1 tick (+1 ms truth sampling)
   int vented_in_time = 0;  ///< every chamber below 5 % F.S. within timeout + settling (300 ms)
+  int host_silence = 0;    ///< host_silence latched: a killed host cannot close its session
   std::vector<double> safe_after_ms;  ///< from the last host frame to the safe command, board time
   std::vector<double> vented_after_ms;  ///< from the last host frame to < 5 % F.S.
   int not_pressurised = 0;  ///< attempts whose chambers never filled before the kill (run again)

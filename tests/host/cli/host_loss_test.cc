@@ -13,4 +13,5 @@ TEST(HostLoss, KilledHostLeavesTheBoardSafeInHundredRandomTrials) {
   LONGS_EQUAL(100, r.trials);
   LONGS_EQUAL(100, r.safe_in_time);
   LONGS_EQUAL(100, r.vented_in_time);
+  LONGS_EQUAL(100, r.host_silence);  // a kill is not a Close: the fault is latched
 }
