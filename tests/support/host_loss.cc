@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <thread>
 
@@ -27,10 +28,16 @@ constexpr double kSettlingUs = 300000;
 [[noreturn]] void Host(const std::string& address, int ready_fd) {
   std::string error;
   auto device = host::Device::Open(address, host::DeviceOptions{}, &error);
-  if (!device.ok()) _exit(3);
+  if (!device.ok()) {
+    std::fprintf(stderr, "host loss: the host cannot open the board: %s\n", error.c_str());
+    _exit(3);
+  }
   device.value->ClearFault();
   const host::Outcome o = device.value->SetLines({{0, 80.0}, {1, 80.0}, {2, 80.0}});
-  if (!o.ok()) _exit(4);
+  if (!o.ok()) {
+    std::fprintf(stderr, "host loss: the board refused the setpoints: %s\n", o.message.c_str());
+    _exit(4);
+  }
   const char ready = 'A';
   if (write(ready_fd, &ready, 1) != 1) _exit(5);
   for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
@@ -111,9 +118,11 @@ HostLossResult RunHostLossTrials(int trials, uint32_t seed, double speed) {
     const bool started = read(ready[0], &c, 1) == 1;
     close(ready[0]);
     if (!started) {
-      kill(child, SIGKILL);
-      waitpid(child, nullptr, 0);
-      result.error = "the host process failed to start (trial " + std::to_string(trial) + ")";
+      int status = 0;
+      waitpid(child, &status, 0);  // it exited: 3 no session, 4 setpoints refused, 5 no pipe
+      result.error = "the host process failed to start (trial " + std::to_string(trial) +
+                     ", exit code " + std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
+                     ")";
       return result;
     }
     // Let the chambers fill, then kill the host at a random moment.

@@ -280,7 +280,12 @@ void Link::SetHostTimeout(uint32_t host_timeout_us) {
 
 template <class M>
 uint32_t Link::StreamLatest(Stream& stream, M m) {
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::unique_lock<std::mutex> lock(mutex_);
+  // A value asked for while the link opens a new session (the board reset, or ended a session
+  // this host let go silent) goes into that session: a stream is never replayed into a new
+  // session by itself, but this one the application asks for now.
+  changed_.wait_for(lock, std::chrono::milliseconds(options_.command_timeout_ms),
+                    [&] { return session_.open() || stop_ || !hello_wanted_; });
   m.session = session_.session_tag();
   m.generation = ++stream.generation;
   uint8_t frame[pp::kMaxFrameSize];

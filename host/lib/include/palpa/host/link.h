@@ -151,8 +151,9 @@ class Link {
   }
   CommandResult Await(uint32_t ticket, int timeout_ms = -1);
 
-  /// Latest-wins streams: the link fills in the generation, sends at once and resends until
-  /// telemetry shows it applied. Returns the generation.
+  /// Latest-wins streams: the link fills in the session and the generation, sends at once (once a
+  /// session being reopened is open) and resends until telemetry shows it applied. Returns the
+  /// generation.
   uint32_t StreamSetpoints(pp::SetLineSetpoints m);
   uint32_t StreamTargets(pp::SetFingerTargets m);
   /// Waits until telemetry shows the generation applied (kOk), it is Nacked (the status, and in
