@@ -1,6 +1,7 @@
 // palpa-sim among neighbours: its ports are loopback unless a flag says otherwise (and then it
 // warns), its Net F/T answers only the address that asked and only for a bounded count, its
-// Modbus server takes a bounded number of clients, and its pty link replaces only its own link.
+// Modbus server and its board link take a bounded number of clients, and its pty link replaces
+// only its own link.
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <poll.h>
@@ -167,6 +168,32 @@ TEST(PalpaSimNetwork, ModbusTakesABoundedNumberOfClients) {
   CHECK(ModbusAnswers(late));
   close(late);
   for (int i = 1; i < 6; ++i) close(clients[i]);
+  LONGS_EQUAL(0, sim.Stop());
+}
+
+TEST(PalpaSimNetwork, TheBoardLinkTakesABoundedNumberOfHosts) {
+  namespace pp = palpa::protocol;
+  SimProcess sim;
+  CHECK_TEXT(sim.Start({"--config", "thesis-pneumatic-3", "--listen", "tcp:127.0.0.1:0"}),
+             sim.output().c_str());
+  const int port = PortOf(sim.address());
+  std::vector<palpa::testing::MiniClient> hosts(10);
+  for (auto& host : hosts) {
+    CHECK(host.ConnectTcp("127.0.0.1", port));
+    std::this_thread::sleep_for(std::chrono::milliseconds(30));  // accepted in this order
+  }
+  // The first host opens a session; a second is told busy. Everything the board says reaches
+  // the eight hosts on the line, and nothing the two turned away.
+  CHECK(hosts[0].Hello(1).ok());
+  hosts[1].Send(pp::Hello{2, 0});
+  for (size_t i = 0; i < hosts.size(); ++i) {
+    bool busy = false;
+    for (const auto& f : hosts[i].Read(300)) {
+      busy |= f.Is<pp::Nack>() && f.As<pp::Nack>().status == pp::Status::kBusy;
+    }
+    CHECK_TEXT(busy == (i < 8), std::to_string(i).c_str());
+  }
+  for (auto& host : hosts) host.Close();
   LONGS_EQUAL(0, sim.Stop());
 }
 
