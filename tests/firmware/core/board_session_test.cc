@@ -2,6 +2,7 @@
 // the commanding session keep the host-silence timer, a second host is told busy, and silence is
 // a fault only where the host left the board actuated.
 #include <initializer_list>
+#include <vector>
 
 #include "board_harness.h"
 #include "palpa/core/flash_layout.h"
@@ -180,6 +181,17 @@ TEST(BoardBusy, ASecondHostsHelloIsAnsweredBusyAndTakesNothing) {
   h.Send(Setpoints(100, 90000, 0xFEED));
   Follow(h, 50, true);
   CHECK(h.CommandedPa(0) < 45000);
+  std::vector<float> before;
+  for (uint8_t i = 0; i < h.board->config().line_count; ++i) before.push_back(h.CommandedPa(i));
+  pp::SetFingerTargets t{};
+  t.session = 0xFEED;
+  t.generation = 100;
+  t.entry_count = 1;
+  t.entries[0] = {3, pp::OutputUnit::kStiffnessMilliNewtonPerMm, 900};  // a jamming finger
+  h.Send(t);
+  Follow(h, 50, true);
+  for (uint8_t i = 0; i < h.board->config().line_count; ++i)
+    DOUBLES_EQUAL(before[i], h.CommandedPa(i), 1.0);
 }
 
 TEST(BoardBusy, TheSessionsOwnHelloRetriedBeforeItWasHeardIsAnsweredAgain) {
@@ -275,6 +287,14 @@ TEST(BoardSilence, FreshFramesOfTheSessionKeepItAlive) {
     if (i % 30 == 0) h.Send(pp::Heartbeat{h.hello_nonce, ++h.generation}, false);
     if (i % 30 == 10) h.Send(Setpoints(++g, 30000));
     if (i % 30 == 20) h.Send(pp::GetLoopStats{});
+  }));
+  LONGS_EQUAL(0, h.board->latched_faults());
+}
+
+TEST(BoardSilence, AppliedReliableCommandsAloneKeepItAlive) {
+  Actuate();
+  CHECK(KeptActuatedBy(10 * kTimeoutMs, [&](uint32_t i) {
+    if (i % 50 == 0) h.Send(pp::GetLoopStats{});  // each with the next seq: applied once
   }));
   LONGS_EQUAL(0, h.board->latched_faults());
 }
