@@ -107,7 +107,14 @@ void TestBoard::Handle(const pp::Frame& frame, std::vector<std::vector<uint8_t>>
       if (session_.Owns(m.session)) session_.heartbeat().Accept(m.generation);
     } else if constexpr (std::is_same_v<M, pp::EStop>) {
       Reply(pp::Ack{boot_nonce, type}, seq, 0, out);
+    } else if constexpr (std::is_same_v<M, pp::SetLineSetpoints> ||
+                         std::is_same_v<M, pp::SetFingerTargets>) {
+      ++stream_frames;
     } else if constexpr (std::is_same_v<M, pp::Close> || std::is_same_v<M, pp::Release>) {
+      if (recovery) {
+        Reply(pp::Nack{boot_nonce, type, pp::Status::kUnsupported, 0}, seq, 0, out);
+        return;
+      }
       if (!session_.Owns(m.session)) {
         Reply(pp::Nack{boot_nonce, type, pp::Status::kNoSession, 0}, seq, 0, out);
         return;

@@ -1,6 +1,7 @@
 // A test board and host built only from protocol/ pieces, joined by a seeded lossy channel.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -64,6 +65,10 @@ class TestBoard {
   uint32_t applied_heartbeat() const { return session_.heartbeat().applied(); }
   uint32_t sessions = 0;
   uint32_t closes = 0;  ///< sessions ended by their host's Close
+  /// SetLineSetpoints and SetFingerTargets received (read by tests while a link runs).
+  std::atomic<uint32_t> stream_frames{0};
+  /// Answers Close and Release unsupported, as a bootloader in recovery mode does.
+  bool recovery = false;
 
  private:
   void Handle(const pp::Frame& frame, std::vector<std::vector<uint8_t>>& out);

@@ -1,6 +1,7 @@
-// The link's sessions: closed on purpose (and on destruction), Close repeated until heard and
-// falling back to silence, a second host told busy, another host's HelloReply noticed, the board
-// ending a silent session, Release keeping the session with nothing actuated.
+// The link's sessions: closed on purpose (and on destruction), Close repeated until heard (a
+// bootloader's unsupported counts) and falling back to silence, a second host told busy, another
+// host's HelloReply noticed, the board ending a silent session, Release keeping the session with
+// nothing actuated and nothing resent.
 #include <atomic>
 #include <chrono>
 #include <thread>
@@ -120,6 +121,39 @@ TEST(LinkSession, AnUnansweredCloseIsRepeatedThenLeftToTheBoardsTimeout) {
   CHECK_TEXT(took >= 5 * 0.020 && took < 2.0, std::to_string(took).c_str());
   LONGS_EQUAL(0, board.closes);
   CHECK(link.value->session_end().find("host-silence timeout") != std::string::npos);
+}
+
+TEST(LinkSession, ABootloadersUnsupportedAnswersCloseAndRelease) {
+  TestBoard board(pp::kCatalogHash, 1024, 24);
+  board.recovery = true;  // no session to end, every line safe: the answer is all that is needed
+  ph::LinkOptions options;
+  options.close_resend_ms = 200;  // an unheard answer would cost seconds
+  std::string error;
+  auto link = ph::Link::Open(std::make_unique<BoardTransport>(board), options, &error);
+  CHECK_TEXT(link.ok(), error.c_str());
+  const auto start = std::chrono::steady_clock::now();
+  LONGS_EQUAL((int)pp::Status::kOk, (int)link.value->Release());
+  LONGS_EQUAL((int)pp::Status::kOk, (int)link.value->Close());
+  const double took =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  CHECK_TEXT(took < 1.0, std::to_string(took).c_str());
+  CHECK_EQUAL("closed by this host", link.value->session_end());
+}
+
+TEST(LinkSession, AReleaseStopsResendingWhatWasStreamed) {
+  TestBoard board(pp::kCatalogHash, 1024, 25);  // shows nothing applied: streams are resent
+  std::string error;
+  auto link = ph::Link::Open(std::make_unique<BoardTransport>(board), {}, &error);
+  CHECK_TEXT(link.ok(), error.c_str());
+  pp::SetLineSetpoints m{};
+  m.entry_count = 1;
+  m.entries[0] = {0, 30000};
+  link.value->StreamSetpoints(m);
+  CHECK(Within(1000, [&] { return board.stream_frames >= 3; }));  // resent every 50 ms
+  LONGS_EQUAL((int)pp::Status::kOk, (int)link.value->Release());
+  const uint32_t after_release = board.stream_frames;
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  LONGS_EQUAL(after_release, board.stream_frames);
 }
 
 TEST(LinkSession, NoCloseIsSentToABoardWithAnotherCatalog) {
