@@ -1,5 +1,6 @@
 // Serial ports are one host's: the lock file names the holder, a stale lock is taken over, the
-// open port is exclusive (TIOCEXCL), and a port held without a lock is traced to its process.
+// open port is exclusive (TIOCEXCL), and a port held exclusively without a lock is busy and traced
+// to its process.
 #include <fcntl.h>
 #include <pty.h>
 #include <signal.h>
@@ -109,4 +110,35 @@ TEST(SerialLock, APortHeldWithoutALockIsTracedToItsProcess) {
   close(ready[0]);
   close(ready[1]);
   CHECK_TEXT(named.find("pid " + std::to_string(holder)) == 0, named.c_str());
+}
+
+TEST(SerialLock, APortOpenedExclusivelyWithoutALockIsBusy) {
+  // Another program holds the port exclusively and took no lock. TIOCEXCL binds all but root,
+  // so the second opener runs as an ordinary user (nobody), in a process of its own.
+  CHECK(ioctl(slave, TIOCEXCL) == 0);
+  CHECK(chmod(port.c_str(), 0666) == 0 && chmod(lock_dir.c_str(), 0777) == 0);
+  int answer[2];
+  CHECK(pipe(answer) == 0);
+  const pid_t opener = fork();
+  if (opener == 0) {
+    if (getuid() == 0 && (setgid(65534) != 0 || setuid(65534) != 0)) _exit(2);
+    std::string error;
+    const auto t = ph::OpenTransport("serial:" + port, &error);
+    const std::string said = std::to_string(static_cast<int>(t.status)) + " " + error;
+    _exit(write(answer[1], said.data(), said.size()) == static_cast<ssize_t>(said.size()) ? 0 : 1);
+  }
+  close(answer[1]);
+  int status = 0;
+  waitpid(opener, &status, 0);
+  char said[512] = {};
+  const ssize_t n = read(answer[0], said, sizeof(said) - 1);
+  close(answer[0]);
+  CHECK_TEXT(WIFEXITED(status) && WEXITSTATUS(status) == 0, said);
+  CHECK(n > 0);
+  const std::string text(said);
+  CHECK_TEXT(text.find(std::to_string(static_cast<int>(pp::Status::kBusy)) +
+                       " busy: another host "
+                       "holds the board (serial:" +
+                       port + " is open exclusively") == 0,
+             said);
 }
