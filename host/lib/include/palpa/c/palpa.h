@@ -134,9 +134,9 @@ int palpa_get_info(palpa_device* device, palpa_info* info);
    after palpa_clear_fault or a raw setpoint) first re-homes — vented (pneumatic) or released
    (jamming) for the board's homing dwell, board.home_dwell_ms, 300 ms by default — so a first
    target starts to move about 350 ms after the call returns, then follows the regulator (about
-   50 ms to 90 %). A board makes its outputs safe once no host has talked to it for its
-   host-silence timeout (100 ms by default): the library keeps the session alive while the device
-   is open, and palpa_close() ends it. */
+   50 ms to 90 %). A board makes its outputs safe once the host that holds its session has sent
+   nothing fresh for its host-silence timeout (100 ms by default): the library keeps the session
+   alive while the device is open, and palpa_close() ends it at once. */
 int palpa_set_level(palpa_device* device, uint8_t finger, int level);
 int palpa_set_normalized(palpa_device* device, uint8_t finger, double value);
 int palpa_set_stiffness(palpa_device* device, uint8_t finger,
