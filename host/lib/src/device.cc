@@ -9,8 +9,8 @@
 #include "palpa/hal/linux/atomic_file.h"
 #include "palpa/host/calibration_file.h"
 #include "palpa/host/device_uri.h"
-#include "palpa/host/field_text.h"
 #include "palpa/host/fault_text.h"
+#include "palpa/host/field_text.h"
 
 namespace palpa::host {
 
