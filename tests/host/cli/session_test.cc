@@ -121,7 +121,7 @@ class Target {
   uint32_t Faults() const {
     const Run r = Palpa("--json info");
     LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
-    return nlohmann::json::parse(r.output)["board"]["faults"].get<uint32_t>();
+    return nlohmann::json::parse(r.output)["board"]["fault_bitmap"].get<uint32_t>();
   }
   /// The latched faults once they are `expected`, or after 3 s (a board whose time runs behind
   /// real time, QEMU on a loaded machine, takes longer than its timeout in real time).
