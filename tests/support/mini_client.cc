@@ -82,7 +82,7 @@ std::vector<ReceivedFrame> MiniClient::Read(int timeout_ms, bool (*until)(const 
   const int64_t deadline = NowMs() + timeout_ms;
   for (;;) {
     if (keepalive_ms_ > 0 && NowMs() - last_sent_ms_ >= keepalive_ms_)
-      Send(pp::Heartbeat{++heartbeat_generation_});
+      Send(pp::Heartbeat{session_, ++heartbeat_generation_});
     int64_t left = deadline - NowMs();
     if (left <= 0) break;
     if (keepalive_ms_ > 0) left = std::min<int64_t>(left, keepalive_ms_);

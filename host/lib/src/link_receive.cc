@@ -40,12 +40,16 @@ bool Link::TransportLost() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     ++counters_.transport_lost;
+    // Reopened only for a board this host still means to hold: not after its own Close, nor once
+    // another host holds the board (it took the session over, or a Hello of ours was told busy).
+    const bool reopen =
+        options_.reopen && !closed_ && (session_.open() || (hello_wanted_ && busy_since_s_ < 0));
     events_.push_back(
         "the link to " + description_ +
-        (options_.reopen ? " was lost (unplugged?); reopening it once it is back" : " closed"));
+        (reopen ? " was lost (unplugged?); reopening it once it is back" : " closed"));
     OnBoardReset("link lost");
     hello_wanted_ = false;
-    if (!options_.reopen) {
+    if (!reopen) {
       stop_ = true;
       changed_.notify_all();
       queue_changed_.notify_all();
@@ -61,7 +65,10 @@ bool Link::TransportLost() {
     {
       std::unique_lock<std::mutex> lock(mutex_);
       if (changed_.wait_for(lock, std::chrono::milliseconds(options_.reopen_interval_ms),
-                            [&] { return stop_; })) {
+                            [&] { return stop_ || closed_; })) {
+        stop_ = true;  // closed while the board was away: nothing more to read
+        changed_.notify_all();
+        queue_changed_.notify_all();
         return false;
       }
     }
@@ -75,7 +82,7 @@ bool Link::TransportLost() {
     std::lock_guard<std::mutex> lock(mutex_);
     ++counters_.reopens;
     events_.push_back("reopened " + description_ + "; opening a new session");
-    hello_wanted_ = true;
+    hello_wanted_ = !closed_;  // a Close while the board was being reopened
     hello_sent_s_ = -1;
     SendHello();
     return true;

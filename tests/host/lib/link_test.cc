@@ -3,10 +3,12 @@
 // catalog mismatch.
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -146,6 +148,8 @@ namespace {
 struct Cable {
   std::atomic<bool> plugged{true};
   std::atomic<int> opened{0};
+  std::mutex mutex;
+  std::vector<uint8_t> injected;  ///< bytes the host reads before the board's (another host's)
 };
 
 class PluggedTransport final : public ph::Transport {
@@ -155,6 +159,15 @@ class PluggedTransport final : public ph::Transport {
   }
   ph::Result<size_t> Read(uint8_t* out, size_t capacity, int timeout_ms) override {
     if (!cable_.plugged) return pp::Status::kDisconnected;
+    {
+      std::lock_guard<std::mutex> lock(cable_.mutex);
+      if (!cable_.injected.empty()) {
+        const size_t n = std::min(capacity, cable_.injected.size());
+        std::copy(cable_.injected.begin(), cable_.injected.begin() + n, out);
+        cable_.injected.erase(cable_.injected.begin(), cable_.injected.begin() + n);
+        return n;
+      }
+    }
     return board_.Read(out, capacity, timeout_ms);
   }
   ph::Status Write(const uint8_t* data, size_t size) override {
@@ -167,11 +180,8 @@ class PluggedTransport final : public ph::Transport {
   Cable& cable_;
 };
 
-}  // namespace
-
-TEST(LinkFaults, AnUnpluggedBoardIsReportedAndReopenedWithANewSessionWhenItIsBack) {
-  TestBoard board(pp::kCatalogHash, 1024, 16);
-  Cable cable;
+/// Link options that reopen a PluggedTransport on `cable` whenever it is plugged in.
+ph::LinkOptions ReopeningOptions(TestBoard& board, Cable& cable) {
   ph::LinkOptions options;
   options.command_timeout_ms = 300;
   options.reopen_interval_ms = 20;
@@ -182,7 +192,24 @@ TEST(LinkFaults, AnUnpluggedBoardIsReportedAndReopenedWithANewSessionWhenItIsBac
     }
     return std::unique_ptr<ph::Transport>(new PluggedTransport(board, cable));
   };
-  auto link = OpenLink(std::make_unique<PluggedTransport>(board, cable), options);
+  return options;
+}
+
+/// Pulls the cable, waits well past a few reopen intervals, plugs it back in and waits again.
+void UnplugAndReplug(Cable& cable) {
+  cable.plugged = false;
+  std::this_thread::sleep_for(std::chrono::milliseconds(150));
+  cable.plugged = true;
+  std::this_thread::sleep_for(std::chrono::milliseconds(150));
+}
+
+}  // namespace
+
+TEST(LinkFaults, AnUnpluggedBoardIsReportedAndReopenedWithANewSessionWhenItIsBack) {
+  TestBoard board(pp::kCatalogHash, 1024, 16);
+  Cable cable;
+  auto link =
+      OpenLink(std::make_unique<PluggedTransport>(board, cable), ReopeningOptions(board, cable));
   LONGS_EQUAL((int)pp::Status::kOk, (int)link->Command(pp::ClearFault{1}).status);
 
   cable.plugged = false;
@@ -205,6 +232,44 @@ TEST(LinkFaults, AnUnpluggedBoardIsReportedAndReopenedWithANewSessionWhenItIsBac
   for (const std::string& e : link->TakeEvents()) events += e + "\n";
   CHECK_TEXT(events.find("the link to usb:test was lost") != std::string::npos, events.c_str());
   CHECK_TEXT(events.find("reopened usb:test") != std::string::npos, events.c_str());
+}
+
+TEST(LinkFaults, ABoardThisHostClosedIsNotReopenedWhenItIsUnpluggedAndBack) {
+  TestBoard board(pp::kCatalogHash, 1024, 18);
+  Cable cable;
+  auto link =
+      OpenLink(std::make_unique<PluggedTransport>(board, cable), ReopeningOptions(board, cable));
+  LONGS_EQUAL((int)pp::Status::kOk, (int)link->Close());
+  UnplugAndReplug(cable);
+  LONGS_EQUAL(1, cable.opened.load());
+  LONGS_EQUAL(0, link->counters().reopens);
+  LONGS_EQUAL(1, board.sessions);
+  CHECK(!link->session_open());
+}
+
+TEST(LinkFaults, ABoardAnotherHostHoldsIsNotReopenedWhenItIsUnpluggedAndBack) {
+  TestBoard board(pp::kCatalogHash, 1024, 19);
+  Cable cable;
+  auto link =
+      OpenLink(std::make_unique<PluggedTransport>(board, cable), ReopeningOptions(board, cable));
+  // Another host's session, as the board announces it on a shared link.
+  pp::HelloReply other{};
+  other.host_nonce = 0x5eca11ed;
+  other.boot_nonce = board.boot_nonce();
+  uint8_t frame[pp::kMaxFrameSize];
+  const auto n = pp::EncodeMessageFrame(other, 0, pp::flags::kFromBoard, frame, sizeof(frame));
+  CHECK(n.ok());
+  {
+    std::lock_guard<std::mutex> lock(cable.mutex);
+    cable.injected.assign(frame, frame + n.value);
+  }
+  for (int i = 0; i < 100 && !link->ended(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  CHECK(link->ended());
+  UnplugAndReplug(cable);
+  LONGS_EQUAL(1, cable.opened.load());
+  LONGS_EQUAL(0, link->counters().reopens);
+  LONGS_EQUAL(1, board.sessions);
 }
 
 TEST(LinkFaults, WithoutAWayToReopenALostTransportEndsTheLink) {
