@@ -195,10 +195,12 @@ ph::LinkOptions ReopeningOptions(TestBoard& board, Cable& cable) {
   return options;
 }
 
-/// Pulls the cable, waits well past a few reopen intervals, plugs it back in and waits again.
-void UnplugAndReplug(Cable& cable) {
+/// Pulls the cable, waits well past a few reopen intervals while the board's host-silence timeout
+/// ends whatever session it held (a Hello would open a new one), plugs it back in and waits again.
+void UnplugAndReplug(TestBoard& board, Cable& cable) {
   cable.plugged = false;
   std::this_thread::sleep_for(std::chrono::milliseconds(150));
+  board.SilenceEndsTheSession();  // nothing reaches the board while the cable is out
   cable.plugged = true;
   std::this_thread::sleep_for(std::chrono::milliseconds(150));
 }
@@ -221,6 +223,7 @@ TEST(LinkFaults, AnUnpluggedBoardIsReportedAndReopenedWithANewSessionWhenItIsBac
   LONGS_EQUAL(1, link->counters().transport_lost);
   LONGS_EQUAL(1, cable.opened.load());  // nothing opened while the cable is out
 
+  board.SilenceEndsTheSession();  // the silent host's session ends, as on a board left powered
   cable.plugged = true;
   for (int i = 0; i < 200 && !link->session_open(); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
@@ -240,7 +243,7 @@ TEST(LinkFaults, ABoardThisHostClosedIsNotReopenedWhenItIsUnpluggedAndBack) {
   auto link =
       OpenLink(std::make_unique<PluggedTransport>(board, cable), ReopeningOptions(board, cable));
   LONGS_EQUAL((int)pp::Status::kOk, (int)link->Close());
-  UnplugAndReplug(cable);
+  UnplugAndReplug(board, cable);
   LONGS_EQUAL(1, cable.opened.load());
   LONGS_EQUAL(0, link->counters().reopens);
   LONGS_EQUAL(1, board.sessions);
@@ -256,6 +259,7 @@ TEST(LinkFaults, ABoardAnotherHostHoldsIsNotReopenedWhenItIsUnpluggedAndBack) {
   pp::HelloReply other{};
   other.host_nonce = 0x5eca11ed;
   other.boot_nonce = board.boot_nonce();
+  other.rx_buffer_bytes = 1024;
   uint8_t frame[pp::kMaxFrameSize];
   const auto n = pp::EncodeMessageFrame(other, 0, pp::flags::kFromBoard, frame, sizeof(frame));
   CHECK(n.ok());
@@ -266,7 +270,7 @@ TEST(LinkFaults, ABoardAnotherHostHoldsIsNotReopenedWhenItIsUnpluggedAndBack) {
   for (int i = 0; i < 100 && !link->ended(); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   CHECK(link->ended());
-  UnplugAndReplug(cable);
+  UnplugAndReplug(board, cable);
   LONGS_EQUAL(1, cable.opened.load());
   LONGS_EQUAL(0, link->counters().reopens);
   LONGS_EQUAL(1, board.sessions);
