@@ -111,7 +111,7 @@ bool Link::session_open() const {
 
 bool Link::ended() const {
   std::lock_guard<std::mutex> lock(mutex_);
-  return !session_.open() && !hello_wanted_;
+  return !session_.open() && !hello_wanted_ && !reopening_;
 }
 
 std::string Link::session_end() const {

@@ -55,6 +55,7 @@ bool Link::TransportLost() {
       queue_changed_.notify_all();
       return false;
     }
+    reopening_ = true;
   }
   {
     // Released at once, so the device can come back under the same name (a tty, a hidraw node).
@@ -67,6 +68,7 @@ bool Link::TransportLost() {
       if (changed_.wait_for(lock, std::chrono::milliseconds(options_.reopen_interval_ms),
                             [&] { return stop_ || closed_; })) {
         stop_ = true;  // closed while the board was away: nothing more to read
+        reopening_ = false;
         changed_.notify_all();
         queue_changed_.notify_all();
         return false;
@@ -81,6 +83,7 @@ bool Link::TransportLost() {
     }
     std::lock_guard<std::mutex> lock(mutex_);
     ++counters_.reopens;
+    reopening_ = false;
     events_.push_back("reopened " + description_ + "; opening a new session");
     hello_wanted_ = !closed_;  // a Close while the board was being reopened
     hello_sent_s_ = -1;

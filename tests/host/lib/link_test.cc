@@ -222,6 +222,7 @@ TEST(LinkFaults, AnUnpluggedBoardIsReportedAndReopenedWithANewSessionWhenItIsBac
   LONGS_EQUAL((int)pp::Status::kNoSession, (int)unplugged.status);
   LONGS_EQUAL(1, link->counters().transport_lost);
   LONGS_EQUAL(1, cable.opened.load());  // nothing opened while the cable is out
+  CHECK(!link->ended());                // a monitor waits for the board to come back
 
   board.SilenceEndsTheSession();  // the silent host's session ends, as on a board left powered
   cable.plugged = true;

@@ -195,7 +195,8 @@ class Link {
   /// host), or empty while it is.
   std::string session_end() const;
   /// The session is over for good: closed by this host, or the board belongs to another host (a
-  /// board that reset or ended a silent session is reconnected to instead).
+  /// board that reset, ended a silent session, or was lost and is being reopened is reconnected to
+  /// instead).
   bool ended() const;
 
  private:
@@ -261,7 +262,8 @@ class Link {
   uint32_t StreamLatest(Stream& stream, M m);
   uint32_t heartbeat_generation_ = 0;
   bool estop_acked_ = false;
-  bool closed_ = false;  ///< Close() was called: no heartbeats, no reconnection
+  bool closed_ = false;     ///< Close() was called: no heartbeats, no reconnection
+  bool reopening_ = false;  ///< a lost transport is being opened again: the link has not ended
   bool close_answered_ = false;
   bool release_answered_ = false;
   Status release_status_ = Status::kOk;
