@@ -101,9 +101,11 @@ void CheckBoardBehaviour(const std::string& uri, pp::BoardKind kind) {
   auto all_safe = [](const ReceivedFrame& f) {
     if (!f.Is<pp::Telemetry>()) return false;
     const auto t = f.As<pp::Telemetry>();
+    // The session's last telemetry frame says so, in its last tick: a board sends none after.
     bool all = (t.fault_bitmap & pp::FaultBit(pp::Fault::kHostSilence)) != 0;
+    const uint32_t last_tick = (t.tick_count - 1u) * t.line_count;
     for (uint8_t i = 0; i < t.line_count; ++i)
-      all &= (t.samples[i].status & pp::line_status::kSafe) != 0;
+      all &= (t.samples[last_tick + i].status & pp::line_status::kSafe) != 0;
     return all;
   };
   bool safe = false;
