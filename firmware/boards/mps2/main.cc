@@ -225,10 +225,17 @@ int main() {
       }
 #endif
     }
-    while (plant_ms * 1000 < now) {  // the plant follows the board's clock, 1 ms steps
+    // The plant follows the board's clock, 1 ms steps. It stands in for the world, which moves
+    // on while a long command (a hash of both slots: about 300 ms of this core) holds the loop,
+    // so it catches up before the next tick reads it. Those steps are the world's time, not the
+    // firmware's: each kicks the watchdog, which still measures every stretch of the firmware's
+    // own work (a hung tick never gets here). Without it, catching up after 180 ms took longer
+    // than the watchdog's 30 ms and reset a board that had done nothing wrong.
+    while (plant_ms * 1000 < now) {
       const bool held = g_supply.toggled && g_dump.toggled;
       g_plant.Step(!held || g_board->safe());
       ++plant_ms;
+      g_watchdog.Kick();
     }
     g_uart.PumpTx();
     if (g_board->reboot_requested()) {  // UpdateReboot: its Ack out first, then the bootloader
