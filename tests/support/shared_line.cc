@@ -69,15 +69,29 @@ void SharedLine::Run() {
   };
   std::vector<Host> hosts;
   uint8_t buffer[4096];
-  while (!stop_) {
+  bool board_gone = false;
+  // What the board sends goes on to every host (false once the board went away).
+  auto from_board = [&] {
+    const ssize_t n = read(board_fd_, buffer, sizeof(buffer));
+    if (n <= 0) return false;
+    for (const Host& h : hosts) WriteAll(h.fd, buffer, static_cast<size_t>(n));
+    return true;
+  };
+  // A slow line is full duplex, as a UART is: while a host's frame takes its time, the board's
+  // answers keep coming back.
+  auto carry_board_until = [&](std::chrono::steady_clock::time_point end) {
+    for (auto now = std::chrono::steady_clock::now(); now < end && !board_gone;
+         now = std::chrono::steady_clock::now()) {
+      pollfd board{board_fd_, POLLIN, 0};
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(end - now).count();
+      if (poll(&board, 1, static_cast<int>(left) + 1) > 0 && !from_board()) board_gone = true;
+    }
+  };
+  while (!stop_ && !board_gone) {
     std::vector<pollfd> fds = {{board_fd_, POLLIN, 0}, {listen_fd_, POLLIN, 0}};
     for (const Host& h : hosts) fds.push_back({h.fd, POLLIN, 0});
     if (poll(fds.data(), fds.size(), 20) <= 0) continue;
-    if (fds[0].revents != 0) {
-      const ssize_t n = read(board_fd_, buffer, sizeof(buffer));
-      if (n <= 0) return;  // the board went away
-      for (const Host& h : hosts) WriteAll(h.fd, buffer, static_cast<size_t>(n));
-    }
+    if (fds[0].revents != 0 && !from_board()) break;  // the board went away
     if (fds[1].revents != 0) {
       const int fd = accept(listen_fd_, nullptr, nullptr);
       if (fd >= 0) {
@@ -87,19 +101,21 @@ void SharedLine::Run() {
     }
     for (size_t i = 0; i < hosts.size(); ++i) {
       if (fds[2 + i].revents == 0) continue;
-      const ssize_t n = read(hosts[i].fd, buffer, sizeof(buffer));
+      uint8_t input[4096];
+      const ssize_t n = read(hosts[i].fd, input, sizeof(input));
       if (n <= 0) {
         close(hosts[i].fd);
         hosts[i].fd = -1;
         continue;
       }
       for (ssize_t k = 0; k < n; ++k) {
-        hosts[i].partial.push_back(buffer[k]);
-        if (buffer[k] != 0) continue;
+        hosts[i].partial.push_back(input[k]);
+        if (input[k] != 0) continue;
         WriteAll(board_fd_, hosts[i].partial.data(), hosts[i].partial.size());
         if (rate_ > 0) {
-          std::this_thread::sleep_for(std::chrono::microseconds(
-              static_cast<int64_t>(hosts[i].partial.size()) * 1000000 / rate_));
+          carry_board_until(std::chrono::steady_clock::now() +
+                            std::chrono::microseconds(
+                                static_cast<int64_t>(hosts[i].partial.size()) * 1000000 / rate_));
         }
         hosts[i].partial.clear();
       }
