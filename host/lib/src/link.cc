@@ -2,6 +2,7 @@
 // machines; what the reader thread does with the board's frames is in link_receive.cc.
 #include "palpa/host/link.h"
 
+#include <algorithm>
 #include <chrono>
 #include <random>
 
@@ -357,14 +358,24 @@ Status Link::EStop() {
 template <class M>
 bool Link::RepeatUntilAnswered(std::unique_lock<std::mutex>& lock, const M& m, bool& answered) {
   answered = false;
-  for (int attempt = 0; attempt < options_.close_attempts && !stop_; ++attempt) {
+  // A frame sent now waits behind what is in flight: on a 20 kB/s line during a flash, the
+  // board's 4 KiB buffer, 200 ms. So it is resent once per retransmission timeout of the
+  // reliable commands (their measured round trip), and waited for while the board is heard
+  // (it is working through what went before); given up on after close_attempts resends of
+  // silence, or close_wait_max_ms in all. A fixed 10 x 20 ms gave up on a board about to answer.
+  const auto resend = std::chrono::milliseconds(
+      std::max(options_.close_resend_ms, static_cast<int>((sender_.base_rto_us() + 999) / 1000)));
+  const double silence_s = options_.close_attempts * std::chrono::duration<double>(resend).count();
+  const double start = SteadySeconds();
+  while (!stop_) {
     lock.unlock();
     SendUnsequenced(m);
     lock.lock();
-    if (changed_.wait_for(lock, std::chrono::milliseconds(options_.close_resend_ms),
-                          [&] { return answered || stop_; }) &&
-        answered) {
-      return true;
+    if (changed_.wait_for(lock, resend, [&] { return answered || stop_; }) && answered) return true;
+    const double now = SteadySeconds();
+    if (now - std::max(start, last_board_frame_s_) >= silence_s ||
+        now - start >= options_.close_wait_max_ms / 1000.0) {
+      break;
     }
   }
   return answered;

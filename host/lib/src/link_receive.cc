@@ -160,6 +160,7 @@ void Link::OnBoardReset(const std::string& why) {  // mutex_ held
 void Link::OnFrame(const pp::Frame& frame, double now) {  // mutex_ held
   ++counters_.frames;
   if ((frame.header.flags & pp::flags::kFromBoard) == 0) return;  // an echo of our own frame
+  last_board_frame_s_ = now;
   pp::DispatchFrame(frame, [&](const auto& m, const pp::Header& h) {
     using M = std::decay_t<decltype(m)>;
     if constexpr (std::is_same_v<M, pp::HelloReply>) {

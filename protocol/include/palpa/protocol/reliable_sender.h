@@ -182,6 +182,8 @@ class ReliableSender {
   }
   uint8_t next_seq() const { return next_seq_; }
   uint32_t rto_us() const { return rto_us_; }
+  /// The timeout the round trips measured call for, without the back-off of timeouts since.
+  uint32_t base_rto_us() const { return base_rto_us_; }
   uint32_t BytesInFlight() const;
   const SenderCounters& counters() const { return counters_; }
 
