@@ -99,7 +99,7 @@ void SharedLine::Run() {
         hosts.push_back({fd, {}});
       }
     }
-    for (size_t i = 0; i < hosts.size(); ++i) {
+    for (size_t i = 0; i + 2 < fds.size(); ++i) {  // the hosts polled (not one accepted now)
       if (fds[2 + i].revents == 0) continue;
       uint8_t input[4096];
       const ssize_t n = read(hosts[i].fd, input, sizeof(input));
