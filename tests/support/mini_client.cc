@@ -174,6 +174,15 @@ int FreeTcpPort() {
 }
 
 bool SimProcess::Start(const std::vector<std::string>& args) {
+  // Built before the fork: the child of a process with threads may only call what is
+  // async-signal-safe (an allocation can wait forever on a lock another thread held).
+  std::vector<char*> argv;
+  // $PALPA_SIM: another palpa-sim than the build's (inside the real-kernel guest).
+  const char* path =
+      std::getenv("PALPA_SIM") != nullptr ? std::getenv("PALPA_SIM") : PALPA_SIM_PATH;
+  argv.push_back(const_cast<char*>(path));
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
   int out[2];
   if (pipe(out) != 0) return false;
   pid_ = fork();
@@ -182,13 +191,6 @@ bool SimProcess::Start(const std::vector<std::string>& args) {
     dup2(out[1], STDOUT_FILENO);
     dup2(out[1], STDERR_FILENO);
     close(out[0]);
-    std::vector<char*> argv;
-    // $PALPA_SIM: another palpa-sim than the build's (inside the real-kernel guest).
-    const char* path =
-        std::getenv("PALPA_SIM") != nullptr ? std::getenv("PALPA_SIM") : PALPA_SIM_PATH;
-    argv.push_back(const_cast<char*>(path));
-    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
     execv(path, argv.data());
     _exit(127);
   }

@@ -23,13 +23,13 @@ bool QemuProcess::Start(const std::string& qemu, const std::vector<std::string>&
       "-monitor", "none", "-semihosting-config", "enable=on,target=native",
       "-serial",  serial};
   argv.insert(argv.end(), args.begin(), args.end());
+  std::vector<char*> raw;  // before the fork: the child may only call what is async-signal-safe
+  for (std::string& a : argv) raw.push_back(a.data());
+  raw.push_back(nullptr);
   pid_ = fork();
   if (pid_ == 0) {
     const int null = open("/dev/null", O_WRONLY);  // QEMU's "waiting for connection" notes
     if (null >= 0) dup2(null, STDERR_FILENO);
-    std::vector<char*> raw;
-    for (std::string& a : argv) raw.push_back(a.data());
-    raw.push_back(nullptr);
     execv(qemu.c_str(), raw.data());
     _exit(127);
   }

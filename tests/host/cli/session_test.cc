@@ -55,6 +55,14 @@ void Pause(int ms) { std::this_thread::sleep_for(std::chrono::milliseconds(ms));
 class Background {
  public:
   Background(const std::string& device, const std::vector<std::string>& args) {
+    // Built before the fork: the child of a process with threads (a shared line's) may only
+    // call what is async-signal-safe. An allocation there waited forever on the allocator's lock
+    // that another thread held at the fork, and the command never started.
+    std::vector<std::string> argv = {PALPA_CLI_PATH, "--device", device};
+    argv.insert(argv.end(), args.begin(), args.end());
+    std::vector<char*> raw;
+    for (std::string& a : argv) raw.push_back(a.data());
+    raw.push_back(nullptr);
     int out[2];
     CHECK(pipe(out) == 0);
     pid_ = fork();
@@ -62,11 +70,6 @@ class Background {
       dup2(out[1], STDOUT_FILENO);
       dup2(out[1], STDERR_FILENO);
       close(out[0]);
-      std::vector<std::string> argv = {PALPA_CLI_PATH, "--device", device};
-      argv.insert(argv.end(), args.begin(), args.end());
-      std::vector<char*> raw;
-      for (std::string& a : argv) raw.push_back(a.data());
-      raw.push_back(nullptr);
       execv(PALPA_CLI_PATH, raw.data());
       _exit(127);
     }
