@@ -149,8 +149,15 @@ protocol::Status BoardReports::ConfigReport(Board& b, const protocol::GetConfig&
 void Board::SampleTelemetry(uint64_t now_us, bool fault_report) {
   if (!session_.open()) return;
   const uint16_t decimation = live_.board.telemetry_decimation;
-  const bool sample = tick_index_++ % decimation == 0;
-  if (sample) {
+  const uint32_t phase = tick_index_++ % decimation;
+  // A fault is reported with the tick it latched in (its outputs already safe), even between two
+  // decimated samples, as a session that falls silent sends nothing after it: the samples so far
+  // go first with their own timing, and the schedule starts again at this tick.
+  if (fault_report && phase != 0) {
+    SendTelemetryBatch(decimation, false);
+    tick_index_ -= phase;
+  }
+  if (phase == 0 || fault_report) {
     if (batch_.tick_count == 0) batch_.first_sample_us = now_us;
     for (uint8_t i = 0; i < live_.line_count; ++i) {
       const LineOutput& o = line_out_[i];
@@ -162,8 +169,12 @@ void Board::SampleTelemetry(uint64_t now_us, bool fault_report) {
     }
     ++batch_.tick_count;
   }
-  const bool full = batch_.tick_count >= live_.board.telemetry_batch;
-  if (!(full || (fault_report && batch_.tick_count > 0))) return;
+  if (batch_.tick_count >= live_.board.telemetry_batch || fault_report)
+    SendTelemetryBatch(decimation, fault_report);
+}
+
+void Board::SendTelemetryBatch(uint16_t decimation, bool fault_report) {
+  if (batch_.tick_count == 0) return;
   batch_.boot_nonce = session_.boot_nonce();
   batch_.sample_interval_us = kTickUs * decimation;
   batch_.line_count = live_.line_count;

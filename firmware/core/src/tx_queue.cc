@@ -29,6 +29,9 @@ void TxQueue::CommitTelemetry(size_t size, bool fault_report) {
   Slot& slot = fault_report ? fault_report_ : telemetry_;
   if (slot.size != 0) ++telemetry_dropped_;  // the previous frame never left: newest wins
   slot.size = static_cast<uint16_t>(size);
+  // Samples go out in the order they were taken: a frame still waiting when a fault report
+  // comes holds older ticks, and goes first.
+  if (fault_report) telemetry_first_ = telemetry_.size != 0;
 }
 
 void TxQueue::Flush(hal::ByteLink& link) {
@@ -36,10 +39,11 @@ void TxQueue::Flush(hal::ByteLink& link) {
     if (sending_ == nullptr) {
       if (answer_count_ > 0) {
         sending_ = &answers_[answer_head_];
-      } else if (fault_report_.size != 0) {
+      } else if (fault_report_.size != 0 && !(telemetry_first_ && telemetry_.size != 0)) {
         sending_ = &fault_report_;
       } else if (telemetry_.size != 0) {
         sending_ = &telemetry_;
+        telemetry_first_ = false;
       } else {
         return;
       }

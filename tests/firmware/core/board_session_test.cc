@@ -2,6 +2,7 @@
 // the commanding session keep the host-silence timer, a second host is told busy, and silence is
 // a fault only where the host left the board actuated.
 #include <initializer_list>
+#include <string>
 #include <vector>
 
 #include "board_harness.h"
@@ -333,4 +334,42 @@ TEST(BoardSilence, AJammingFingersBiasCountsAsActuated) {
 TEST(BoardSilence, ABoardWithNoSessionNeverLatchesHostSilence) {
   Follow(h, 100 * kTimeoutMs, false);
   LONGS_EQUAL(0, h.board->latched_faults());
+}
+
+// HID carries a sample every few ticks: the last frame of a session that fell silent still shows
+// the tick the fault latched in, every line safe, since nothing follows it.
+TEST(BoardSilence, TheLastTelemetryOfASilentSessionShowsEveryLineSafeWhateverTheDecimation) {
+  for (uint16_t decimation : {1, 2, 3, 4, 7}) {
+    BoardHarness board;
+    board.Connect();
+    pp::ConfigureBoard configured = board.board->config().board;
+    configured.telemetry_decimation = decimation;
+    board.Send(configured);
+    LONGS_EQUAL((int)pp::Status::kOk,
+                (int)BoardHarness::AnswerFor(board.Drain(), pp::MessageType::kConfigureBoard));
+    board.Send(pp::SetFingerMode{0, pp::FingerMode::kRaw});
+    board.Send(Setpoints(1, 30000));
+    Follow(board, 301, true);
+    board.Drain();
+    Follow(board, 3 * kTimeoutMs, false);
+    CHECK(board.board->latched_faults() & FaultBit(Fault::kHostSilence));
+    CHECK_FALSE(board.board->session_open());
+    pp::Telemetry last{};
+    uint64_t previous_last_us = 0;
+    for (const auto& f : board.Drain()) {
+      if (!f.Is<pp::Telemetry>()) continue;
+      last = f.As<pp::Telemetry>();
+      // In the order they were taken, each frame's samples after the frame before's.
+      CHECK_TEXT(last.first_sample_us > previous_last_us, std::to_string(decimation).c_str());
+      previous_last_us = last.first_sample_us + (last.tick_count - 1u) * last.sample_interval_us;
+    }
+    CHECK_TEXT(last.fault_bitmap & FaultBit(Fault::kHostSilence),
+               std::to_string(decimation).c_str());
+    const uint32_t last_tick = (last.tick_count - 1u) * last.line_count;
+    for (uint8_t i = 0; i < last.line_count; ++i) {
+      CHECK_TEXT(
+          last.samples[last_tick + i].status & pp::line_status::kSafe,
+          ("decimation " + std::to_string(decimation) + ", line " + std::to_string(i + 1)).c_str());
+    }
+  }
 }

@@ -115,6 +115,8 @@ class Board {
   uint8_t ParkDroppedChannels();
   void CheckConfigIntegrity(uint64_t now_us);
   [[gnu::noinline]] void SampleTelemetry(uint64_t now_us, bool fault_report);
+  /// The samples batched so far as one Telemetry frame (none: nothing sent).
+  void SendTelemetryBatch(uint16_t decimation, bool fault_report);
   [[gnu::noinline]] void Poll(uint64_t now_us);
   void ApplyLive(uint64_t now_us);
   void Hold();  ///< outputs safe until new setpoints arrive; compensators re-home

@@ -1,5 +1,6 @@
-// Outgoing frames by priority — answers, then fault reports, then telemetry — written to a
-// non-blocking link without ever waiting: under back-pressure whole telemetry frames are dropped.
+// Outgoing frames by priority — answers, then fault reports, then telemetry, though never a newer
+// tick before an older one — written to a non-blocking link without ever waiting: under
+// back-pressure whole telemetry frames are dropped.
 #pragma once
 
 #include <array>
@@ -40,7 +41,8 @@ class TxQueue {
   uint8_t answer_count_ = 0;
   Slot fault_report_{};
   Slot telemetry_{};
-  Slot* sending_ = nullptr;  ///< frame partly written: finish it before anything else
+  bool telemetry_first_ = false;  ///< telemetry_ holds ticks older than fault_report_
+  Slot* sending_ = nullptr;       ///< frame partly written: finish it before anything else
   uint16_t sent_ = 0;
   uint32_t telemetry_dropped_ = 0;
   uint32_t answers_dropped_ = 0;
