@@ -109,7 +109,20 @@ void CheckBoardBehaviour(const std::string& uri, pp::BoardKind kind) {
     return all;
   };
   bool safe = false;
-  for (const auto& f : client.Read(3000, all_safe)) safe |= all_safe(f);
+  frames = 0;
+  std::string others;
+  auto read_until_safe = [&] {
+    for (const auto& f : client.Read(3000, all_safe)) {
+      safe |= all_safe(f);
+      if (!f.Is<pp::Telemetry>()) {
+        others += " " + std::to_string(f.header.type);
+        continue;
+      }
+      last = f.As<pp::Telemetry>();
+      ++frames;
+    }
+  };
+  read_until_safe();
   if (!safe) {
     // A link that drops telemetry (HID at a sample a tick) may lose that last frame: a new
     // session, once the silent one has surely ended, shows the fault latched and every line safe.
@@ -117,10 +130,15 @@ void CheckBoardBehaviour(const std::string& uri, pp::BoardKind kind) {
     CHECK(again.ok());
     CHECK((again.value.fault_bitmap & pp::FaultBit(pp::Fault::kHostSilence)) != 0);
     client.KeepAlive(20);
-    for (const auto& f : client.Read(3000, all_safe)) safe |= all_safe(f);
+    read_until_safe();
     client.KeepAlive(0);
   }
-  CHECK(safe);
+  const uint32_t last_tick = last.tick_count > 0 ? (last.tick_count - 1) * last.line_count : 0;
+  CHECK_TEXT(safe,
+             (std::to_string(frames) + " telemetry frames after the host went quiet, the " +
+              "last with line 1 status " + std::to_string(last.samples[last_tick].status) +
+              ", faults " + ph::FaultNames(last.fault_bitmap) + "; other frame types:" + others)
+                 .c_str());
 }
 
 }  // namespace palpa::testing
