@@ -1,7 +1,8 @@
 // Runs inside the real-kernel guest, on the host side of dummy_hcd: the host library reaches a
 // palpa-sim through palpa-gadget over the kernel's USB stack — vendor bulk through libusb (usb:),
 // HID through hidapi and hidraw (hid:), CDC-ACM through a tty (serial:) — and is held to the same
-// behaviour as every other board. The gadget is unbound and bound again as a cable is pulled.
+// behaviour as every other board. The gadget is unbound and bound again as a cable is pulled; a
+// session is closed on purpose.
 //   PALPA_GADGET_CONFIGFS  the gadget's configfs directory (its UDC attribute binds it)
 //   PALPA_GADGET_UDC       the controller it is bound to
 //   PALPA_GADGET_TTY       the host's tty for its ACM function (default /dev/ttyACM0)
@@ -114,6 +115,43 @@ void CheckUnplugAndReplug(const std::string& uri) {
   HoldLine(d, 20.0);
 }
 
+/// Closes a session with a line actuated: the board is safe without a fault, later commands of
+/// that session get no_session, and the next host opens the board at once (it is not busy) and
+/// finds it safe with nothing latched, well past the host-silence timeout.
+void CheckCloseEndsTheSessionWithoutAFault(const std::string& uri) {
+  std::string error;
+  auto opened = ph::Device::Open(uri, {}, &error);
+  CHECK_TEXT(opened.ok(), error.c_str());
+  ph::Device& d = *opened.value;
+  CHECK(d.ClearFault().ok());
+  HoldLine(d, 30.0);
+  const uint32_t timeout_us = d.info().host_timeout_us;
+  const ph::Outcome closed = d.Close();
+  CHECK_TEXT(closed.ok(), closed.message.c_str());
+  LONGS_EQUAL((int)pp::Status::kNoSession, (int)d.SetLines({{0, 20.0}}).status);
+  opened.value.reset();  // the interface released (libusb lets one handle claim it)
+  std::this_thread::sleep_for(std::chrono::microseconds(3 * timeout_us));
+
+  auto next = ph::Device::Open(uri, {}, &error);
+  CHECK_TEXT(next.ok(), error.c_str());
+  const auto diagnostics = next.value->Diagnostics(&error);
+  CHECK_TEXT(diagnostics.ok(), error.c_str());
+  CHECK_TEXT(diagnostics.value.fault_bitmap == 0,
+             ph::FaultNames(diagnostics.value.fault_bitmap).c_str());
+  std::atomic<int> safe_lines{-1};
+  const int id = next.value->Subscribe([&](const ph::TelemetryFrame& f) {
+    const pp::Telemetry& t = f.telemetry;
+    int safe = 0;
+    for (uint8_t i = 0; i < t.line_count; ++i)
+      safe +=
+          (t.samples[(t.tick_count - 1) * t.line_count + i].status & pp::line_status::kSafe) != 0;
+    safe_lines = safe == t.line_count ? 1 : 0;
+  });
+  CHECK_TEXT(WaitFor([&] { return safe_lines.load() >= 0; }, 4000), "no telemetry");
+  next.value->Unsubscribe(id);
+  LONGS_EQUAL(1, safe_lines.load());
+}
+
 /// Sets the board's telemetry decimation (over vendor bulk, which has room for anything).
 void SetTelemetryDecimation(uint16_t every) {
   std::string error;
@@ -136,6 +174,10 @@ TEST(GadgetBulk, BehavesAsTheProtocolSays) {
 
 TEST(GadgetBulk, UnpluggedAndPluggedBackIn) { CheckUnplugAndReplug("usb:1209:0001"); }
 
+TEST(GadgetBulk, CloseEndsTheSessionWithoutAFault) {
+  CheckCloseEndsTheSessionWithoutAFault("usb:1209:0001");
+}
+
 // HID carries 64 bytes a millisecond: thesis-5finger's 7 lines at every tick would need 155 % of
 // it, so the board sends a sample every 4 ticks, as the budget in docs/protocol.md says.
 TEST_GROUP(GadgetHid){void setup() override{SetTelemetryDecimation(4);
@@ -150,6 +192,10 @@ TEST(GadgetHid, BehavesAsTheProtocolSays) {
 
 TEST(GadgetHid, UnpluggedAndPluggedBackIn) { CheckUnplugAndReplug("hid:1209:0001"); }
 
+TEST(GadgetHid, CloseEndsTheSessionWithoutAFault) {
+  CheckCloseEndsTheSessionWithoutAFault("hid:1209:0001");
+}
+
 TEST_GROUP(GadgetAcm){};
 
 TEST(GadgetAcm, BehavesAsTheProtocolSays) {
@@ -157,6 +203,10 @@ TEST(GadgetAcm, BehavesAsTheProtocolSays) {
 }
 
 TEST(GadgetAcm, UnpluggedAndPluggedBackIn) { CheckUnplugAndReplug(SerialUri()); }
+
+TEST(GadgetAcm, CloseEndsTheSessionWithoutAFault) {
+  CheckCloseEndsTheSessionWithoutAFault(SerialUri());
+}
 
 TEST_GROUP(GadgetList){};
 
