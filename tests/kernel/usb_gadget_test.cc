@@ -115,9 +115,10 @@ void CheckUnplugAndReplug(const std::string& uri) {
   HoldLine(d, 20.0);
 }
 
-/// Closes a session with a line actuated: the board is safe without a fault, later commands of
-/// that session get no_session, and the next host opens the board at once (it is not busy) and
-/// finds it safe with nothing latched, well past the host-silence timeout.
+/// Closes a session with a line actuated: later commands of that session get no_session, the next
+/// host opens the board at once (it is not busy) and finds every line safe with nothing latched,
+/// and still nothing three host-silence timeouts later (a session left to fall silent with a line
+/// actuated would have latched host_silence).
 void CheckCloseEndsTheSessionWithoutAFault(const std::string& uri) {
   std::string error;
   auto opened = ph::Device::Open(uri, {}, &error);
@@ -130,14 +131,15 @@ void CheckCloseEndsTheSessionWithoutAFault(const std::string& uri) {
   CHECK_TEXT(closed.ok(), closed.message.c_str());
   LONGS_EQUAL((int)pp::Status::kNoSession, (int)d.SetLines({{0, 20.0}}).status);
   opened.value.reset();  // the interface released (libusb lets one handle claim it)
-  std::this_thread::sleep_for(std::chrono::microseconds(3 * timeout_us));
 
   auto next = ph::Device::Open(uri, {}, &error);
   CHECK_TEXT(next.ok(), error.c_str());
-  const auto diagnostics = next.value->Diagnostics(&error);
-  CHECK_TEXT(diagnostics.ok(), error.c_str());
-  CHECK_TEXT(diagnostics.value.fault_bitmap == 0,
-             ph::FaultNames(diagnostics.value.fault_bitmap).c_str());
+  auto faults = [&] {
+    const auto diagnostics = next.value->Diagnostics(&error);
+    CHECK_TEXT(diagnostics.ok(), error.c_str());
+    return diagnostics.value.fault_bitmap;
+  };
+  CHECK_TEXT(faults() == 0, ph::FaultNames(faults()).c_str());
   std::atomic<int> safe_lines{-1};
   const int id = next.value->Subscribe([&](const ph::TelemetryFrame& f) {
     const pp::Telemetry& t = f.telemetry;
@@ -150,6 +152,8 @@ void CheckCloseEndsTheSessionWithoutAFault(const std::string& uri) {
   CHECK_TEXT(WaitFor([&] { return safe_lines.load() >= 0; }, 4000), "no telemetry");
   next.value->Unsubscribe(id);
   LONGS_EQUAL(1, safe_lines.load());
+  std::this_thread::sleep_for(std::chrono::microseconds(3 * timeout_us));
+  CHECK_TEXT(faults() == 0, ph::FaultNames(faults()).c_str());
 }
 
 /// Sets the board's telemetry decimation (over vendor bulk, which has room for anything).
