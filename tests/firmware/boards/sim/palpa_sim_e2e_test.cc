@@ -1,6 +1,6 @@
 // palpa-sim as a process, through TCP and a raw pty, driven by a minimal client on protocol/:
 // Hello, configuration, setpoints, telemetry, host silence → safe, garbage, clean exit; a host
-// that stalls briefly at high speed.
+// that stalls briefly at high speed, and frames that are not the session's, which hold nothing.
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -138,6 +138,55 @@ TEST(PalpaSimProcess, AtHighSpeedAStalledHostKeepsItsSessionAndAGoneOneDoesNot) 
       safe |= (f.As<pp::Telemetry>().fault_bitmap & pp::FaultBit(pp::Fault::kHostSilence)) != 0;
   }
   CHECK(safe);
+  LONGS_EQUAL(0, sim.Stop());
+}
+
+// The hold above keys on the session's own fresh frames, as the board's silence does: a stale or
+// foreign heartbeat stream at 10x holds nothing, and a Close that arrives while the board is held
+// at its deadline (70 ms into a stall: past the 55 ms of the hold alone) ends the session with no
+// fault.
+TEST(PalpaSimProcess, AtHighSpeedOnlyTheSessionsOwnFramesHoldTheBoardAndACloseIsNoFault) {
+  SimProcess sim;
+  CHECK(sim.Start(
+      {"--config", "thesis-pneumatic-3", "--listen", "tcp:127.0.0.1:0", "--speed", "10"}));
+  MiniClient client;
+  CHECK_TEXT(Connect(client, sim.address()), sim.address().c_str());
+  uint32_t generation = 0;
+  auto open_actuated = [&](uint32_t nonce) {
+    const auto hello = client.Hello(nonce);
+    CHECK(hello.ok());
+    LONGS_EQUAL(0, hello.value.fault_bitmap);
+    pp::ConfigureBoard board{};
+    board.config_name = hello.value.config_name;
+    board.host_timeout_us = 100000;
+    board.telemetry_batch = 2;
+    LONGS_EQUAL((int)pp::Status::kOk, (int)client.Reliable(board));
+    LONGS_EQUAL((int)pp::Status::kOk, (int)client.RawSetpoint(0, 0, 30000, ++generation));
+    CHECK(HeartbeatsKeepTheSession(client, 200, generation));
+  };
+  open_actuated(0xA1);
+  std::this_thread::sleep_for(std::chrono::milliseconds(70));
+  client.Send(pp::Close{});
+  bool closed = false;
+  for (const ReceivedFrame& f : client.Read(200)) {
+    closed |= f.Is<pp::Ack>() &&
+              f.As<pp::Ack>().acked_type == static_cast<uint8_t>(pp::MessageType::kClose);
+    if (f.Is<pp::Telemetry>())
+      CHECK((f.As<pp::Telemetry>().fault_bitmap & pp::FaultBit(pp::Fault::kHostSilence)) == 0);
+  }
+  CHECK_TEXT(closed, "no answer to Close");
+  open_actuated(0xA2);  // no fault latched by the first session
+  // The session's last heartbeat repeated and a foreign session's, every 2 ms of real time.
+  bool silent = false;
+  for (int t = 0; t < 1000 && !silent; t += 2) {
+    client.Send(pp::Heartbeat{0, generation});
+    client.Send(pp::Heartbeat{0xB0B, generation + 1 + static_cast<uint32_t>(t)});
+    for (const ReceivedFrame& f : client.Read(2)) {
+      if (f.Is<pp::Telemetry>())
+        silent |= (f.As<pp::Telemetry>().fault_bitmap & pp::FaultBit(pp::Fault::kHostSilence)) != 0;
+    }
+  }
+  CHECK_TEXT(silent, "stale and foreign heartbeats held the board");
   LONGS_EQUAL(0, sim.Stop());
 }
 
