@@ -14,10 +14,19 @@ class FuzzInput {
   FuzzInput(const uint8_t* data, size_t size) : data_(data), size_(size) {}
   bool done() const { return at_ >= size_; }
   uint8_t Byte() { return at_ < size_ ? data_[at_++] : 0; }
-  /// Little-endian, like the wire.
-  uint16_t Word() { return static_cast<uint16_t>(Byte() | Byte() << 8); }
-  uint32_t Word32() { return Word() | static_cast<uint32_t>(Word()) << 16; }
-  uint64_t Word64() { return Word32() | static_cast<uint64_t>(Word32()) << 32; }
+  /// Little-endian, like the wire (the low part read first: the operands of | are unsequenced).
+  uint16_t Word() {
+    const uint8_t low = Byte();
+    return static_cast<uint16_t>(low | Byte() << 8);
+  }
+  uint32_t Word32() {
+    const uint16_t low = Word();
+    return low | static_cast<uint32_t>(Word()) << 16;
+  }
+  uint64_t Word64() {
+    const uint32_t low = Word32();
+    return low | static_cast<uint64_t>(Word32()) << 32;
+  }
   /// Any bit pattern: NaN, infinities and denormals included.
   float FloatBits() {
     const uint32_t bits = Word32();

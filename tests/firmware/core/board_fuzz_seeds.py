@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Writes seed scripts for board_fuzz: sessions that configure compensators and run targets.
 
-The opcodes and their arguments are those of fuzz_board.cc's Operate; libFuzzer mutates these
+The opcodes and their arguments are those of board_script.cc's Operate; libFuzzer mutates these
 into the scripts it explores, which reach the compensators far sooner than from empty inputs.
 """
 import os

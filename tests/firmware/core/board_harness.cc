@@ -33,8 +33,15 @@ void BoardHarness::Run(uint32_t ms, bool heartbeat) {
   for (uint32_t i = 0; i < ms; ++i) {
     clock.Advance(pc::Board::kTickUs);
     if (heartbeat && i % 20 == 0) Send(pp::Heartbeat{hello_nonce, ++generation}, false);
-    board->Step();
+    Step();
   }
+}
+
+bool BoardHarness::Step() {
+  const size_t before = link.tx.size();
+  const bool ticked = board->Step();
+  if (after_step) after_step(ticked, link.tx.data() + before, link.tx.size() - before);
+  return ticked;
 }
 
 std::vector<BoardFrame> BoardHarness::Drain() {

@@ -38,6 +38,9 @@ struct BoardHarness {
   fake::SimulatedNorFlash own_flash{64 * 1024, 8 * 1024};
   fake::SimulatedNorFlash* flash;
   std::unique_ptr<pc::Board> board;
+  /// Called after every loop pass the harness runs: whether a tick ran, and the bytes the board
+  /// sent during it.
+  std::function<void(bool ticked, const uint8_t* sent, size_t size)> after_step;
   pp::OwningFrameDecoder decoder;
   uint8_t next_seq = 0;
   uint32_t generation = 0;
@@ -54,8 +57,10 @@ struct BoardHarness {
     const auto n =
         pp::EncodeMessageFrame(m, seq, reliable ? pp::flags::kReliable : 0, frame, sizeof(frame));
     link.Inject(frame, n.value);
-    board->Step();
+    Step();
   }
+  /// One loop pass (after_step sees it); true when a tick ran.
+  bool Step();
   /// Opens a session (Hello; the open one, if any, closed first) and returns the HelloReply.
   pp::HelloReply Connect(uint8_t initial_seq = 0);
   /// Runs `ms` milliseconds of virtual time, one loop pass per 1 ms tick (plus heartbeats if
