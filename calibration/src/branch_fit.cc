@@ -5,6 +5,7 @@
 
 #include "palpa/calibration/hysteresis_fit.h"
 #include "palpa/core/compensator.h"
+#include "palpa/protocol/compensator_params.h"
 
 namespace palpa::calibration {
 namespace {
@@ -134,10 +135,17 @@ Branches ReadBranches(const std::vector<SweepSample>& sweep, int points) {
 }
 
 std::vector<float> BranchParams(const Branches& b, double band, double dead_band) {
-  std::vector<float> p{static_cast<float>(band), static_cast<float>(dead_band)};
-  for (double v : b.levels) p.push_back(static_cast<float>(v));
-  for (double v : b.rising) p.push_back(static_cast<float>(v));
-  for (double v : b.falling) p.push_back(static_cast<float>(v));
+  const std::vector<float> y(b.levels.begin(), b.levels.end());
+  const std::vector<float> up(b.rising.begin(), b.rising.end());
+  const std::vector<float> down(b.falling.begin(), b.falling.end());
+  const protocol::BranchParamSet set{static_cast<uint8_t>(y.size()),
+                                     static_cast<float>(band),
+                                     static_cast<float>(dead_band),
+                                     y.data(),
+                                     up.data(),
+                                     down.data()};
+  std::vector<float> p(protocol::BranchParamCount(set.points));
+  protocol::WriteBranchParams(set, p.data(), p.size());
   return p;
 }
 
@@ -169,7 +177,7 @@ void BranchResidual(const std::vector<float>& params, const std::vector<SweepSam
 HysteresisFit FitBranch(const std::vector<SweepSample>& sweep, int points) {
   HysteresisFit fit;
   fit.kind = CompensatorKind::kBranch;
-  if (points < 2 || points > core::kMaxBranchPoints) {
+  if (points < 2 || points > protocol::kMaxBranchPoints) {
     fit.error = "branch points must be 2..24";
     return fit;
   }

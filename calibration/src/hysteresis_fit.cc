@@ -7,6 +7,7 @@
 
 #include "palpa/calibration/nnls.h"
 #include "palpa/core/compensator.h"
+#include "palpa/protocol/compensator_params.h"
 
 namespace palpa::calibration {
 namespace {
@@ -123,16 +124,20 @@ PlayModel FitAsymmetric(const std::vector<double>& u, const std::vector<double>&
 }
 
 std::vector<float> PlayParams(CompensatorKind kind, const PlayModel& m) {
-  std::vector<float> p;
-  if (kind == CompensatorKind::kAsymmetricPi) p.push_back(static_cast<float>(m.weights.size()));
-  p.push_back(static_cast<float>(m.offset));
-  p.push_back(static_cast<float>(m.w0));
-  for (double r : m.thresholds) p.push_back(static_cast<float>(r));
-  for (double w : m.weights) p.push_back(static_cast<float>(w));
-  if (kind == CompensatorKind::kAsymmetricPi) {
-    for (double d : m.dead_zones) p.push_back(static_cast<float>(d));
-    for (double g : m.gains) p.push_back(static_cast<float>(g));
-  }
+  auto floats = [](const std::vector<double>& v) { return std::vector<float>(v.begin(), v.end()); };
+  const std::vector<float> r = floats(m.thresholds), w = floats(m.weights);
+  const std::vector<float> d = floats(m.dead_zones), g = floats(m.gains);
+  protocol::PlayParamSet set;
+  set.operators = static_cast<uint8_t>(r.size());
+  set.dead_zones = static_cast<uint8_t>(d.size());
+  set.offset = static_cast<float>(m.offset);
+  set.w0 = static_cast<float>(m.w0);
+  set.thresholds = r.data();
+  set.weights = w.data();
+  set.dead_zone_thresholds = d.data();
+  set.dead_zone_gains = g.data();
+  std::vector<float> p(protocol::PlayParamCount(kind, set.operators, set.dead_zones));
+  protocol::WritePlayParams(kind, set, p.data(), p.size());
   return p;
 }
 
@@ -197,7 +202,7 @@ std::string SweepError(const std::vector<SweepSample>& sweep, size_t min_points,
 HysteresisFit FitPi(const std::vector<SweepSample>& sweep, int operators, double drive_max) {
   HysteresisFit fit;
   fit.kind = CompensatorKind::kPrandtlIshlinskii;
-  if (operators < 1 || operators > core::kMaxPlayOperators) {
+  if (operators < 1 || operators > protocol::kMaxPlayOperators) {
     fit.error = "operator count must be 1..32";
     return fit;
   }
@@ -219,8 +224,9 @@ HysteresisFit FitApi(const std::vector<SweepSample>& sweep, int operators, int d
                      double drive_max) {
   HysteresisFit fit;
   fit.kind = CompensatorKind::kAsymmetricPi;
-  if (operators < 1 || dead_zones < 1 || dead_zones > core::kMaxDeadZones ||
-      3 + 2 * operators + 2 * dead_zones > protocol::kMaxCompensatorParams) {
+  if (operators < 1 || dead_zones < 1 || dead_zones > protocol::kMaxDeadZones ||
+      protocol::PlayParamCount(CompensatorKind::kAsymmetricPi, static_cast<size_t>(operators),
+                               static_cast<size_t>(dead_zones)) > protocol::kMaxCompensatorParams) {
     fit.error = "api needs 1..32 operators and 1..8 dead zones within 80 parameters";
     return fit;
   }
@@ -280,18 +286,14 @@ HysteresisFit FitBetterPlayModel(const std::vector<SweepSample>& sweep, int oper
 
 PlayModel ModelOf(CompensatorKind kind, const std::vector<float>& params) {
   PlayModel m;
-  size_t at = 0;
-  size_t n = (params.size() - 2) / 2;
-  if (kind == CompensatorKind::kAsymmetricPi) n = static_cast<size_t>(params[at++]);
-  m.offset = params[at++];
-  m.w0 = params[at++];
-  for (size_t i = 0; i < n; ++i) m.thresholds.push_back(params[at++]);
-  for (size_t i = 0; i < n; ++i) m.weights.push_back(params[at++]);
-  if (kind == CompensatorKind::kAsymmetricPi) {
-    const size_t zones = (params.size() - at) / 2;
-    for (size_t k = 0; k < zones; ++k) m.dead_zones.push_back(params[at++]);
-    for (size_t k = 0; k < zones; ++k) m.gains.push_back(params[at++]);
-  }
+  protocol::PlayParamSet set;
+  if (protocol::ReadPlayParams(kind, params.data(), params.size(), set) != nullptr) return m;
+  m.offset = set.offset;
+  m.w0 = set.w0;
+  m.thresholds.assign(set.thresholds, set.thresholds + set.operators);
+  m.weights.assign(set.weights, set.weights + set.operators);
+  m.dead_zones.assign(set.dead_zone_thresholds, set.dead_zone_thresholds + set.dead_zones);
+  m.gains.assign(set.dead_zone_gains, set.dead_zone_gains + set.dead_zones);
   return m;
 }
 

@@ -1,10 +1,7 @@
-// Compensator parameter layouts: validation (what makes an inverse invalid) and table building.
-//
-//   pi:     [offset, w0, r_1..r_n, w_1..w_n]                    n = 1..32
-//   api:    [n, offset, w0, r_1..r_n, w_1..w_n, d_1..d_m, g_1..g_m]  m = 1..8 dead zones
-//   branch: [band, dead_band, y_1..y_K, rising_1..rising_K, falling_1..falling_K]  K = 2..24
+// Compensator parameters: validation (what makes an inverse invalid) and table building. The
+// layouts themselves are protocol/compensator_params.h's.
+#include "palpa/protocol/compensator_params.h"
 #include "palpa/core/compensator.h"
-
 #include "play_lanes.h"
 
 namespace palpa::core {
@@ -14,36 +11,8 @@ using protocol::CompensatorKind;
 
 bool Finite(float v) { return __builtin_isfinite(v); }
 
-/// Where the pieces of a play-operator parameter set sit in the params array.
-struct PlayLayout {
-  uint8_t n = 0;
-  uint8_t m = 0;
-  uint8_t offset = 0;  ///< index of the offset; w0 follows, then thresholds and weights
-};
-
-const char* ReadPlayLayout(const protocol::ConfigureFinger& f, PlayLayout& out) {
-  const uint8_t count = f.param_count;
-  if (f.compensator == CompensatorKind::kPrandtlIshlinskii) {
-    if (count < 4 || count % 2 != 0)
-      return "pi parameters: need offset, w0 and n thresholds and weights";
-    out.n = static_cast<uint8_t>((count - 2) / 2);
-    out.offset = 0;
-  } else {
-    if (count < 1) return "api parameters: missing the operator count";
-    const float n = f.params[0];
-    if (!(n >= 1 && n <= kMaxPlayOperators) || n != static_cast<float>(static_cast<int>(n))) {
-      return "api parameters: operator count not an integer in 1..32";
-    }
-    out.n = static_cast<uint8_t>(n);
-    const int rest = count - 3 - 2 * out.n;
-    if (rest < 2 || rest % 2 != 0)
-      return "api parameters: need n, offset, w0, n thresholds and weights, dead zones and gains";
-    out.m = static_cast<uint8_t>(rest / 2);
-    out.offset = 1;
-  }
-  if (out.n > kMaxPlayOperators) return "too many play operators (max 32)";
-  if (out.m > kMaxDeadZones) return "too many dead zones (max 8)";
-  return nullptr;
+const char* ReadPlay(const protocol::ConfigureFinger& f, protocol::PlayParamSet& out) {
+  return protocol::ReadPlayParams(f.compensator, f.params.data(), f.param_count, out);
 }
 
 /// Nearest integer; 0 for what no int32 holds (NaN, infinities), so a parameter set that
@@ -132,15 +101,15 @@ bool BuildPlayOperators(const float* r, const float* w, uint8_t n, PlayTable& t)
 }
 
 const char* PlayError(const protocol::ConfigureFinger& f) {
-  PlayLayout l;
-  if (const char* e = ReadPlayLayout(f, l)) return e;
-  const float* p = f.params.data() + l.offset;
-  const float w0 = p[1];
-  const float* r = p + 2;
-  const float* w = r + l.n;
+  protocol::PlayParamSet set;
+  if (const char* e = ReadPlay(f, set)) return e;
+  const float w0 = set.w0;
+  const float* r = set.thresholds;
+  const float* w = set.weights;
+  const uint8_t n = set.operators;
   if (!(w0 > 0)) return "w0 must be positive (the inverse divides by it)";
   float cumulative = w0;
-  for (uint8_t i = 0; i < l.n; ++i) {
+  for (uint8_t i = 0; i < n; ++i) {
     if (!Finite(r[i]) || r[i] < 0 || r[i] >= 100000) return "threshold not in 0..100 kPa";
     if (i > 0 && !(r[i] > r[i - 1])) return "thresholds not strictly increasing";
     cumulative += w[i];
@@ -148,12 +117,12 @@ const char* PlayError(const protocol::ConfigureFinger& f) {
   }
   PlayTable scratch;  // the tables the board would build, only to see that they are finite
   scratch.w0 = w0;
-  if (!BuildPlayOperators(r, w, l.n, scratch))
+  if (!BuildPlayOperators(r, w, n, scratch))
     return "weights too far apart: the inverse overflows the board's arithmetic";
-  const float* d = w + l.n;
-  const float* g = d + l.m;
+  const float* d = set.dead_zone_thresholds;
+  const float* g = set.dead_zone_gains;
   float slope = 1;
-  for (uint8_t k = 0; k < l.m; ++k) {
+  for (uint8_t k = 0; k < set.dead_zones; ++k) {
     if (!Finite(d[k]) || d[k] < 0) return "dead-zone threshold negative or not finite";
     if (k > 0 && !(d[k] > d[k - 1])) return "dead-zone thresholds not strictly increasing";
     slope += g[k];
@@ -170,17 +139,14 @@ bool StrictlyRising(const float* v, uint8_t n) {
 }
 
 const char* BranchError(const protocol::ConfigureFinger& f) {
-  const uint8_t count = f.param_count;
-  if (count < 8 || (count - 2) % 3 != 0)
-    return "branch parameters: need band, dead band and K outputs, rising and falling drives";
-  const uint8_t k = static_cast<uint8_t>((count - 2) / 3);
-  if (k > kMaxBranchPoints) return "too many branch points (max 24)";
-  const float* p = f.params.data();
-  if (!(p[0] > 0)) return "branch band must be positive";
-  if (!(p[1] >= 0 && p[1] <= 5000)) return "branch dead band not in 0..5 kPa";
-  const float* y = p + 2;
-  const float* up = y + k;
-  const float* down = up + k;
+  protocol::BranchParamSet set;
+  if (const char* e = protocol::ReadBranchParams(f.params.data(), f.param_count, set)) return e;
+  const uint8_t k = set.points;
+  if (!(set.band > 0)) return "branch band must be positive";
+  if (!(set.dead_band >= 0 && set.dead_band <= 5000)) return "branch dead band not in 0..5 kPa";
+  const float* y = set.outputs;
+  const float* up = set.rising;
+  const float* down = set.falling;
   for (uint8_t i = 0; i < k; ++i) {
     if (!(up[i] >= 0 && up[i] <= 100000) || !(down[i] >= 0 && down[i] <= 100000))
       return "branch drive not in 0..100 kPa";
@@ -192,27 +158,24 @@ const char* BranchError(const protocol::ConfigureFinger& f) {
 }
 
 Compensator MakePlay(const protocol::ConfigureFinger& f, Compensator c) {
-  PlayLayout l;
-  ReadPlayLayout(f, l);
-  const float* p = f.params.data() + l.offset;
-  const float* r = p + 2;
-  const float* w = r + l.n;
+  protocol::PlayParamSet set;
+  ReadPlay(f, set);  // validated by PlayError
   PlayTable& t = c.play;
-  t.operators = l.n;
-  t.pairs = static_cast<uint8_t>((l.n + 1) / 2);
-  t.dead_zones = l.m;
-  t.offset = p[0];
-  t.w0 = p[1];
-  (void)BuildPlayOperators(r, w, l.n, t);  // validated by PlayError
+  t.operators = set.operators;
+  t.pairs = static_cast<uint8_t>((set.operators + 1) / 2);
+  t.dead_zones = set.dead_zones;
+  t.offset = set.offset;
+  t.w0 = set.w0;
+  (void)BuildPlayOperators(set.thresholds, set.weights, set.operators, t);
   // S(v) = v + Σ g_k max(v − d_k, 0): knots at d_k; S⁻¹ slope above knot k is 1 / (1 + Σ_{j≤k}
   // g_j).
-  const float* d = w + l.n;
-  const float* g = d + l.m;
+  const float* d = set.dead_zone_thresholds;
+  const float* g = set.dead_zone_gains;
   t.knot_in[0] = 0;
   t.knot_out[0] = 0;
   t.inverse_slope[0] = 1;
   float slope = 1;
-  for (uint8_t k = 0; k < l.m; ++k) {
+  for (uint8_t k = 0; k < set.dead_zones; ++k) {
     const float in_prev = t.knot_in[k];
     t.knot_in[k + 1] = d[k];
     t.knot_out[k + 1] = t.knot_out[k] + (d[k] - in_prev) * slope;
@@ -223,16 +186,17 @@ Compensator MakePlay(const protocol::ConfigureFinger& f, Compensator c) {
 }
 
 Compensator MakeBranch(const protocol::ConfigureFinger& f, Compensator c) {
-  const uint8_t k = static_cast<uint8_t>((f.param_count - 2) / 3);
+  protocol::BranchParamSet set;
+  protocol::ReadBranchParams(f.params.data(), f.param_count, set);  // validated by BranchError
   BranchTable& t = c.branch;
   t = BranchTable{};
-  t.points = k;
-  t.band = f.params[0];
-  t.dead_band = f.params[1];
-  for (uint8_t i = 0; i < k; ++i) {
-    t.output[i] = f.params[2 + i];
-    t.rising[i] = f.params[2 + k + i];
-    t.falling[i] = f.params[2 + 2 * k + i];
+  t.points = set.points;
+  t.band = set.band;
+  t.dead_band = set.dead_band;
+  for (uint8_t i = 0; i < set.points; ++i) {
+    t.output[i] = set.outputs[i];
+    t.rising[i] = set.rising[i];
+    t.falling[i] = set.falling[i];
   }
   return c;
 }

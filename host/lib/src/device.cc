@@ -4,13 +4,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <type_traits>
 
 #include "palpa/hal/linux/atomic_file.h"
 #include "palpa/host/calibration_file.h"
 #include "palpa/host/device_uri.h"
 #include "palpa/host/fault_text.h"
 #include "palpa/host/field_text.h"
+#include "palpa/protocol/config_records.h"
 
 namespace palpa::host {
 
@@ -86,13 +86,10 @@ Outcome Device::ApplyCalibration(uint8_t finger, const CalibrationFile& c) {
   // One staged blob: the board validates every record and applies all of them or none.
   std::vector<uint8_t> records;
   auto append = [&records](const auto& message) {
-    uint8_t body[512];
-    const auto size = pp::EncodeBody(message, body, sizeof(body));
+    uint8_t record[pp::kRecordHeaderSize + 512];
+    const auto size = pp::EncodeRecord(message, record, sizeof(record));
     if (!size.ok()) return false;
-    records.push_back(static_cast<uint8_t>(size.value));
-    records.push_back(static_cast<uint8_t>(size.value >> 8));
-    records.push_back(static_cast<uint8_t>(std::decay_t<decltype(message)>::kInfo.type));
-    records.insert(records.end(), body, body + size.value);
+    records.insert(records.end(), record, record + size.value);
     return true;
   };
   if (!append(f))

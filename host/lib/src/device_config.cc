@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "palpa/protocol/config_records.h"
 #include "palpa/protocol/crc32.h"
 
 namespace palpa::host {
@@ -34,15 +35,12 @@ Outcome Device::FactoryReset() {
 }
 
 Outcome Device::ConfigureFinger(const pp::ConfigureFinger& finger) {
-  uint8_t body[512];
-  const auto size = pp::EncodeBody(finger, body + 3, sizeof(body) - 3);
+  uint8_t record[pp::kRecordHeaderSize + 512];
+  const auto size = pp::EncodeRecord(finger, record, sizeof(record));
   if (!size.ok()) return Outcome{size.status, "configure finger: cannot encode", {}};
-  if (size.value <= pp::kMaxBodySize)
+  if (size.value - pp::kRecordHeaderSize <= pp::kMaxBodySize)
     return FromCommand(link_->Command(finger), "configure finger");
-  body[0] = static_cast<uint8_t>(size.value);
-  body[1] = static_cast<uint8_t>(size.value >> 8);
-  body[2] = static_cast<uint8_t>(pp::MessageType::kConfigureFinger);
-  return ConfigureStaged(body, size.value + 3);
+  return ConfigureStaged(record, size.value);
 }
 
 Outcome Device::ConfigureStaged(const uint8_t* records, size_t size) {

@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "palpa/protocol/codec.h"
+#include "palpa/protocol/config_records.h"
 #include "palpa/protocol/crc32.h"
 
 namespace palpa::host {
@@ -114,17 +114,16 @@ std::optional<uint32_t> CarriedHostTimeout::OnCommit(const protocol::StagedCommi
       commit.crc32 != protocol::Crc32(blob_.data(), blob_.size())) {
     return std::nullopt;
   }
-  // Records as the board reads them: 16-bit length, type, body; the last board record wins.
+  // Records as the board reads them; the last board record wins.
   std::optional<uint32_t> carried;
-  for (size_t at = 0; blob_.size() - at >= 3;) {
-    const size_t length = blob_[at] | static_cast<size_t>(blob_[at + 1]) << 8;
-    if (blob_.size() - at - 3 < length) break;
+  protocol::RecordReader reader(blob_.data(), blob_.size());
+  protocol::Record record;
+  while (!reader.done() && reader.Next(record) == protocol::Status::kOk) {
     protocol::ConfigureBoard board;
-    if (blob_[at + 2] == static_cast<uint8_t>(protocol::MessageType::kConfigureBoard) &&
-        protocol::DecodeBody(blob_.data() + at + 3, length, board) == protocol::Status::kOk) {
+    if (record.type == static_cast<uint8_t>(protocol::MessageType::kConfigureBoard) &&
+        protocol::DecodeBody(record.body, record.size, board) == protocol::Status::kOk) {
       carried = board.host_timeout_us;
     }
-    at += 3 + length;
   }
   return carried;
 }

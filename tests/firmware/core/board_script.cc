@@ -11,6 +11,7 @@
 #include "dac_pressure.h"
 #include "palpa/core/board_configs.h"
 #include "palpa/core/ceilings.h"
+#include "palpa/protocol/config_records.h"
 #include "palpa/protocol/crc32.h"
 
 namespace palpa::testing {
@@ -161,16 +162,18 @@ void BoardScript::SendEditedRecord() {
   const auto n = pc::EncodeConfigBlob(h_.board->config(), blob.data(), blob.size());
   if (!n.ok()) Fail("the live configuration does not encode", 0);
   std::vector<std::pair<size_t, size_t>> records;  // offset, size (header included)
-  for (size_t at = 0; at + 3 <= n.value;) {
-    const size_t body = blob[at] | blob[at + 1] << 8;
-    records.emplace_back(at, 3 + body);
-    at += 3 + body;
+  pp::RecordReader reader(blob.data(), n.value);
+  for (pp::Record r; !reader.done() && reader.Next(r) == pp::Status::kOk;) {
+    const size_t size = pp::kRecordHeaderSize + r.size;
+    records.emplace_back(static_cast<size_t>(r.body - blob.data()) - pp::kRecordHeaderSize, size);
   }
   const auto [offset, size] = records[s_.Byte() % records.size()];
   std::vector<uint8_t> record(blob.begin() + offset, blob.begin() + offset + size);
   const uint8_t edits = s_.Byte() % 8;
-  for (uint8_t e = 0; e < edits && size > 3; ++e) record[3 + s_.Word() % (size - 3)] = s_.Byte();
-  if (s_.Byte() % 2 == 0) return SendReliable(record[2], record.data() + 3, size - 3);
+  constexpr size_t kHeader = pp::kRecordHeaderSize;
+  for (uint8_t e = 0; e < edits && size > kHeader; ++e)
+    record[kHeader + s_.Word() % (size - kHeader)] = s_.Byte();
+  if (s_.Byte() % 2 == 0) return SendReliable(record[2], record.data() + kHeader, size - kHeader);
   pp::StagedBegin begin{static_cast<uint16_t>(size)};
   uint8_t body[pp::kMaxBodySize];
   SendReliable(static_cast<uint8_t>(pp::MessageType::kStagedBegin), body,

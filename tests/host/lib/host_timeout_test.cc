@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "palpa/protocol/codec.h"
+#include "config_record.h"
 #include "palpa/protocol/crc32.h"
 
 #include "CppUTest/TestHarness.h"
@@ -96,16 +96,10 @@ TEST(HostTimeoutTracker, EveryChangeIsCountedSoAWaitingLoopWakes) {
 
 namespace {
 
-/// A staged blob's records as the board reads them: 16-bit length, type, body.
+/// A staged blob's records as the board reads them.
 template <class M>
 void AppendRecord(std::vector<uint8_t>& blob, const M& message) {
-  uint8_t body[512];
-  const auto size = pp::EncodeBody(message, body, sizeof(body));
-  CHECK(size.ok());
-  blob.push_back(static_cast<uint8_t>(size.value));
-  blob.push_back(static_cast<uint8_t>(size.value >> 8));
-  blob.push_back(static_cast<uint8_t>(M::kInfo.type));
-  blob.insert(blob.end(), body, body + size.value);
+  CHECK(palpa::testing::AppendConfigRecord(blob, message));
 }
 
 /// What `carried` reads from `message` queued as a command (its encoded body, as the link has it).

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "board_transport.h"
+#include "config_record.h"
 #include "mini_client.h"
 #include "palpa/host/device.h"
 #include "palpa/host/fault_transport.h"
@@ -62,16 +63,11 @@ std::unique_ptr<ph::Device> OpenSimAt(const char* speed) {
   return std::move(device.value);
 }
 
-/// One Configure* record as a staged blob holds it: 16-bit length, type, body.
+/// One Configure* record as a staged blob holds it.
 template <class M>
 std::vector<uint8_t> StagedRecord(const M& message) {
-  std::vector<uint8_t> record(3 + 512);
-  const auto size = pp::EncodeBody(message, record.data() + 3, record.size() - 3);
-  CHECK(size.ok());
-  record[0] = static_cast<uint8_t>(size.value);
-  record[1] = static_cast<uint8_t>(size.value >> 8);
-  record[2] = static_cast<uint8_t>(M::kInfo.type);
-  record.resize(3 + size.value);
+  std::vector<uint8_t> record = palpa::testing::ConfigRecord(message);
+  CHECK(!record.empty());
   return record;
 }
 
