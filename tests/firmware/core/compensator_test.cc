@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "palpa/core/compensator.h"
+#include "palpa/core/internal/compensator_tables.h"
 
 #include "CppUTest/TestHarness.h"
 

@@ -96,7 +96,7 @@ class Board {
   friend class BoardDispatch;
   friend class BoardReports;
 
-  // Out of line so instruction counts can bracket a tick (tests/bench/qemu_insn_count.c).
+  // Out of line, so instruction counts can bracket a tick (tests/bench/qemu_insn_count.c).
   [[gnu::noinline]] void Tick(uint64_t now_us);
   void ReadInputs(uint64_t now_us, SupervisorInput& in);
   /// The slow monitors' view of the line they visit this tick: where the last tick left it.
@@ -114,9 +114,11 @@ class Board {
   /// taken it yet; returns the first whose write failed, or kNoLine.
   uint8_t ParkDroppedChannels();
   void CheckConfigIntegrity(uint64_t now_us);
+  /// Out of line, so instruction counts can bracket the telemetry stage.
   [[gnu::noinline]] void SampleTelemetry(uint64_t now_us, bool fault_report);
   /// The samples batched so far as one Telemetry frame (none: nothing sent).
   void SendTelemetryBatch(uint16_t decimation, bool fault_report);
+  /// Link input and output between ticks. Out of line, so instruction counts can bracket a poll.
   [[gnu::noinline]] void Poll(uint64_t now_us);
   void ApplyLive(uint64_t now_us);
   void Hold();  ///< outputs safe until new setpoints arrive; compensators re-home
