@@ -22,16 +22,16 @@ log=$(mktemp)
 trap 'rm -f "$log" "$log.err"' EXIT
 for image in "$@"; do
   args="$(span tick palpa::core::Board::Tick "$image")"
-  args="$args,$(span sensors palpa::core::Board::ReadInputs "$image")"
-  args="$args,$(span config_check palpa::core::Board::CheckConfigIntegrity "$image")"
+  args="$args,$(span sensors palpa::core::BoardLines::Sense "$image")"
+  args="$args,$(span config_check palpa::core::ConfigCheck::Step "$image")"
   args="$args,$(span supervisor palpa::core::Supervise "$image")"
-  args="$args,$(span fingers palpa::core::Board::ComputeSetpoints "$image")"
+  args="$args,$(span fingers palpa::core::BoardFingers::Step "$image")"
   if [ "${image%-pi16.elf}" != "$image" ]; then  # the image with a PI(16) compensator on every finger
     args="$args,$(span play_passes palpa_play_pairs_v7em "$image")"
   fi
-  args="$args,$(span lines palpa::core::Board::StepLines "$image")"  # line steps inlined
+  args="$args,$(span lines palpa::core::BoardLines::Step "$image")"  # line steps inlined
   args="$args,$(span outputs palpa::core::Board::WriteOutputs "$image")"
-  args="$args,$(span telemetry palpa::core::Board::SampleTelemetry "$image")"
+  args="$args,$(span telemetry palpa::core::TelemetryBatch::Sample "$image")"
   args="$args,$(span framing palpa::protocol::EncodeFrameInPlace "$image")"
   args="$args,$(span link_poll palpa::core::Board::Poll "$image")"
   # The control tick: sensors to outputs, without telemetry and the configuration check. The

@@ -13,7 +13,7 @@ for config in thesis-5finger full-8; do
   valgrind --tool=callgrind --callgrind-out-file="$out" "$BENCH" "$config" "$TICKS" >/dev/null 2>&1
   callgrind_annotate --inclusive=yes "$out" 2>/dev/null > "$out.txt"
   tick=$(grep -E 'palpa::core::Board::Tick\(' "$out.txt" | head -1 | awk '{gsub(",","",$1); print $1}')
-  telemetry=$(grep -E 'palpa::core::Board::SampleTelemetry\(' "$out.txt" | head -1 | awk '{gsub(",","",$1); print $1}')
+  telemetry=$(grep -E 'palpa::core::TelemetryBatch::Sample\(' "$out.txt" | head -1 | awk '{gsub(",","",$1); print $1}')
   echo "  $config: $(( tick / TICKS )) per tick, of which telemetry batching + framing $(( telemetry / TICKS )) (mean over $TICKS ticks)"
   rm -f "$out.txt"
 done

@@ -1,66 +1,65 @@
 // The update set's handlers: the board's side of `palpa flash` (DESIGN §9). Lines go safe on
 // Enter and stay safe (Tick holds them) until the reboot.
-#include "board_dispatch.h"
-
-#include "palpa/core/board_reports.h"
+#include "board_reports.h"
+#include "palpa/core/board.h"
 #include "palpa/core/update_engine.h"
 
 namespace palpa::core {
 
-Outcome BoardDispatch::Apply(const protocol::UpdateEnter& m, const protocol::Header&) {
-  if (b_.io_.update == nullptr) return {Status::kUnsupported};
-  b_.Hold();
-  b_.safe_ = true;  // this tick already: outputs go safe before anything is erased
+Board::Outcome Board::Apply(const protocol::UpdateEnter& m, const protocol::Header&, uint64_t) {
+  if (io_.update == nullptr) return {Status::kUnsupported};
+  Hold();
+  safe_ = true;  // this tick already: outputs go safe before anything is erased
   uint32_t detail = 0;
-  const Status s = b_.io_.update->Enter(m, &detail);
+  const Status s = io_.update->Enter(m, &detail);
   return {s, detail};
 }
 
-Outcome BoardDispatch::Apply(const protocol::UpdateErase& m, const protocol::Header&) {
-  if (b_.io_.update == nullptr) return {Status::kUnsupported};
+Board::Outcome Board::Apply(const protocol::UpdateErase& m, const protocol::Header&, uint64_t) {
+  if (io_.update == nullptr) return {Status::kUnsupported};
   uint32_t detail = 0;
-  const Status s = b_.io_.update->Erase(m, &detail);
+  const Status s = io_.update->Erase(m, &detail);
   return {s, detail};
 }
 
-Outcome BoardDispatch::Apply(const protocol::UpdateWrite& m, const protocol::Header&) {
-  if (b_.io_.update == nullptr) return {Status::kUnsupported};
+Board::Outcome Board::Apply(const protocol::UpdateWrite& m, const protocol::Header&, uint64_t) {
+  if (io_.update == nullptr) return {Status::kUnsupported};
   uint32_t detail = 0;
-  const Status s = b_.io_.update->Write(m, &detail);
+  const Status s = io_.update->Write(m, &detail);
   return {s, detail};
 }
 
-Outcome BoardDispatch::Apply(const protocol::UpdateQuery& m, const protocol::Header& h) {
-  if (b_.io_.update == nullptr) return {Status::kUnsupported};
-  BoardReports::UpdateStatus(b_, b_.io_.update->Query(m.slot), h.seq);
+Board::Outcome Board::Apply(const protocol::UpdateQuery& m, const protocol::Header& h, uint64_t) {
+  if (io_.update == nullptr) return {Status::kUnsupported};
+  reports::UpdateStatus(Reports(), io_.update->Query(m.slot), h.seq);
   return {Status::kOk, 0, true};
 }
 
-Outcome BoardDispatch::Apply(const protocol::UpdateActivate& m, const protocol::Header&) {
-  if (b_.io_.update == nullptr) return {Status::kUnsupported};
+Board::Outcome Board::Apply(const protocol::UpdateActivate& m, const protocol::Header&, uint64_t) {
+  if (io_.update == nullptr) return {Status::kUnsupported};
   uint32_t detail = 0;
-  const Status s = b_.io_.update->Activate(m, &detail);
+  const Status s = io_.update->Activate(m, &detail);
   return {s, detail};
 }
 
-Outcome BoardDispatch::Apply(const protocol::UpdateReboot&, const protocol::Header&) {
-  if (b_.io_.update == nullptr) return {Status::kUnsupported};
-  b_.Hold();
-  b_.safe_ = true;
-  b_.reboot_requested_ = true;  // the shell resets once the Ack is out
+Board::Outcome Board::Apply(const protocol::UpdateReboot&, const protocol::Header&, uint64_t) {
+  if (io_.update == nullptr) return {Status::kUnsupported};
+  Hold();
+  safe_ = true;
+  reboot_requested_ = true;  // the shell resets once the Ack is out
   return {};
 }
 
-Outcome BoardDispatch::Apply(const protocol::UpdateConfirm& m, const protocol::Header&) {
-  if (b_.io_.update == nullptr) return {Status::kUnsupported};
+Board::Outcome Board::Apply(const protocol::UpdateConfirm& m, const protocol::Header&, uint64_t) {
+  if (io_.update == nullptr) return {Status::kUnsupported};
   uint32_t detail = 0;
-  const Status s = b_.io_.update->Confirm(m, &detail);
+  const Status s = io_.update->Confirm(m, &detail);
   return {s, detail};
 }
 
-Outcome BoardDispatch::Apply(const protocol::SlotsQuery&, const protocol::Header& h) {
-  if (b_.io_.update == nullptr) return {Status::kUnsupported};
-  BoardReports::Slots(b_, b_.io_.update->Slots(), h.seq);
+Board::Outcome Board::Apply(const protocol::SlotsQuery&, const protocol::Header& h, uint64_t) {
+  if (io_.update == nullptr) return {Status::kUnsupported};
+  reports::Slots(Reports(), io_.update->Slots(), h.seq);
   return {Status::kOk, 0, true};
 }
 

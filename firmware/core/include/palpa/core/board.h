@@ -6,9 +6,12 @@
 #include <cstdint>
 
 #include "palpa/core/board_config.h"
-#include "palpa/core/config_store.h"
-#include "palpa/core/finger.h"
-#include "palpa/core/line_pipeline.h"
+#include "palpa/core/internal/board_fingers.h"
+#include "palpa/core/internal/board_lines.h"
+#include "palpa/core/internal/config_check.h"
+#include "palpa/core/internal/live_config.h"
+#include "palpa/core/internal/staged_config.h"
+#include "palpa/core/internal/telemetry_batch.h"
 #include "palpa/core/supervisor.h"
 #include "palpa/core/tick_pacer.h"
 #include "palpa/core/tx_queue.h"
@@ -18,6 +21,7 @@
 #include "palpa/hal/clock.h"
 #include "palpa/hal/digital_io.h"
 #include "palpa/hal/flash.h"
+#include "palpa/protocol/catalog.h"
 #include "palpa/protocol/framing.h"
 #include "palpa/protocol/session.h"
 
@@ -54,6 +58,8 @@ struct BoardIdentity {
   bool recovery = false;
 };
 
+struct ReportContext;  // what the board's reports read (src/board_reports.h)
+
 class Board {
  public:
   static constexpr uint32_t kTickUs = 1000;
@@ -67,19 +73,19 @@ class Board {
   bool Step();
 
   // Views for tests, the simulator and diagnostics.
-  const BoardConfig& config() const { return live_; }
+  const BoardConfig& config() const { return config_.live(); }
   uint32_t latched_faults() const { return supervisor_.latched; }
   uint32_t active_conditions() const { return supervisor_.active; }
   bool safe() const { return safe_; }
-  const LineOutput& line_output(uint8_t line) const { return line_out_[line]; }
-  uint32_t dac_code(uint8_t line) const { return dac_codes_[line]; }
-  const LineState& line_state(uint8_t line) const { return line_state_[line]; }
+  const LineOutput& line_output(uint8_t line) const { return lines_.output(line); }
+  uint32_t dac_code(uint8_t line) const { return lines_.dac_code(line); }
+  const LineState& line_state(uint8_t line) const { return lines_.state(line); }
   const TickStats& tick_stats() const { return pacer_.stats(); }
   const protocol::FramingCounters& rx_counters() const { return decoder_.counters(); }
   const TxQueue& tx() const { return tx_; }
-  bool config_is_default() const { return config_is_default_; }
-  bool config_saved() const { return config_saved_; }
-  bool config_unsaved() const { return config_unsaved_; }
+  bool config_is_default() const { return config_.is_default(); }
+  bool config_saved() const { return config_.saved(); }
+  bool config_unsaved() const { return config_.unsaved(); }
   /// When the session's host last sent a fresh frame (Hello, a newer heartbeat, an applied
   /// command or stream frame): what the host-silence timer counts from.
   uint64_t last_host_frame_us() const { return last_host_frame_us_; }
@@ -90,36 +96,21 @@ class Board {
   /// UpdateReboot was acknowledged: the shell resets the board once the Ack is sent.
   bool reboot_requested() const { return reboot_requested_; }
   /// The live configuration's memory, for tests that corrupt it on purpose.
-  BoardConfig& live_config_for_test() { return live_; }
+  BoardConfig& live_config_for_test() { return config_.live_for_test(); }
 
  private:
-  friend class BoardDispatch;
-  friend class BoardReports;
+  /// A handler's answer: a status for Ack/Nack, or a report it has already queued.
+  struct Outcome {
+    Status status = Status::kOk;
+    uint32_t detail = 0;
+    bool replied = false;  ///< a report went out instead of an Ack
+  };
 
+  // The tick (board_tick.cc): inputs → supervisor → fingers → lines → outputs → telemetry.
   // Out of line, so instruction counts can bracket a tick (tests/bench/qemu_insn_count.c).
   [[gnu::noinline]] void Tick(uint64_t now_us);
-  void ReadInputs(uint64_t now_us, SupervisorInput& in);
-  /// The slow monitors' view of the line they visit this tick: where the last tick left it.
-  void ObserveSlowSlot();
-  /// Fingers in target mode write their lines' setpoints and status bits (nothing while safe).
-  /// Out of line, so instruction counts can bracket the finger stage (its steps are inlined).
-  [[gnu::noinline]] void ComputeSetpoints(uint64_t now_us);
-  /// line_flags_ from the fingers' modes (kRaw on a raw finger's lines; kSaturated cleared).
-  void RefreshLineFlags();
-  /// Every line one step (or held safe), DAC codes into dac_codes_. Out of line, so instruction
-  /// counts can bracket the line stage (its steps are inlined).
-  [[gnu::noinline]] void StepLines();
   void WriteOutputs();
-  /// Writes their old line's safe code to the channels a configuration dropped that have not
-  /// taken it yet; returns the first whose write failed, or kNoLine.
-  uint8_t ParkDroppedChannels();
-  void CheckConfigIntegrity(uint64_t now_us);
-  /// Out of line, so instruction counts can bracket the telemetry stage.
-  [[gnu::noinline]] void SampleTelemetry(uint64_t now_us, bool fault_report);
-  /// The samples batched so far as one Telemetry frame (none: nothing sent).
-  void SendTelemetryBatch(uint16_t decimation, bool fault_report);
-  /// Link input and output between ticks. Out of line, so instruction counts can bracket a poll.
-  [[gnu::noinline]] void Poll(uint64_t now_us);
+  /// A new live configuration reaches every stage; outputs held safe until new setpoints.
   void ApplyLive(uint64_t now_us);
   void Hold();  ///< outputs safe until new setpoints arrive; compensators re-home
   /// Close or host silence: outputs safe from this tick on, no new session state, an update
@@ -127,77 +118,83 @@ class Board {
   void EndSession();
   /// A fresh frame of the session at `now_us`: the host-silence timer starts again.
   void HeardFromHost(uint64_t now_us);
-  /// Every line's DAC resolution and signal range are what the board's DAC reports: a 16-bit
-  /// line on a 12-bit DAC, or 4–20 mA on a 0–10 V output, would command the wrong pressure.
-  bool DacMatches(const BoardConfig& config, ConfigError* error) const;
+  /// What the reports read (board_reports.h).
+  ReportContext Reports();
 
-  BoardConfig factory_;
+  // The link (board_dispatch.cc): frames in, session and reliable-channel rules, one handler per
+  // message (board_dispatch.cc, board_config_dispatch.cc, board_update_dispatch.cc).
+  /// Link input and output between ticks. Out of line, so instruction counts can bracket a poll.
+  [[gnu::noinline]] void Poll(uint64_t now_us);
+  void OnFrame(const protocol::Frame& frame, uint64_t now_us);
+  Outcome Handle(const protocol::Frame& frame, uint64_t now_us);
+  void Answer(uint8_t type, uint8_t seq, uint8_t answer_flags, Status status, uint32_t detail);
+  Outcome Apply(const protocol::Hello& m, const protocol::Header& h, uint64_t now_us);
+  Outcome Apply(const protocol::EStop&, const protocol::Header& h, uint64_t now_us);
+  Outcome Apply(const protocol::Close& m, const protocol::Header& h, uint64_t now_us);
+  Outcome Apply(const protocol::Release& m, const protocol::Header& h, uint64_t now_us);
+  Outcome Apply(const protocol::Heartbeat& m, const protocol::Header&, uint64_t now_us);
+  Outcome Apply(const protocol::SetLineSetpoints& m, const protocol::Header&, uint64_t now_us);
+  Outcome Apply(const protocol::SetFingerTargets& m, const protocol::Header&, uint64_t now_us);
+  Outcome Apply(const protocol::SetFingerMode& m, const protocol::Header&, uint64_t now_us);
+  Outcome Apply(const protocol::ConfigureLine& m, const protocol::Header&, uint64_t now_us);
+  Outcome Apply(const protocol::ConfigureFinger& m, const protocol::Header&, uint64_t now_us);
+  Outcome Apply(const protocol::ConfigureBoard& m, const protocol::Header&, uint64_t now_us);
+  Outcome Apply(const protocol::StagedBegin& m, const protocol::Header&, uint64_t now_us);
+  Outcome Apply(const protocol::StagedPart& m, const protocol::Header&, uint64_t now_us);
+  Outcome Apply(const protocol::StagedCommit& m, const protocol::Header&, uint64_t now_us);
+  Outcome Apply(const protocol::GetConfig& m, const protocol::Header& h, uint64_t now_us);
+  Outcome Apply(const protocol::SaveConfig&, const protocol::Header&, uint64_t now_us);
+  Outcome Apply(const protocol::FactoryReset&, const protocol::Header&, uint64_t now_us);
+  Outcome Apply(const protocol::ClearFault& m, const protocol::Header&, uint64_t now_us);
+  Outcome Apply(const protocol::GetLoopStats&, const protocol::Header& h, uint64_t now_us);
+  Outcome Apply(const protocol::GetDiagnostics&, const protocol::Header& h, uint64_t now_us);
+  Outcome Apply(const protocol::UpdateEnter& m, const protocol::Header&, uint64_t now_us);
+  Outcome Apply(const protocol::UpdateErase& m, const protocol::Header&, uint64_t now_us);
+  Outcome Apply(const protocol::UpdateWrite& m, const protocol::Header&, uint64_t now_us);
+  Outcome Apply(const protocol::UpdateQuery& m, const protocol::Header& h, uint64_t now_us);
+  Outcome Apply(const protocol::UpdateActivate& m, const protocol::Header&, uint64_t now_us);
+  Outcome Apply(const protocol::UpdateReboot&, const protocol::Header&, uint64_t now_us);
+  Outcome Apply(const protocol::UpdateConfirm& m, const protocol::Header&, uint64_t now_us);
+  Outcome Apply(const protocol::SlotsQuery&, const protocol::Header& h, uint64_t now_us);
+  /// Everything else: board-to-host messages.
+  template <class M>
+  Outcome Apply(const M&, const protocol::Header&, uint64_t) {
+    return {Status::kUnsupported};
+  }
+  /// The edited candidate made live, or the refusal.
+  Outcome CommitCandidate(uint64_t now_us);
+
   BoardIo io_;
   BoardIdentity identity_;
-  BoardConfig live_{};
-  BoardConfig candidate_{};  ///< configuration being validated before it replaces live_
-  ConfigStore store_;
-  bool config_is_default_ = true;
-  bool config_saved_ = false;    ///< a saved copy is what the next boot loads
-  bool config_unsaved_ = false;  ///< the live configuration differs from what the next boot loads
 
+  // What each stage owns (internal/): the tick and the handlers reach them only through their
+  // interfaces.
+  LiveConfig config_;
+  StagedConfig staged_;
+  ConfigCheck check_;
+  BoardLines lines_;
+  BoardFingers fingers_;
+  TelemetryBatch telemetry_;
   protocol::BoardSession session_;
   protocol::OwningFrameDecoder decoder_;
   TxQueue tx_;
-  uint64_t last_host_frame_us_ = 0;  ///< the session's last fresh frame
-
   TickPacer pacer_{kTickUs};
+
+  // The tick's sequence and the board's safety state.
+  uint64_t last_host_frame_us_ = 0;  ///< the session's last fresh frame
   SupervisorSettings settings_{};
   /// Rewritten for every configured line each tick, so not rebuilt (zeroing it cost ≈ 900
   /// instructions a tick with the C library's byte-wise memset); reset when the configuration
   /// changes, so lines beyond the count stay unconfigured.
   SupervisorInput supervisor_input_{};
   SupervisorState supervisor_{};
-  bool released_ =
-      false;  ///< new setpoints arrived since Hello, the last shutdown, clear or release
+  /// New setpoints arrived since Hello, the last shutdown, clear or release.
+  bool released_ = false;
   bool safe_ = true;
   bool estop_requested_ = false;
   bool reboot_requested_ = false;
-
-  std::array<LineParams, protocol::kMaxLines> line_params_{};
-  std::array<LineState, protocol::kMaxLines> line_state_{};
-  std::array<LineOutput, protocol::kMaxLines> line_out_{};
-  /// What the DAC is given each tick, one scan of the configured lines (safe codes until a tick).
-  std::array<uint32_t, protocol::kMaxLines> dac_codes_{};
-  /// What each line steps towards: the host's raw setpoint, or what its finger in target mode
-  /// wrote this tick (the host cannot send raw setpoints for such a line).
-  std::array<float, protocol::kMaxLines> setpoint_pa_{};
-  /// Status bits a line's finger adds to it: kRaw while the finger is in raw mode, kSaturated
-  /// while its compensator is clamped (written by each step; cleared when the board goes safe).
-  std::array<uint8_t, protocol::kMaxLines> line_flags_{};
-  std::array<FingerParams, protocol::kMaxFingers> finger_params_{};
-  std::array<FingerState, protocol::kMaxFingers> finger_state_{};
-  std::array<uint8_t, protocol::kMaxLines> line_owner_{};
-  uint8_t driven_lines_ = 0;        ///< DAC channels the live configuration's lines write each tick
-  uint32_t unparked_channels_ = 0;  ///< dropped channels whose safe code is not written yet
-
   hal::PulsingEnable supply_pulse_;
   hal::PulsingEnable dump_pulse_;
-
-  /// CRC of the live configuration's wire form (GetConfig reports it), once per configuration:
-  /// computing it takes ≈ 15 000 instructions, too many to repeat for every chunk a host reads.
-  uint32_t config_crc_ = 0;
-  // Integrity of the live configuration: a CRC over its memory, recomputed a slice per tick.
-  uint32_t config_memory_crc_ = 0;
-  uint32_t check_crc_ = 0;
-  uint32_t check_offset_ = 0;
-  uint64_t next_check_us_ = 0;
-  bool config_intact_ = true;
-
-  // Telemetry batching.
-  protocol::Telemetry batch_{};
-  uint32_t tick_index_ = 0;
-
-  // Staged configuration upload.
-  std::array<uint8_t, protocol::kMaxStagedBytes> staged_{};
-  uint16_t staged_expected_ = 0;
-  uint16_t staged_received_ = 0;
-  uint32_t staged_crc_ = 0;  ///< of the bytes received, part by part: the commit only compares
 };
 
 }  // namespace palpa::core
