@@ -87,7 +87,7 @@ void TestBoard::Handle(const pp::Frame& frame, std::vector<std::vector<uint8_t>>
   const pp::Status decoded = pp::DispatchFrame(frame, [&](const auto& m, const pp::Header&) {
     using M = std::decay_t<decltype(m)>;
     if constexpr (std::is_same_v<M, pp::Hello>) {
-      const auto verdict = session_.OnHello(m);  // a repeated Hello is only answered again
+      const auto verdict = session_.OnHello(m, 0);  // a repeated Hello is only answered again
       if (verdict == pp::BoardSession::HelloVerdict::kBusy) return;
       if (verdict == pp::BoardSession::HelloVerdict::kOpened) ++sessions;
       pp::HelloReply r{};

@@ -23,16 +23,16 @@ using Verdict = pp::BoardSession::HelloVerdict;
 
 TEST(BoardSession, RepeatedHelloIsAnsweredWithoutRewindingTheSequence) {
   pp::BoardSession s(1);
-  CHECK(s.OnHello(pp::Hello{42, 250}) == Verdict::kOpened);
+  CHECK(s.OnHello(pp::Hello{42, 250}, 0) == Verdict::kOpened);
   const pp::CachedOutcome* cached = nullptr;
   CHECK(s.receiver().Classify(250, &cached) == pp::ReliableReceiver::Verdict::kApply);
   s.receiver().Complete(0x3A, pp::Status::kOk, 0, false);
   CHECK(s.setpoints().Accept(7));
-  CHECK(s.OnHello(pp::Hello{42, 250}) == Verdict::kRepeat);  // the same Hello again: no reset
+  CHECK(s.OnHello(pp::Hello{42, 250}, 0) == Verdict::kRepeat);  // the same Hello again: no reset
   LONGS_EQUAL(251, s.receiver().expected());
   LONGS_EQUAL(7, s.setpoints().applied());
   s.End();  // closed: a new host session, and everything restarts
-  CHECK(s.OnHello(pp::Hello{43, 9}) == Verdict::kOpened);
+  CHECK(s.OnHello(pp::Hello{43, 9}, 0) == Verdict::kOpened);
   LONGS_EQUAL(9, s.receiver().expected());
   CHECK_FALSE(s.setpoints().has_applied());
   CHECK(s.receiver().Classify(250, &cached) == pp::ReliableReceiver::Verdict::kIgnore);
@@ -40,14 +40,14 @@ TEST(BoardSession, RepeatedHelloIsAnsweredWithoutRewindingTheSequence) {
 
 TEST(BoardSession, AnotherHostsHelloIsBusyWhileTheSessionIsOpen) {
   pp::BoardSession s(1);
-  CHECK(s.OnHello(pp::Hello{42, 0}) == Verdict::kOpened);
-  CHECK(s.OnHello(pp::Hello{43, 7}) == Verdict::kBusy);
+  CHECK(s.OnHello(pp::Hello{42, 0}, 0) == Verdict::kOpened);
+  CHECK(s.OnHello(pp::Hello{43, 7}, 0) == Verdict::kBusy);
   CHECK(s.Owns(42));
   CHECK_FALSE(s.Owns(43));
   LONGS_EQUAL(0, s.receiver().expected());  // nothing of the open session changed
   s.End();
   CHECK_FALSE(s.Owns(42));
-  CHECK(s.OnHello(pp::Hello{43, 7}) == Verdict::kOpened);
+  CHECK(s.OnHello(pp::Hello{43, 7}, 0) == Verdict::kOpened);
   CHECK(s.Owns(43));
 }
 
@@ -55,16 +55,35 @@ TEST(BoardSession, ANonceReusedOnceItsHostWasHeardIsAnotherHost) {
   // Until the host is heard in the session its Hello may be a retry (the reply lost); after
   // that, a Hello with the same nonce is a second host reusing it and inherits nothing.
   pp::BoardSession s(1);
-  CHECK(s.OnHello(pp::Hello{42, 0}) == Verdict::kOpened);
-  CHECK(s.OnHello(pp::Hello{42, 0}) == Verdict::kRepeat);
-  s.Heard();
-  CHECK(s.OnHello(pp::Hello{42, 0}) == Verdict::kBusy);
+  CHECK(s.OnHello(pp::Hello{42, 0}, 0) == Verdict::kOpened);
+  CHECK(s.OnHello(pp::Hello{42, 0}, 0) == Verdict::kRepeat);
+  s.Heard(0);
+  CHECK(s.OnHello(pp::Hello{42, 0}, 0) == Verdict::kBusy);
   CHECK(s.open());
+}
+
+TEST(BoardSession, TheSilenceTimerCountsFromTheHostsLastFreshFrame) {
+  // An answered Hello (opened or retried) and a fresh frame restart it; another host's refused
+  // Hello does not, and the time stays readable after the session ends.
+  pp::BoardSession s(1);
+  CHECK(s.OnHello(pp::Hello{42, 0}, 1000) == Verdict::kOpened);
+  LONGS_EQUAL(1000, s.last_frame_us());
+  CHECK(s.OnHello(pp::Hello{42, 0}, 2000) == Verdict::kRepeat);
+  LONGS_EQUAL(2000, s.last_frame_us());
+  s.Heard(3000);
+  LONGS_EQUAL(3000, s.last_frame_us());
+  CHECK(s.OnHello(pp::Hello{43, 0}, 4000) == Verdict::kBusy);
+  CHECK(s.OnHello(pp::Hello{42, 0}, 5000) == Verdict::kBusy);
+  LONGS_EQUAL(3000, s.last_frame_us());
+  s.End();
+  LONGS_EQUAL(3000, s.last_frame_us());
+  CHECK(s.OnHello(pp::Hello{43, 0}, 6000) == Verdict::kOpened);
+  LONGS_EQUAL(6000, s.last_frame_us());
 }
 
 TEST(BoardSession, GapIsSignalledOncePerExpectedSeq) {
   pp::BoardSession s(1);
-  s.OnHello(pp::Hello{1, 0});
+  s.OnHello(pp::Hello{1, 0}, 0);
   const pp::CachedOutcome* cached = nullptr;
   CHECK(s.receiver().Classify(3, &cached) == pp::ReliableReceiver::Verdict::kGap);
   CHECK(s.receiver().Classify(4, &cached) == pp::ReliableReceiver::Verdict::kIgnore);

@@ -72,11 +72,6 @@ void Board::EndSession() {
   if (io_.update != nullptr) io_.update->LeaveUpdateMode();
 }
 
-void Board::HeardFromHost(uint64_t now_us) {
-  session_.Heard();
-  last_host_frame_us_ = now_us;
-}
-
 ReportContext Board::Reports() {
   return ReportContext{identity_,           config_,   fingers_,   session_, supervisor_, pacer_,
                        decoder_.counters(), io_.clock, io_.update, tx_};

@@ -53,7 +53,7 @@ void Board::OnFrame(const protocol::Frame& frame, uint64_t now_us) {
   const Status admitted = session_.Admit(h.type);
   if (admitted != Status::kOk) return Answer(h.type, h.seq, answer_flags, admitted, 0);
   // A frame proves its host alive only when it is fresh for the session: each handler says so
-  // (HeardFromHost); a repeat, a stale generation or another session's frame never does.
+  // (session_.Heard); a repeat, a stale generation or another session's frame never does.
 
   protocol::ReliableReceiver& receiver = session_.receiver();
   if (reliable && h.type != static_cast<uint8_t>(MessageType::kHello)) {
@@ -79,7 +79,7 @@ void Board::OnFrame(const protocol::Frame& frame, uint64_t now_us) {
     receiver.Complete(h.type, outcome.status, outcome.detail, outcome.replied);
     // Applied in sequence: the commanding host. Timed after the work, which may be long (an
     // erase of flash), so the silence it took is not the host's.
-    HeardFromHost(io_.clock.NowMicros());
+    session_.Heard(io_.clock.NowMicros());
     if (!outcome.replied) Answer(h.type, h.seq, flags::kReliable, outcome.status, outcome.detail);
   } else if (outcome.status != Status::kOk) {
     Answer(h.type, h.seq, 0, outcome.status, outcome.detail);
@@ -98,11 +98,11 @@ Board::Outcome Board::Handle(const protocol::Frame& frame, uint64_t now_us) {
 
 Board::Outcome Board::Apply(const protocol::Hello& m, const protocol::Header& h, uint64_t now_us) {
   using Verdict = protocol::BoardSession::HelloVerdict;
-  Verdict verdict = session_.OnHello(m);
+  Verdict verdict = session_.OnHello(m, now_us);
   if (verdict == Verdict::kBusy && identity_.recovery) {
     // Recovery mode holds nothing for anyone (every line is safe): the newest host has it.
     session_.End();
-    verdict = session_.OnHello(m);
+    verdict = session_.OnHello(m, now_us);
   }
   // Another host's session is alive: refused, with the timeout after which a silent one ends.
   if (verdict == Verdict::kBusy) return {Status::kBusy, config_.live().board.host_timeout_us};
@@ -110,7 +110,6 @@ Board::Outcome Board::Apply(const protocol::Hello& m, const protocol::Header& h,
     Hold();
     if (io_.update != nullptr) io_.update->LeaveUpdateMode();
   }
-  last_host_frame_us_ = now_us;
   reports::HelloReply(Reports(), m.host_nonce, h.seq);
   return {Status::kOk, 0, true};
 }
@@ -146,7 +145,7 @@ Board::Outcome Board::Apply(const protocol::Heartbeat& m, const protocol::Header
                             uint64_t now_us) {
   // Only a newer generation of this session's heartbeat: a repeated or foreign one, however
   // often it comes, keeps nothing alive.
-  if (session_.Owns(m.session) && session_.heartbeat().Accept(m.generation)) HeardFromHost(now_us);
+  if (session_.Owns(m.session) && session_.heartbeat().Accept(m.generation)) session_.Heard(now_us);
   return {};
 }
 
@@ -161,7 +160,7 @@ Board::Outcome Board::Apply(const protocol::SetLineSetpoints& m, const protocol:
   if (status != Status::kOk) return {status, detail};
   session_.setpoints().Accept(m.generation);
   released_ = true;
-  HeardFromHost(now_us);
+  session_.Heard(now_us);
   return {};
 }
 
@@ -176,7 +175,7 @@ Board::Outcome Board::Apply(const protocol::SetFingerTargets& m, const protocol:
   if (status != Status::kOk) return {status, detail};
   session_.targets().Accept(m.generation);
   released_ = true;
-  HeardFromHost(now_us);
+  session_.Heard(now_us);
   return {};
 }
 

@@ -10,7 +10,7 @@ void Board::Tick(uint64_t now_us) {
   SupervisorInput& in = supervisor_input_;
   in.now_us = now_us;
   in.session_open = session_.open();
-  in.last_host_frame_us = last_host_frame_us_;
+  in.last_host_frame_us = session_.last_frame_us();
   in.actuating = released_;
   in.estop_pin = io_.estop != nullptr && io_.estop->Read();
   in.safe = safe_;

@@ -21,10 +21,11 @@ constexpr Status BoardAdmit(bool session_open, uint8_t type) {
   return session_open ? Status::kOk : Status::kNoSession;
 }
 
-/// Board side of a session: the boot nonce, the host's Hello, the reliable receiver and the
-/// latest-wins gates, all reset together by a new Hello. A session belongs to one host: its
-/// identity is the nonce of the Hello that opened it, which every stream frame, Close and Release
-/// carries. It ends by Close or by silence; until then another host's Hello is refused busy.
+/// Board side of a session: the boot nonce, the host's Hello, the reliable receiver, the
+/// latest-wins gates and when the host was last heard, all reset together by a new Hello. A session
+/// belongs to one host: its identity is the nonce of the Hello that opened it, which every stream
+/// frame, Close and Release carries. It ends by Close or by silence; until then another host's
+/// Hello is refused busy.
 class BoardSession {
  public:
   explicit BoardSession(uint32_t boot_nonce) : boot_nonce_(boot_nonce) {}
@@ -38,12 +39,15 @@ class BoardSession {
   /// Applies a Hello. The open session's Hello repeated before its host has been heard in the
   /// session (its reply may be lost) changes nothing, so a retried or duplicated Hello can never
   /// rewind the sequence; once heard, the same nonce again is another host reusing it, and busy.
-  HelloVerdict OnHello(const Hello& hello) {
+  /// A Hello answered (opened or repeated) at `now_us` starts the host-silence timer again.
+  HelloVerdict OnHello(const Hello& hello, uint64_t now_us) {
     if (open_) {
-      return hello.host_nonce == host_nonce_ && !heard_ ? HelloVerdict::kRepeat
-                                                        : HelloVerdict::kBusy;
+      if (hello.host_nonce != host_nonce_ || heard_) return HelloVerdict::kBusy;
+      last_frame_us_ = now_us;
+      return HelloVerdict::kRepeat;
     }
     open_ = true;
+    last_frame_us_ = now_us;
     heard_ = false;
     host_nonce_ = hello.host_nonce;
     receiver_.Reset(hello.initial_seq);
@@ -57,9 +61,13 @@ class BoardSession {
 
   /// Does a frame naming `session` belong to the open session?
   bool Owns(uint32_t session) const { return open_ && session == host_nonce_; }
-  /// A fresh frame of the session arrived: its host has the reply, so a Hello with its nonce is
-  /// no longer a retry.
-  void Heard() { heard_ = true; }
+  /// A fresh frame of the session arrived at `now_us` (a newer heartbeat, an applied command or
+  /// stream frame): its host has the reply, so a Hello with its nonce is no longer a retry, and
+  /// the host-silence timer starts again.
+  void Heard(uint64_t now_us) {
+    heard_ = true;
+    last_frame_us_ = now_us;
+  }
   /// Close or host silence: the session is over; everything but Hello and EStop is refused.
   void End() {
     open_ = false;
@@ -68,6 +76,9 @@ class BoardSession {
 
   bool open() const { return open_; }
   bool heard() const { return heard_; }
+  /// When the session's host last sent a fresh frame (its Hello included): what the host-silence
+  /// timer counts from. Kept after the session ends.
+  uint64_t last_frame_us() const { return last_frame_us_; }
   uint32_t boot_nonce() const { return boot_nonce_; }
   uint32_t host_nonce() const { return host_nonce_; }
   ReliableReceiver& receiver() { return receiver_; }
@@ -83,6 +94,7 @@ class BoardSession {
   uint32_t host_nonce_ = 0;
   bool open_ = false;
   bool heard_ = false;
+  uint64_t last_frame_us_ = 0;
   ReliableReceiver receiver_;
   GenerationGate setpoints_;
   GenerationGate targets_;

@@ -88,7 +88,7 @@ class Board {
   bool config_unsaved() const { return config_.unsaved(); }
   /// When the session's host last sent a fresh frame (Hello, a newer heartbeat, an applied
   /// command or stream frame): what the host-silence timer counts from.
-  uint64_t last_host_frame_us() const { return last_host_frame_us_; }
+  uint64_t last_host_frame_us() const { return session_.last_frame_us(); }
   bool session_open() const { return session_.open(); }
   /// The open session's identity: its Hello's nonce, which its frames carry.
   uint32_t session_nonce() const { return session_.host_nonce(); }
@@ -116,8 +116,6 @@ class Board {
   /// Close or host silence: outputs safe from this tick on, no new session state, an update
   /// abandoned (what it wrote stays, so it can be resumed).
   void EndSession();
-  /// A fresh frame of the session at `now_us`: the host-silence timer starts again.
-  void HeardFromHost(uint64_t now_us);
   /// What the reports read (board_reports.h).
   ReportContext Reports();
 
@@ -181,7 +179,6 @@ class Board {
   TickPacer pacer_{kTickUs};
 
   // The tick's sequence and the board's safety state.
-  uint64_t last_host_frame_us_ = 0;  ///< the session's last fresh frame
   SupervisorSettings settings_{};
   /// Rewritten for every configured line each tick, so not rebuilt (zeroing it cost ≈ 900
   /// instructions a tick with the C library's byte-wise memset); reset when the configuration
