@@ -51,6 +51,9 @@ int Fail(const std::string& what, protocol::Status status, const std::string& me
 int Usage(const std::string& command, const std::string& message);
 /// Prints an operation's failure (or its notes when --json is off). Returns the exit code.
 int Report(const Context& context, const host::Outcome& outcome, const std::string& what);
+/// On stderr (--json too), one line each: calibration files that disagree with the static inverse
+/// their finger's board holds by more than their fit residual (the board's curve is followed).
+void WarnCurves(host::Device& device);
 /// The closest of `candidates` to a mistyped `word` (a letter or two off, or a prefix), or "".
 std::string Suggest(const std::string& word, const std::vector<std::string>& candidates);
 

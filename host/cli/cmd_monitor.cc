@@ -141,6 +141,7 @@ int CmdMonitor(Context& c, const std::vector<std::string>& args) {
   const pp::HelloReply b = d->info();
   std::vector<host::FingerCurves> curves;
   for (uint8_t f = 0; f < b.finger_count; ++f) curves.push_back(d->curves(f));
+  WarnCurves(*d);
   const bool terminal = isatty(STDOUT_FILENO) && !c.json;
   std::mutex mutex;
   pp::Telemetry latest{};
@@ -201,6 +202,7 @@ int CmdRecord(Context& c, const std::vector<std::string>& args) {
   const host::RecordLayout layout =
       o.long_layout ? host::RecordLayout::kLong : host::RecordLayout::kWide;
   const int started = Report(c, d->StartRecording(o.file, layout), "record");
+  if (started == kExitOk) WarnCurves(*d);
   if (started != kExitOk) return started;
   const PollsInterruption polls;
   const auto start = std::chrono::steady_clock::now();

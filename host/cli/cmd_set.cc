@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "cli.h"
+#include "palpa/host/board_json.h"
 #include "palpa/host/field_text.h"
 
 namespace palpa::cli {
@@ -165,10 +166,14 @@ int CmdSet(Context& c, const std::vector<std::string>& given) {
   std::vector<host::Applied> applied;
   const host::Outcome o = d->Set(requests, true, &applied);
   if (!o.ok()) return Fail("set", o.status, o.message);
+  WarnCurves(*d);
   if (c.json) {
     nlohmann::ordered_json list = nlohmann::ordered_json::array();
     for (const host::Applied& a : applied) list.push_back(AppliedJson(a));
-    PrintJson({{"applied", list}, {"hold_s", hold_s}});
+    nlohmann::ordered_json out = {{"applied", list}, {"hold_s", hold_s}};
+    if (!d->curve_warnings().empty())
+      out["curve_warnings"] = host::CurveWarningsJson(d->curve_warnings(), 1);
+    PrintJson(out);
   } else {
     for (const host::Applied& a : applied) PrintApplied(a);
   }

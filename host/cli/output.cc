@@ -41,6 +41,11 @@ int Usage(const std::string& command, const std::string& message) {
   return kExitUsage;
 }
 
+void WarnCurves(host::Device& device) {
+  for (const host::CurveWarning& w : device.curve_warnings())
+    std::fprintf(stderr, "palpa: warning: %s\n", w.message.c_str());
+}
+
 int Report(const Context& context, const host::Outcome& outcome, const std::string& what) {
   if (!outcome.ok()) return Fail(what, outcome.status, outcome.message);
   if (!context.json) {

@@ -2,9 +2,12 @@
 """CTest for the Python module: open a simulated board through the C ABI, read info, set fingers,
 monitor telemetry (and drain it without waiting), record, EStop, and get clear errors for wrong
 requests — checked in Python, naming the finger as the caller numbered it, before anything is sent;
-read and change the configuration; calibrate a finger on palpa-sim's rig."""
+read and change the configuration; a calibration file that agrees with the board's static inverse
+(no warning) and one edited beyond its residual (a warning naming both); calibrate a finger on
+palpa-sim's rig."""
 import json
 import os
+import shutil
 import sys
 import tempfile
 import time
@@ -22,6 +25,33 @@ def refused(error_type, call, *words):
             assert word in str(e), (word, str(e))
         return
     raise AssertionError(f"expected {error_type.__name__} with {words}")
+
+
+DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "tests", "host", "lib", "data")
+
+
+def curve_warnings(name):
+    """The warnings of a simulated board opened with PN-1.json the test data file `name`."""
+    directory = tempfile.mkdtemp()
+    shutil.copyfile(os.path.join(DATA, name), os.path.join(directory, "PN-1.json"))
+    os.environ["PALPA_CALIBRATION_DIR"] = directory
+    try:
+        with palpa.Device("sim:thesis-5finger") as board:
+            return directory, board.curve_warnings()
+    finally:
+        del os.environ["PALPA_CALIBRATION_DIR"]
+
+
+def curves():
+    _, warnings = curve_warnings("curve_on_board.json")
+    assert warnings == [], warnings
+    directory, warnings = curve_warnings("curve_off_board.json")
+    assert len(warnings) == 1, warnings
+    w = warnings[0]
+    assert w["finger"] == 0 and w["file"] == os.path.join(directory, "PN-1.json"), w
+    assert w["disagreement"] == 40 and w["at_kpa"] == 70.083 and w["residual"] == 12, w
+    assert w["unit"] == "µm" and "the nominal one" in w["board"], w
+    assert w["file"] in w["message"] and w["board"] in w["message"], w
 
 
 def main():
@@ -91,6 +121,8 @@ def main():
         refused(palpa.PalpaError, lambda: board.apply_config({"lines": [{"line": 0, "slew": 1}]}),
                 "invalid_argument", "slew", "nothing was sent")
         assert board.config()["board"]["host_timeout_us"] == 120000
+
+    curves()
 
     # A quick calibration on palpa-sim's rig, as palpa calibrate --rig sim --quick runs it (at half
     # its default speed: the board's host-silence timeout is then 50 ms of real time, room for a

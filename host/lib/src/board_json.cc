@@ -34,4 +34,19 @@ ordered_json FingersJson(const pp::HelloReply& b, const std::vector<FingerCurves
   return fingers;
 }
 
+ordered_json CurveWarningsJson(const std::vector<CurveWarning>& warnings, unsigned number_from) {
+  ordered_json list = ordered_json::array();
+  for (const CurveWarning& w : warnings) {
+    list.push_back({{"finger", w.finger + number_from},
+                    {"file", w.file},
+                    {"board", w.board},
+                    {"disagreement", w.overlap ? ordered_json(w.disagreement) : ordered_json()},
+                    {"at_kpa", w.at_pa / 1000},
+                    {"residual", w.residual},
+                    {"unit", w.unit},
+                    {"message", w.message}});
+  }
+  return list;
+}
+
 }  // namespace palpa::host

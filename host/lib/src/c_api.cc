@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "palpa/calibration/calibrate_json.h"
+#include "palpa/host/board_json.h"
 #include "palpa/host/config_json.h"
 #include "palpa/host/device.h"
 #include "palpa/host/field_text.h"
@@ -296,6 +297,14 @@ int palpa_config_apply(palpa_device* d, const char* json) {
 int palpa_config_save(palpa_device* d) {
   return d == nullptr ? static_cast<int>(pp::Status::kInvalidArgument)
                       : Report(d, d->device->SaveConfig());
+}
+
+int palpa_curve_warnings(palpa_device* d, char* out, size_t capacity, size_t* length) {
+  if (d == nullptr) return static_cast<int>(pp::Status::kInvalidArgument);
+  const int status =
+      CopyText(ph::CurveWarningsJson(d->device->curve_warnings(), 0).dump(), out, capacity, length);
+  if (status != PALPA_OK) d->error = "palpa_curve_warnings: the warnings do not fit the buffer";
+  return status;
 }
 
 int palpa_calibrate(palpa_device* d, const char* rig, const char* options_json, char* out,

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "palpa/hal/linux/atomic_file.h"
+#include "palpa/host/board_curves.h"
 #include "palpa/host/calibration_file.h"
 #include "palpa/host/device_uri.h"
 #include "palpa/host/fault_text.h"
@@ -47,15 +48,66 @@ void Device::AttachCalibrations() {
       error = CalibrationPath(dir, serial) + ": the calibration of " + serial +
               " is for another finger kind";
     } else if (c.ok()) {
-      curves_[f] = CurvesFromCalibration(c.value);
-      note += curves_[f].source;
+      AttachCalibration(f, finger.value, c.value, CalibrationPath(dir, serial));
       continue;
     }
-    // Every request through these curves says why they are the nominal ones.
-    note += "nominal curves (" + error + ")";
-    curves_[f].source = "nominal thesis curves (" + error + "; " + kNominalCurvesBasis + ")";
+    // Every request through these curves says why they are not a calibration's.
+    if (IsNominalInverse(finger.value)) {
+      note += "nominal curves (" + error + ")";
+      curves_[f].source = "nominal thesis curves (" + error + "; " + kNominalCurvesBasis + ")";
+    } else {
+      curves_[f] =
+          CurvesFromBoard(finger.value, BoardCurveName(f, finger.value) + " (" + error + ")");
+      note += curves_[f].source;
+    }
     if (c.status != Status::kNotFound) calibration_problems_[f] = error;  // a file, unusable
   }
+}
+
+std::string Device::BoardCurveName(uint8_t finger, const pp::ConfigureFinger& f) const {
+  return "the board's static inverse for " + FingerName(finger) + " (" +
+         (IsNominalInverse(f) ? std::string("the nominal one")
+                              : std::to_string(f.inverse_count) + " points") +
+         ")";
+}
+
+void Device::AttachCalibration(uint8_t f, const pp::ConfigureFinger& board,
+                               const CalibrationFile& file, const std::string& path) {
+  const CurveComparison cmp = CompareWithBoard(file, board);
+  const double tolerance = CurveTolerance(file);
+  if (cmp.overlap && cmp.disagreement <= tolerance) {  // the board holds this calibration
+    curves_[f] = CurvesFromBoard(board, CurvesFromCalibration(file).source);
+    calibration_notes_[f] = FingerName(f) + ": " + curves_[f].source;
+    return;
+  }
+  // The board maps targets through its own inverse whatever the file says: follow the board.
+  CurveWarning w;
+  w.finger = f;
+  w.file = path;
+  w.board = BoardCurveName(f, board);
+  w.overlap = cmp.overlap;
+  w.disagreement = cmp.disagreement;
+  w.at_pa = cmp.at_pa;
+  w.residual = tolerance;
+  w.unit = file.kind == pp::FingerKind::kJamming ? "mN/mm" : "µm";
+  char size[160];
+  if (cmp.overlap) {
+    std::snprintf(size, sizeof(size),
+                  "by %.0f %s at %.1f kPa, more than the file's fit residual "
+                  "(%.0f %s RMS)",
+                  w.disagreement, w.unit.c_str(), w.at_pa / 1000, w.residual, w.unit.c_str());
+  } else {
+    std::snprintf(size, sizeof(size), "over every drive (the two curves share no pressure range)");
+  }
+  w.message = FingerName(f) + ": calibration file " + path + " disagrees with " + w.board + " " +
+              size +
+              "; requests follow the board's curve (apply the file to the finger to use "
+              "it)";
+  curves_[f] = CurvesFromBoard(board, w.board + "; " + path + " disagrees with it");
+  if (IsNominalInverse(board)) curves_[f].source += "; " + std::string(kNominalCurvesBasis);
+  calibration_notes_[f] = FingerName(f) + ": " + curves_[f].source;
+  calibration_problems_[f] = w.message;
+  curve_warnings_.push_back(std::move(w));
 }
 
 Outcome Device::ApplyCalibration(uint8_t finger, const CalibrationFile& c) {
@@ -114,8 +166,10 @@ Outcome Device::ApplyCalibration(uint8_t finger, const CalibrationFile& c) {
     o.message = "apply calibration: " + o.message;
     return o;
   }
-  curves_[finger] = CurvesFromCalibration(c);
+  // What the board now holds is what requests go through: the inverse just applied.
+  curves_[finger] = CurvesFromBoard(f, CurvesFromCalibration(c).source);
   calibration_problems_[finger].clear();
+  std::erase_if(curve_warnings_, [&](const CurveWarning& w) { return w.finger == finger; });
   calibration_notes_[finger] = FingerName(finger) + ": " + curves_[finger].source;
   return o;
 }

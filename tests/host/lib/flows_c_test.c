@@ -1,7 +1,9 @@
 /* The C ABI's configuration and calibration calls, from C: read a simulated board's whole
    configuration (and an OVERFLOW that says the size needed), lay a change over it and read it
-   back, refusals that name the field with nothing sent, and a quick calibration on palpa-sim's
-   rig that writes its three files and returns its summary. */
+   back, refusals that name the field with nothing sent, a calibration file that agrees with the
+   board's static inverse (no warning) and one edited beyond its residual (a warning naming both),
+   and a quick calibration on palpa-sim's rig that writes its three files and returns its
+   summary. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -56,6 +58,47 @@ static void configuration(palpa_device* d) {
   EXPECT(s == PALPA_OK && strstr(out, "\"host_timeout_us\":150000") != NULL, "%.200s", out);
 }
 
+/* Opens a simulated board with DIR/PN-1.json a copy of the test data file `name`; the warnings. */
+static int curve_warnings(const char* name, char* dir, char* out, size_t capacity) {
+  EXPECT(mkdtemp(dir) != NULL, "mkdtemp");
+  char from[600], to[600], text[65536];
+  snprintf(from, sizeof from, "%s/%s", PALPA_TEST_DATA_DIR, name);
+  snprintf(to, sizeof to, "%s/PN-1.json", dir);
+  FILE* in = fopen(from, "rb");
+  FILE* copy = fopen(to, "wb");
+  EXPECT(in != NULL && copy != NULL, "%s", from);
+  if (in == NULL || copy == NULL) return PALPA_STATUS_IO_ERROR;
+  fwrite(text, 1, fread(text, 1, sizeof text, in), copy);
+  fclose(in);
+  fclose(copy);
+  setenv("PALPA_CALIBRATION_DIR", dir, 1);
+  palpa_device* d = NULL;
+  int s = palpa_open("sim:thesis-5finger", &d);
+  EXPECT(s == PALPA_OK, "open: %s", palpa_last_error(NULL));
+  if (s != PALPA_OK) return s;
+  s = palpa_curve_warnings(d, out, capacity, NULL);
+  palpa_close(d);
+  unsetenv("PALPA_CALIBRATION_DIR");
+  return s;
+}
+
+static void curves(void) {
+  char dir[] = "/tmp/palpa-flows-c-XXXXXX", out[8192];
+  int s = curve_warnings("curve_on_board.json", dir, out, sizeof out);
+  EXPECT(s == PALPA_OK && strcmp(out, "[]") == 0, "%s: %s", palpa_status_name(s), out);
+  char edited[] = "/tmp/palpa-flows-c-XXXXXX";
+  s = curve_warnings("curve_off_board.json", edited, out, sizeof out);
+  EXPECT(s == PALPA_OK, "%s", palpa_status_name(s));
+  char file[600];
+  snprintf(file, sizeof file, "\"file\":\"%s/PN-1.json\"", edited);
+  EXPECT(strstr(out, file) != NULL, "%s", out);
+  EXPECT(strstr(out, "\"finger\":0") != NULL, "%s", out);
+  EXPECT(strstr(out, "the board's static inverse for finger 0 (the nominal one)") != NULL, "%s",
+         out);
+  EXPECT(strstr(out, "\"disagreement\":40.0") != NULL, "%s", out);
+  EXPECT(strstr(out, "\"residual\":12.0") != NULL, "%s", out);
+}
+
 static void calibration(void) {
   char dir[] = "/tmp/palpa-flows-c-XXXXXX";
   EXPECT(mkdtemp(dir) != NULL, "mkdtemp");
@@ -98,6 +141,7 @@ int main(void) {
   }
   configuration(d);
   palpa_close(d);
+  curves();
   calibration();
   printf("%s\n", failures ? "FAILED" : "passed");
   return failures ? 1 : 0;

@@ -112,6 +112,8 @@ def _load():
                                       ctypes.POINTER(ctypes.c_size_t)]
     lib.palpa_config_apply.argtypes = [ctypes.c_void_p, ctypes.c_char_p]
     lib.palpa_config_save.argtypes = [ctypes.c_void_p]
+    lib.palpa_curve_warnings.argtypes = [ctypes.c_void_p, ctypes.c_char_p, ctypes.c_size_t,
+                                         ctypes.POINTER(ctypes.c_size_t)]
     lib.palpa_calibrate.argtypes = [ctypes.c_void_p, ctypes.c_char_p, ctypes.c_char_p, ctypes.c_char_p,
                                     ctypes.c_size_t, ctypes.POINTER(ctypes.c_size_t)]
     return lib
@@ -363,6 +365,13 @@ class Device:
     def save_config(self):
         """Keeps the live configuration across resets."""
         self._check(self._lib.palpa_config_save(self._handle))
+
+    def curve_warnings(self):
+        """Calibration files that disagree with the static inverse their finger's board holds by
+        more than their fit residual: [{"finger", "file", "board", "disagreement", "at_kpa",
+        "residual", "unit", "message"}] (fingers from 0). Such a finger follows the board's curve."""
+        return _text_call(lambda b, n, length: self._lib.palpa_curve_warnings(self._handle, b, n, length),
+                          self._check)
 
     def calibrate(self, rig_file, finger, out, **options):
         """Calibrates finger `finger` (from 0) of this board on the rig `rig_file` names, as

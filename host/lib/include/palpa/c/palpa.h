@@ -179,6 +179,12 @@ int palpa_config_read(palpa_device* device, char* out, size_t capacity, size_t* 
 int palpa_config_apply(palpa_device* device, const char* json);
 int palpa_config_save(palpa_device* device);
 
+/* Calibration files that disagree with the static inverse their finger's board holds by more than
+   their fit residual, found on opening: a JSON array of {"finger", "file", "board",
+   "disagreement", "at_kpa", "residual", "unit", "message"} (empty when every file agrees). The
+   device follows the board's curve for such a finger; the message names both. */
+int palpa_curve_warnings(palpa_device* device, char* out, size_t capacity, size_t* length);
+
 /* Calibration of one finger, as `palpa calibrate` does it (docs/calibration.md). `rig` is a rig
    file (its stage and force sensor, beside `device`), or "sim": palpa-sim started for the run
    with a rig on the finger (`device` may be NULL; its errors are then palpa_last_error(NULL)'s).

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "palpa/host/board_curves.h"
 #include "palpa/host/stiffness_map.h"
 #include "palpa/protocol/messages_bootstrap.h"
 
@@ -17,5 +18,11 @@ nlohmann::ordered_json LinesJson(const protocol::HelloReply& board);
 /// source of each finger's curve) only when `curves` is given.
 nlohmann::ordered_json FingersJson(const protocol::HelloReply& board,
                                    const std::vector<FingerCurves>* curves = nullptr);
+
+/// [{"finger", "file", "board", "disagreement", "at_kpa", "residual", "unit", "message"}, ...]:
+/// Device::curve_warnings() with fingers numbered from `number_from`; disagreement null where the
+/// two curves share no drive.
+nlohmann::ordered_json CurveWarningsJson(const std::vector<CurveWarning>& warnings,
+                                         unsigned number_from);
 
 }  // namespace palpa::host

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "palpa/core/board_config.h"
+#include "palpa/host/board_curves.h"
 #include "palpa/host/link.h"
 #include "palpa/host/stiffness_map.h"
 
@@ -160,6 +161,14 @@ class Device {
     return calibration_notes_;
   }
 
+  /// Calibration files that disagree with the static inverse their finger's board holds by more
+  /// than their fit residual (board_curves.h): requests follow the board's curve, and this says
+  /// which file, which finger and by how much. Looked up as calibration_notes() is.
+  const std::vector<CurveWarning>& curve_warnings() {
+    AttachCalibrations();
+    return curve_warnings_;
+  }
+
   /// Uploads a calibration to finger f in one staged, all-or-nothing change: static inverse,
   /// compensator and its parameters, the recommended bias (jamming), the regulator corrections of
   /// the finger's lines. Refused when the finger's kind or actuator serial differ from the file's.
@@ -186,8 +195,13 @@ class Device {
   std::vector<std::string> calibration_notes_;
   /// Per finger: why its calibration file could not be used (empty: used, or there is none).
   std::vector<std::string> calibration_problems_;
+  std::vector<CurveWarning> curve_warnings_;
   bool calibrations_attached_ = false;
   void AttachCalibrations();  ///< once per device
+  /// Finger f's curve with a calibration file beside what its board holds (board_curves.h).
+  void AttachCalibration(uint8_t f, const pp::ConfigureFinger& board,
+                         const struct CalibrationFile& file, const std::string& path);
+  std::string BoardCurveName(uint8_t finger, const pp::ConfigureFinger& f) const;
   // Recording.
   std::mutex record_mutex_;
   std::unique_ptr<hal::linux_files::AtomicFile> record_;  ///< null when not recording
