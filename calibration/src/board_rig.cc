@@ -23,12 +23,18 @@ std::optional<BoardRig> OpenSimulatedRig(const std::string& config, int finger, 
                                        "--plant",      std::to_string(plant.plant_level)};
   if (!plant.effects.empty()) sim_args.insert(sim_args.end(), {"--effects", plant.effects});
   std::string rig_address;
-  auto transport = host::LaunchSim(config, sim_args, nullptr, error, &rig_address);
-  if (!transport.ok()) return std::nullopt;
+  auto transport = host::LaunchSim(config, sim_args, nullptr, &rig_address);
+  if (!transport.ok()) {
+    *error = transport.message;
+    return std::nullopt;
+  }
   host::DeviceOptions options;
   options.number_from = static_cast<uint8_t>(number_from);
-  auto device = host::Device::Attach(std::move(transport.value), options, error);
-  if (!device.ok()) return std::nullopt;
+  auto device = host::Device::Attach(std::move(transport.value), options);
+  if (!device.ok()) {
+    *error = device.message;
+    return std::nullopt;
+  }
   auto rig = OpenBoardRig(*device.value,
                           SimRigDescription("modbus-tcp://" + rig_address.substr(4) + "/1"), error);
   if (!rig) return std::nullopt;
@@ -58,9 +64,8 @@ host::Outcome ReadActuatorSerial(host::Device& device, uint8_t finger, std::stri
                          "the board has " + std::to_string(device.info().finger_count) + " fingers",
                          {}};
   }
-  std::string error;
-  const auto config = device.ReadFinger(finger, &error);
-  if (!config.ok()) return host::Outcome{config.status, error, {}};
+  const auto config = device.ReadFinger(finger);
+  if (!config.ok()) return host::Outcome{config.status, config.message, {}};
   *serial = host::FieldText(config.value.actuator_serial);
   if (!host::ValidSerial(*serial)) {
     return host::Outcome{

@@ -36,7 +36,7 @@ RigStatus DeviceBoardPort::SetDrive(uint8_t finger, double kpa_a, double kpa_b) 
   std::vector<std::pair<uint8_t, double>> lines = {{f.line_a, kpa_a}};
   if (f.line_b != protocol::kNoLine) lines.push_back({f.line_b, kpa_b});
   const host::Outcome o = device_.SetLines(lines, true);
-  return o.ok() ? RigStatus{} : RigStatus::Fail(o.message);
+  return o.ok() ? RigStatus{} : o;
 }
 
 RigStatus DeviceBoardPort::MeasuredKpa(uint8_t line, double* kpa) {
@@ -46,35 +46,33 @@ RigStatus DeviceBoardPort::MeasuredKpa(uint8_t line, double* kpa) {
 }
 
 RigStatus DeviceBoardPort::LineRangeKpa(uint8_t line, double* kpa) {
-  std::string error;
-  const auto read = device_.ReadLine(line, &error);
-  if (!read.ok()) return RigStatus::Fail(error);
+  const auto read = device_.ReadLine(line);
+  if (!read.ok()) return read.outcome();
   *kpa = std::max(std::abs(read.value.limit_min_pa), std::abs(read.value.limit_max_pa)) / 1000.0;
   return {};
 }
 
 RigStatus DeviceBoardPort::SetTrim(uint8_t line, bool on) {
   if (!known_[line]) {
-    std::string error;
-    const auto read = device_.ReadLine(line, &error);
-    if (!read.ok()) return RigStatus::Fail(error);
+    const auto read = device_.ReadLine(line);
+    if (!read.ok()) return read.outcome();
     configured_[line] = read.value;
     known_[line] = true;
   }
   protocol::ConfigureLine c = configured_[line];
   if (!on) c.trim_kp = c.trim_ki_per_s = 0;
   const host::Outcome o = device_.ConfigureLine(c);
-  return o.ok() ? RigStatus{} : RigStatus::Fail(o.message);
+  return o.ok() ? RigStatus{} : o;
 }
 
 RigStatus DeviceBoardPort::Faults(uint32_t* bitmap) {
   if (!device_.link().session_open())
-    return RigStatus::Fail("the board does not answer (no session)");
+    return RigStatus::Fail(Status::kUnavailable, "the board does not answer (no session)");
   std::lock_guard<std::mutex> lock(mutex_);
   const double now =
       std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
   if (last_frame_s_ > 0 && now - last_frame_s_ > 1.0)
-    return RigStatus::Fail("no telemetry from the board for over 1 s");
+    return RigStatus::Fail(Status::kUnavailable, "no telemetry from the board for over 1 s");
   *bitmap = faults_;
   return {};
 }
@@ -83,7 +81,7 @@ RigStatus DeviceBoardPort::VentAll() {
   std::vector<std::pair<uint8_t, double>> lines;
   for (uint8_t i = 0; i < device_.info().line_count; ++i) lines.push_back({i, 0.0});
   const host::Outcome o = device_.SetLines(lines, false);
-  return o.ok() ? RigStatus{} : RigStatus::Fail(o.message);
+  return o.ok() ? RigStatus{} : o;
 }
 
 BoardTime::BoardTime(host::Device& device)

@@ -172,7 +172,7 @@ RigStatus PressAt(Rig& rig, uint8_t finger, double zero_mm, double bias_kpa, dou
                   int repeats, const PressSettings& press, std::vector<MapPress>* out,
                   std::vector<PressCycle>* cycles) {
   RigStatus s = rig.board.SetDrive(finger, bias_kpa, vacuum_kpa);
-  if (!s.ok) return AbortSafe(rig, "board: " + s.error);
+  if (!s.ok()) return AbortSafe(rig, s.status, "board: " + s.message);
   rig.time.Wait(press.dwell_s);
   MapPress m;
   m.bias_kpa = bias_kpa;
@@ -182,7 +182,7 @@ RigStatus PressAt(Rig& rig, uint8_t finger, double zero_mm, double bias_kpa, dou
     m.time_s = rig.time.Now();
     PressCycle cycle;
     s = Press(rig, zero_mm, press.depth_mm, press.speed_mm_s, &cycle);
-    if (!s.ok) return s;
+    if (!s.ok()) return s;
     m.stiffness = cycle.stiffness_n_per_mm;
     m.loop_area_mj = cycle.loop_area_mj;
     m.r2 = cycle.r2;
@@ -195,8 +195,8 @@ RigStatus PressAt(Rig& rig, uint8_t finger, double zero_mm, double bias_kpa, dou
   // What the lines hold after the presses, long settled: the leak check's trim-on reading.
   double bias = 0, vacuum = 0;
   s = rig.board.MeasuredKpa(rig.board.bias_line(finger), &bias);
-  if (s.ok) s = rig.board.MeasuredKpa(rig.board.driven_line(finger), &vacuum);
-  if (!s.ok) return AbortSafe(rig, "board: " + s.error);
+  if (s.ok()) s = rig.board.MeasuredKpa(rig.board.driven_line(finger), &vacuum);
+  if (!s.ok()) return AbortSafe(rig, s.status, "board: " + s.message);
   for (size_t i = first; i < out->size(); ++i) {
     (*out)[i].measured_bias_kpa = bias;
     (*out)[i].measured_vacuum_kpa = vacuum;
@@ -204,7 +204,7 @@ RigStatus PressAt(Rig& rig, uint8_t finger, double zero_mm, double bias_kpa, dou
   // Vacuum released: the next condition is approached from rest, and the pump rests inside its
   // run-time limit.
   s = rig.board.SetDrive(finger, bias_kpa, 0);
-  if (!s.ok) return AbortSafe(rig, "board: " + s.error);
+  if (!s.ok()) return AbortSafe(rig, s.status, "board: " + s.message);
   rig.time.Wait(press.dwell_s);
   return {};
 }
@@ -227,7 +227,7 @@ RigStatus RunGridMap(Rig& rig, uint8_t finger, double zero_mm, const PressSettin
         hooks.step("indentation grid: bias " + Kpa(b) + " kPa, vacuum " + Kpa(v) + " kPa");
       std::vector<MapPress> taken;
       RigStatus s = PressAt(rig, finger, zero_mm, b, v, repeats, press, &taken, cycles);
-      if (!s.ok) return s;
+      if (!s.ok()) return s;
       Append(state, taken);
       state["grid_done"] = index;
       presses->insert(presses->end(), taken.begin(), taken.end());
@@ -279,7 +279,7 @@ RigStatus RunAdaptiveMap(Rig& rig, uint8_t finger, double zero_mm, const PressSe
     std::vector<MapPress> one;
     RigStatus s =
         PressAt(rig, finger, zero_mm, next.bias_kpa, next.vacuum_kpa, 1, press, &one, cycles);
-    if (!s.ok) return s;
+    if (!s.ok()) return s;
     Append(state, one);
     presses->push_back(one.front());
     if (hooks.after_press) hooks.after_press(*presses);

@@ -32,12 +32,14 @@ ModbusDevice::~ModbusDevice() {
 }
 
 RigStatus ModbusDevice::Failure(const std::string& what) {
-  return RigStatus::Fail(map_.uri + ": " + what + " (" + modbus_strerror(errno) + ")");
+  return RigStatus::Fail(Status::kUnavailable,
+                         map_.uri + ": " + what + " (" + modbus_strerror(errno) + ")");
 }
 
 RigStatus ModbusDevice::Read(const std::string& name, double* value) {
   const Register* r = map_.Find(name);
-  if (r == nullptr) return RigStatus::Fail(map_.uri + ": no register '" + name + "' in the map");
+  if (r == nullptr)
+    return RigStatus::Fail(Status::kBadValue, map_.uri + ": no register '" + name + "' in the map");
   uint16_t words[2] = {};
   const int n = r->table == RegisterTable::kInput
                     ? modbus_read_input_registers(ctx_, r->address, r->words(), words)
@@ -49,7 +51,8 @@ RigStatus ModbusDevice::Read(const std::string& name, double* value) {
 
 RigStatus ModbusDevice::Write(const std::string& name, double value) {
   const Register* r = map_.Find(name);
-  if (r == nullptr) return RigStatus::Fail(map_.uri + ": no register '" + name + "' in the map");
+  if (r == nullptr)
+    return RigStatus::Fail(Status::kBadValue, map_.uri + ": no register '" + name + "' in the map");
   const std::vector<uint16_t> words = map_.Encode(*r, value);
   if (modbus_write_registers(ctx_, r->address, r->words(), words.data()) != r->words())
     return Failure("writing " + name);
@@ -59,25 +62,26 @@ RigStatus ModbusDevice::Write(const std::string& name, double value) {
 RigStatus ModbusDevice::Command(const char* register_name, const char* command) {
   const auto it = map_.commands.find(command);
   if (it == map_.commands.end())
-    return RigStatus::Fail(map_.uri + ": no '" + command + "' command in the map");
+    return RigStatus::Fail(Status::kBadValue,
+                           map_.uri + ": no '" + command + "' command in the map");
   return Write(register_name, it->second * map_.Find(register_name)->scale);
 }
 
 RigStatus ModbusStage::MoveTo(double mm, double speed_mm_s) {
   // A plain move never stops on force: a limit left armed by an earlier move is cleared.
   RigStatus s = stops_on_force() ? device_->Write("stop_force", 0) : RigStatus{};
-  if (s.ok) s = device_->Write("speed", speed_mm_s);
-  if (s.ok) s = device_->Write("target", mm);
-  if (s.ok) s = device_->Command("command", "move");
+  if (s.ok()) s = device_->Write("speed", speed_mm_s);
+  if (s.ok()) s = device_->Write("target", mm);
+  if (s.ok()) s = device_->Command("command", "move");
   return s;
 }
 
 RigStatus ModbusStage::MoveUntilForce(double mm, double speed_mm_s, double stop_n) {
   if (!stops_on_force()) return Stage::MoveUntilForce(mm, speed_mm_s, stop_n);
   RigStatus s = device_->Write("stop_force", stop_n);
-  if (s.ok) s = device_->Write("speed", speed_mm_s);
-  if (s.ok) s = device_->Write("target", mm);
-  if (s.ok) s = device_->Command("command", "move");
+  if (s.ok()) s = device_->Write("speed", speed_mm_s);
+  if (s.ok()) s = device_->Write("target", mm);
+  if (s.ok()) s = device_->Command("command", "move");
   return s;
 }
 
@@ -102,7 +106,7 @@ RigStatus ModbusForceSensor::Tare() {
   }
   double raw = 0;
   const RigStatus s = device_->Read("force", &raw);
-  if (s.ok) offset_ = raw;
+  if (s.ok()) offset_ = raw;
   return s;
 }
 

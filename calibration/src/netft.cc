@@ -66,7 +66,7 @@ RigStatus NetFtForceSensor::Request(uint16_t command, uint32_t count) {
                         static_cast<uint8_t>(count >> 8),
                         static_cast<uint8_t>(count)};
   if (send(fd_, r, sizeof(r), 0) != static_cast<ssize_t>(sizeof(r))) {
-    return RigStatus::Fail(config_.uri + ": send: " + std::strerror(errno));
+    return RigStatus::Fail(Status::kUnavailable, config_.uri + ": send: " + std::strerror(errno));
   }
   return {};
 }
@@ -77,22 +77,23 @@ RigStatus NetFtForceSensor::Read(double* newtons) {
   while (recv(fd_, record, sizeof(record), MSG_DONTWAIT) > 0) {
   }
   RigStatus s = Request(0x0002, 1);
-  if (!s.ok) return s;
+  if (!s.ok()) return s;
   pollfd p{fd_, POLLIN, 0};
   if (poll(&p, 1, config_.timeout_ms) <= 0)
-    return RigStatus::Fail(config_.uri + ": no record within " +
-                           std::to_string(config_.timeout_ms) + " ms");
+    return RigStatus::Fail(Status::kUnavailable, config_.uri + ": no record within " +
+                                                     std::to_string(config_.timeout_ms) + " ms");
   const ssize_t n = recv(fd_, record, sizeof(record), 0);
   if (n != 36)
-    return RigStatus::Fail(config_.uri + ": a record of " + std::to_string(n) +
-                           " bytes, expected 36");
+    return RigStatus::Fail(Status::kUnavailable, config_.uri + ": a record of " +
+                                                     std::to_string(n) + " bytes, expected 36");
   const uint8_t* f = record + 12 + 4 * config_.axis;
   const int32_t counts =
       static_cast<int32_t>(static_cast<uint32_t>(f[0]) << 24 | f[1] << 16 | f[2] << 8 | f[3]);
   const uint32_t status =
       static_cast<uint32_t>(record[8]) << 24 | record[9] << 16 | record[10] << 8 | record[11];
   if (status != 0)
-    return RigStatus::Fail(config_.uri + ": the sensor reports status 0x" + std::to_string(status));
+    return RigStatus::Fail(Status::kUnavailable,
+                           config_.uri + ": the sensor reports status 0x" + std::to_string(status));
   *newtons = config_.sign * counts / config_.counts_per_force;
   return {};
 }

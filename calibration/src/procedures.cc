@@ -25,51 +25,54 @@ std::string Num(double v) {
 /// One look at the rig while something moves: force, position, board faults.
 RigStatus Watch(Rig& rig, double* force, double* position) {
   RigStatus s = rig.force.Read(force);
-  if (!s.ok) return RigStatus::Fail("force sensor lost: " + s.error);
+  if (!s.ok()) return RigStatus::Fail(s.status, "force sensor lost: " + s.message);
   s = rig.stage.Position(position);
-  if (!s.ok) return RigStatus::Fail("stage lost: " + s.error);
+  if (!s.ok()) return RigStatus::Fail(s.status, "stage lost: " + s.message);
   if (*force > rig.limits.max_force_n) {
-    return RigStatus::Fail("force " + Num(*force) + " N above the limit of " +
-                           Num(rig.limits.max_force_n) + " N");
+    return RigStatus::Fail(Status::kOutOfRange, "force " + Num(*force) + " N above the limit of " +
+                                                    Num(rig.limits.max_force_n) + " N");
   }
   if (*position < rig.limits.min_position_mm - 0.01 ||
       *position > rig.limits.max_position_mm + 0.01) {
-    return RigStatus::Fail("stage at " + Num(*position) + " mm, outside its limits");
+    return RigStatus::Fail(Status::kOutOfRange,
+                           "stage at " + Num(*position) + " mm, outside its limits");
   }
   uint32_t faults = 0;
   s = rig.board.Faults(&faults);
-  if (!s.ok) return RigStatus::Fail("board lost: " + s.error);
-  if (faults != 0) return RigStatus::Fail("board fault: " + host::FaultNames(faults));
+  if (!s.ok()) return RigStatus::Fail(s.status, "board lost: " + s.message);
+  if (faults != 0)
+    return RigStatus::Fail(Status::kFaulted, "board fault: " + host::FaultNames(faults));
   return {};
 }
 
 }  // namespace
 
-RigStatus AbortSafe(Rig& rig, const std::string& why) {
+RigStatus AbortSafe(Rig& rig, Status status, const std::string& why) {
   rig.stage.Stop();
   rig.stage.MoveTo(rig.limits.retract_mm, 2.0);  // away from the finger before anything else
   rig.board.VentAll();
   for (int i = 0; i < 2000; ++i) {  // wait for the retract, boundedly
     bool moving = false;
-    if (!rig.stage.Moving(&moving).ok || !moving) break;
+    if (!rig.stage.Moving(&moving).ok() || !moving) break;
     rig.time.Wait(0.01);
   }
-  return RigStatus::Fail(why);
+  return RigStatus::Fail(status, why);
 }
 
 RigStatus GuardedMove(Rig& rig, double mm, double speed_mm_s, double poll_s) {
   if (mm < rig.limits.min_position_mm || mm > rig.limits.max_position_mm) {
-    return AbortSafe(rig, "move to " + Num(mm) + " mm refused: outside the stage's limits");
+    return AbortSafe(rig, Status::kOutOfRange,
+                     "move to " + Num(mm) + " mm refused: outside the stage's limits");
   }
   RigStatus s = rig.stage.MoveTo(mm, speed_mm_s);
-  if (!s.ok) return AbortSafe(rig, "stage: " + s.error);
+  if (!s.ok()) return AbortSafe(rig, s.status, "stage: " + s.message);
   for (;;) {
     double force = 0, position = 0;
     s = Watch(rig, &force, &position);
-    if (!s.ok) return AbortSafe(rig, s.error);
+    if (!s.ok()) return AbortSafe(rig, s.status, s.message);
     bool moving = false;
     s = rig.stage.Moving(&moving);
-    if (!s.ok) return AbortSafe(rig, "stage lost: " + s.error);
+    if (!s.ok()) return AbortSafe(rig, s.status, "stage lost: " + s.message);
     if (!moving) return {};
     rig.time.Wait(poll_s);
   }
@@ -85,27 +88,28 @@ RigStatus CreepToContact(Rig& rig, double floor_mm, double speed_mm_s, const Con
                          double* contact_mm, double* clear_mm) {
   double before_last = 0, last = 0;
   RigStatus s = rig.stage.Position(&last);
-  if (!s.ok) return AbortSafe(rig, "stage lost: " + s.error);
+  if (!s.ok()) return AbortSafe(rig, s.status, "stage lost: " + s.message);
   before_last = last;
   const bool stage_stops = rig.stage.stops_on_force();
   s = stage_stops ? rig.stage.MoveUntilForce(floor_mm, speed_mm_s, o.threshold_n)
                   : rig.stage.MoveTo(floor_mm, speed_mm_s);
-  if (!s.ok) return AbortSafe(rig, "stage: " + s.error);
+  if (!s.ok()) return AbortSafe(rig, s.status, "stage: " + s.message);
   const double poll = 0.001;  // one force reading per millisecond: 0.1 µm of travel at 0.1 mm/s
   for (;;) {
     double force = 0, position = 0;
     s = Watch(rig, &force, &position);
-    if (!s.ok) return AbortSafe(rig, s.error);
+    if (!s.ok()) return AbortSafe(rig, s.status, s.message);
     bool moving = false;
     if (stage_stops) {
       s = rig.stage.Moving(&moving);
-      if (!s.ok) return AbortSafe(rig, "stage lost: " + s.error);
+      if (!s.ok()) return AbortSafe(rig, s.status, "stage lost: " + s.message);
       if (!moving) {
         s = rig.stage.Position(&position);  // stopped: where it stopped, whenever it is read
-        if (!s.ok) return AbortSafe(rig, "stage lost: " + s.error);
+        if (!s.ok()) return AbortSafe(rig, s.status, "stage lost: " + s.message);
         // Stopped short of the floor: by its force limit (a stage stops early for nothing else).
         if (position <= floor_mm + kStopShortMm)
-          return AbortSafe(rig, "no contact down to " + Num(floor_mm) + " mm");
+          return AbortSafe(rig, Status::kUnavailable,
+                           "no contact down to " + Num(floor_mm) + " mm");
         *contact_mm = position;
         *clear_mm = before_last;
         return {};
@@ -120,7 +124,8 @@ RigStatus CreepToContact(Rig& rig, double floor_mm, double speed_mm_s, const Con
     last = position;
     if (!stage_stops) {
       rig.stage.Moving(&moving);
-      if (!moving) return AbortSafe(rig, "no contact down to " + Num(floor_mm) + " mm");
+      if (!moving)
+        return AbortSafe(rig, Status::kUnavailable, "no contact down to " + Num(floor_mm) + " mm");
     }
     rig.time.Wait(poll);
   }
@@ -128,24 +133,24 @@ RigStatus CreepToContact(Rig& rig, double floor_mm, double speed_mm_s, const Con
 
 RigStatus FindSurface(Rig& rig, double expected_mm, const ContactOptions& o, double* surface_mm) {
   RigStatus s = GuardedMove(rig, expected_mm + o.approach_mm, o.fast_mm_s);
-  if (!s.ok) return s;
+  if (!s.ok()) return s;
   // Already touching (the surface rose): back off until clear, then creep down onto it.
   double start = expected_mm + o.approach_mm;
   for (double force = 1e9; force >= o.threshold_n;) {
     s = rig.force.Read(&force);
-    if (!s.ok) return AbortSafe(rig, "force sensor lost: " + s.error);
+    if (!s.ok()) return AbortSafe(rig, s.status, "force sensor lost: " + s.message);
     if (force < o.threshold_n) break;
     start += 0.5;
     if (start > rig.limits.max_position_mm)
-      return AbortSafe(rig, "still in contact at the stage's upper limit");
+      return AbortSafe(rig, Status::kUnavailable, "still in contact at the stage's upper limit");
     s = GuardedMove(rig, start, o.fast_mm_s);
-    if (!s.ok) return s;
+    if (!s.ok()) return s;
   }
   expected_mm = start - o.approach_mm;
   const double floor = std::max(rig.limits.min_position_mm, expected_mm - 2.0);
   double contact = 0, clear = 0;
   s = CreepToContact(rig, floor, o.speed_mm_s, o, &contact, &clear);
-  if (!s.ok) return s;
+  if (!s.ok()) return s;
   if (o.speed_mm_s > kFinalApproachMmS) {
     // The host sees contact only with its next reading, and a busy host later still, by which
     // time the moving stage is deeper (30 µm at 1 mm/s for a reading 30 ms late; a stage that
@@ -162,20 +167,20 @@ RigStatus FindSurface(Rig& rig, double expected_mm, const ContactOptions& o, dou
     double above = rig.stage.stops_on_force() ? contact + kBackOffMm : clear + kMarginMm;
     for (int tries = 0;; ++tries) {
       s = GuardedMove(rig, above, o.fast_mm_s);
-      if (!s.ok) return s;
+      if (!s.ok()) return s;
       double force = 0;
       s = rig.force.Read(&force);
-      if (!s.ok) return AbortSafe(rig, "force sensor lost: " + s.error);
+      if (!s.ok()) return AbortSafe(rig, s.status, "force sensor lost: " + s.message);
       if (force < o.threshold_n) break;
       if (tries == 4) {
-        return AbortSafe(rig, "still in contact (" + Num(force) + " N) at " + Num(above) +
-                                  " mm, well above where contact was seen (" + Num(contact) +
-                                  " mm)");
+        return AbortSafe(rig, Status::kUnavailable,
+                         "still in contact (" + Num(force) + " N) at " + Num(above) +
+                             " mm, well above where contact was seen (" + Num(contact) + " mm)");
       }
       above += 0.1;
     }
     s = CreepToContact(rig, floor, kFinalApproachMmS, o, &contact, &clear);
-    if (!s.ok) return s;
+    if (!s.ok()) return s;
   }
   *surface_mm = contact;
   return GuardedMove(rig, contact + o.approach_mm, o.fast_mm_s);
@@ -186,7 +191,7 @@ RigStatus ReadForceMean(Rig& rig, int count, double* mean_n, double* rms_n) {
   for (int i = 0; i < count; ++i) {
     double force = 0;
     const RigStatus s = rig.force.Read(&force);
-    if (!s.ok) return AbortSafe(rig, "force sensor lost: " + s.error);
+    if (!s.ok()) return AbortSafe(rig, s.status, "force sensor lost: " + s.message);
     readings.push_back(force);
     rig.time.Wait(0.01);
   }
@@ -201,16 +206,16 @@ RigStatus ReadForceMean(Rig& rig, int count, double* mean_n, double* rms_n) {
 RigStatus ZeroOnVentedSurface(Rig& rig, uint8_t finger, const ContactOptions& o, double* zero_mm,
                               double* noise_n) {
   RigStatus s = rig.board.SetDrive(finger, 0, 0);
-  if (!s.ok) return AbortSafe(rig, "board: " + s.error);
+  if (!s.ok()) return AbortSafe(rig, s.status, "board: " + s.message);
   s = GuardedMove(rig, rig.limits.retract_mm, o.fast_mm_s);
-  if (!s.ok) return s;
+  if (!s.ok()) return s;
   rig.time.Wait(2.0);  // vented and settled, indenter clear: the force sensor's zero
   s = rig.force.Tare();
-  if (!s.ok) return AbortSafe(rig, "force sensor: " + s.error);
+  if (!s.ok()) return AbortSafe(rig, s.status, "force sensor: " + s.message);
   if (noise_n != nullptr) {
     double mean = 0;
     s = ReadForceMean(rig, 100, &mean, noise_n);
-    if (!s.ok) return s;
+    if (!s.ok()) return s;
   }
   return FindSurface(rig, 0, o, zero_mm);
 }
@@ -221,9 +226,9 @@ RigStatus RegulatorCorrection(Rig& rig, uint8_t finger, uint8_t line, int points
   const bool vacuum = jamming && line == rig.board.driven_line(finger);
   double range = 0;
   RigStatus s = rig.board.LineRangeKpa(line, &range);
-  if (!s.ok) return AbortSafe(rig, "board: " + s.error);
+  if (!s.ok()) return AbortSafe(rig, s.status, "board: " + s.message);
   s = rig.board.SetTrim(line, false);
-  if (!s.ok) return AbortSafe(rig, "board: " + s.error);
+  if (!s.ok()) return AbortSafe(rig, s.status, "board: " + s.message);
   std::vector<double> commands, rising(points), falling(points);
   // From 10 % (above the regulator's minimum set pressure) to 90 % of the line's range.
   for (int i = 0; i < points; ++i) commands.push_back(range * (0.1 + 0.8 * i / (points - 1)));
@@ -232,18 +237,18 @@ RigStatus RegulatorCorrection(Rig& rig, uint8_t finger, uint8_t line, int points
     RigStatus r = !jamming ? rig.board.SetDrive(finger, kpa, 0)
                   : vacuum ? rig.board.SetDrive(finger, 20, -kpa)
                            : rig.board.SetDrive(finger, kpa, 0);
-    if (!r.ok) return r;
+    if (!r.ok()) return r;
     rig.time.Wait(dwell_s);
     uint32_t faults = 0;
     r = rig.board.Faults(&faults);
-    if (!r.ok || faults != 0)
-      return RigStatus::Fail(r.ok ? "board fault during the correction" : r.error);
+    if (!r.ok()) return r;
+    if (faults != 0) return RigStatus::Fail(Status::kFaulted, "board fault during the correction");
     return rig.board.MeasuredKpa(line, measured);
   };
-  for (int i = 0; i < points && s.ok; ++i) s = settle(commands[i], &rising[i]);
-  for (int i = points - 1; i >= 0 && s.ok; --i) s = settle(commands[i], &falling[i]);
+  for (int i = 0; i < points && s.ok(); ++i) s = settle(commands[i], &rising[i]);
+  for (int i = points - 1; i >= 0 && s.ok(); --i) s = settle(commands[i], &falling[i]);
   rig.board.SetTrim(line, true);
-  if (!s.ok) return AbortSafe(rig, "regulator correction: " + s.error);
+  if (!s.ok()) return AbortSafe(rig, s.status, "regulator correction: " + s.message);
   out->clear();
   const double sign = vacuum ? -1 : 1;
   for (int i = 0; i < points; ++i) {
@@ -271,18 +276,18 @@ RigStatus DeformationSweep(Rig& rig, uint8_t finger, const std::vector<double>& 
   double expected = zero_mm;
   for (double drive : kpa) {
     RigStatus s = rig.board.SetDrive(finger, drive, 0);
-    if (!s.ok) return AbortSafe(rig, "board: " + s.error);
+    if (!s.ok()) return AbortSafe(rig, s.status, "board: " + s.message);
     rig.time.Wait(dwell_s);
     double surface = 0, measured = 0;
     for (int t = 0; t < std::max(1, o.touches); ++t) {
       double touch = 0;
       s = FindSurface(rig, t == 0 ? expected : surface / t, o, &touch);
-      if (!s.ok) return s;
+      if (!s.ok()) return s;
       surface += touch;
     }
     surface /= std::max(1, o.touches);
     s = rig.board.MeasuredKpa(line, &measured);
-    if (!s.ok) return AbortSafe(rig, "board: " + s.error);
+    if (!s.ok()) return AbortSafe(rig, s.status, "board: " + s.message);
     out->push_back({measured * 1000, (surface - zero_mm) * 1000});
     expected = surface;
   }
@@ -293,21 +298,22 @@ RigStatus Press(Rig& rig, double surface_mm, double depth_mm, double speed_mm_s,
   *out = PressCycle{};
   if (surface_mm - depth_mm < rig.limits.min_position_mm) {
     return AbortSafe(
-        rig, "press to " + Num(surface_mm - depth_mm) + " mm refused: outside the stage's limits");
+        rig, Status::kOutOfRange,
+        "press to " + Num(surface_mm - depth_mm) + " mm refused: outside the stage's limits");
   }
   RigStatus s = GuardedMove(rig, surface_mm + 0.2, 2.0);
-  if (!s.ok) return s;
+  if (!s.ok()) return s;
   // Clear of the finger the sensor should read its tare: ten readings, a tenth of a second.
   s = ReadForceMean(rig, 10, &out->free_force_n);
-  if (!s.ok) return s;
+  if (!s.ok()) return s;
   auto sweep = [&](double to, std::vector<std::pair<double, double>>* samples) {
     RigStatus r = rig.stage.MoveTo(to, speed_mm_s);
-    if (!r.ok) return AbortSafe(rig, "stage: " + r.error);
+    if (!r.ok()) return AbortSafe(rig, r.status, "stage: " + r.message);
     const double step_s = 0.01 / speed_mm_s;  // a reading per 10 µm of travel
     for (;;) {
       double force = 0, position = 0;
       r = Watch(rig, &force, &position);
-      if (!r.ok) return AbortSafe(rig, r.error);
+      if (!r.ok()) return AbortSafe(rig, r.status, r.message);
       const double depth = surface_mm - position;
       if (depth >= 0) samples->push_back({depth, force});
       out->peak_force_n = std::max(out->peak_force_n, force);
@@ -318,8 +324,8 @@ RigStatus Press(Rig& rig, double surface_mm, double depth_mm, double speed_mm_s,
     }
   };
   s = sweep(surface_mm - depth_mm, &out->loading);
-  if (s.ok) s = sweep(surface_mm + 0.2, &out->unloading);
-  if (!s.ok) return s;
+  if (s.ok()) s = sweep(surface_mm + 0.2, &out->unloading);
+  if (!s.ok()) return s;
   // Stiffness: the Hooke's-law slope at contact, from F = k·d + q·d² over the loading branch
   // (the jammed material stiffens slightly with depth; a straight line would fold that in).
   double s11 = 0, s12 = 0, s22 = 0, b1 = 0, b2 = 0, sy = 0, syy = 0;
@@ -333,7 +339,8 @@ RigStatus Press(Rig& rig, double surface_mm, double depth_mm, double speed_mm_s,
     syy += f * f;
   }
   const double det = s11 * s22 - s12 * s12;
-  if (out->loading.size() < 3 || det <= 0) return AbortSafe(rig, "press: too few readings to fit");
+  if (out->loading.size() < 3 || det <= 0)
+    return AbortSafe(rig, Status::kUnavailable, "press: too few readings to fit");
   const double k = (b1 * s22 - b2 * s12) / det, q = (s11 * b2 - s12 * b1) / det;
   double residual = 0;
   for (const auto& [d, f] : out->loading)

@@ -99,9 +99,13 @@ host::Outcome Session::Run(const std::function<void(const Progress&)>& progress)
                previous_ ? &*previous_ : nullptr};
   info.simulation = options_.simulation;
   run_ = CalibrationRun{};
+  stopped_ = false;
   const RigStatus s =
       RunCalibration(rig_, options_.finger, options_.protocol, info, journal_, progress, &run_);
-  if (!s.ok) return Failed(Status::kUnavailable, s.error);
+  if (!s.ok()) {
+    stopped_ = true;
+    return Failed(s.status, s.message);  // the rig's code: a limit, a lost device, a fault
+  }
   if (!run_.fit.ok() && !options_.allow_fallback)
     return Failed(Status::kBadValue, "the compensator could not be fitted: " + run_.fit.error);
   return {};

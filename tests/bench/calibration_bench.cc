@@ -54,12 +54,12 @@ Point ThesisRun(uint32_t seed, int repeats, palpa::sim::Effects effects = {}) {
   nlohmann::json state;
   std::vector<cal::MapPress> presses;
   const double start = rig.time.Now();
-  if (s.ok) {
+  if (s.ok()) {
     s = cal::RunGridMap(rig, pt::kJammingFinger, zero, cal::PressSettings{}, {0, 10, 20},
                         {0, -50, -100}, repeats, state, {}, &presses);
   }
-  if (!s.ok) {
-    std::fprintf(stderr, "thesis run, seed %u: %s\n", seed, s.error.c_str());
+  if (!s.ok()) {
+    std::fprintf(stderr, "thesis run, seed %u: %s\n", seed, s.message.c_str());
     std::exit(1);
   }
   Point p;
@@ -99,12 +99,12 @@ Seeded AdaptiveRun(uint32_t seed, int budget, palpa::sim::Effects effects = {}) 
   nlohmann::json state;
   std::vector<cal::MapPress> presses;
   cal::MapEstimate estimate;
-  if (s.ok) {
+  if (s.ok()) {
     s = cal::RunAdaptiveMap(rig, pt::kJammingFinger, zero, cal::PressSettings{}, o, state, hooks,
                             &presses, &estimate);
   }
-  if (!s.ok) {
-    std::fprintf(stderr, "adaptive run, seed %u: %s\n", seed, s.error.c_str());
+  if (!s.ok()) {
+    std::fprintf(stderr, "adaptive run, seed %u: %s\n", seed, s.message.c_str());
     std::exit(1);
   }
   if (out.stop < 0 || out.adaptive[out.stop].cycles > defaults.max_cycles) {

@@ -108,9 +108,9 @@ int main(int argc, char** argv) {
     const std::string uri = argv[2], stamps = argv[4];
     const pid_t sim_pid = static_cast<pid_t>(std::atoi(argv[6]));
     const int commands = argc > 7 ? std::atoi(argv[7]) : 1000;
-    auto device = palpa::host::Device::Open(uri, {}, &error);
+    auto device = palpa::host::Device::Open(uri, {});
     if (!device.ok()) {
-      std::fprintf(stderr, "%s\n", error.c_str());
+      std::fprintf(stderr, "%s\n", device.message.c_str());
       return 1;
     }
     device.value->ClearFault();
@@ -133,9 +133,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "palpa-sim did not start\n");
     return 1;
   }
-  auto device = palpa::host::Device::Open(sim.address(), {}, &error);
+  auto device = palpa::host::Device::Open(sim.address(), {});
   if (!device.ok()) {
-    std::fprintf(stderr, "%s\n", error.c_str());
+    std::fprintf(stderr, "%s\n", device.message.c_str());
     return 1;
   }
   const auto called = Measure(*device.value, commands);

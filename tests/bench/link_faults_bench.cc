@@ -15,13 +15,12 @@ int main() {
   ph::FaultSpec faults;
   faults.drop = 0.01;
   faults.bit_flip = 0.001;
-  std::string error;
   auto link =
       ph::Link::Open(std::make_unique<ph::FaultTransport>(
                          std::make_unique<palpa::testing::BoardTransport>(board), faults, 9),
-                     ph::LinkOptions{}, &error);
+                     ph::LinkOptions{});
   if (!link.ok()) {
-    std::fprintf(stderr, "%s\n", error.c_str());
+    std::fprintf(stderr, "%s\n", link.message.c_str());
     return 1;
   }
   const int n = 10000;

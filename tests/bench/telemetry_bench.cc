@@ -30,7 +30,7 @@ double CpuSeconds() {
 class CountingTransport final : public palpa::host::Transport {
  public:
   explicit CountingTransport(std::unique_ptr<palpa::host::Transport> t) : t_(std::move(t)) {}
-  palpa::host::Result<size_t> Read(uint8_t* out, size_t capacity, int timeout_ms) override {
+  palpa::protocol::Result<size_t> Read(uint8_t* out, size_t capacity, int timeout_ms) override {
     const auto n = t_->Read(out, capacity, timeout_ms);
     if (n.ok()) {
       bytes += n.value;
@@ -62,17 +62,15 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "palpa-sim did not start\n");
     return 1;
   }
-  std::string error;
-  auto opened = palpa::host::OpenTransport(on_device ? transport : sim.address(), &error);
+  auto opened = palpa::host::OpenTransport(on_device ? transport : sim.address());
   if (!opened.ok()) {
-    std::fprintf(stderr, "%s\n", error.c_str());
+    std::fprintf(stderr, "%s\n", opened.message.c_str());
     return 1;
   }
   auto* counting = new CountingTransport(std::move(opened.value));
-  auto device =
-      palpa::host::Device::Attach(std::unique_ptr<palpa::host::Transport>(counting), {}, &error);
+  auto device = palpa::host::Device::Attach(std::unique_ptr<palpa::host::Transport>(counting), {});
   if (!device.ok()) {
-    std::fprintf(stderr, "%s\n", error.c_str());
+    std::fprintf(stderr, "%s\n", device.message.c_str());
     return 1;
   }
   if (std::string(device.value->info().config_name.data()) != "full-8") {
@@ -81,9 +79,9 @@ int main(int argc, char** argv) {
     return 1;
   }
   device.value->ClearFault();
-  auto board = device.value->ReadBoard(&error);
+  auto board = device.value->ReadBoard();
   if (!board.ok()) {
-    std::fprintf(stderr, "%s\n", error.c_str());
+    std::fprintf(stderr, "%s\n", board.message.c_str());
     return 1;
   }
   board.value.telemetry_decimation = every;

@@ -38,8 +38,8 @@ class PacedTransport final : public ph::Transport {
     ready_.notify_all();
     line_.join();
   }
-  ph::Result<size_t> Read(uint8_t* out, size_t capacity, int timeout_ms) override {
-    const ph::Result<size_t> r = inner_->Read(out, capacity, timeout_ms);
+  palpa::protocol::Result<size_t> Read(uint8_t* out, size_t capacity, int timeout_ms) override {
+    const palpa::protocol::Result<size_t> r = inner_->Read(out, capacity, timeout_ms);
     if (r.ok() && r.value > 0) {
       std::this_thread::sleep_for(std::chrono::duration<double>(r.value / bytes_per_s_));
     }
@@ -98,17 +98,15 @@ Timing TimedUpdate(double bytes_per_s) {
     t.message = "palpa-sim did not start";
     return t;
   }
-  std::string error;
-  auto transport = ph::OpenTransport(sim.address(), &error);
+  auto transport = ph::OpenTransport(sim.address());
   if (!transport.ok()) {
-    t.message = error;
+    t.message = transport.message;
     return t;
   }
-  auto link =
-      ph::Link::Open(std::make_unique<PacedTransport>(std::move(transport.value), bytes_per_s),
-                     ph::LinkOptions{}, &error);
+  auto link = ph::Link::Open(
+      std::make_unique<PacedTransport>(std::move(transport.value), bytes_per_s), ph::LinkOptions{});
   if (!link.ok()) {
-    t.message = error;
+    t.message = link.message;
     return t;
   }
   const ph::UpdatePackage release =

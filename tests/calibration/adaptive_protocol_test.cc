@@ -20,14 +20,14 @@ TEST(AdaptiveProtocol, StopsOnItsOwnEstimateWithinTheBudgetAndTheTruthAgrees) {
   cal::Rig rig = sim.rig();
   double zero = 0;
   cal::RigStatus s = cal::ZeroOnVentedSurface(rig, pt::kJammingFinger, {}, &zero);
-  CHECK_TEXT(s.ok, s.error.c_str());
+  CHECK_TEXT(s.ok(), s.message.c_str());
   nlohmann::json state;
   std::vector<cal::MapPress> presses;
   cal::MapEstimate estimate;
   const cal::AdaptiveOptions options;
   s = cal::RunAdaptiveMap(rig, pt::kJammingFinger, zero, cal::PressSettings{}, options, state, {},
                           &presses, &estimate);
-  CHECK_TEXT(s.ok, s.error.c_str());
+  CHECK_TEXT(s.ok(), s.message.c_str());
   CHECK(static_cast<int>(presses.size()) <= options.max_cycles);
   CHECK(static_cast<int>(presses.size()) >= options.min_cycles);
   CHECK(estimate.repeated_conditions >= 1);  // it learned its press noise
@@ -37,12 +37,12 @@ TEST(AdaptiveProtocol, StopsOnItsOwnEstimateWithinTheBudgetAndTheTruthAgrees) {
   // The thesis grid at one repeat, read bilinearly, is worse on the same unit.
   pt::SimRig grid_sim({"thesis-5finger", pt::kJammingFinger, 31, 31, {}});
   cal::Rig grid_rig = grid_sim.rig();
-  CHECK(cal::ZeroOnVentedSurface(grid_rig, pt::kJammingFinger, {}, &zero).ok);
+  CHECK(cal::ZeroOnVentedSurface(grid_rig, pt::kJammingFinger, {}, &zero).ok());
   nlohmann::json grid_state;
   std::vector<cal::MapPress> grid;
   CHECK(cal::RunGridMap(grid_rig, pt::kJammingFinger, zero, cal::PressSettings{}, {0, 10, 20},
                         {0, -50, -100}, 1, grid_state, {}, &grid)
-            .ok);
+            .ok());
   CHECK(pt::ScoreBilinear(cal::SummariseConditions(grid), grid_sim).rms > 2 * truth.rms);
 }
 
@@ -54,8 +54,8 @@ TEST(AdaptiveProtocol, AnInterruptedMapResumesWithTheSameChoices) {
                  std::vector<cal::MapPress>* presses) {
     cal::Rig rig = sim.rig();
     double zero = 0;
-    if (!cal::ZeroOnVentedSurface(rig, pt::kJammingFinger, {}, &zero).ok)
-      return cal::RigStatus::Fail("zero");
+    if (!cal::ZeroOnVentedSurface(rig, pt::kJammingFinger, {}, &zero).ok())
+      return cal::RigStatus::Fail(ph::Status::kUnavailable, "zero");
     cal::MapHooks hooks;
     hooks.after_press = [&](const std::vector<cal::MapPress>& p) {
       if (static_cast<int>(p.size()) == lose_force_after) sim.force_lost = true;
@@ -67,14 +67,14 @@ TEST(AdaptiveProtocol, AnInterruptedMapResumesWithTheSameChoices) {
   nlohmann::json whole_state, state;
   std::vector<cal::MapPress> whole, first, second;
   pt::SimRig a({"thesis-5finger", pt::kJammingFinger, 5, 5, {}});
-  CHECK(run(a, whole_state, -1, &whole).ok);
+  CHECK(run(a, whole_state, -1, &whole).ok());
   pt::SimRig b({"thesis-5finger", pt::kJammingFinger, 5, 5, {}});
   const cal::RigStatus stopped = run(b, state, 6, &first);
-  CHECK_FALSE(stopped.ok);
-  CHECK(stopped.error.find("force sensor lost") != std::string::npos);
+  CHECK_FALSE(stopped.ok());
+  CHECK(stopped.message.find("force sensor lost") != std::string::npos);
   LONGS_EQUAL(6, state["presses"].size());  // every finished press is in the journal
   pt::SimRig c({"thesis-5finger", pt::kJammingFinger, 5, 5, {}});
-  CHECK(run(c, state, -1, &second).ok);
+  CHECK(run(c, state, -1, &second).ok());
   // The journal's presses are kept as they were, and the first choice after them is the one the
   // uninterrupted run made; later ones follow new readings (new noise), within the same budget.
   CHECK(second.size() > 6);
@@ -94,7 +94,7 @@ TEST(AdaptiveProtocol, AWholeCalibrationWithItGivesAFileTheLibraryAccepts) {
   const cal::RunInfo info{"JAM-1", 1, "2026-11-22T12:00:00Z", "sim", "JAM-1.csv"};
   const cal::RigStatus s = cal::RunCalibration(rig, pt::kJammingFinger, pt::ShortAdaptiveProtocol(),
                                                info, journal, nullptr, &run);
-  CHECK_TEXT(s.ok, s.error.c_str());
+  CHECK_TEXT(s.ok(), s.message.c_str());
   STRCMP_EQUAL("adaptive", run.file.quality.protocol.c_str());
   LONGS_EQUAL(run.map.size(), run.file.quality.cycles);
   CHECK(run.file.quality.map_error.has_value());

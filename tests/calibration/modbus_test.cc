@@ -63,25 +63,25 @@ bool WaitUntil(const std::function<bool()>& done, double seconds) {
 
 /// Short moves through the drivers: up, down into the vented film (a contact force), tare.
 void ExerciseRig(cal::RigDevices& d) {
-  CHECK(d.stage->MoveTo(1.0, 5.0).ok);
+  CHECK(d.stage->MoveTo(1.0, 5.0).ok());
   bool moving = true;
-  CHECK(WaitUntil([&] { return d.stage->Moving(&moving).ok && !moving; }, 5));
+  CHECK(WaitUntil([&] { return d.stage->Moving(&moving).ok() && !moving; }, 5));
   double mm = 0;
-  CHECK(d.stage->Position(&mm).ok);
+  CHECK(d.stage->Position(&mm).ok());
   DOUBLES_EQUAL(1.0, mm, 0.002);
   double newtons = 1;
-  CHECK(d.force->Tare().ok);
-  CHECK(d.force->Read(&newtons).ok);
+  CHECK(d.force->Tare().ok());
+  CHECK(d.force->Read(&newtons).ok());
   DOUBLES_EQUAL(0, newtons, 0.01);
-  CHECK(d.stage->MoveTo(-0.5, 5.0).ok);  // half a millimetre into the soft film
-  CHECK(WaitUntil([&] { return d.stage->Moving(&moving).ok && !moving; }, 5));
-  CHECK(d.force->Read(&newtons).ok);
+  CHECK(d.stage->MoveTo(-0.5, 5.0).ok());  // half a millimetre into the soft film
+  CHECK(WaitUntil([&] { return d.stage->Moving(&moving).ok() && !moving; }, 5));
+  CHECK(d.force->Read(&newtons).ok());
   DOUBLES_EQUAL(0.15, newtons, 0.03);  // 0.3 N/mm contact
-  CHECK(d.stage->MoveTo(3.0, 0.5).ok);
-  CHECK(d.stage->Stop().ok);
-  CHECK(d.stage->Moving(&moving).ok);
-  CHECK(WaitUntil([&] { return d.stage->Moving(&moving).ok && !moving; }, 2));
-  CHECK(d.stage->Position(&mm).ok);
+  CHECK(d.stage->MoveTo(3.0, 0.5).ok());
+  CHECK(d.stage->Stop().ok());
+  CHECK(d.stage->Moving(&moving).ok());
+  CHECK(WaitUntil([&] { return d.stage->Moving(&moving).ok() && !moving; }, 2));
+  CHECK(d.stage->Position(&mm).ok());
   CHECK(mm < 0.0);  // stopped before it got anywhere
 }
 
@@ -251,15 +251,15 @@ TEST(ModbusRig, DriversSpeakStandardModbusToAnIndependentServer) {
   cal::ModbusForceSensor sensor(std::move(force_device));
   double mm = 0, newtons = 0;
   bool moving = false;
-  CHECK(stage.Position(&mm).ok);
+  CHECK(stage.Position(&mm).ok());
   DOUBLES_EQUAL(12.345, mm, 1e-9);
-  CHECK(stage.Moving(&moving).ok && moving);
-  CHECK(sensor.Read(&newtons).ok);
+  CHECK(stage.Moving(&moving).ok() && moving);
+  CHECK(sensor.Read(&newtons).ok());
   DOUBLES_EQUAL(1.5, newtons, 1e-9);
-  CHECK(sensor.Tare().ok);  // no tare register: an offset kept by the driver
-  CHECK(sensor.Read(&newtons).ok);
+  CHECK(sensor.Tare().ok());  // no tare register: an offset kept by the driver
+  CHECK(sensor.Read(&newtons).ok());
   DOUBLES_EQUAL(0, newtons, 1e-9);
-  CHECK(stage.MoveTo(7.5, 0.25).ok);
+  CHECK(stage.MoveTo(7.5, 0.25).ok());
   kill(server, SIGTERM);
   waitpid(server, nullptr, 0);
   const std::string written = ReadText(log);

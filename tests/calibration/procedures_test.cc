@@ -25,9 +25,9 @@ TEST(Procedures, ZeroAndSurfaceHeightsFollowTheFilm) {
   cal::ContactOptions o;
   double zero = 0;
   const cal::RigStatus s = cal::ZeroOnVentedSurface(rig, 0, o, &zero);
-  CHECK_TEXT(s.ok, s.error.c_str());
+  CHECK_TEXT(s.ok(), s.message.c_str());
   DOUBLES_EQUAL(0, zero, 0.06);  // the detection lag: threshold / contact stiffness
-  CHECK(sim.SetDrive(0, 40, 0).ok);
+  CHECK(sim.SetDrive(0, 40, 0).ok());
   sim.Wait(3);
   // Each touch reads the film within the rig's repeatability (2.82 % per reading, thesis): eight
   // touches average within 10 µm and three standard errors of the truth, and scatter about that.
@@ -37,7 +37,7 @@ TEST(Procedures, ZeroAndSurfaceHeightsFollowTheFilm) {
   double sum = 0, sum2 = 0;
   for (int k = 0; k < kTouches; ++k) {
     double surface = 0;
-    CHECK(cal::FindSurface(rig, zero, o, &surface).ok);
+    CHECK(cal::FindSurface(rig, zero, o, &surface).ok());
     const double e = (surface - zero - truth) / truth;
     sum += e;
     sum2 += e * e;
@@ -60,12 +60,12 @@ TEST(Procedures, AFastApproachFindsTheSurfaceAsASlowOneDoesWhenReadingsArriveLat
     pt::SimRig sim({"thesis-5finger", 0, 1, 3});
     cal::Rig rig = sim.rig();
     double zero = 0, found = 0;
-    CHECK(cal::ZeroOnVentedSurface(rig, 0, o, &zero).ok);
-    CHECK(sim.SetDrive(0, kpa, 0).ok);
+    CHECK(cal::ZeroOnVentedSurface(rig, 0, o, &zero).ok());
+    CHECK(sim.SetDrive(0, kpa, 0).ok());
     sim.Wait(3);
     sim.force_latency_s = latency_s;
     const cal::RigStatus s = cal::FindSurface(rig, zero, o, &found);
-    CHECK_TEXT(s.ok, s.error.c_str());
+    CHECK_TEXT(s.ok(), s.message.c_str());
     return found;
   };
   for (double kpa : {0.0, 40.0}) DOUBLES_EQUAL(surface(0, kpa), surface(0.03, kpa), 0.02);
@@ -88,11 +88,11 @@ TEST(Procedures, AStageThatStopsOnForceFindsTheSameSurfaceHoweverLateTheHostRead
     sim.force_latency_s = latency_s;
     cal::Rig rig = sim.rig();
     Found f{};
-    CHECK(cal::ZeroOnVentedSurface(rig, 0, o, &f.zero).ok);
-    CHECK(sim.SetDrive(0, 40, 0).ok);
+    CHECK(cal::ZeroOnVentedSurface(rig, 0, o, &f.zero).ok());
+    CHECK(sim.SetDrive(0, 40, 0).ok());
     sim.Wait(3);
     const cal::RigStatus s = cal::FindSurface(rig, f.zero, o, &f.surface);
-    CHECK_TEXT(s.ok, s.error.c_str());
+    CHECK_TEXT(s.ok(), s.message.c_str());
     return f;
   };
   const Found prompt = find(true, 0), polled_prompt = find(false, 0);
@@ -111,7 +111,7 @@ TEST(Procedures, RegulatorCorrectionShowsTheStaticErrorAndTheBoardTakesIt) {
   cal::Rig rig = sim.rig();
   std::vector<pp::CorrectionPoint> points;
   const cal::RigStatus s = cal::RegulatorCorrection(rig, 0, 0, 6, 1.5, &points);
-  CHECK_TEXT(s.ok, s.error.c_str());
+  CHECK_TEXT(s.ok(), s.message.c_str());
   LONGS_EQUAL(6, points.size());
   double largest = 0;
   for (const auto& p : points) {
@@ -132,15 +132,15 @@ TEST(Procedures, DeformationSweepMatchesTable54) {
   cal::ContactOptions o;
   o.speed_mm_s = 0.2;
   double zero = 0;
-  CHECK(cal::ZeroOnVentedSurface(rig, 0, o, &zero).ok);
+  CHECK(cal::ZeroOnVentedSurface(rig, 0, o, &zero).ok());
   std::vector<double> up, down;
   for (int k = 10; k <= 90; k += 20) up.push_back(k);
   for (int k = 90; k >= 10; k -= 20) down.push_back(k);
   std::vector<cal::SweepSample> rising, falling;
-  CHECK(cal::DeformationSweep(rig, 0, up, 2, zero, o, &rising).ok);
-  CHECK(sim.SetDrive(0, 100, 0).ok);  // the top of the major loop
+  CHECK(cal::DeformationSweep(rig, 0, up, 2, zero, o, &rising).ok());
+  CHECK(sim.SetDrive(0, 100, 0).ok());  // the top of the major loop
   sim.Wait(2);
-  CHECK(cal::DeformationSweep(rig, 0, down, 2, zero, o, &falling).ok);
+  CHECK(cal::DeformationSweep(rig, 0, down, 2, zero, o, &falling).ok());
   auto fit = [](const std::vector<cal::SweepSample>& s) {
     std::vector<std::pair<double, double>> xy;
     for (const auto& p : s) xy.push_back({p.drive_pa / 1000, p.output / 1000});
@@ -158,12 +158,12 @@ TEST(Procedures, APressGivesTheStiffnessAndALoopSmallerThanItsWork) {
   cal::Rig rig = sim.rig();
   cal::ContactOptions o;
   double zero = 0;
-  CHECK(cal::ZeroOnVentedSurface(rig, 3, o, &zero).ok);
-  CHECK(sim.SetDrive(3, 20, -60).ok);
+  CHECK(cal::ZeroOnVentedSurface(rig, 3, o, &zero).ok());
+  CHECK(sim.SetDrive(3, 20, -60).ok());
   sim.Wait(4);
   cal::PressCycle cycle;
   const cal::RigStatus s = cal::Press(rig, zero, 3.0, 0.5, &cycle);
-  CHECK_TEXT(s.ok, s.error.c_str());
+  CHECK_TEXT(s.ok(), s.message.c_str());
   const double truth = sim.board().sim().plant().Truth().fingers[3].stiffness_n_per_mm;
   DOUBLES_EQUAL(truth, cycle.stiffness_n_per_mm, 0.05 * truth);
   CHECK(cycle.r2 > 0.99);
@@ -191,15 +191,15 @@ TEST(Procedures, EverySafetyStopRetractsAndVents) {
     pt::SimRig sim({"thesis-5finger", 3, 0, 7});
     cal::Rig rig = sim.rig();
     double zero = 0;
-    CHECK(cal::ZeroOnVentedSurface(rig, 3, cal::ContactOptions{}, &zero).ok);
-    CHECK(sim.SetDrive(3, 20, -80).ok);
+    CHECK(cal::ZeroOnVentedSurface(rig, 3, cal::ContactOptions{}, &zero).ok());
+    CHECK(sim.SetDrive(3, 20, -80).ok());
     sim.Wait(3);
     c.arm(sim, rig);
     cal::PressCycle cycle;
     const cal::RigStatus s = cal::Press(rig, zero, 3.0, 0.5, &cycle);
-    CHECK_FALSE_TEXT(s.ok, c.name);
-    CHECK_TEXT(s.error.find(c.reason) != std::string::npos,
-               (std::string(c.name) + ": " + s.error).c_str());
+    CHECK_FALSE_TEXT(s.ok(), c.name);
+    CHECK_TEXT(s.message.find(c.reason) != std::string::npos,
+               (std::string(c.name) + ": " + s.message).c_str());
     sim.force_lost = false;
     sim.Wait(3);
     DOUBLES_EQUAL_TEXT(rig.limits.retract_mm, sim.model().PositionMm(), 0.01, c.name);  // retracted

@@ -1,7 +1,8 @@
 // calibration::Session on the in-process simulated rig (virtual time, so a seeded run is the same
 // every time): its files are byte for byte what the protocol's run gives when written as palpa
-// calibrate wrote them before the session existed; each phase's failure carries its status; a
-// stopped session keeps its journal and a second one resumes it.
+// calibrate wrote them before the session existed; each phase's failure carries its status (a
+// safety limit told apart from a lost device by its code); a stopped session keeps its journal and
+// a second one resumes it.
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -75,7 +76,7 @@ TEST(CalibrationSession, ItsFilesAreTheProtocolsRunByteForByte) {
     cal::CalibrationRun run;
     const cal::RunInfo info{"PN-1", 7, kDate, "sim", "PN-1.csv"};
     const cal::RigStatus s = cal::RunCalibration(rig, 0, Short(), info, journal, nullptr, &run);
-    CHECK_TEXT(s.ok, s.error.c_str());
+    CHECK_TEXT(s.ok(), s.message.c_str());
     for (const std::string& row : run.csv) csv += row + "\n";
     std::string error;
     const auto text = ph::SerializeCalibration(run.file, &error);
@@ -170,4 +171,27 @@ TEST(CalibrationSession, AStoppedSessionKeepsItsJournalAndTheNextResumesIt) {
   const ph::Outcome refused = other.LoadPrevious();
   LONGS_EQUAL((int)pp::Status::kInvalidArgument, (int)refused.status);
   STRCMP_CONTAINS("calibrates PN-1, not PN-2", refused.message.c_str());
+}
+
+TEST(CalibrationSession, AForceLimitAndALostDeviceAreToldApartByTheirCode) {
+  // The force limit below what touching the film takes: the run stops on it, out of range.
+  pt::SimRig limited({"thesis-5finger", 0, 0, 35});
+  cal::Rig rig = limited.rig();
+  rig.limits.max_force_n = 0.01;
+  cal::Session stopped(rig, "PN-1", 7, false, Options(TempDir()));
+  CHECK(stopped.OpenOutput().ok());
+  ph::Outcome o = stopped.Run(nullptr);
+  CHECK(stopped.stopped());
+  LONGS_EQUAL_TEXT((int)pp::Status::kOutOfRange, (int)o.status, o.message.c_str());
+  STRCMP_CONTAINS("above the limit of 0.01 N", o.message.c_str());
+  // The stage stops answering mid-run: unavailable, as a lost force sensor is.
+  pt::SimRig lost({"thesis-5finger", 0, 0, 36});
+  cal::Session session(lost.rig(), "PN-1", 7, false, Options(TempDir()));
+  CHECK(session.OpenOutput().ok());
+  o = session.Run([&](const cal::Progress& p) {
+    if (p.done == 2) lost.stage_lost = true;
+  });
+  CHECK(session.stopped());
+  LONGS_EQUAL_TEXT((int)pp::Status::kUnavailable, (int)o.status, o.message.c_str());
+  STRCMP_CONTAINS("no answer from the stage", o.message.c_str());
 }

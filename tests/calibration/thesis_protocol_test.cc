@@ -58,7 +58,7 @@ TEST(ThesisProtocol, PneumaticFingerGivesAValidCalibrationCloseToTable54) {
   int reports = 0;
   const cal::RigStatus s = cal::RunCalibration(
       rig, 0, Short(), Info("PN-1"), journal, [&](const cal::Progress&) { ++reports; }, &run);
-  CHECK_TEXT(s.ok, s.error.c_str());
+  CHECK_TEXT(s.ok(), s.message.c_str());
   CHECK(reports > 10);
   std::string error;
   CHECK_TEXT(ph::SerializeCalibration(run.file, &error).has_value(), error.c_str());
@@ -94,7 +94,7 @@ TEST(ThesisProtocol, AHostWhoseReadingsComeLateCalibratesTheSameFilm) {
     cal::Journal journal;
     cal::CalibrationRun run;
     const cal::RigStatus s = cal::RunCalibration(rig, 0, o, Info("PN-1"), journal, nullptr, &run);
-    CHECK_TEXT(s.ok, s.error.c_str());
+    CHECK_TEXT(s.ok(), s.message.c_str());
     CHECK_TEXT(run.fit.ok(), run.fit.error.c_str());
     return run;
   };
@@ -130,7 +130,7 @@ TEST(ThesisProtocol, AnAsymmetricModelFitsTheFilmsLoopCloserThanPi) {
     o.compensator = kinds[k];
     o.compensator_operators = 8;
     const cal::RigStatus s = cal::RunCalibration(rig, 0, o, Info("PN-1"), journal, nullptr, &run);
-    CHECK_TEXT(s.ok, s.error.c_str());
+    CHECK_TEXT(s.ok(), s.message.c_str());
     CHECK(run.file.compensator == kinds[k]);
     std::string flags;
     for (const std::string& f : run.file.quality.flags) flags += f + "; ";
@@ -183,7 +183,7 @@ TEST(ThesisProtocol, AFitThatCannotHappenIsReportedAndTheFileKeepsTheStaticInver
   LONGS_EQUAL(53, sweep.points);
   CHECK(sweep.Refusal(o.compensator).find("pi(32) needs 68 sweep readings") != std::string::npos);
   const cal::RigStatus s = cal::RunCalibration(rig, 0, o, Info("PN-1"), journal, nullptr, &run);
-  CHECK_TEXT(s.ok, s.error.c_str());  // the rig finished; the fit did not happen
+  CHECK_TEXT(s.ok(), s.message.c_str());  // the rig finished; the fit did not happen
   CHECK_FALSE(run.fit.ok());
   CHECK(run.fit.error.find("needs at least 68") != std::string::npos);
   CHECK(run.file.compensator == pp::CompensatorKind::kNone);
@@ -220,7 +220,7 @@ TEST(ThesisProtocol, JammingFingerRecommendsTheBiasWithTheSmallerLoop) {
   cal::CalibrationRun run;
   const cal::RigStatus s =
       cal::RunCalibration(rig, 3, Short(), Info("JAM-1"), journal, nullptr, &run);
-  CHECK_TEXT(s.ok, s.error.c_str());
+  CHECK_TEXT(s.ok(), s.message.c_str());
   LONGS_EQUAL(4, run.file.grid.size());
   LONGS_EQUAL(2, run.file.regulator_corrections.size());  // the bias line and the vacuum line
   CHECK(run.file.regulator_corrections[0].points.back().command_pa <=
@@ -257,8 +257,8 @@ TEST(ThesisProtocol, AnInterruptedRunResumesFromItsJournal) {
           if (p.done == 8) sim.force_lost = true;
         },
         &run);
-    CHECK_FALSE(s.ok);
-    CHECK(s.error.find("force sensor lost") != std::string::npos);
+    CHECK_FALSE(s.ok());
+    CHECK(s.message.find("force sensor lost") != std::string::npos);
     DOUBLES_EQUAL(sim.rig().limits.retract_mm, sim.model().PositionMm(), 0.01);
   }
   const size_t kept = journal.state["sweep"].size();
@@ -274,7 +274,7 @@ TEST(ThesisProtocol, AnInterruptedRunResumesFromItsJournal) {
         if (first_done < 0 && p.step.find("sweep") != std::string::npos) first_done = p.done;
       },
       &run);
-  CHECK_TEXT(s.ok, s.error.c_str());
+  CHECK_TEXT(s.ok(), s.message.c_str());
   CHECK(first_done >= static_cast<int>(kept) + 2);  // the sweep resumed after the points it had
   CHECK(saves > 0);
 }

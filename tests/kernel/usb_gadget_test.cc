@@ -87,8 +87,8 @@ void HoldLine(ph::Device& d, double kpa) {
 /// safe on host silence meanwhile and takes setpoints again once the fault is cleared.
 void CheckUnplugAndReplug(const std::string& uri) {
   std::string error;
-  auto opened = ph::Device::Open(uri, {}, &error);
-  CHECK_TEXT(opened.ok(), error.c_str());
+  auto opened = ph::Device::Open(uri, {});
+  CHECK_TEXT(opened.ok(), opened.message.c_str());
   ph::Device& d = *opened.value;
   d.ClearFault();
   HoldLine(d, 30.0);
@@ -107,8 +107,8 @@ void CheckUnplugAndReplug(const std::string& uri) {
   CHECK_TEXT(back.find("reopened " + uri) != std::string::npos, back.c_str());
   CHECK(d.link().counters().reopens >= 1);
 
-  const auto diagnostics = d.Diagnostics(&error);
-  CHECK_TEXT(diagnostics.ok(), error.c_str());
+  const auto diagnostics = d.Diagnostics();
+  CHECK_TEXT(diagnostics.ok(), diagnostics.message.c_str());
   CHECK_TEXT((diagnostics.value.fault_bitmap & pp::FaultBit(pp::Fault::kHostSilence)) != 0,
              ph::FaultNames(diagnostics.value.fault_bitmap).c_str());
   CHECK(d.ClearFault().ok());
@@ -121,8 +121,8 @@ void CheckUnplugAndReplug(const std::string& uri) {
 /// actuated would have latched host_silence).
 void CheckCloseEndsTheSessionWithoutAFault(const std::string& uri) {
   std::string error;
-  auto opened = ph::Device::Open(uri, {}, &error);
-  CHECK_TEXT(opened.ok(), error.c_str());
+  auto opened = ph::Device::Open(uri, {});
+  CHECK_TEXT(opened.ok(), opened.message.c_str());
   ph::Device& d = *opened.value;
   CHECK(d.ClearFault().ok());
   HoldLine(d, 30.0);
@@ -132,11 +132,11 @@ void CheckCloseEndsTheSessionWithoutAFault(const std::string& uri) {
   LONGS_EQUAL((int)pp::Status::kNoSession, (int)d.SetLines({{0, 20.0}}).status);
   opened.value.reset();  // the interface released (libusb lets one handle claim it)
 
-  auto next = ph::Device::Open(uri, {}, &error);
-  CHECK_TEXT(next.ok(), error.c_str());
+  auto next = ph::Device::Open(uri, {});
+  CHECK_TEXT(next.ok(), next.message.c_str());
   auto faults = [&] {
-    const auto diagnostics = next.value->Diagnostics(&error);
-    CHECK_TEXT(diagnostics.ok(), error.c_str());
+    const auto diagnostics = next.value->Diagnostics();
+    CHECK_TEXT(diagnostics.ok(), diagnostics.message.c_str());
     return diagnostics.value.fault_bitmap;
   };
   CHECK_TEXT(faults() == 0, ph::FaultNames(faults()).c_str());
@@ -159,10 +159,10 @@ void CheckCloseEndsTheSessionWithoutAFault(const std::string& uri) {
 /// Sets the board's telemetry decimation (over vendor bulk, which has room for anything).
 void SetTelemetryDecimation(uint16_t every) {
   std::string error;
-  auto opened = ph::Device::Open("usb:1209:0001", {}, &error);
-  CHECK_TEXT(opened.ok(), error.c_str());
-  auto board = opened.value->ReadBoard(&error);
-  CHECK_TEXT(board.ok(), error.c_str());
+  auto opened = ph::Device::Open("usb:1209:0001", {});
+  CHECK_TEXT(opened.ok(), opened.message.c_str());
+  auto board = opened.value->ReadBoard();
+  CHECK_TEXT(board.ok(), board.message.c_str());
   board.value.telemetry_decimation = every;
   const ph::Outcome configured = opened.value->ConfigureBoard(board.value);
   CHECK_TEXT(configured.ok(), configured.message.c_str());

@@ -36,8 +36,8 @@ class TransportPipe final : public BytePipe {
 
 void CheckBoardBehaviour(const std::string& uri, pp::BoardKind kind) {
   std::string error;
-  auto opened = ph::Device::Open(uri, {}, &error);
-  CHECK_TEXT(opened.ok(), error.c_str());
+  auto opened = ph::Device::Open(uri, {});
+  CHECK_TEXT(opened.ok(), opened.message.c_str());
   ph::Device& d = *opened.value;
   const pp::HelloReply hello = d.info();
   CHECK(hello.board_kind == kind);
@@ -46,8 +46,8 @@ void CheckBoardBehaviour(const std::string& uri, pp::BoardKind kind) {
   STRCMP_EQUAL("thesis-5finger", hello.config_name.data());
   CHECK(d.ClearFault().ok());  // a board a previous host left in host silence takes commands again
 
-  auto board = d.ReadBoard(&error);
-  CHECK_TEXT(board.ok(), error.c_str());
+  auto board = d.ReadBoard();
+  CHECK_TEXT(board.ok(), board.message.c_str());
   board.value.host_timeout_us = 150000;
   CHECK(d.ConfigureBoard(board.value).ok());
 
@@ -71,8 +71,8 @@ void CheckBoardBehaviour(const std::string& uri, pp::BoardKind kind) {
   // fault latched. The client heartbeats whenever it waits, as a host does, so a slow link (HID,
   // a loaded machine) delays the checks without cutting the session short.
   MiniClient client;
-  auto transport = ph::OpenTransport(uri, &error);
-  CHECK_TEXT(transport.ok(), error.c_str());
+  auto transport = ph::OpenTransport(uri);
+  CHECK_TEXT(transport.ok(), transport.message.c_str());
   client.Use(std::make_unique<TransportPipe>(std::move(transport.value)));
   CHECK(client.Hello(77).ok());
   client.KeepAlive(20);

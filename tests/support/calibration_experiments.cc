@@ -130,9 +130,9 @@ DetectorCase RunDetectorCase(Detector d, bool inject, uint32_t seed) {
   if (d == Detector::kPrevious) {
     SimRig first(rig_options);
     const Run r = Calibrate(first, o, nullptr);
-    if (!r.status.ok) {
+    if (!r.status.ok()) {
       DetectorCase failed;
-      failed.error = "previous run: " + r.status.error;
+      failed.error = "previous run: " + r.status.message;
       return failed;
     }
     previous = r.run.file;
@@ -163,8 +163,8 @@ DetectorCase RunDetectorCase(Detector d, bool inject, uint32_t seed) {
   }
   const Run r = Calibrate(sim, o, previous_ptr);
   DetectorCase c;
-  c.ran = r.status.ok;
-  c.error = r.status.error;
+  c.ran = r.status.ok();
+  c.error = r.status.message;
   c.flags = r.run.file.quality.flags;
   for (const host::QualityCheck& k : r.run.file.quality.checks) {
     if (k.name == DetectorName(d)) {

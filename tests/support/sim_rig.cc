@@ -25,7 +25,7 @@ void SimRig::Wait(double seconds) {
 }
 
 RigStatus SimRig::MoveTo(double mm, double speed_mm_s) {
-  if (stage_lost) return RigStatus::Fail("no answer from the stage");
+  if (stage_lost) return RigStatus::Fail(pp::Status::kUnavailable, "no answer from the stage");
   model_->StopOnForce(0);
   model_->stage().MoveTo(static_cast<float>(mm), static_cast<float>(speed_mm_s));
   return {};
@@ -33,20 +33,20 @@ RigStatus SimRig::MoveTo(double mm, double speed_mm_s) {
 
 RigStatus SimRig::MoveUntilForce(double mm, double speed_mm_s, double stop_n) {
   if (!force_stop) return Stage::MoveUntilForce(mm, speed_mm_s, stop_n);
-  if (stage_lost) return RigStatus::Fail("no answer from the stage");
+  if (stage_lost) return RigStatus::Fail(pp::Status::kUnavailable, "no answer from the stage");
   model_->StopOnForce(static_cast<float>(stop_n));
   model_->stage().MoveTo(static_cast<float>(mm), static_cast<float>(speed_mm_s));
   return {};
 }
 
 RigStatus SimRig::Position(double* mm) {
-  if (stage_lost) return RigStatus::Fail("no answer from the stage");
+  if (stage_lost) return RigStatus::Fail(pp::Status::kUnavailable, "no answer from the stage");
   *mm = model_->PositionMm();
   return {};
 }
 
 RigStatus SimRig::Moving(bool* moving) {
-  if (stage_lost) return RigStatus::Fail("no answer from the stage");
+  if (stage_lost) return RigStatus::Fail(pp::Status::kUnavailable, "no answer from the stage");
   *moving = model_->stage().moving();
   return {};
 }
@@ -58,7 +58,7 @@ RigStatus SimRig::Stop() {
 }
 
 RigStatus SimRig::Read(double* newtons) {
-  if (force_lost) return RigStatus::Fail("no data from the force sensor");
+  if (force_lost) return RigStatus::Fail(pp::Status::kUnavailable, "no data from the force sensor");
   *newtons = model_->ReadForceN() + force_drift_n_per_s * (Now() - tared_at_s_);
   if (force_extra_noise_n > 0) {
     *newtons += std::normal_distribution<double>(0, force_extra_noise_n)(noise_rng_);
@@ -68,7 +68,7 @@ RigStatus SimRig::Read(double* newtons) {
 }
 
 RigStatus SimRig::Tare() {
-  if (force_lost) return RigStatus::Fail("no data from the force sensor");
+  if (force_lost) return RigStatus::Fail(pp::Status::kUnavailable, "no data from the force sensor");
   model_->Tare();
   tared_at_s_ = Now();
   return {};
@@ -120,7 +120,7 @@ RigStatus SimRig::SetTrim(uint8_t line, bool on) {
   board_.Run(2);
   return board_.config().lines[line].trim_kp == c.trim_kp
              ? RigStatus{}
-             : RigStatus::Fail("the board refused the trim change");
+             : RigStatus::Fail(pp::Status::kBadValue, "the board refused the trim change");
 }
 
 RigStatus SimRig::Faults(uint32_t* bitmap) {

@@ -4,7 +4,7 @@
 
 namespace palpa::core {
 
-Board::Outcome Board::CommitCandidate(uint64_t now_us) {
+Board::HandlerAnswer Board::CommitCandidate(uint64_t now_us) {
   uint32_t detail = 0;
   const Status status = config_.CommitCandidate(detail);
   if (status != Status::kOk) return {status, detail};
@@ -12,8 +12,8 @@ Board::Outcome Board::CommitCandidate(uint64_t now_us) {
   return {};
 }
 
-Board::Outcome Board::Apply(const protocol::ConfigureLine& m, const protocol::Header&,
-                            uint64_t now_us) {
+Board::HandlerAnswer Board::Apply(const protocol::ConfigureLine& m, const protocol::Header&,
+                                  uint64_t now_us) {
   if (m.line > config_.live().line_count) return {Status::kOutOfRange, m.line};
   BoardConfig& candidate = config_.StartCandidate();
   candidate.lines[m.line] = m;
@@ -21,8 +21,8 @@ Board::Outcome Board::Apply(const protocol::ConfigureLine& m, const protocol::He
   return CommitCandidate(now_us);
 }
 
-Board::Outcome Board::Apply(const protocol::ConfigureFinger& m, const protocol::Header&,
-                            uint64_t now_us) {
+Board::HandlerAnswer Board::Apply(const protocol::ConfigureFinger& m, const protocol::Header&,
+                                  uint64_t now_us) {
   if (m.finger > config_.live().finger_count) return {Status::kOutOfRange, m.finger};
   BoardConfig& candidate = config_.StartCandidate();
   candidate.fingers[m.finger] = m;
@@ -30,25 +30,27 @@ Board::Outcome Board::Apply(const protocol::ConfigureFinger& m, const protocol::
   return CommitCandidate(now_us);
 }
 
-Board::Outcome Board::Apply(const protocol::ConfigureBoard& m, const protocol::Header&,
-                            uint64_t now_us) {
+Board::HandlerAnswer Board::Apply(const protocol::ConfigureBoard& m, const protocol::Header&,
+                                  uint64_t now_us) {
   config_.StartCandidate().board = m;
   return CommitCandidate(now_us);
 }
 
-Board::Outcome Board::Apply(const protocol::StagedBegin& m, const protocol::Header&, uint64_t) {
+Board::HandlerAnswer Board::Apply(const protocol::StagedBegin& m, const protocol::Header&,
+                                  uint64_t) {
   staged_.Begin(m);
   return {};
 }
 
-Board::Outcome Board::Apply(const protocol::StagedPart& m, const protocol::Header&, uint64_t) {
+Board::HandlerAnswer Board::Apply(const protocol::StagedPart& m, const protocol::Header&,
+                                  uint64_t) {
   uint32_t detail = 0;
   const Status status = staged_.Part(m, detail);
   return {status, detail};
 }
 
-Board::Outcome Board::Apply(const protocol::StagedCommit& m, const protocol::Header&,
-                            uint64_t now_us) {
+Board::HandlerAnswer Board::Apply(const protocol::StagedCommit& m, const protocol::Header&,
+                                  uint64_t now_us) {
   uint32_t detail = 0;
   Status status = staged_.Commit(m, detail);
   if (status != Status::kOk) return {status, detail};
@@ -57,25 +59,27 @@ Board::Outcome Board::Apply(const protocol::StagedCommit& m, const protocol::Hea
   return CommitCandidate(now_us);
 }
 
-Board::Outcome Board::Apply(const protocol::GetConfig& m, const protocol::Header& h, uint64_t) {
+Board::HandlerAnswer Board::Apply(const protocol::GetConfig& m, const protocol::Header& h,
+                                  uint64_t) {
   const Status status = reports::ConfigReport(Reports(), m, h.seq);
   if (status != Status::kOk) return {status, m.index};
   return {Status::kOk, 0, true};
 }
 
-Board::Outcome Board::Apply(const protocol::SaveConfig&, const protocol::Header&, uint64_t) {
+Board::HandlerAnswer Board::Apply(const protocol::SaveConfig&, const protocol::Header&, uint64_t) {
   return {config_.Save()};
 }
 
-Board::Outcome Board::Apply(const protocol::FactoryReset&, const protocol::Header&,
-                            uint64_t now_us) {
+Board::HandlerAnswer Board::Apply(const protocol::FactoryReset&, const protocol::Header&,
+                                  uint64_t now_us) {
   const Status status = config_.FactoryReset();
   if (status != Status::kOk) return {status};
   ApplyLive(now_us);
   return {};
 }
 
-Board::Outcome Board::Apply(const protocol::ClearFault& m, const protocol::Header&, uint64_t) {
+Board::HandlerAnswer Board::Apply(const protocol::ClearFault& m, const protocol::Header&,
+                                  uint64_t) {
   // This very frame proves the host is back: host silence no longer persists.
   supervisor_.active &= ~protocol::FaultBit(protocol::Fault::kHostSilence);
   const Status status = ClearFaults(supervisor_, m.mask);
@@ -84,12 +88,14 @@ Board::Outcome Board::Apply(const protocol::ClearFault& m, const protocol::Heade
   return {};
 }
 
-Board::Outcome Board::Apply(const protocol::GetLoopStats&, const protocol::Header& h, uint64_t) {
+Board::HandlerAnswer Board::Apply(const protocol::GetLoopStats&, const protocol::Header& h,
+                                  uint64_t) {
   reports::LoopStats(Reports(), h.seq);
   return {Status::kOk, 0, true};
 }
 
-Board::Outcome Board::Apply(const protocol::GetDiagnostics&, const protocol::Header& h, uint64_t) {
+Board::HandlerAnswer Board::Apply(const protocol::GetDiagnostics&, const protocol::Header& h,
+                                  uint64_t) {
   reports::Diagnostics(Reports(), h.seq);
   return {Status::kOk, 0, true};
 }

@@ -74,7 +74,7 @@ void Board::OnFrame(const protocol::Frame& frame, uint64_t now_us) {
         return;
     }
   }
-  const Outcome outcome = Handle(frame, now_us);
+  const HandlerAnswer outcome = Handle(frame, now_us);
   if (reliable && h.type != static_cast<uint8_t>(MessageType::kHello)) {
     receiver.Complete(h.type, outcome.status, outcome.detail, outcome.replied);
     // Applied in sequence: the commanding host. Timed after the work, which may be long (an
@@ -86,8 +86,8 @@ void Board::OnFrame(const protocol::Frame& frame, uint64_t now_us) {
   }
 }
 
-Board::Outcome Board::Handle(const protocol::Frame& frame, uint64_t now_us) {
-  Outcome outcome;
+Board::HandlerAnswer Board::Handle(const protocol::Frame& frame, uint64_t now_us) {
+  HandlerAnswer outcome;
   protocol::FieldError error;
   const Status decoded = protocol::DispatchFrame(
       frame, [&](const auto& m, const protocol::Header& h) { outcome = Apply(m, h, now_us); },
@@ -96,7 +96,8 @@ Board::Outcome Board::Handle(const protocol::Frame& frame, uint64_t now_us) {
   return outcome;
 }
 
-Board::Outcome Board::Apply(const protocol::Hello& m, const protocol::Header& h, uint64_t now_us) {
+Board::HandlerAnswer Board::Apply(const protocol::Hello& m, const protocol::Header& h,
+                                  uint64_t now_us) {
   using Verdict = protocol::BoardSession::HelloVerdict;
   Verdict verdict = session_.OnHello(m, now_us);
   if (verdict == Verdict::kBusy && identity_.recovery) {
@@ -114,7 +115,8 @@ Board::Outcome Board::Apply(const protocol::Hello& m, const protocol::Header& h,
   return {Status::kOk, 0, true};
 }
 
-Board::Outcome Board::Apply(const protocol::EStop&, const protocol::Header& h, uint64_t now_us) {
+Board::HandlerAnswer Board::Apply(const protocol::EStop&, const protocol::Header& h,
+                                  uint64_t now_us) {
   // Latched before the Ack: a setpoint that follows the Ack is refused, not applied for the
   // moment until the next tick. The tick reports it (estop_requested_).
   LatchFault(supervisor_, protocol::Fault::kEStopCommand, now_us, 0);
@@ -125,7 +127,7 @@ Board::Outcome Board::Apply(const protocol::EStop&, const protocol::Header& h, u
   return {Status::kOk, 0, true};
 }
 
-Board::Outcome Board::Apply(const protocol::Close& m, const protocol::Header& h, uint64_t) {
+Board::HandlerAnswer Board::Apply(const protocol::Close& m, const protocol::Header& h, uint64_t) {
   // Another session's Close, or one repeated after this one ended: that session is over.
   if (!session_.Owns(m.session)) return {Status::kNoSession};
   EndSession();  // a deliberate end: outputs safe, no fault, an update left resumable
@@ -133,7 +135,7 @@ Board::Outcome Board::Apply(const protocol::Close& m, const protocol::Header& h,
   return {Status::kOk, 0, true};
 }
 
-Board::Outcome Board::Apply(const protocol::Release& m, const protocol::Header& h, uint64_t) {
+Board::HandlerAnswer Board::Apply(const protocol::Release& m, const protocol::Header& h, uint64_t) {
   if (!session_.Owns(m.session)) return {Status::kNoSession};
   Hold();  // outputs safe until the host sends new setpoints or targets; no fault
   safe_ = true;
@@ -141,16 +143,16 @@ Board::Outcome Board::Apply(const protocol::Release& m, const protocol::Header& 
   return {Status::kOk, 0, true};
 }
 
-Board::Outcome Board::Apply(const protocol::Heartbeat& m, const protocol::Header&,
-                            uint64_t now_us) {
+Board::HandlerAnswer Board::Apply(const protocol::Heartbeat& m, const protocol::Header&,
+                                  uint64_t now_us) {
   // Only a newer generation of this session's heartbeat: a repeated or foreign one, however
   // often it comes, keeps nothing alive.
   if (session_.Owns(m.session) && session_.heartbeat().Accept(m.generation)) session_.Heard(now_us);
   return {};
 }
 
-Board::Outcome Board::Apply(const protocol::SetLineSetpoints& m, const protocol::Header&,
-                            uint64_t now_us) {
+Board::HandlerAnswer Board::Apply(const protocol::SetLineSetpoints& m, const protocol::Header&,
+                                  uint64_t now_us) {
   if (!session_.Owns(m.session)) return {};  // another session's: dropped, as a stale one
   if (supervisor_.latched != 0) return {Status::kFaulted, supervisor_.latched};
   if (io_.update != nullptr && io_.update->in_update_mode()) return {Status::kBusy, 0};
@@ -164,8 +166,8 @@ Board::Outcome Board::Apply(const protocol::SetLineSetpoints& m, const protocol:
   return {};
 }
 
-Board::Outcome Board::Apply(const protocol::SetFingerTargets& m, const protocol::Header&,
-                            uint64_t now_us) {
+Board::HandlerAnswer Board::Apply(const protocol::SetFingerTargets& m, const protocol::Header&,
+                                  uint64_t now_us) {
   if (!session_.Owns(m.session)) return {};
   if (supervisor_.latched != 0) return {Status::kFaulted, supervisor_.latched};
   if (io_.update != nullptr && io_.update->in_update_mode()) return {Status::kBusy, 0};
@@ -179,7 +181,8 @@ Board::Outcome Board::Apply(const protocol::SetFingerTargets& m, const protocol:
   return {};
 }
 
-Board::Outcome Board::Apply(const protocol::SetFingerMode& m, const protocol::Header&, uint64_t) {
+Board::HandlerAnswer Board::Apply(const protocol::SetFingerMode& m, const protocol::Header&,
+                                  uint64_t) {
   uint32_t detail = 0;
   const Status status = fingers_.SetMode(m, lines_, detail);
   return {status, detail};

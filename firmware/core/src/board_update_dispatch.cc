@@ -6,7 +6,8 @@
 
 namespace palpa::core {
 
-Board::Outcome Board::Apply(const protocol::UpdateEnter& m, const protocol::Header&, uint64_t) {
+Board::HandlerAnswer Board::Apply(const protocol::UpdateEnter& m, const protocol::Header&,
+                                  uint64_t) {
   if (io_.update == nullptr) return {Status::kUnsupported};
   Hold();
   safe_ = true;  // this tick already: outputs go safe before anything is erased
@@ -15,34 +16,39 @@ Board::Outcome Board::Apply(const protocol::UpdateEnter& m, const protocol::Head
   return {s, detail};
 }
 
-Board::Outcome Board::Apply(const protocol::UpdateErase& m, const protocol::Header&, uint64_t) {
+Board::HandlerAnswer Board::Apply(const protocol::UpdateErase& m, const protocol::Header&,
+                                  uint64_t) {
   if (io_.update == nullptr) return {Status::kUnsupported};
   uint32_t detail = 0;
   const Status s = io_.update->Erase(m, &detail);
   return {s, detail};
 }
 
-Board::Outcome Board::Apply(const protocol::UpdateWrite& m, const protocol::Header&, uint64_t) {
+Board::HandlerAnswer Board::Apply(const protocol::UpdateWrite& m, const protocol::Header&,
+                                  uint64_t) {
   if (io_.update == nullptr) return {Status::kUnsupported};
   uint32_t detail = 0;
   const Status s = io_.update->Write(m, &detail);
   return {s, detail};
 }
 
-Board::Outcome Board::Apply(const protocol::UpdateQuery& m, const protocol::Header& h, uint64_t) {
+Board::HandlerAnswer Board::Apply(const protocol::UpdateQuery& m, const protocol::Header& h,
+                                  uint64_t) {
   if (io_.update == nullptr) return {Status::kUnsupported};
   reports::UpdateStatus(Reports(), io_.update->Query(m.slot), h.seq);
   return {Status::kOk, 0, true};
 }
 
-Board::Outcome Board::Apply(const protocol::UpdateActivate& m, const protocol::Header&, uint64_t) {
+Board::HandlerAnswer Board::Apply(const protocol::UpdateActivate& m, const protocol::Header&,
+                                  uint64_t) {
   if (io_.update == nullptr) return {Status::kUnsupported};
   uint32_t detail = 0;
   const Status s = io_.update->Activate(m, &detail);
   return {s, detail};
 }
 
-Board::Outcome Board::Apply(const protocol::UpdateReboot&, const protocol::Header&, uint64_t) {
+Board::HandlerAnswer Board::Apply(const protocol::UpdateReboot&, const protocol::Header&,
+                                  uint64_t) {
   if (io_.update == nullptr) return {Status::kUnsupported};
   Hold();
   safe_ = true;
@@ -50,14 +56,16 @@ Board::Outcome Board::Apply(const protocol::UpdateReboot&, const protocol::Heade
   return {};
 }
 
-Board::Outcome Board::Apply(const protocol::UpdateConfirm& m, const protocol::Header&, uint64_t) {
+Board::HandlerAnswer Board::Apply(const protocol::UpdateConfirm& m, const protocol::Header&,
+                                  uint64_t) {
   if (io_.update == nullptr) return {Status::kUnsupported};
   uint32_t detail = 0;
   const Status s = io_.update->Confirm(m, &detail);
   return {s, detail};
 }
 
-Board::Outcome Board::Apply(const protocol::SlotsQuery&, const protocol::Header& h, uint64_t) {
+Board::HandlerAnswer Board::Apply(const protocol::SlotsQuery&, const protocol::Header& h,
+                                  uint64_t) {
   if (io_.update == nullptr) return {Status::kUnsupported};
   reports::Slots(Reports(), io_.update->Slots(), h.seq);
   return {Status::kOk, 0, true};

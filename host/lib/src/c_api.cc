@@ -113,10 +113,9 @@ int palpa_open(const char* uri, palpa_device** out) {
     return static_cast<int>(pp::Status::kInvalidArgument);
   }
   *out = nullptr;
-  std::string error;
-  auto device = ph::Device::Open(uri, ph::DeviceOptions{}, &error);
+  auto device = ph::Device::Open(uri, ph::DeviceOptions{});
   if (!device.ok()) {
-    g_open_error = error;
+    g_open_error = device.message;
     return static_cast<int>(device.status);
   }
   auto* d = new palpa_device();
@@ -271,8 +270,8 @@ int palpa_record_stop(palpa_device* d) {
 
 int palpa_config_read(palpa_device* d, char* out, size_t capacity, size_t* length) {
   if (d == nullptr) return static_cast<int>(pp::Status::kInvalidArgument);
-  auto config = d->device->ReadConfig(&d->error);
-  if (!config.ok()) return static_cast<int>(config.status);
+  auto config = d->device->ReadConfig();
+  if (!config.ok()) return Report(d, config);
   const int status = CopyText(ph::ConfigToJson(config.value).dump(), out, capacity, length);
   if (status != PALPA_OK) d->error = "palpa_config_read: the configuration does not fit the buffer";
   return status;
@@ -284,8 +283,8 @@ int palpa_config_apply(palpa_device* d, const char* json) {
   std::string error;
   const auto patch = ph::ParseJson(json, &error);
   if (!patch) return Invalid(d, "palpa_config_apply: " + error + " (nothing was sent)");
-  auto config = d->device->ReadConfig(&d->error);
-  if (!config.ok()) return static_cast<int>(config.status);
+  auto config = d->device->ReadConfig();
+  if (!config.ok()) return Report(d, config);
   try {
     ph::ApplyConfigJson(*patch, config.value);
   } catch (const std::exception& e) {

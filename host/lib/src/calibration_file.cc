@@ -190,25 +190,21 @@ std::string CalibrationPath(const std::string& dir, const std::string& serial) {
   return dir + "/" + serial + ".json";
 }
 
-pp::Result<CalibrationFile> FindCalibration(const std::string& dir, const std::string& serial,
-                                            std::string* error) {
+Result<CalibrationFile> FindCalibration(const std::string& dir, const std::string& serial) {
   if (!ValidSerial(serial)) {
-    if (error != nullptr)
-      *error = "actuator serial '" + serial + "' cannot name a calibration file";
-    return pp::Status::kNotFound;
+    return {pp::Status::kNotFound,
+            "actuator serial '" + serial + "' cannot name a calibration file"};
   }
   const std::string path = CalibrationPath(dir, serial);
   struct stat st;
-  if (lstat(path.c_str(), &st) != 0) {
-    if (error != nullptr) *error = "no calibration for " + serial + " in " + dir;
-    return pp::Status::kNotFound;
-  }
-  auto c = LoadCalibration(path, error);
-  if (!c) return pp::Status::kBadValue;
+  if (lstat(path.c_str(), &st) != 0)
+    return {pp::Status::kNotFound, "no calibration for " + serial + " in " + dir};
+  std::string error;
+  auto c = LoadCalibration(path, &error);
+  if (!c) return {pp::Status::kBadValue, error};
   if (c->actuator_serial != serial) {
-    if (error != nullptr)
-      *error = path + ": actuator_serial is " + c->actuator_serial + ", not " + serial;
-    return pp::Status::kBadValue;
+    return {pp::Status::kBadValue,
+            path + ": actuator_serial is " + c->actuator_serial + ", not " + serial};
   }
   return std::move(*c);
 }

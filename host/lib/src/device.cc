@@ -36,14 +36,14 @@ void Device::AttachCalibrations() {
       note += "nominal curves (calibrations not used)";
       continue;
     }
-    std::string error;
-    const auto finger = ReadFinger(f, &error);
+    const auto finger = ReadFinger(f);
     if (!finger.ok()) {
-      note += "nominal curves (configuration not readable: " + error + ")";
+      note += "nominal curves (configuration not readable: " + finger.message + ")";
       continue;
     }
     const std::string serial = FieldText(finger.value.actuator_serial);
-    const auto c = FindCalibration(dir, serial, &error);
+    const auto c = FindCalibration(dir, serial);
+    std::string error = c.message;
     if (c.ok() && c.value.kind != finger.value.kind) {
       error = CalibrationPath(dir, serial) + ": the calibration of " + serial +
               " is for another finger kind";
@@ -112,9 +112,8 @@ void Device::AttachCalibration(uint8_t f, const pp::ConfigureFinger& board,
 
 Outcome Device::ApplyCalibration(uint8_t finger, const CalibrationFile& c) {
   AttachCalibrations();  // so the lookup cannot later overwrite what this sets
-  std::string error;
-  const auto current = ReadFinger(finger, &error);
-  if (!current.ok()) return Outcome{current.status, "apply calibration: " + error, {}};
+  const auto current = ReadFinger(finger);
+  if (!current.ok()) return Outcome{current.status, "apply calibration: " + current.message, {}};
   pp::ConfigureFinger f = current.value;
   const std::string serial = FieldText(f.actuator_serial);
   if (serial != c.actuator_serial) {
@@ -153,8 +152,8 @@ Outcome Device::ApplyCalibration(uint8_t finger, const CalibrationFile& c) {
                          ", which is not one of this finger's",
                      {}};
     }
-    const auto line = ReadLine(rc.line, &error);
-    if (!line.ok()) return Outcome{line.status, "apply calibration: " + error, {}};
+    const auto line = ReadLine(rc.line);
+    if (!line.ok()) return Outcome{line.status, "apply calibration: " + line.message, {}};
     pp::ConfigureLine l = line.value;
     l.correction_count = static_cast<uint8_t>(rc.points.size());
     std::copy(rc.points.begin(), rc.points.end(), l.correction.begin());
@@ -210,16 +209,15 @@ std::string Device::LineName(uint8_t line) const {
 }
 
 Result<std::unique_ptr<Device>> Device::Attach(std::unique_ptr<Transport> transport,
-                                               DeviceOptions options, std::string* error) {
-  auto link = Link::Open(std::move(transport), options.link, error);
-  if (!link.ok()) return link.status;
+                                               DeviceOptions options) {
+  auto link = Link::Open(std::move(transport), options.link);
+  if (!link.ok()) return link.outcome();
   return std::unique_ptr<Device>(new Device(std::move(link.value), std::move(options)));
 }
 
-Result<std::unique_ptr<Device>> Device::Open(const std::string& uri, DeviceOptions options,
-                                             std::string* error) {
-  auto transport = OpenTransport(uri, error);
-  if (!transport.ok()) return transport.status;
+Result<std::unique_ptr<Device>> Device::Open(const std::string& uri, DeviceOptions options) {
+  auto transport = OpenTransport(uri);
+  if (!transport.ok()) return transport.outcome();
   // A board on USB can be unplugged and plugged back in: the link opens it again by its URI.
   // A simulator child or a TCP server that went away is another board when it comes back.
   DeviceUri parsed;
@@ -228,11 +226,9 @@ Result<std::unique_ptr<Device>> Device::Open(const std::string& uri, DeviceOptio
                          parsed.kind == DeviceUri::Kind::kHid ||
                          parsed.kind == DeviceUri::Kind::kSerial;
   if (pluggable && options.link.reconnect && !options.link.reopen) {
-    options.link.reopen = [uri](std::string* reopen_error) {
-      return OpenTransport(uri, reopen_error);
-    };
+    options.link.reopen = [uri] { return OpenTransport(uri); };
   }
-  return Attach(std::move(transport.value), std::move(options), error);
+  return Attach(std::move(transport.value), std::move(options));
 }
 
 std::string Device::FaultText(uint32_t bitmap, bool persist) {
@@ -417,22 +413,20 @@ Outcome Device::ClearFault(uint32_t mask) {
   return o;
 }
 
-Result<pp::Diagnostics> Device::Diagnostics(std::string* error) {
+Result<pp::Diagnostics> Device::Diagnostics() {
   const CommandResult r = link_->Command(pp::GetDiagnostics{});
   pp::Diagnostics d{};
   if (r.status == Status::kOk && r.Reply(d)) return d;
-  if (error != nullptr)
-    *error = std::string("diagnostics: ") + pp::StatusName(r.status) + " " + r.message;
-  return r.status == Status::kOk ? Status::kBadValue : r.status;
+  return {r.status == Status::kOk ? Status::kBadValue : r.status,
+          std::string("diagnostics: ") + pp::StatusName(r.status) + " " + r.message};
 }
 
-Result<pp::LoopStats> Device::LoopStats(std::string* error) {
+Result<pp::LoopStats> Device::LoopStats() {
   const CommandResult r = link_->Command(pp::GetLoopStats{});
   pp::LoopStats s{};
   if (r.status == Status::kOk && r.Reply(s)) return s;
-  if (error != nullptr)
-    *error = std::string("loop statistics: ") + pp::StatusName(r.status) + " " + r.message;
-  return r.status == Status::kOk ? Status::kBadValue : r.status;
+  return {r.status == Status::kOk ? Status::kBadValue : r.status,
+          std::string("loop statistics: ") + pp::StatusName(r.status) + " " + r.message};
 }
 
 }  // namespace palpa::host

@@ -7,22 +7,22 @@
 
 namespace palpa::host {
 
-Result<core::BoardConfig> Device::ReadConfig(std::string* error) {
+Result<core::BoardConfig> Device::ReadConfig() {
   core::BoardConfig config{};
   const pp::HelloReply& b = info();
-  auto board = ReadBoard(error);
-  if (!board.ok()) return board.status;
+  auto board = ReadBoard();
+  if (!board.ok()) return board.outcome();
   config.board = board.value;
   config.line_count = b.line_count;
   for (uint8_t i = 0; i < b.line_count; ++i) {
-    auto line = ReadLine(i, error);
-    if (!line.ok()) return line.status;
+    auto line = ReadLine(i);
+    if (!line.ok()) return line.outcome();
     config.lines[i] = line.value;
   }
   config.finger_count = b.finger_count;
   for (uint8_t f = 0; f < b.finger_count; ++f) {
-    auto finger = ReadFinger(f, error);
-    if (!finger.ok()) return finger.status;
+    auto finger = ReadFinger(f);
+    if (!finger.ok()) return finger.outcome();
     config.fingers[f] = finger.value;
   }
   return config;

@@ -23,12 +23,11 @@ Outcome Device::FactoryReset() {
   Outcome o = FromCommand(link_->Command(pp::FactoryReset{}), "factory reset");
   if (!o.ok()) return o;
   // The factory configuration has its own host-silence timeout: heartbeats must follow it.
-  std::string error;
-  const auto board = ReadBoard(&error);
+  const auto board = ReadBoard();
   if (board.ok()) {
     link_->SetHostTimeout(board.value.host_timeout_us);
   } else {
-    o.notes.push_back("could not read back the host-silence timeout (" + error +
+    o.notes.push_back("could not read back the host-silence timeout (" + board.message +
                       "): heartbeats keep their period until the next session");
   }
   return o;
@@ -76,15 +75,14 @@ Outcome Device::ConfigureStaged(const uint8_t* records, size_t size) {
 }
 
 template <class M>
-Result<M> Device::ReadSection(pp::ConfigSection section, uint8_t index, std::string* error) {
+Result<M> Device::ReadSection(pp::ConfigSection section, uint8_t index) {
   std::vector<uint8_t> body;
   for (uint16_t offset = 0;;) {
     const CommandResult r = link_->Command(pp::GetConfig{section, index, offset});
     pp::ConfigReport report{};
     if (r.status != Status::kOk || !r.Reply(report)) {
-      if (error != nullptr)
-        *error = std::string("read configuration: ") + pp::StatusName(r.status) + " " + r.message;
-      return r.status == Status::kOk ? Status::kBadValue : r.status;
+      return {r.status == Status::kOk ? Status::kBadValue : r.status,
+              std::string("read configuration: ") + pp::StatusName(r.status) + " " + r.message};
     }
     body.insert(body.end(), report.data.begin(), report.data.begin() + report.data_size);
     offset = static_cast<uint16_t>(offset + report.data_size);
@@ -94,22 +92,20 @@ Result<M> Device::ReadSection(pp::ConfigSection section, uint8_t index, std::str
   pp::FieldError field;
   const Status s = pp::DecodeBody(body.data(), body.size(), m, &field);
   if (s != Status::kOk) {
-    if (error != nullptr)
-      *error = std::string("the board's configuration does not decode at ") +
-               (field.field ? field.field : "?");
-    return s;
+    return {s, std::string("the board's configuration does not decode at ") +
+                   (field.field ? field.field : "?")};
   }
   return m;
 }
 
-Result<pp::ConfigureLine> Device::ReadLine(uint8_t line, std::string* error) {
-  return ReadSection<pp::ConfigureLine>(pp::ConfigSection::kLine, line, error);
+Result<pp::ConfigureLine> Device::ReadLine(uint8_t line) {
+  return ReadSection<pp::ConfigureLine>(pp::ConfigSection::kLine, line);
 }
-Result<pp::ConfigureFinger> Device::ReadFinger(uint8_t finger, std::string* error) {
-  return ReadSection<pp::ConfigureFinger>(pp::ConfigSection::kFinger, finger, error);
+Result<pp::ConfigureFinger> Device::ReadFinger(uint8_t finger) {
+  return ReadSection<pp::ConfigureFinger>(pp::ConfigSection::kFinger, finger);
 }
-Result<pp::ConfigureBoard> Device::ReadBoard(std::string* error) {
-  return ReadSection<pp::ConfigureBoard>(pp::ConfigSection::kBoard, 0, error);
+Result<pp::ConfigureBoard> Device::ReadBoard() {
+  return ReadSection<pp::ConfigureBoard>(pp::ConfigSection::kBoard, 0);
 }
 
 }  // namespace palpa::host

@@ -33,7 +33,7 @@ std::vector<uint8_t> FaultTransport::Damage(const uint8_t* data, size_t size) {
   return out;
 }
 
-Result<size_t> FaultTransport::Read(uint8_t* out, size_t capacity, int timeout_ms) {
+protocol::Result<size_t> FaultTransport::Read(uint8_t* out, size_t capacity, int timeout_ms) {
   if (spec_.delay_ms == 0) {
     std::vector<uint8_t> raw(capacity);
     const auto n = inner_->Read(raw.data(), raw.size(), timeout_ms);

@@ -27,11 +27,12 @@ FdTransport::~FdTransport() {
   if (fd_ >= 0) close(fd_);
 }
 
-Result<size_t> FdTransport::Read(uint8_t* out, size_t capacity, int timeout_ms) {
+protocol::Result<size_t> FdTransport::Read(uint8_t* out, size_t capacity, int timeout_ms) {
   pollfd p{fd_, POLLIN, 0};
   const int ready = poll(&p, 1, timeout_ms);
   if (ready < 0)
-    return errno == EINTR ? Result<size_t>(size_t{0}) : Result<size_t>(Status::kIoError);
+    return errno == EINTR ? protocol::Result<size_t>(size_t{0})
+                          : protocol::Result<size_t>(Status::kIoError);
   if (ready == 0) return size_t{0};
   const ssize_t n = read(fd_, out, capacity);
   if (n > 0) return static_cast<size_t>(n);
@@ -91,36 +92,36 @@ speed_t BaudConstant(uint32_t baud) {
 
 }  // namespace
 
-Result<std::unique_ptr<Transport>> OpenSerial(const DeviceUri& uri, std::string* error) {
+Result<std::unique_ptr<Transport>> OpenSerial(const DeviceUri& uri) {
   const speed_t speed = BaudConstant(uri.baud);
   if (speed == 0) {
-    *error = "serial:" + uri.path + ": baud " + std::to_string(uri.baud) + " is not supported";
-    return Status::kInvalidArgument;
+    return {Status::kInvalidArgument,
+            "serial:" + uri.path + ": baud " + std::to_string(uri.baud) + " is not supported"};
   }
   // One host per port: the lock file first (it names its holder), then an exclusive open.
   auto lock = std::make_unique<SerialLock>();
   std::string holder;
   if (lock->Acquire(uri.path, &holder) == Status::kBusy) {
-    *error =
-        "busy: another host holds the board (serial:" + uri.path + " is locked by " + holder + ")";
-    return Status::kBusy;
+    return {Status::kBusy, "busy: another host holds the board (serial:" + uri.path +
+                               " is locked by " + holder + ")"};
   }
   const int fd = open(uri.path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK);
   if (fd < 0 && errno == EBUSY) {  // opened exclusively by a process that took no lock
     holder = SerialHolder(uri.path);
-    *error = "busy: another host holds the board (serial:" + uri.path + " is open exclusively" +
-             (holder.empty() ? "" : " by " + holder) + ")";
-    return Status::kBusy;
+    return {Status::kBusy, "busy: another host holds the board (serial:" + uri.path +
+                               " is open exclusively" + (holder.empty() ? "" : " by " + holder) +
+                               ")"};
   }
   if (fd < 0) {
-    *error = "serial:" + uri.path + ": " + std::strerror(errno);
-    return errno == ENOENT ? Status::kNotFound : Status::kIoError;
+    return {errno == ENOENT ? Status::kNotFound : Status::kIoError,
+            "serial:" + uri.path + ": " + std::strerror(errno)};
   }
   termios t{};
   if (tcgetattr(fd, &t) != 0) {
-    *error = "serial:" + uri.path + ": not a terminal (" + std::strerror(errno) + ")";
+    const std::string why =
+        "serial:" + uri.path + ": not a terminal (" + std::strerror(errno) + ")";
     close(fd);
-    return Status::kInvalidArgument;
+    return {Status::kInvalidArgument, why};
   }
   cfmakeraw(&t);
   cfsetispeed(&t, speed);
@@ -169,10 +170,11 @@ int ConnectTcp(const DeviceUri& uri, std::string* error, Status* status) {
 
 }  // namespace
 
-Result<std::unique_ptr<Transport>> OpenTcp(const DeviceUri& uri, std::string* error) {
+Result<std::unique_ptr<Transport>> OpenTcp(const DeviceUri& uri) {
   Status status = Status::kOk;
-  const int fd = ConnectTcp(uri, error, &status);
-  if (fd < 0) return status;
+  std::string error;
+  const int fd = ConnectTcp(uri, &error, &status);
+  if (fd < 0) return {status, error};
   return std::unique_ptr<Transport>(
       new FdTransport(fd, "tcp:" + uri.host + ":" + std::to_string(uri.port)));
 }
@@ -222,7 +224,7 @@ std::string FindPalpaSim() {
   return "palpa-sim";
 }
 
-Result<std::unique_ptr<Transport>> OpenSim(const DeviceUri& uri, std::string* error) {
+Result<std::unique_ptr<Transport>> OpenSim(const DeviceUri& uri) {
   std::vector<std::string> options;
   if (const char* args_env = getenv("PALPA_SIM_ARGS");
       args_env != nullptr) {  // e.g. "--plant 1 --speed 10"
@@ -236,20 +238,18 @@ Result<std::unique_ptr<Transport>> OpenSim(const DeviceUri& uri, std::string* er
       at = sp + 1;
     }
   }
-  return LaunchSim(uri.config, options, nullptr, error);
+  return LaunchSim(uri.config, options, nullptr);
 }
 
 Result<std::unique_ptr<Transport>> LaunchSim(const std::string& config,
                                              const std::vector<std::string>& options,
-                                             std::string* truth_address, std::string* error,
-                                             std::string* rig_address) {
+                                             std::string* truth_address, std::string* rig_address) {
   DeviceUri uri;
   uri.config = config;
   const std::string program = FindPalpaSim();
   int out[2];
   if (pipe(out) != 0) {
-    *error = std::string("sim: pipe: ") + std::strerror(errno);
-    return Status::kIoError;
+    return {Status::kIoError, std::string("sim: pipe: ") + std::strerror(errno)};
   }
   const pid_t child = fork();
   if (child == 0) {
@@ -307,41 +307,43 @@ Result<std::unique_ptr<Transport>> LaunchSim(const std::string& config,
   if (address.empty()) {
     kill(child, SIGKILL);
     waitpid(child, nullptr, 0);
-    *error = "sim:" + uri.config + ": palpa-sim (" + program + ") did not start" +
-             (text.empty() ? std::string() : ": " + text);
-    return Status::kUnavailable;
+    return {Status::kUnavailable, "sim:" + uri.config + ": palpa-sim (" + program +
+                                      ") did not start" +
+                                      (text.empty() ? std::string() : ": " + text)};
   }
   DeviceUri tcp;
   tcp.host = address.substr(0, address.rfind(':'));
   tcp.port = static_cast<uint16_t>(std::stoi(address.substr(address.rfind(':') + 1)));
   Status status = Status::kOk;
-  const int fd = ConnectTcp(tcp, error, &status);
+  std::string error;
+  const int fd = ConnectTcp(tcp, &error, &status);
   if (fd < 0) {
     kill(child, SIGKILL);
     waitpid(child, nullptr, 0);
-    return status;
+    return {status, error};
   }
   return std::unique_ptr<Transport>(
       new SimTransport(fd, child, "sim:" + uri.config + " (palpa-sim on tcp:" + address + ")"));
 }
 
-Result<std::unique_ptr<Transport>> OpenTransport(const std::string& uri, std::string* error) {
+Result<std::unique_ptr<Transport>> OpenTransport(const std::string& uri) {
   DeviceUri parsed;
-  const Status s = ParseDeviceUri(uri, parsed, error);
-  if (s != Status::kOk) return s;
+  std::string error;
+  const Status s = ParseDeviceUri(uri, parsed, &error);
+  if (s != Status::kOk) return {s, error};
   switch (parsed.kind) {
     case DeviceUri::Kind::kSim:
-      return OpenSim(parsed, error);
+      return OpenSim(parsed);
     case DeviceUri::Kind::kSerial:
-      return OpenSerial(parsed, error);
+      return OpenSerial(parsed);
     case DeviceUri::Kind::kTcp:
-      return OpenTcp(parsed, error);
+      return OpenTcp(parsed);
     case DeviceUri::Kind::kHid:
-      return OpenHid(parsed, error);
+      return OpenHid(parsed);
     case DeviceUri::Kind::kUsb:
-      return OpenUsb(parsed, error);
+      return OpenUsb(parsed);
   }
-  return Status::kInvalidArgument;
+  return {Status::kInvalidArgument, uri + ": not a device URI"};
 }
 
 }  // namespace palpa::host

@@ -16,7 +16,7 @@ class FdTransport : public Transport {
  public:
   FdTransport(int fd, std::string description) : fd_(fd), description_(std::move(description)) {}
   ~FdTransport() override;
-  Result<size_t> Read(uint8_t* out, size_t capacity, int timeout_ms) override;
+  protocol::Result<size_t> Read(uint8_t* out, size_t capacity, int timeout_ms) override;
   Status Write(const uint8_t* data, size_t size) override;
   std::string Describe() const override { return description_; }
 
@@ -50,10 +50,10 @@ class SimTransport final : public FdTransport {
   pid_t child_;
 };
 
-Result<std::unique_ptr<Transport>> OpenSerial(const DeviceUri& uri, std::string* error);
-Result<std::unique_ptr<Transport>> OpenTcp(const DeviceUri& uri, std::string* error);
-Result<std::unique_ptr<Transport>> OpenSim(const DeviceUri& uri, std::string* error);
-Result<std::unique_ptr<Transport>> OpenHid(const DeviceUri& uri, std::string* error);
-Result<std::unique_ptr<Transport>> OpenUsb(const DeviceUri& uri, std::string* error);
+Result<std::unique_ptr<Transport>> OpenSerial(const DeviceUri& uri);
+Result<std::unique_ptr<Transport>> OpenTcp(const DeviceUri& uri);
+Result<std::unique_ptr<Transport>> OpenSim(const DeviceUri& uri);
+Result<std::unique_ptr<Transport>> OpenHid(const DeviceUri& uri);
+Result<std::unique_ptr<Transport>> OpenUsb(const DeviceUri& uri);
 
 }  // namespace palpa::host

@@ -38,7 +38,7 @@ class HidTransport final : public Transport {
     hid_exit();
   }
 
-  Result<size_t> Read(uint8_t* out, size_t capacity, int timeout_ms) override {
+  protocol::Result<size_t> Read(uint8_t* out, size_t capacity, int timeout_ms) override {
     uint8_t report[kReportBytes];
     const int n = hid_read_timeout(reader_, report, sizeof(report), timeout_ms);
     if (n < 0) return Status::kDisconnected;  // hidapi reports an unplugged device as a read error
@@ -87,30 +87,29 @@ std::string FindDevicePath(uint16_t vendor, uint16_t product, const std::wstring
 
 }  // namespace
 
-Result<std::unique_ptr<Transport>> OpenHid(const DeviceUri& uri, std::string* error) {
+Result<std::unique_ptr<Transport>> OpenHid(const DeviceUri& uri) {
   char id[16];
   std::snprintf(id, sizeof(id), "%04x:%04x", uri.vendor, uri.product);
   const std::string where =
       "hid:" + std::string(id) + (uri.serial_number.empty() ? "" : ":" + uri.serial_number);
   if (hid_init() != 0) {
-    *error = where + ": hidapi failed to initialise";
-    return Status::kIoError;
+    return {Status::kIoError, where + ": hidapi failed to initialise"};
   }
   const std::wstring serial(uri.serial_number.begin(), uri.serial_number.end());
   const std::string path = FindDevicePath(uri.vendor, uri.product, serial);
   if (path.empty()) {
-    *error = where + ": no such device; is it plugged in, and does the udev rule give you access?";
     hid_exit();
-    return Status::kNotFound;
+    return {Status::kNotFound,
+            where + ": no such device; is it plugged in, and does the udev rule give you access?"};
   }
   hid_device* reader = hid_open_path(path.c_str());
   hid_device* writer = reader != nullptr ? hid_open_path(path.c_str()) : nullptr;
   if (writer == nullptr) {
-    *error = where + ": cannot open " + path + " (" + HidGlobalError() +
-             "); does the udev rule give you access?";
+    const std::string why = where + ": cannot open " + path + " (" + HidGlobalError() +
+                            "); does the udev rule give you access?";
     if (reader != nullptr) hid_close(reader);
     hid_exit();
-    return Status::kNotFound;
+    return {Status::kNotFound, why};
   }
   return std::unique_ptr<Transport>(new HidTransport(reader, writer, where));
 }

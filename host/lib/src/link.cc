@@ -42,8 +42,8 @@ Link::Link(std::unique_ptr<Transport> transport, LinkOptions options)
       description_(transport_->Describe()),
       options_(std::move(options)) {}
 
-Result<std::unique_ptr<Link>> Link::Open(std::unique_ptr<Transport> transport, LinkOptions options,
-                                         std::string* error) {
+Result<std::unique_ptr<Link>> Link::Open(std::unique_ptr<Transport> transport,
+                                         LinkOptions options) {
   std::unique_ptr<Link> link(new Link(std::move(transport), options));
   link->reader_ = std::thread(&Link::ReaderLoop, link.get());
   link->dispatcher_ = std::thread(&Link::DispatchLoop, link.get());
@@ -68,15 +68,13 @@ Result<std::unique_ptr<Link>> Link::Open(std::unique_ptr<Transport> transport, L
     }
     if (!link->session_.open()) {
       const bool busy = link->busy_since_s_ >= 0;
-      if (error != nullptr) {
-        *error = busy ? "busy: another host holds the board (" + link->description_ +
-                            "); it is free once that host closes its session, or goes silent "
-                            "for the board's host-silence timeout"
-                      : link->description_ + ": no answer to Hello (" +
-                            std::to_string(options.hello_attempts) +
-                            " tries); is it a palpa board, and is it powered?";
-      }
-      return busy ? Status::kBusy : Status::kTimeout;
+      return {busy ? Status::kBusy : Status::kTimeout,
+              busy ? "busy: another host holds the board (" + link->description_ +
+                         "); it is free once that host closes its session, or goes silent "
+                         "for the board's host-silence timeout"
+                   : link->description_ + ": no answer to Hello (" +
+                         std::to_string(options.hello_attempts) +
+                         " tries); is it a palpa board, and is it powered?"};
     }
   }
   return link;

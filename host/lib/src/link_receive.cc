@@ -74,8 +74,7 @@ bool Link::TransportLost() {
         return false;
       }
     }
-    std::string error;
-    auto reopened = options_.reopen(&error);
+    auto reopened = options_.reopen();
     if (!reopened.ok()) continue;
     {
       std::lock_guard<std::mutex> lock(write_mutex_);

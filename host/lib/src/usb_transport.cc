@@ -44,7 +44,7 @@ class UsbTransport final : public Transport {
     libusb_exit(context_);
   }
 
-  Result<size_t> Read(uint8_t* out, size_t capacity, int timeout_ms) override {
+  protocol::Result<size_t> Read(uint8_t* out, size_t capacity, int timeout_ms) override {
     int transferred = 0;
     int rc = libusb_bulk_transfer(handle_, in_, out, static_cast<int>(capacity), &transferred,
                                   static_cast<unsigned>(timeout_ms));
@@ -117,15 +117,14 @@ bool FindBulkEndpoints(libusb_device* device, int& interface, uint8_t& in, uint8
 
 }  // namespace
 
-Result<std::unique_ptr<Transport>> OpenUsb(const DeviceUri& uri, std::string* error) {
+Result<std::unique_ptr<Transport>> OpenUsb(const DeviceUri& uri) {
   char id[16];
   std::snprintf(id, sizeof(id), "%04x:%04x", uri.vendor, uri.product);
   const std::string where =
       "usb:" + std::string(id) + (uri.serial_number.empty() ? "" : ":" + uri.serial_number);
   libusb_context* context = nullptr;
   if (libusb_init(&context) != LIBUSB_SUCCESS) {
-    *error = where + ": libusb failed to initialise";
-    return Status::kIoError;
+    return {Status::kIoError, where + ": libusb failed to initialise"};
   }
   libusb_device** list = nullptr;
   const ssize_t count = libusb_get_device_list(context, &list);
@@ -168,13 +167,12 @@ Result<std::unique_ptr<Transport>> OpenUsb(const DeviceUri& uri, std::string* er
   if (count > 0) libusb_free_device_list(list, 1);
   if (handle == nullptr) {
     libusb_exit(context);
-    *error = where + (status == Status::kNotFound ? ": no such device"
-                      : status == Status::kUnsupported
-                          ? ": no interface with a bulk IN and a bulk OUT endpoint"
-                      : status == Status::kUnavailable
-                          ? ": access denied (install the udev rule, or run as root)"
-                          : std::string(": cannot open: ") + protocol::StatusName(status));
-    return status;
+    return {status, where + (status == Status::kNotFound ? ": no such device"
+                             : status == Status::kUnsupported
+                                 ? ": no interface with a bulk IN and a bulk OUT endpoint"
+                             : status == Status::kUnavailable
+                                 ? ": access denied (install the udev rule, or run as root)"
+                                 : std::string(": cannot open: ") + protocol::StatusName(status))};
   }
   return std::unique_ptr<Transport>(new UsbTransport(context, handle, interface, in, out, where));
 }

@@ -36,8 +36,8 @@ std::unique_ptr<ph::Device> OpenWith(const ph::CalibrationFile& held,
   CHECK_TEXT(ph::SaveCalibration(file, ph::CalibrationPath(dir, "PN-1"), &error), error.c_str());
   ph::DeviceOptions options;
   options.calibration_dir = dir;
-  auto opened = ph::Device::Open("sim:thesis-5finger", options, &error);
-  CHECK_TEXT(opened.ok(), error.c_str());
+  auto opened = ph::Device::Open("sim:thesis-5finger", options);
+  CHECK_TEXT(opened.ok(), opened.message.c_str());
   // Before anything looks the calibrations up: the board holds `held`'s inverse from now on.
   pp::ConfigureFinger f = opened.value->ReadFinger(0).value;
   f.inverse_count = static_cast<uint8_t>(held.static_inverse.size());
@@ -136,8 +136,8 @@ TEST(BoardCurves, ACalibrationNotOnItsNominalBoardIsNamedAndTheNominalCurveFollo
                             &error));
   ph::DeviceOptions options;
   options.calibration_dir = dir;
-  auto opened = ph::Device::Open("sim:thesis-5finger", options, &error);
-  CHECK_TEXT(opened.ok(), error.c_str());
+  auto opened = ph::Device::Open("sim:thesis-5finger", options);
+  CHECK_TEXT(opened.ok(), opened.message.c_str());
   ph::Device& d = *opened.value;
   LONGS_EQUAL(1, d.curve_warnings().size());
   STRCMP_CONTAINS("the board's static inverse for finger 0 (the nominal one)",

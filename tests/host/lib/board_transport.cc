@@ -5,7 +5,7 @@
 
 namespace palpa::testing {
 
-host::Result<size_t> BoardTransport::Read(uint8_t* out, size_t capacity, int timeout_ms) {
+protocol::Result<size_t> BoardTransport::Read(uint8_t* out, size_t capacity, int timeout_ms) {
   std::unique_lock<std::mutex> lock(mutex_);
   ready_.wait_for(lock, std::chrono::milliseconds(timeout_ms), [&] { return !to_host_.empty(); });
   size_t n = 0;

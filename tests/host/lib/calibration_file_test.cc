@@ -48,8 +48,8 @@ TEST(CalibrationFile, SavesAtomicallyAndReadsBackEveryField) {
   std::string error;
   CHECK_TEXT(ph::SaveCalibration(Example(), ph::CalibrationPath(dir, "PN-1"), &error),
              error.c_str());
-  const auto found = ph::FindCalibration(dir, "PN-1", &error);
-  CHECK_TEXT(found.ok(), error.c_str());
+  const auto found = ph::FindCalibration(dir, "PN-1");
+  CHECK_TEXT(found.ok(), found.message.c_str());
   const ph::CalibrationFile* back = &found.value;
   STRCMP_EQUAL("PN-1", back->actuator_serial.c_str());
   LONGS_EQUAL(5, back->curve.size());
@@ -77,15 +77,18 @@ TEST(CalibrationFile, SavesAtomicallyAndReadsBackEveryField) {
   bad.static_inverse[1].setpoint_pa = 50000;  // no longer increasing
   CHECK_FALSE(ph::SaveCalibration(bad, ph::CalibrationPath(dir, "PN-1"), &error));
   CHECK(error.find("static_inverse.setpoint_pa[2]") != std::string::npos);
-  CHECK(ph::FindCalibration(dir, "PN-1", &error).ok());
-  LONGS_EQUAL((int)pp::Status::kNotFound, (int)ph::FindCalibration(dir, "PN-2", &error).status);
-  CHECK(error.find("no calibration for PN-2") != std::string::npos);
-  LONGS_EQUAL((int)pp::Status::kNotFound, (int)ph::FindCalibration(dir, "../etc", &error).status);
-  CHECK(error.find("cannot name") != std::string::npos);
+  CHECK(ph::FindCalibration(dir, "PN-1").ok());
+  auto missing = ph::FindCalibration(dir, "PN-2");
+  LONGS_EQUAL((int)pp::Status::kNotFound, (int)missing.status);
+  CHECK(missing.message.find("no calibration for PN-2") != std::string::npos);
+  missing = ph::FindCalibration(dir, "../etc");
+  LONGS_EQUAL((int)pp::Status::kNotFound, (int)missing.status);
+  CHECK(missing.message.find("cannot name") != std::string::npos);
   // A file that is there but invalid is told apart from no file.
   std::ofstream(ph::CalibrationPath(dir, "PN-3")) << "{}";
-  LONGS_EQUAL((int)pp::Status::kBadValue, (int)ph::FindCalibration(dir, "PN-3", &error).status);
-  CHECK(error.find("PN-3.json: schema: missing") != std::string::npos);
+  missing = ph::FindCalibration(dir, "PN-3");
+  LONGS_EQUAL((int)pp::Status::kBadValue, (int)missing.status);
+  CHECK(missing.message.find("PN-3.json: schema: missing") != std::string::npos);
 }
 
 TEST(CalibrationFile, EveryBadFieldIsNamedByItsPath) {
@@ -179,8 +182,8 @@ TEST(CalibrationFile, DeviceFindsCalibrationsByActuatorSerialAndUploadsThemAtomi
   CHECK(ph::SaveCalibration(Example(), ph::CalibrationPath(dir, "PN-1"), &error));
   ph::DeviceOptions options;
   options.calibration_dir = dir;
-  auto opened = ph::Device::Open("sim:thesis-5finger", options, &error);
-  CHECK_TEXT(opened.ok(), error.c_str());
+  auto opened = ph::Device::Open("sim:thesis-5finger", options);
+  CHECK_TEXT(opened.ok(), opened.message.c_str());
   ph::Device& d = *opened.value;
   // Found, but the board holds the nominal inverse: the board's curve is followed, and said.
   CHECK(d.calibration_notes()[0].find(dir + "/PN-1.json disagrees") != std::string::npos);

@@ -21,11 +21,11 @@ TEST(DeviceConfig, TheWholeConfigurationReadsBackIsCheckedAsTheBoardWouldAndAppl
   std::string error;
   ph::DeviceOptions options;
   options.number_from = 1;
-  auto opened = ph::Device::Open("sim:thesis-5finger", options, &error);
-  CHECK_TEXT(opened.ok(), error.c_str());
+  auto opened = ph::Device::Open("sim:thesis-5finger", options);
+  CHECK_TEXT(opened.ok(), opened.message.c_str());
   ph::Device& d = *opened.value;
-  auto config = d.ReadConfig(&error);
-  CHECK_TEXT(config.ok(), error.c_str());
+  auto config = d.ReadConfig();
+  CHECK_TEXT(config.ok(), config.message.c_str());
   LONGS_EQUAL(d.info().line_count, config.value.line_count);
   LONGS_EQUAL(d.info().finger_count, config.value.finger_count);
   LONGS_EQUAL(100000, config.value.board.host_timeout_us);
@@ -44,8 +44,8 @@ TEST(DeviceConfig, TheWholeConfigurationReadsBackIsCheckedAsTheBoardWouldAndAppl
   changed.board.host_timeout_us = 150000;
   o = d.ApplyConfig(changed);
   CHECK_TEXT(o.ok(), o.message.c_str());
-  auto again = d.ReadConfig(&error);
-  CHECK_TEXT(again.ok(), error.c_str());
+  auto again = d.ReadConfig();
+  CHECK_TEXT(again.ok(), again.message.c_str());
   LONGS_EQUAL(150000, again.value.board.host_timeout_us);
   // The refused configuration changed nothing on the board.
   LONGS_EQUAL(config.value.lines[1].limit_max_pa, again.value.lines[1].limit_max_pa);

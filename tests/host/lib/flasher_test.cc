@@ -24,7 +24,7 @@ class CutTransport final : public ph::Transport {
  public:
   CutTransport(std::unique_ptr<ph::Transport> inner, size_t budget)
       : inner_(std::move(inner)), budget_(budget) {}
-  ph::Result<size_t> Read(uint8_t* out, size_t capacity, int timeout_ms) override {
+  pp::Result<size_t> Read(uint8_t* out, size_t capacity, int timeout_ms) override {
     if (cut_) return ph::Status::kDisconnected;
     return inner_->Read(out, capacity, timeout_ms);
   }
@@ -46,14 +46,14 @@ class CutTransport final : public ph::Transport {
 
 std::unique_ptr<ph::Link> Connect(const std::string& address, size_t budget = SIZE_MAX) {
   std::string error;
-  auto t = ph::OpenTransport(address, &error);
-  CHECK_TEXT(t.ok(), error.c_str());
+  auto t = ph::OpenTransport(address);
+  CHECK_TEXT(t.ok(), t.message.c_str());
   std::unique_ptr<ph::Transport> transport = std::move(t.value);
   if (budget != SIZE_MAX) transport = std::make_unique<CutTransport>(std::move(transport), budget);
   ph::LinkOptions options;
   options.command_timeout_ms = 1000;
-  auto link = ph::Link::Open(std::move(transport), options, &error);
-  CHECK_TEXT(link.ok(), error.c_str());
+  auto link = ph::Link::Open(std::move(transport), options);
+  CHECK_TEXT(link.ok(), link.message.c_str());
   return std::move(link.value);
 }
 

@@ -26,7 +26,7 @@ namespace {
 class MutableTransport final : public ph::Transport {
  public:
   explicit MutableTransport(std::unique_ptr<ph::Transport> inner) : inner_(std::move(inner)) {}
-  ph::Result<size_t> Read(uint8_t* out, size_t capacity, int timeout_ms) override {
+  pp::Result<size_t> Read(uint8_t* out, size_t capacity, int timeout_ms) override {
     return inner_->Read(out, capacity, timeout_ms);
   }
   ph::Status Write(const uint8_t* data, size_t size) override {
@@ -41,15 +41,15 @@ class MutableTransport final : public ph::Transport {
 
 std::unique_ptr<ph::Transport> Tcp(const std::string& address) {
   std::string error;
-  auto t = ph::OpenTransport(address, &error);
-  CHECK_TEXT(t.ok(), error.c_str());
+  auto t = ph::OpenTransport(address);
+  CHECK_TEXT(t.ok(), t.message.c_str());
   return std::move(t.value);
 }
 
 std::unique_ptr<ph::Device> OpenDevice(const std::string& address) {
   std::string error;
-  auto d = ph::Device::Open(address, {}, &error);
-  CHECK_TEXT(d.ok(), error.c_str());
+  auto d = ph::Device::Open(address, {});
+  CHECK_TEXT(d.ok(), d.message.c_str());
   return std::move(d.value);
 }
 
@@ -89,13 +89,12 @@ TEST(LinkSession, DestroyingTheLinkClosesTheSessionAndTheNextHostOpensAtOnce) {
   TestBoard board(pp::kCatalogHash, 1024, 21);
   {
     std::string error;
-    auto link = ph::Link::Open(std::make_unique<BoardTransport>(board), {}, &error);
-    CHECK_TEXT(link.ok(), error.c_str());
+    auto link = ph::Link::Open(std::make_unique<BoardTransport>(board), {});
+    CHECK_TEXT(link.ok(), link.message.c_str());
   }
   LONGS_EQUAL(1, board.closes);
-  std::string error;
-  auto next = ph::Link::Open(std::make_unique<BoardTransport>(board), {}, &error);
-  CHECK_TEXT(next.ok(), error.c_str());
+  auto next = ph::Link::Open(std::make_unique<BoardTransport>(board), {});
+  CHECK_TEXT(next.ok(), next.message.c_str());
   LONGS_EQUAL(2, board.sessions);
   LONGS_EQUAL((int)pp::Status::kOk, (int)next.value->Close());
   LONGS_EQUAL((int)pp::Status::kOk, (int)next.value->Close());  // once is enough
@@ -111,8 +110,8 @@ TEST(LinkSession, AnUnansweredCloseIsRepeatedThenLeftToTheBoardsTimeout) {
   ph::LinkOptions options;
   options.close_attempts = 5;
   std::string error;
-  auto link = ph::Link::Open(std::unique_ptr<ph::Transport>(transport), options, &error);
-  CHECK_TEXT(link.ok(), error.c_str());
+  auto link = ph::Link::Open(std::unique_ptr<ph::Transport>(transport), options);
+  CHECK_TEXT(link.ok(), link.message.c_str());
   transport->muted = true;
   const auto start = std::chrono::steady_clock::now();
   LONGS_EQUAL((int)pp::Status::kTimeout, (int)link.value->Close());
@@ -129,8 +128,8 @@ TEST(LinkSession, ABootloadersUnsupportedAnswersCloseAndRelease) {
   ph::LinkOptions options;
   options.close_resend_ms = 200;  // an unheard answer would cost seconds
   std::string error;
-  auto link = ph::Link::Open(std::make_unique<BoardTransport>(board), options, &error);
-  CHECK_TEXT(link.ok(), error.c_str());
+  auto link = ph::Link::Open(std::make_unique<BoardTransport>(board), options);
+  CHECK_TEXT(link.ok(), link.message.c_str());
   const auto start = std::chrono::steady_clock::now();
   LONGS_EQUAL((int)pp::Status::kOk, (int)link.value->Release());
   LONGS_EQUAL((int)pp::Status::kOk, (int)link.value->Close());
@@ -143,8 +142,8 @@ TEST(LinkSession, ABootloadersUnsupportedAnswersCloseAndRelease) {
 TEST(LinkSession, AReleaseStopsResendingWhatWasStreamed) {
   TestBoard board(pp::kCatalogHash, 1024, 25);  // shows nothing applied: streams are resent
   std::string error;
-  auto link = ph::Link::Open(std::make_unique<BoardTransport>(board), {}, &error);
-  CHECK_TEXT(link.ok(), error.c_str());
+  auto link = ph::Link::Open(std::make_unique<BoardTransport>(board), {});
+  CHECK_TEXT(link.ok(), link.message.c_str());
   pp::SetLineSetpoints m{};
   m.entry_count = 1;
   m.entries[0] = {0, 30000};
@@ -159,8 +158,8 @@ TEST(LinkSession, AReleaseStopsResendingWhatWasStreamed) {
 TEST(LinkSession, NoCloseIsSentToABoardWithAnotherCatalog) {
   TestBoard board(0x12345678, 1024, 23);
   std::string error;
-  auto link = ph::Link::Open(std::make_unique<BoardTransport>(board), {}, &error);
-  CHECK_TEXT(link.ok(), error.c_str());
+  auto link = ph::Link::Open(std::make_unique<BoardTransport>(board), {});
+  CHECK_TEXT(link.ok(), link.message.c_str());
   LONGS_EQUAL((int)pp::Status::kCatalogMismatch, (int)link.value->Close());
   LONGS_EQUAL(0, board.closes);
 }
@@ -178,11 +177,12 @@ TEST(LinkSessionSim, ASecondHostIsToldBusyAndGetsTheBoardOnceTheFirstCloses) {
   CHECK(first->SetLines({{0, 30.0}}).ok());
   std::string error;
   const auto start = std::chrono::steady_clock::now();
-  auto second = ph::Device::Open(sim.address(), {}, &error);
+  auto second = ph::Device::Open(sim.address(), {});
   const double took =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   LONGS_EQUAL((int)pp::Status::kBusy, (int)second.status);
-  CHECK_TEXT(error.find("busy: another host holds the board") != std::string::npos, error.c_str());
+  CHECK_TEXT(second.message.find("busy: another host holds the board") != std::string::npos,
+             second.message.c_str());
   CHECK_TEXT(took < 1.5, std::to_string(took).c_str());  // not the 3 s of an unanswered Hello
   // The first host was not disturbed.
   CHECK_FALSE(LineSafe(LastTelemetry(*first, 100), 0));
@@ -196,8 +196,8 @@ TEST(LinkSessionSim, ASecondHostIsToldBusyAndGetsTheBoardOnceTheFirstCloses) {
 TEST(LinkSessionSim, AHostThatSeesAnotherHostsHelloReplyKnowsItLostTheBoard) {
   auto* transport = new MutableTransport(Tcp(sim.address()));
   std::string error;
-  auto link = ph::Link::Open(std::unique_ptr<ph::Transport>(transport), {}, &error);
-  CHECK_TEXT(link.ok(), error.c_str());
+  auto link = ph::Link::Open(std::unique_ptr<ph::Transport>(transport), {});
+  CHECK_TEXT(link.ok(), link.message.c_str());
   transport->muted = true;  // this host goes quiet: the board ends its session (nothing actuated)
   std::this_thread::sleep_for(std::chrono::milliseconds(250));
   palpa::testing::MiniClient other;
@@ -221,8 +221,8 @@ TEST(LinkSessionSim, AHostTheBoardTimedOutIsToldSoAndOpensANewSession) {
   auto* transport = new MutableTransport(Tcp(sim.address()));
   std::string error;
   ph::DeviceOptions options;
-  auto device = ph::Device::Attach(std::unique_ptr<ph::Transport>(transport), options, &error);
-  CHECK_TEXT(device.ok(), error.c_str());
+  auto device = ph::Device::Attach(std::unique_ptr<ph::Transport>(transport), options);
+  CHECK_TEXT(device.ok(), device.message.c_str());
   ph::Device& d = *device.value;
   CHECK(d.SetLines({{0, 30.0}}).ok());
   transport->muted = true;  // the host stalls for longer than the board's timeout

@@ -32,8 +32,8 @@ namespace {
 
 std::unique_ptr<ph::Link> OpenLink(std::unique_ptr<ph::Transport> t, ph::LinkOptions options = {}) {
   std::string error;
-  auto link = ph::Link::Open(std::move(t), options, &error);
-  CHECK_TEXT(link.ok(), error.c_str());
+  auto link = ph::Link::Open(std::move(t), options);
+  CHECK_TEXT(link.ok(), link.message.c_str());
   return std::move(link.value);
 }
 
@@ -58,8 +58,8 @@ std::unique_ptr<ph::Transport> LaunchSimAt(const char* speed) {
 /// A device on palpa-sim at `speed` times real time.
 std::unique_ptr<ph::Device> OpenSimAt(const char* speed) {
   std::string error;
-  auto device = ph::Device::Attach(LaunchSimAt(speed), {}, &error);
-  CHECK_TEXT(device.ok(), error.c_str());
+  auto device = ph::Device::Attach(LaunchSimAt(speed), {});
+  CHECK_TEXT(device.ok(), device.message.c_str());
   return std::move(device.value);
 }
 
@@ -153,7 +153,7 @@ class PluggedTransport final : public ph::Transport {
   PluggedTransport(TestBoard& board, Cable& cable) : board_(board), cable_(cable) {
     ++cable_.opened;
   }
-  ph::Result<size_t> Read(uint8_t* out, size_t capacity, int timeout_ms) override {
+  pp::Result<size_t> Read(uint8_t* out, size_t capacity, int timeout_ms) override {
     if (!cable_.plugged) return pp::Status::kDisconnected;
     {
       std::lock_guard<std::mutex> lock(cable_.mutex);
@@ -181,11 +181,8 @@ ph::LinkOptions ReopeningOptions(TestBoard& board, Cable& cable) {
   ph::LinkOptions options;
   options.command_timeout_ms = 300;
   options.reopen_interval_ms = 20;
-  options.reopen = [&](std::string* error) -> ph::Result<std::unique_ptr<ph::Transport>> {
-    if (!cable.plugged) {
-      *error = "no such device";
-      return pp::Status::kNotFound;
-    }
+  options.reopen = [&]() -> ph::Result<std::unique_ptr<ph::Transport>> {
+    if (!cable.plugged) return {pp::Status::kNotFound, "no such device"};
     return std::unique_ptr<ph::Transport>(new PluggedTransport(board, cable));
   };
   return options;
@@ -343,9 +340,9 @@ TEST(LinkSim, StreamsConvergeToTheLatestValueUnderFaults) {
   ph::FaultSpec faults;
   faults.drop = 0.01;
   faults.bit_flip = 0.001;
-  auto device = ph::Device::Attach(
-      std::make_unique<ph::FaultTransport>(LaunchSimAt("0.25"), faults, 7), {}, &error);
-  CHECK_TEXT(device.ok(), error.c_str());
+  auto device =
+      ph::Device::Attach(std::make_unique<ph::FaultTransport>(LaunchSimAt("0.25"), faults, 7), {});
+  CHECK_TEXT(device.ok(), device.message.c_str());
   // A 1 % byte loss drops about one heartbeat in seven; four in a row would trip the default
   // 100 ms host-silence timeout now and then. This test is about the stream, so give it 1 s.
   ConfigureHostTimeout(*device.value, 1000000);
@@ -422,8 +419,8 @@ TEST(LinkSim, ACallbackMayUnsubscribeItself) {
 
 TEST(LinkSim, DeviceConfiguresReadsBackAndRecords) {
   std::string error;
-  auto opened = ph::Device::Open("sim:thesis-jamming-2", {}, &error);
-  CHECK_TEXT(opened.ok(), error.c_str());
+  auto opened = ph::Device::Open("sim:thesis-jamming-2", {});
+  CHECK_TEXT(opened.ok(), opened.message.c_str());
   ph::Device& d = *opened.value;
   auto board = d.ReadBoard();
   CHECK(board.ok());
@@ -495,8 +492,8 @@ TEST(LinkSim, OverARealPtyWithSerialSettings) {
   palpa::testing::SimProcess sim;
   CHECK(sim.Start({"--config", "thesis-pneumatic-3", "--listen", "pty:" + path}));
   std::string error;
-  auto device = ph::Device::Open("serial:" + path + "?baud=115200", {}, &error);
-  CHECK_TEXT(device.ok(), error.c_str());
+  auto device = ph::Device::Open("serial:" + path + "?baud=115200", {});
+  CHECK_TEXT(device.ok(), device.message.c_str());
   STRCMP_EQUAL("thesis-pneumatic-3", device.value->info().config_name.data());
   const ph::Outcome set = device.value->Set({{2, {ph::TargetKind::kLevel, 1}}});
   CHECK_TEXT(set.ok(), set.message.c_str());
@@ -514,8 +511,8 @@ TEST(LinkSim, HeartbeatsFollowAShorterHostTimeoutSetInTheSession) {
   ConfigureHostTimeout(*device, 20000);
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));
   std::string error;
-  const auto diagnostics = device->Diagnostics(&error);
-  CHECK_TEXT(diagnostics.ok(), error.c_str());
+  const auto diagnostics = device->Diagnostics();
+  CHECK_TEXT(diagnostics.ok(), diagnostics.message.c_str());
   STRCMP_EQUAL("none", ph::FaultNames(diagnostics.value.fault_bitmap).c_str());
 }
 
@@ -524,8 +521,8 @@ TEST(LinkSim, HeartbeatsFollowAShorterHostTimeoutInAStagedConfiguration) {
   // the timeout from what it staged when the commit goes out.
   const auto device = OpenSimAt("0.1");
   std::string error;
-  auto board = device->ReadBoard(&error);
-  CHECK_TEXT(board.ok(), error.c_str());
+  auto board = device->ReadBoard();
+  CHECK_TEXT(board.ok(), board.message.c_str());
   board.value.host_timeout_us = 20000;
   const std::vector<uint8_t> blob = StagedRecord(board.value);
   // Sizes the board's staging buffer cannot hold are refused before anything is sent.
@@ -537,15 +534,15 @@ TEST(LinkSim, HeartbeatsFollowAShorterHostTimeoutInAStagedConfiguration) {
   const ph::Outcome staged = device->ConfigureStaged(blob.data(), blob.size());
   CHECK_TEXT(staged.ok(), staged.message.c_str());
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));
-  const auto diagnostics = device->Diagnostics(&error);
-  CHECK_TEXT(diagnostics.ok(), error.c_str());
+  const auto diagnostics = device->Diagnostics();
+  CHECK_TEXT(diagnostics.ok(), diagnostics.message.c_str());
   STRCMP_EQUAL("none", ph::FaultNames(diagnostics.value.fault_bitmap).c_str());
 }
 
 TEST(LinkSim, AStagedConfigurationTheBoardRefusesNamesTheRecordAndChangesNothing) {
   const auto device = OpenSimAt("1");
   std::string error;
-  auto line = device->ReadLine(3, &error);  // a bias line: its ceiling is below 30 kPa
+  auto line = device->ReadLine(3);  // a bias line: its ceiling is below 30 kPa
   CHECK_TEXT(line.ok(), error.c_str());
   const int32_t limit_before = line.value.limit_max_pa;
   line.value.limit_max_pa = 30000;
@@ -555,7 +552,7 @@ TEST(LinkSim, AStagedConfigurationTheBoardRefusesNamesTheRecordAndChangesNothing
   CHECK_TEXT(refused.message.find("staged commit") != std::string::npos, refused.message.c_str());
   // Named as this API numbers lines (from 0): ReadLine(3) above.
   CHECK_TEXT(refused.message.find("(line 3)") != std::string::npos, refused.message.c_str());
-  const auto after = device->ReadLine(3, &error);
-  CHECK_TEXT(after.ok(), error.c_str());
+  const auto after = device->ReadLine(3);
+  CHECK_TEXT(after.ok(), after.message.c_str());
   LONGS_EQUAL(limit_before, after.value.limit_max_pa);
 }

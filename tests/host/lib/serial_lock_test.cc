@@ -52,20 +52,22 @@ TEST_GROUP(SerialLock) {
 
 TEST(SerialLock, ASecondOpenIsBusyAndNamesTheHolder) {
   std::string error;
-  auto first = ph::OpenTransport("serial:" + port, &error);
-  CHECK_TEXT(first.ok(), error.c_str());
+  auto first = ph::OpenTransport("serial:" + port);
+  CHECK_TEXT(first.ok(), first.message.c_str());
   std::ifstream lock(LockFile());
   long owner = 0;
   CHECK(static_cast<bool>(lock >> owner));
   LONGS_EQUAL(getpid(), owner);  // the convention: the holder's PID in ASCII
-  auto second = ph::OpenTransport("serial:" + port, &error);
+  auto second = ph::OpenTransport("serial:" + port);
   LONGS_EQUAL((int)pp::Status::kBusy, (int)second.status);
-  CHECK_TEXT(error.find("busy: another host holds the board") == 0, error.c_str());
-  CHECK_TEXT(error.find("pid " + std::to_string(getpid())) != std::string::npos, error.c_str());
+  CHECK_TEXT(second.message.find("busy: another host holds the board") == 0,
+             second.message.c_str());
+  CHECK_TEXT(second.message.find("pid " + std::to_string(getpid())) != std::string::npos,
+             second.message.c_str());
   first.value.reset();  // closed: the lock goes with it
   CHECK(access(LockFile().c_str(), F_OK) != 0);
-  auto third = ph::OpenTransport("serial:" + port, &error);
-  CHECK_TEXT(third.ok(), error.c_str());
+  auto third = ph::OpenTransport("serial:" + port);
+  CHECK_TEXT(third.ok(), third.message.c_str());
 }
 
 TEST(SerialLock, AStaleLockIsTakenOver) {
@@ -74,8 +76,8 @@ TEST(SerialLock, AStaleLockIsTakenOver) {
   waitpid(gone, nullptr, 0);  // a PID that no process has any more
   std::ofstream(LockFile()) << "     " << gone << "\n";
   std::string error;
-  auto t = ph::OpenTransport("serial:" + port, &error);
-  CHECK_TEXT(t.ok(), error.c_str());
+  auto t = ph::OpenTransport("serial:" + port);
+  CHECK_TEXT(t.ok(), t.message.c_str());
   std::ifstream lock(LockFile());
   long owner = 0;
   CHECK(static_cast<bool>(lock >> owner));
@@ -84,8 +86,8 @@ TEST(SerialLock, AStaleLockIsTakenOver) {
 
 TEST(SerialLock, TheOpenPortIsExclusive) {
   std::string error;
-  auto t = ph::OpenTransport("serial:" + port, &error);
-  CHECK_TEXT(t.ok(), error.c_str());
+  auto t = ph::OpenTransport("serial:" + port);
+  CHECK_TEXT(t.ok(), t.message.c_str());
   int exclusive = 0;
   CHECK(ioctl(slave, TIOCGEXCL, &exclusive) == 0);  // the flag belongs to the terminal
   LONGS_EQUAL(1, exclusive);
@@ -123,8 +125,8 @@ TEST(SerialLock, APortOpenedExclusivelyWithoutALockIsBusy) {
   if (opener == 0) {
     if (getuid() == 0 && (setgid(65534) != 0 || setuid(65534) != 0)) _exit(2);
     std::string error;
-    const auto t = ph::OpenTransport("serial:" + port, &error);
-    const std::string said = std::to_string(static_cast<int>(t.status)) + " " + error;
+    const auto t = ph::OpenTransport("serial:" + port);
+    const std::string said = std::to_string(static_cast<int>(t.status)) + " " + t.message;
     _exit(write(answer[1], said.data(), said.size()) == static_cast<ssize_t>(said.size()) ? 0 : 1);
   }
   close(answer[1]);

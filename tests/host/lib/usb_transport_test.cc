@@ -19,8 +19,8 @@ TEST_GROUP(HidTransport){void setup() override{palpa::testing::ResetFakes();
 void teardown() override { palpa::testing::ResetFakes(); }
 std::unique_ptr<ph::Transport> Open(const char* uri = "hid:1209:0001") {
   std::string error;
-  auto t = ph::OpenTransport(uri, &error);
-  CHECK_TEXT(t.ok(), error.c_str());
+  auto t = ph::OpenTransport(uri);
+  CHECK_TEXT(t.ok(), t.message.c_str());
   return std::move(t.value);
 }
 }
@@ -86,28 +86,28 @@ TEST(HidTransport, ReadsAndWritesThroughHandlesOfTheirOwn) {
 TEST(HidTransport, ASecondHandleThatCannotBeOpenedClosesTheFirst) {
   Hid().open_failures_after = 1;
   std::string error;
-  auto t = ph::OpenTransport("hid:1209:0001", &error);
+  auto t = ph::OpenTransport("hid:1209:0001");
   LONGS_EQUAL((int)pp::Status::kNotFound, (int)t.status);
-  CHECK(error.find("hid:1209:0001: cannot open /dev/hidraw-fake (fake hidapi error)") !=
+  CHECK(t.message.find("hid:1209:0001: cannot open /dev/hidraw-fake (fake hidapi error)") !=
         std::string::npos);
   LONGS_EQUAL(1, Hid().closed_handles);
 }
 
 TEST(HidTransport, OtherSerialNumbersAreNotOpened) {
   std::string error;
-  auto t = ph::OpenTransport("hid:1209:0001:XYZ", &error);
+  auto t = ph::OpenTransport("hid:1209:0001:XYZ");
   LONGS_EQUAL((int)pp::Status::kNotFound, (int)t.status);
-  CHECK(error.find("hid:1209:0001:XYZ: no such device") != std::string::npos);
+  CHECK(t.message.find("hid:1209:0001:XYZ: no such device") != std::string::npos);
   LONGS_EQUAL(0, Hid().opened);
 }
 
 TEST(HidTransport, MissingDeviceIsNamed) {
   Hid().present = false;
   std::string error;
-  auto t = ph::OpenTransport("hid:1209:0001:ABC", &error);
+  auto t = ph::OpenTransport("hid:1209:0001:ABC");
   LONGS_EQUAL((int)pp::Status::kNotFound, (int)t.status);
-  CHECK(error.find("hid:1209:0001:ABC") != std::string::npos);
-  CHECK(error.find("udev") != std::string::npos);
+  CHECK(t.message.find("hid:1209:0001:ABC") != std::string::npos);
+  CHECK(t.message.find("udev") != std::string::npos);
 }
 
 TEST_GROUP(UsbTransport){void setup() override{palpa::testing::ResetFakes();
@@ -118,8 +118,8 @@ void teardown() override { palpa::testing::ResetFakes(); }
 
 TEST(UsbTransport, BulkInAndOutWithShortTransfersAndStalls) {
   std::string error;
-  auto t = ph::OpenTransport("usb:1209:0001:PALPA-0042", &error);
-  CHECK_TEXT(t.ok(), error.c_str());
+  auto t = ph::OpenTransport("usb:1209:0001:PALPA-0042");
+  CHECK_TEXT(t.ok(), t.message.c_str());
   Usb().out_chunk = 7;  // the device takes 7 bytes per transfer
   Usb().stall_next_out = 1;
   std::vector<uint8_t> bytes(30, 0xAB);
@@ -143,38 +143,38 @@ TEST(UsbTransport, BulkInAndOutWithShortTransfersAndStalls) {
 }
 
 TEST(UsbTransport, OpenFailuresSayWhy) {
-  std::string error;
-  CHECK(ph::OpenTransport("usb:1209:0001:OTHER-SERIAL", &error).status == pp::Status::kNotFound);
+  CHECK(ph::OpenTransport("usb:1209:0001:OTHER-SERIAL").status == pp::Status::kNotFound);
   Usb().access_denied = true;
-  CHECK(ph::OpenTransport("usb:1209:0001", &error).status == pp::Status::kUnavailable);
-  CHECK(error.find("udev") != std::string::npos);
+  const auto denied = ph::OpenTransport("usb:1209:0001");
+  CHECK(denied.status == pp::Status::kUnavailable);
+  CHECK(denied.message.find("udev") != std::string::npos);
   Usb().access_denied = false;
   Usb().has_bulk_pair = false;
-  CHECK(ph::OpenTransport("usb:1209:0001", &error).status == pp::Status::kUnsupported);
+  CHECK(ph::OpenTransport("usb:1209:0001").status == pp::Status::kUnsupported);
   Usb().has_bulk_pair = true;
   Usb().claim_result = -6;  // LIBUSB_ERROR_BUSY
-  CHECK(ph::OpenTransport("usb:1209:0001", &error).status == pp::Status::kBusy);
+  CHECK(ph::OpenTransport("usb:1209:0001").status == pp::Status::kBusy);
   Usb().present = false;
-  CHECK(ph::OpenTransport("usb:1209:0001", &error).status == pp::Status::kNotFound);
+  CHECK(ph::OpenTransport("usb:1209:0001").status == pp::Status::kNotFound);
 }
 
 TEST_GROUP(DeviceUri){};
 
 TEST(DeviceUri, BadUrisNameTheirFault) {
-  std::string error;
-  CHECK(ph::OpenTransport("tcp:localhost", &error).status == pp::Status::kInvalidArgument);
-  CHECK(error.find("tcp:HOST:PORT") != std::string::npos);
-  CHECK(ph::OpenTransport("tcp:localhost:99999", &error).status == pp::Status::kInvalidArgument);
-  CHECK(ph::OpenTransport("hid:12G9:0001", &error).status == pp::Status::kInvalidArgument);
-  CHECK(error.find("vendor id") != std::string::npos);
-  CHECK(ph::OpenTransport("serial:/dev/null?speed=9", &error).status ==
-        pp::Status::kInvalidArgument);
-  CHECK(ph::OpenTransport("bluetooth:x", &error).status == pp::Status::kInvalidArgument);
-  CHECK(error.find("unknown scheme") != std::string::npos);
-  CHECK(ph::OpenTransport("serial:/nonexistent/tty", &error).status == pp::Status::kNotFound);
-  CHECK(ph::OpenTransport("serial:/dev/null", &error).status ==
-        pp::Status::kInvalidArgument);  // not a tty
-  CHECK(ph::OpenTransport("tcp:127.0.0.1:1", &error).status == pp::Status::kUnavailable);
+  auto opened = ph::OpenTransport("tcp:localhost");
+  CHECK(opened.status == pp::Status::kInvalidArgument);
+  CHECK(opened.message.find("tcp:HOST:PORT") != std::string::npos);
+  CHECK(ph::OpenTransport("tcp:localhost:99999").status == pp::Status::kInvalidArgument);
+  opened = ph::OpenTransport("hid:12G9:0001");
+  CHECK(opened.status == pp::Status::kInvalidArgument);
+  CHECK(opened.message.find("vendor id") != std::string::npos);
+  CHECK(ph::OpenTransport("serial:/dev/null?speed=9").status == pp::Status::kInvalidArgument);
+  opened = ph::OpenTransport("bluetooth:x");
+  CHECK(opened.status == pp::Status::kInvalidArgument);
+  CHECK(opened.message.find("unknown scheme") != std::string::npos);
+  CHECK(ph::OpenTransport("serial:/nonexistent/tty").status == pp::Status::kNotFound);
+  CHECK(ph::OpenTransport("serial:/dev/null").status == pp::Status::kInvalidArgument);  // not a tty
+  CHECK(ph::OpenTransport("tcp:127.0.0.1:1").status == pp::Status::kUnavailable);
 }
 
 TEST_GROUP(DeviceList){void setup() override{palpa::testing::ResetFakes();

@@ -29,7 +29,7 @@ struct ContactOptions {
 RigStatus GuardedMove(Rig& rig, double mm, double speed_mm_s, double poll_s = 0.01);
 
 /// Stops the stage, retracts to the safe height and vents the board: the one way out of a run.
-RigStatus AbortSafe(Rig& rig, const std::string& why);
+RigStatus AbortSafe(Rig& rig, host::Status status, const std::string& why);
 
 /// Approaches from `expected_mm` + approach and creeps down until contact; returns the encoder
 /// position at contact (the surface height), then lifts clear by the approach distance. A creep

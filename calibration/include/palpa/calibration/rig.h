@@ -6,14 +6,15 @@
 #include <cstdint>
 #include <string>
 
+#include "palpa/host/outcome.h"
+
 namespace palpa::calibration {
 
-/// Every rig operation says whether it worked and, if not, why (device lost, limit hit...).
-struct RigStatus {
-  bool ok = true;
-  std::string error;
-  static RigStatus Fail(std::string why) { return {false, std::move(why)}; }
-};
+/// Every rig operation says whether it worked and, if not, why — in words and by a code that tells
+/// the cases apart: a device that no longer answers (kUnavailable), a safety limit crossed (force,
+/// depth, travel: kOutOfRange), a board fault (kFaulted), or the code the board refused with.
+using RigStatus = host::Outcome;
+using host::Status;
 
 /// Time as the rig lives it: real on hardware, virtual in-process (waiting advances the plant).
 class RigTime {
@@ -40,7 +41,7 @@ class Stage {
   /// `stop_n` (newtons, compressive, after the tare). Only where stops_on_force().
   virtual RigStatus MoveUntilForce(double mm, double speed_mm_s, double stop_n) {
     (void)mm, (void)speed_mm_s, (void)stop_n;
-    return RigStatus::Fail("this stage has no force-limit stop");
+    return RigStatus::Fail(host::Status::kUnsupported, "this stage has no force-limit stop");
   }
 };
 

@@ -56,10 +56,14 @@ class Session {
   /// The actuator's last calibration, for the detector that notices it changed: kBadValue when
   /// it cannot be read, kInvalidArgument when it calibrates another actuator.
   host::Outcome LoadPrevious();
-  /// The protocol on the rig. kUnavailable when a step stopped it (the stage retracted, the
-  /// board vented, the journal kept); kBadValue when the compensator could not be fitted and
-  /// options.allow_fallback is off (the journal kept, nothing written).
+  /// The protocol on the rig. When a step stopped it (stopped(): the stage retracted, the board
+  /// vented, the journal kept) the rig's status says why: kOutOfRange for a safety limit (force,
+  /// depth, travel), kUnavailable for a device that no longer answers, kFaulted for a board
+  /// fault. kBadValue when the compensator could not be fitted and options.allow_fallback is off
+  /// (the journal kept, nothing written).
   host::Outcome Run(const std::function<void(const Progress&)>& progress);
+  /// The last Run was stopped on the rig (not a fit that failed after it).
+  bool stopped() const { return stopped_; }
   /// The calibration file, raw readings and report, each whole; the journal then goes. kIoError.
   host::Outcome Write();
   /// All phases in order; the first that fails ends it.
@@ -84,6 +88,7 @@ class Session {
   Journal journal_;
   std::optional<host::CalibrationFile> previous_;
   CalibrationRun run_;
+  bool stopped_ = false;
 };
 
 }  // namespace palpa::calibration

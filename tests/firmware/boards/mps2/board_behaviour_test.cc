@@ -47,16 +47,16 @@ std::unique_ptr<ph::Device> OpenAtTheBoardsOwnSpeed(palpa::testing::QemuProcess&
           qemu.Start(PALPA_QEMU, {"-icount", "shift=5,align=on", "-kernel", PALPA_MPS2_IMAGE}),
       "QEMU or the mps2 image is missing (build the mps2 preset)");
   std::string error;
-  auto opened = ph::Device::Open(qemu.address(), {}, &error);
-  CHECK_TEXT(opened.ok(), error.c_str());
-  auto board = opened.value->ReadBoard(&error);
-  CHECK_TEXT(board.ok(), error.c_str());
-  const auto before = opened.value->LoopStats(&error);
-  CHECK_TEXT(before.ok(), error.c_str());
+  auto opened = ph::Device::Open(qemu.address(), {});
+  CHECK_TEXT(opened.ok(), opened.message.c_str());
+  auto board = opened.value->ReadBoard();
+  CHECK_TEXT(board.ok(), board.message.c_str());
+  const auto before = opened.value->LoopStats();
+  CHECK_TEXT(before.ok(), before.message.c_str());
   board.value.host_timeout_us = 10000000;
   CHECK(opened.value->ConfigureBoard(board.value).ok());
-  const auto after = opened.value->LoopStats(&error);
-  CHECK_TEXT(after.ok(), error.c_str());
+  const auto after = opened.value->LoopStats();
+  CHECK_TEXT(after.ok(), after.message.c_str());
   if (setup_overruns != nullptr) *setup_overruns = after.value.overruns - before.value.overruns;
   return std::move(opened.value);
 }
@@ -65,19 +65,19 @@ std::unique_ptr<ph::Device> OpenAtTheBoardsOwnSpeed(palpa::testing::QemuProcess&
 palpa::core::BoardConfig ReadWholeConfig(ph::Device& d) {
   palpa::core::BoardConfig config{};
   std::string error;
-  const auto board = d.ReadBoard(&error);
-  CHECK_TEXT(board.ok(), error.c_str());
+  const auto board = d.ReadBoard();
+  CHECK_TEXT(board.ok(), board.message.c_str());
   config.board = board.value;
   config.line_count = d.info().line_count;
   for (uint8_t i = 0; i < config.line_count; ++i) {
-    const auto line = d.ReadLine(i, &error);
-    CHECK_TEXT(line.ok(), error.c_str());
+    const auto line = d.ReadLine(i);
+    CHECK_TEXT(line.ok(), line.message.c_str());
     config.lines[i] = line.value;
   }
   config.finger_count = d.info().finger_count;
   for (uint8_t f = 0; f < config.finger_count; ++f) {
-    const auto finger = d.ReadFinger(f, &error);
-    CHECK_TEXT(finger.ok(), error.c_str());
+    const auto finger = d.ReadFinger(f);
+    CHECK_TEXT(finger.ok(), finger.message.c_str());
     config.fingers[f] = finger.value;
   }
   return config;
@@ -96,8 +96,8 @@ TEST(QemuBoard, AtTheBoardsOwnSpeedTheLoopMissesNoDeadline) {
     CHECK(d.SetLines({{0, 20.0 + i % 10}}).ok());
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
-  const auto stats = d.LoopStats(&error);
-  CHECK_TEXT(stats.ok(), error.c_str());
+  const auto stats = d.LoopStats();
+  CHECK_TEXT(stats.ok(), stats.message.c_str());
   CHECK(stats.value.ticks > 100);
   LONGS_EQUAL(0, stats.value.overruns - setup_overruns);
   CHECK_TEXT(stats.value.worst_tick_us < stats.value.period_us,
@@ -118,14 +118,14 @@ TEST(QemuBoard, AtTheBoardsOwnSpeedAConfigurationChangeCostsAtMostThreeTicks) {
   const auto size = palpa::core::EncodeConfigBlob(config, blob.data(), blob.size());
   CHECK(size.ok());
   std::string error;
-  const auto before = d.LoopStats(&error);
-  CHECK_TEXT(before.ok(), error.c_str());
+  const auto before = d.LoopStats();
+  CHECK_TEXT(before.ok(), before.message.c_str());
   const ph::Outcome applied = d.ConfigureStaged(blob.data(), size.value);
   CHECK_TEXT(applied.ok(), applied.message.c_str());
-  const auto after = d.LoopStats(&error);
-  CHECK_TEXT(after.ok(), error.c_str());
-  const auto line = d.ReadLine(1, &error);
-  CHECK_TEXT(line.ok(), error.c_str());
+  const auto after = d.LoopStats();
+  CHECK_TEXT(after.ok(), after.message.c_str());
+  const auto line = d.ReadLine(1);
+  CHECK_TEXT(line.ok(), line.message.c_str());
   LONGS_EQUAL(config.lines[1].slew_pa_per_s, line.value.slew_pa_per_s);
   const uint32_t cost = after.value.overruns - before.value.overruns;
   const std::string figures = std::to_string(cost) + " periods skipped, largest lateness " +

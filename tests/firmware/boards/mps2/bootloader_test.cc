@@ -36,10 +36,10 @@ std::vector<uint8_t> Read(const std::string& path) {
 
 std::unique_ptr<ph::Link> Connect(const QemuProcess& qemu) {
   std::string error;
-  auto t = ph::OpenTransport(qemu.address(), &error);
-  CHECK_TEXT(t.ok(), error.c_str());
-  auto link = ph::Link::Open(std::move(t.value), ph::LinkOptions{}, &error);
-  CHECK_TEXT(link.ok(), error.c_str());
+  auto t = ph::OpenTransport(qemu.address());
+  CHECK_TEXT(t.ok(), t.message.c_str());
+  auto link = ph::Link::Open(std::move(t.value), ph::LinkOptions{});
+  CHECK_TEXT(link.ok(), link.message.c_str());
   return std::move(link.value);
 }
 
@@ -156,10 +156,10 @@ TEST(QemuBootloader, ThroughTheApplicationAReleaseIsFlashedBootedAndConfirmed) {
   CHECK(qemu.Start(PALPA_QEMU, {"-icount", "shift=5,align=on", "-kernel", kBoot, "-device",
                                 "loader,file=" + SlotImage(0) + ",addr=0x8000,force-raw=on"}));
   std::string error;
-  auto device = ph::Device::Open(qemu.address(), {}, &error);
-  CHECK_TEXT(device.ok(), error.c_str());
-  auto board = device.value->ReadBoard(&error);
-  CHECK_TEXT(board.ok(), error.c_str());
+  auto device = ph::Device::Open(qemu.address(), {});
+  CHECK_TEXT(device.ok(), device.message.c_str());
+  auto board = device.value->ReadBoard();
+  CHECK_TEXT(board.ok(), board.message.c_str());
   board.value.host_timeout_us = 10000000;
   CHECK(device.value->ConfigureBoard(board.value).ok());
   ph::Link* link = &device.value->link();
@@ -185,10 +185,10 @@ TEST(QemuBootloader, ACommandLongerThanTheWatchdogPeriodLeavesAnActuatingApplica
   CHECK(qemu.Start(PALPA_QEMU, {"-icount", "shift=5,align=on", "-kernel", kBoot, "-device",
                                 "loader,file=" + SlotImage(0) + ",addr=0x8000,force-raw=on"}));
   std::string error;
-  auto device = ph::Device::Open(qemu.address(), {}, &error);
-  CHECK_TEXT(device.ok(), error.c_str());
-  auto board = device.value->ReadBoard(&error);
-  CHECK_TEXT(board.ok(), error.c_str());
+  auto device = ph::Device::Open(qemu.address(), {});
+  CHECK_TEXT(device.ok(), device.message.c_str());
+  auto board = device.value->ReadBoard();
+  CHECK_TEXT(board.ok(), board.message.c_str());
   board.value.host_timeout_us = 10000000;  // heartbeats paced in real time, as above
   CHECK(device.value->ConfigureBoard(board.value).ok());
   ph::Link& link = device.value->link();
@@ -215,8 +215,8 @@ TEST(QemuBootloader, AnUpdateItsHostClosesMidwayLeavesNoFaultAndCanResume) {
                                 "loader,file=" + SlotImage(0) + ",addr=0x8000,force-raw=on"}));
   std::string error;
   {  // A host starts an update, writes its first chunk and closes its session.
-    auto device = ph::Device::Open(qemu.address(), {}, &error);
-    CHECK_TEXT(device.ok(), error.c_str());
+    auto device = ph::Device::Open(qemu.address(), {});
+    CHECK_TEXT(device.ok(), device.message.c_str());
     ph::Link& link = device.value->link();
     LONGS_EQUAL((int)pp::Status::kOk, (int)link.Command(pp::UpdateEnter{1, size}).status);
     LONGS_EQUAL((int)pp::Status::kOk, (int)link.Command(pp::UpdateErase{1, 0, size}, 60000).status);
@@ -228,8 +228,8 @@ TEST(QemuBootloader, AnUpdateItsHostClosesMidwayLeavesNoFaultAndCanResume) {
     LONGS_EQUAL((int)pp::Status::kBusy, (int)device.value->SetLines({{0, 20.0}}).status);
   }
   // The next host's session is not held by it, and no fault was left: its setpoints are taken.
-  auto device = ph::Device::Open(qemu.address(), {}, &error);
-  CHECK_TEXT(device.ok(), error.c_str());
+  auto device = ph::Device::Open(qemu.address(), {});
+  CHECK_TEXT(device.ok(), device.message.c_str());
   ph::Link& link = device.value->link();
   LONGS_EQUAL(0, device.value->info().fault_bitmap);
   pp::UpdateStatus status{};

@@ -100,7 +100,7 @@ class Board {
 
  private:
   /// A handler's answer: a status for Ack/Nack, or a report it has already queued.
-  struct Outcome {
+  struct HandlerAnswer {
     Status status = Status::kOk;
     uint32_t detail = 0;
     bool replied = false;  ///< a report went out instead of an Ack
@@ -124,43 +124,45 @@ class Board {
   /// Link input and output between ticks. Out of line, so instruction counts can bracket a poll.
   [[gnu::noinline]] void Poll(uint64_t now_us);
   void OnFrame(const protocol::Frame& frame, uint64_t now_us);
-  Outcome Handle(const protocol::Frame& frame, uint64_t now_us);
+  HandlerAnswer Handle(const protocol::Frame& frame, uint64_t now_us);
   void Answer(uint8_t type, uint8_t seq, uint8_t answer_flags, Status status, uint32_t detail);
-  Outcome Apply(const protocol::Hello& m, const protocol::Header& h, uint64_t now_us);
-  Outcome Apply(const protocol::EStop&, const protocol::Header& h, uint64_t now_us);
-  Outcome Apply(const protocol::Close& m, const protocol::Header& h, uint64_t now_us);
-  Outcome Apply(const protocol::Release& m, const protocol::Header& h, uint64_t now_us);
-  Outcome Apply(const protocol::Heartbeat& m, const protocol::Header&, uint64_t now_us);
-  Outcome Apply(const protocol::SetLineSetpoints& m, const protocol::Header&, uint64_t now_us);
-  Outcome Apply(const protocol::SetFingerTargets& m, const protocol::Header&, uint64_t now_us);
-  Outcome Apply(const protocol::SetFingerMode& m, const protocol::Header&, uint64_t now_us);
-  Outcome Apply(const protocol::ConfigureLine& m, const protocol::Header&, uint64_t now_us);
-  Outcome Apply(const protocol::ConfigureFinger& m, const protocol::Header&, uint64_t now_us);
-  Outcome Apply(const protocol::ConfigureBoard& m, const protocol::Header&, uint64_t now_us);
-  Outcome Apply(const protocol::StagedBegin& m, const protocol::Header&, uint64_t now_us);
-  Outcome Apply(const protocol::StagedPart& m, const protocol::Header&, uint64_t now_us);
-  Outcome Apply(const protocol::StagedCommit& m, const protocol::Header&, uint64_t now_us);
-  Outcome Apply(const protocol::GetConfig& m, const protocol::Header& h, uint64_t now_us);
-  Outcome Apply(const protocol::SaveConfig&, const protocol::Header&, uint64_t now_us);
-  Outcome Apply(const protocol::FactoryReset&, const protocol::Header&, uint64_t now_us);
-  Outcome Apply(const protocol::ClearFault& m, const protocol::Header&, uint64_t now_us);
-  Outcome Apply(const protocol::GetLoopStats&, const protocol::Header& h, uint64_t now_us);
-  Outcome Apply(const protocol::GetDiagnostics&, const protocol::Header& h, uint64_t now_us);
-  Outcome Apply(const protocol::UpdateEnter& m, const protocol::Header&, uint64_t now_us);
-  Outcome Apply(const protocol::UpdateErase& m, const protocol::Header&, uint64_t now_us);
-  Outcome Apply(const protocol::UpdateWrite& m, const protocol::Header&, uint64_t now_us);
-  Outcome Apply(const protocol::UpdateQuery& m, const protocol::Header& h, uint64_t now_us);
-  Outcome Apply(const protocol::UpdateActivate& m, const protocol::Header&, uint64_t now_us);
-  Outcome Apply(const protocol::UpdateReboot&, const protocol::Header&, uint64_t now_us);
-  Outcome Apply(const protocol::UpdateConfirm& m, const protocol::Header&, uint64_t now_us);
-  Outcome Apply(const protocol::SlotsQuery&, const protocol::Header& h, uint64_t now_us);
+  HandlerAnswer Apply(const protocol::Hello& m, const protocol::Header& h, uint64_t now_us);
+  HandlerAnswer Apply(const protocol::EStop&, const protocol::Header& h, uint64_t now_us);
+  HandlerAnswer Apply(const protocol::Close& m, const protocol::Header& h, uint64_t now_us);
+  HandlerAnswer Apply(const protocol::Release& m, const protocol::Header& h, uint64_t now_us);
+  HandlerAnswer Apply(const protocol::Heartbeat& m, const protocol::Header&, uint64_t now_us);
+  HandlerAnswer Apply(const protocol::SetLineSetpoints& m, const protocol::Header&,
+                      uint64_t now_us);
+  HandlerAnswer Apply(const protocol::SetFingerTargets& m, const protocol::Header&,
+                      uint64_t now_us);
+  HandlerAnswer Apply(const protocol::SetFingerMode& m, const protocol::Header&, uint64_t now_us);
+  HandlerAnswer Apply(const protocol::ConfigureLine& m, const protocol::Header&, uint64_t now_us);
+  HandlerAnswer Apply(const protocol::ConfigureFinger& m, const protocol::Header&, uint64_t now_us);
+  HandlerAnswer Apply(const protocol::ConfigureBoard& m, const protocol::Header&, uint64_t now_us);
+  HandlerAnswer Apply(const protocol::StagedBegin& m, const protocol::Header&, uint64_t now_us);
+  HandlerAnswer Apply(const protocol::StagedPart& m, const protocol::Header&, uint64_t now_us);
+  HandlerAnswer Apply(const protocol::StagedCommit& m, const protocol::Header&, uint64_t now_us);
+  HandlerAnswer Apply(const protocol::GetConfig& m, const protocol::Header& h, uint64_t now_us);
+  HandlerAnswer Apply(const protocol::SaveConfig&, const protocol::Header&, uint64_t now_us);
+  HandlerAnswer Apply(const protocol::FactoryReset&, const protocol::Header&, uint64_t now_us);
+  HandlerAnswer Apply(const protocol::ClearFault& m, const protocol::Header&, uint64_t now_us);
+  HandlerAnswer Apply(const protocol::GetLoopStats&, const protocol::Header& h, uint64_t now_us);
+  HandlerAnswer Apply(const protocol::GetDiagnostics&, const protocol::Header& h, uint64_t now_us);
+  HandlerAnswer Apply(const protocol::UpdateEnter& m, const protocol::Header&, uint64_t now_us);
+  HandlerAnswer Apply(const protocol::UpdateErase& m, const protocol::Header&, uint64_t now_us);
+  HandlerAnswer Apply(const protocol::UpdateWrite& m, const protocol::Header&, uint64_t now_us);
+  HandlerAnswer Apply(const protocol::UpdateQuery& m, const protocol::Header& h, uint64_t now_us);
+  HandlerAnswer Apply(const protocol::UpdateActivate& m, const protocol::Header&, uint64_t now_us);
+  HandlerAnswer Apply(const protocol::UpdateReboot&, const protocol::Header&, uint64_t now_us);
+  HandlerAnswer Apply(const protocol::UpdateConfirm& m, const protocol::Header&, uint64_t now_us);
+  HandlerAnswer Apply(const protocol::SlotsQuery&, const protocol::Header& h, uint64_t now_us);
   /// Everything else: board-to-host messages.
   template <class M>
-  Outcome Apply(const M&, const protocol::Header&, uint64_t) {
+  HandlerAnswer Apply(const M&, const protocol::Header&, uint64_t) {
     return {Status::kUnsupported};
   }
   /// The edited candidate made live, or the refusal.
-  Outcome CommitCandidate(uint64_t now_us);
+  HandlerAnswer CommitCandidate(uint64_t now_us);
 
   BoardIo io_;
   BoardIdentity identity_;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "palpa/host/file_read.h"
+#include "palpa/host/outcome.h"
 #include "palpa/host/stiffness_map.h"
 #include "palpa/protocol/enums.h"
 #include "palpa/protocol/messages_config.h"
@@ -138,11 +139,10 @@ std::string DefaultCalibrationDir();
 /// DIR/SERIAL.json.
 std::string CalibrationPath(const std::string& dir, const std::string& serial);
 
-/// Loads the calibration of an actuator from `dir`. Status kNotFound with *error when there is
-/// none (no file, or a serial that cannot name one); kBadValue with *error ("PATH: field: rule")
-/// when there is a file but it is invalid, not a regular file, too large, or for another actuator.
-protocol::Result<CalibrationFile> FindCalibration(const std::string& dir, const std::string& serial,
-                                                  std::string* error);
+/// Loads the calibration of an actuator from `dir`. Status kNotFound when there is none (no file,
+/// or a serial that cannot name one); kBadValue ("PATH: field: rule") when there is a file but it
+/// is invalid, not a regular file, too large, or for another actuator.
+Result<CalibrationFile> FindCalibration(const std::string& dir, const std::string& serial);
 
 /// The curves a calibration gives the stiffness map: its measured curve and its range.
 FingerCurves CurvesFromCalibration(const CalibrationFile& c);

@@ -12,6 +12,7 @@
 #include "palpa/core/board_config.h"
 #include "palpa/host/board_curves.h"
 #include "palpa/host/link.h"
+#include "palpa/host/outcome.h"
 #include "palpa/host/stiffness_map.h"
 
 namespace palpa::hal::linux_files {
@@ -46,18 +47,6 @@ struct DeviceOptions {
 /// (wide), or a row per line per sample (long).
 enum class RecordLayout { kWide, kLong };
 
-/// The outcome of an operation: a shared status code plus words for a person.
-struct Outcome {
-  Status status = Status::kOk;
-  std::string message;
-  std::vector<std::string> notes;  ///< e.g. "finger 2: nominal thesis curves (no calibration)"
-  /// Refused for latched faults (faulted), or a clear refused while their cause persists
-  /// (condition_persists): which ones (fault bits). The message names them, when each latched
-  /// (board time) and what to do.
-  uint32_t faults = 0;
-  bool ok() const { return status == Status::kOk; }
-};
-
 struct FingerRequest {
   uint8_t finger = 0;  ///< 0-based, as on the wire
   Request request;
@@ -80,11 +69,10 @@ struct Applied {
 class Device {
  public:
   /// Opens a device URI (see OpenTransport) and a session with it.
-  static Result<std::unique_ptr<Device>> Open(const std::string& uri, DeviceOptions options,
-                                              std::string* error);
+  static Result<std::unique_ptr<Device>> Open(const std::string& uri, DeviceOptions options);
   /// Opens a session over a transport the caller made (tests, fault injection).
   static Result<std::unique_ptr<Device>> Attach(std::unique_ptr<Transport> transport,
-                                                DeviceOptions options, std::string* error);
+                                                DeviceOptions options);
   /// Closes the session (see Close).
   ~Device();
 
@@ -120,12 +108,12 @@ class Device {
   Outcome ConfigureStaged(const uint8_t* records, size_t size);
   Outcome SaveConfig();
   Outcome FactoryReset();
-  Result<pp::ConfigureLine> ReadLine(uint8_t line, std::string* error = nullptr);
-  Result<pp::ConfigureFinger> ReadFinger(uint8_t finger, std::string* error = nullptr);
-  Result<pp::ConfigureBoard> ReadBoard(std::string* error = nullptr);
+  Result<pp::ConfigureLine> ReadLine(uint8_t line);
+  Result<pp::ConfigureFinger> ReadFinger(uint8_t finger);
+  Result<pp::ConfigureBoard> ReadBoard();
   /// The board's whole live configuration (board, every line, every finger), read section by
   /// section; ConfigToJson (config_json.h) gives it as palpa config show prints it.
-  Result<BoardConfig> ReadConfig(std::string* error = nullptr);
+  Result<BoardConfig> ReadConfig();
   /// `config` checked with the firmware's own validation (kOutOfRange, naming the section) and
   /// encoded as the staged upload's records (kOverflow when they do not fit the board's staging
   /// buffer): what ApplyConfig sends, found wrong before anything is sent.
@@ -133,8 +121,8 @@ class Device {
   /// EncodeConfig, then ConfigureStaged: the board validates the whole configuration and applies
   /// all or none of it (live, not saved: SaveConfig keeps it across resets).
   Outcome ApplyConfig(const BoardConfig& config);
-  Result<pp::Diagnostics> Diagnostics(std::string* error = nullptr);
-  Result<pp::LoopStats> LoopStats(std::string* error = nullptr);
+  Result<pp::Diagnostics> Diagnostics();
+  Result<pp::LoopStats> LoopStats();
 
   int Subscribe(std::function<void(const TelemetryFrame&)> callback) {
     return link_->Subscribe(std::move(callback));
@@ -179,7 +167,7 @@ class Device {
   explicit Device(std::unique_ptr<Link> link, DeviceOptions options);
   Outcome EnsureMode(uint8_t finger, pp::FingerMode mode);
   template <class M>
-  Result<M> ReadSection(pp::ConfigSection section, uint8_t index, std::string* error);
+  Result<M> ReadSection(pp::ConfigSection section, uint8_t index);
   static Outcome FromCommand(const CommandResult& r, const char* what);
   /// A stream the board did not apply: why, in words; for latched faults each one named with
   /// when it latched (read from the board's fault history) and what to do.

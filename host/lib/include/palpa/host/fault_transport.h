@@ -25,7 +25,7 @@ class FaultTransport final : public Transport {
  public:
   FaultTransport(std::unique_ptr<Transport> inner, FaultSpec spec, uint32_t seed)
       : inner_(std::move(inner)), spec_(spec), rng_(seed) {}
-  Result<size_t> Read(uint8_t* out, size_t capacity, int timeout_ms) override;
+  protocol::Result<size_t> Read(uint8_t* out, size_t capacity, int timeout_ms) override;
   Status Write(const uint8_t* data, size_t size) override;
   std::string Describe() const override { return inner_->Describe() + " (with injected faults)"; }
 

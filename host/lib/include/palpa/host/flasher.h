@@ -9,6 +9,7 @@
 
 #include "palpa/host/firmware_image.h"
 #include "palpa/host/link.h"
+#include "palpa/host/outcome.h"
 
 namespace palpa::host {
 
@@ -28,9 +29,8 @@ struct FlashOptions {
   std::function<void(const FlashProgress&)> progress;
 };
 
-struct FlashReport {
-  Status status = Status::kOk;
-  std::string message;  ///< what happened, or why not, in words
+/// The update's Outcome (status, and what happened or why not in words) and what it did.
+struct FlashReport : Outcome {
   std::string from_version, to_version;
   uint8_t slot = 0;            ///< the slot written
   uint32_t bytes_written = 0;  ///< this run (less than the image when resumed)

@@ -46,7 +46,7 @@ struct LinkOptions {
   /// tried every reopen_interval_ms until it succeeds or the link is closed, then a new session
   /// opens as after a board reset. Empty: a lost transport ends the link. Device::Open sets it
   /// for usb:, hid: and serial: devices.
-  std::function<Result<std::unique_ptr<Transport>>(std::string* error)> reopen;
+  std::function<Result<std::unique_ptr<Transport>>()> reopen;
   int reopen_interval_ms = 250;
 };
 
@@ -99,7 +99,7 @@ class Link {
   /// session would take to end (the board's timeout), then Open fails with kBusy and "busy:
   /// another host holds the board".
   static Result<std::unique_ptr<Link>> Open(std::unique_ptr<Transport> transport,
-                                            LinkOptions options, std::string* error);
+                                            LinkOptions options);
   /// Closes the session (Close) and stops the link's threads.
   ~Link();
   Link(const Link&) = delete;

@@ -7,19 +7,16 @@
 #include <string>
 #include <vector>
 
-#include "palpa/protocol/status.h"
+#include "palpa/host/outcome.h"
 
 namespace palpa::host {
-
-using protocol::Result;
-using protocol::Status;
 
 class Transport {
  public:
   virtual ~Transport() = default;
   /// Reads what has arrived, waiting at most timeout_ms for the first byte. Returns the count
   /// (0 on timeout), or kDisconnected / kIoError.
-  virtual Result<size_t> Read(uint8_t* out, size_t capacity, int timeout_ms) = 0;
+  virtual protocol::Result<size_t> Read(uint8_t* out, size_t capacity, int timeout_ms) = 0;
   /// Writes every byte or fails (kDisconnected, kIoError, kTimeout).
   virtual Status Write(const uint8_t* data, size_t size) = 0;
   /// What this transport is connected to, for messages ("tcp:127.0.0.1:5555").
@@ -32,8 +29,8 @@ class Transport {
 ///   tcp:HOST:PORT
 ///   hid:VID:PID[:SERIAL]      hidapi, 64-byte reports (hex ids)
 ///   usb:VID:PID[:SERIAL]      libusb vendor interface, one bulk IN and one bulk OUT endpoint
-/// On failure returns the status and sets *error to a message naming the part at fault.
-Result<std::unique_ptr<Transport>> OpenTransport(const std::string& uri, std::string* error);
+/// On failure the status and a message naming the part at fault.
+Result<std::unique_ptr<Transport>> OpenTransport(const std::string& uri);
 
 /// Starts palpa-sim with CONFIG and extra options (e.g. {"--plant", "3", "--speed", "4"}) and
 /// connects to it. With `truth_address` non-null the simulator also streams its truth side channel
@@ -41,7 +38,7 @@ Result<std::unique_ptr<Transport>> OpenTransport(const std::string& uri, std::st
 /// `rig_address` non-null (and --rig-modbus among the options) it waits for the rig's address too.
 Result<std::unique_ptr<Transport>> LaunchSim(const std::string& config,
                                              const std::vector<std::string>& options,
-                                             std::string* truth_address, std::string* error,
+                                             std::string* truth_address,
                                              std::string* rig_address = nullptr);
 
 /// Where palpa-sim is: $PALPA_SIM, next to the running executable, installed beside the library
