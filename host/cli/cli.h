@@ -57,21 +57,18 @@ void WarnCurves(host::Device& device);
 /// The closest of `candidates` to a mistyped `word` (a letter or two off, or a prefix), or "".
 std::string Suggest(const std::string& word, const std::vector<std::string>& candidates);
 
-int CmdList(Context& c, const std::vector<std::string>& args);
-int CmdInfo(Context& c, const std::vector<std::string>& args);
-int CmdDiag(Context& c, const std::vector<std::string>& args);
-int CmdConfig(Context& c, const std::vector<std::string>& args);
-int CmdSet(Context& c, const std::vector<std::string>& args);
-int CmdLine(Context& c, const std::vector<std::string>& args);
-int CmdMonitor(Context& c, const std::vector<std::string>& args);
-int CmdRecord(Context& c, const std::vector<std::string>& args);
-int CmdEStop(Context& c, const std::vector<std::string>& args);
-int CmdClear(Context& c, const std::vector<std::string>& args);
-int CmdDemo(Context& c, const std::vector<std::string>& args);
-int CmdCalibrate(Context& c, const std::vector<std::string>& args);
-int CmdFlash(Context& c, const std::vector<std::string>& args);
-int CmdPackage(Context& c, const std::vector<std::string>& args);
-int CmdSim(Context& c, const std::vector<std::string>& args);
+/// A command: its name, synopsis and help text beside its handler. Each cmd_*.cc defines its own;
+/// main.cc only lists them (`palpa --help`, `palpa COMMAND --help`).
+struct Command {
+  const char* name;
+  const char* synopsis;
+  const char* help;
+  int (*run)(Context&, const std::vector<std::string>&);
+};
+
+extern const Command kListCommand, kInfoCommand, kDiagCommand, kConfigCommand, kSetCommand,
+    kLineCommand, kMonitorCommand, kRecordCommand, kEStopCommand, kClearCommand, kDemoCommand,
+    kCalibrateCommand, kFlashCommand, kPackageCommand, kSimCommand;
 
 /// One finger request from "N=VALUE": L2 (level), 0.5 (0..1), 1.2mm, 0.9N/mm, -10kPa. Fingers are
 /// numbered from 1 on the command line, up to `finger_count`. Returns false with a message naming

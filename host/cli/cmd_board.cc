@@ -94,9 +94,8 @@ int CmdInfo(Context& c, const std::vector<std::string>& args) {
   host::Device* d = c.Device();
   if (d == nullptr) return kExitConnect;
   const pp::HelloReply b = d->info();
-  std::string error;
-  const auto diag = d->Diagnostics(&error);  // the configuration's state now, not at Hello
-  if (!diag.ok()) return Fail("info", diag.status, error);
+  const auto diag = d->Diagnostics();  // the configuration's state now, not at Hello
+  if (!diag.ok()) return Fail("info", diag.status, diag.message);
   const std::string state = ConfigState(diag.value);
   const std::string firmware = std::to_string(b.firmware_major) + "." +
                                std::to_string(b.firmware_minor) + "." +
@@ -164,11 +163,10 @@ int CmdDiag(Context& c, const std::vector<std::string>& args) {
   if (!args.empty()) return Usage("diag", "takes no arguments");
   host::Device* d = c.Device();
   if (d == nullptr) return kExitConnect;
-  std::string error;
-  const auto diag = d->Diagnostics(&error);
-  const auto stats = d->LoopStats(&error);
-  if (!diag.ok()) return Fail("diag", diag.status, error);
-  if (!stats.ok()) return Fail("diag", stats.status, error);
+  const auto diag = d->Diagnostics();
+  const auto stats = d->LoopStats();
+  if (!diag.ok()) return Fail("diag", diag.status, diag.message);
+  if (!stats.ok()) return Fail("diag", stats.status, stats.message);
   const host::LinkCounters link = d->link().counters();
   if (c.json) {
     ordered_json history = ordered_json::array();
@@ -247,9 +245,8 @@ int CmdClear(Context& c, const std::vector<std::string>& args) {
   if (!args.empty()) return Usage("clear", "takes no arguments");
   host::Device* d = c.Device();
   if (d == nullptr) return kExitConnect;
-  std::string error;
-  const auto before = d->Diagnostics(&error);
-  if (!before.ok()) return Fail("clear", before.status, error);
+  const auto before = d->Diagnostics();
+  if (!before.ok()) return Fail("clear", before.status, before.message);
   const int rc = Report(c, d->ClearFault(), "clear");
   if (rc != kExitOk) return rc;
   const std::vector<std::string> cleared = host::FaultList(before.value.fault_bitmap);
@@ -263,5 +260,24 @@ int CmdClear(Context& c, const std::vector<std::string>& args) {
   }
   return rc;
 }
+
+const Command kListCommand{"list", "list",
+                           "Serial ports, and HID and USB devices with palpa's USB id (1209:0001).",
+                           CmdList};
+
+const Command kInfoCommand{
+    "info", "info", "The board: kind, id, firmware, catalog, configuration, lines and fingers.",
+    CmdInfo};
+
+const Command kDiagCommand{
+    "diag", "diag", "Reset cause, latched and active faults, fault history, loop statistics.",
+    CmdDiag};
+
+const Command kEStopCommand{"estop", "estop",
+                            "Every line to its safe value now, latched until cleared.", CmdEStop};
+
+const Command kClearCommand{
+    "clear", "clear",
+    "Clear latched faults whose cause is gone; outputs stay safe until new setpoints.", CmdClear};
 
 }  // namespace palpa::cli

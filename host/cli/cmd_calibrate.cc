@@ -281,7 +281,7 @@ int RunSession(cal::Session& session) {
   const auto start = std::chrono::steady_clock::now();
   const host::Outcome run = session.Run([&](const cal::Progress& p) { ProgressBar(p, start); });
   std::fprintf(stderr, "\n");
-  if (run.status == protocol::Status::kUnavailable) {
+  if (session.stopped()) {
     return Fail("calibrate", run.status,
                 "stopped: " + run.message +
                     "\nThe stage was retracted and the board vented. What was finished is in " +
@@ -375,5 +375,29 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
   if (c.json) PrintJson(session.Summary(a.apply, 1));
   return kExitOk;
 }
+
+const Command kCalibrateCommand{
+    "calibrate",
+    "calibrate --rig FILE|sim --finger N --out DIR [--protocol thesis|adaptive] [--target PCT] "
+    "[--max-cycles N] [--compensator auto|pi|api[:N]] [--allow-fallback] [--previous FILE] "
+    "[--resume] [--quick] [--apply] [--speed X] [--unit N] [--seed N] [--plant LEVEL] "
+    "[--effects LIST]",
+    "Runs the thesis calibration of one finger on a rig: zero, regulator correction, then a\n"
+    "deformation sweep (pneumatic) or the bias x vacuum indentation grid (jamming) and a\n"
+    "hysteresis sweep. Writes DIR/SERIAL.json (the calibration file), SERIAL.csv (raw "
+    "readings)\nand SERIAL.html (report). A rig FILE names the stage and force sensor\n"
+    "(docs/calibration.md). --rig sim starts palpa-sim serving board and rig: --speed X "
+    "(1-10,\n"
+    "default 4), --unit N (actuator unit, 0 nominal), --seed N, --plant LEVEL (0-3, default "
+    "3)\n"
+    "and --effects LIST (creep,rate,history=F) are the simulator's, recorded in the file.\n"
+    "A stopped run keeps DIR/SERIAL.journal.json: --resume continues it. --quick: short\n"
+    "settings (a 10 kPa sweep; the run says first which compensators it can fit).\n"
+    "--compensator: the model fitted, pi or api with N operators (default 16, 8 with --quick,\n"
+    "fewer when the sweep tells fewer apart); auto (default) fits both and keeps api where it\n"
+    "leaves at most 3/4 of pi's residual. A model that cannot be fitted is an error (nothing\n"
+    "written) unless --allow-fallback keeps the static inverse alone. --apply uploads the\n"
+    "result to the finger (one staged change).",
+    CmdCalibrate};
 
 }  // namespace palpa::cli

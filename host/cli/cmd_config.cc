@@ -131,9 +131,8 @@ int CmdConfig(Context& c, const std::vector<std::string>& args) {
     }
     return kExitOk;
   }
-  std::string error;
-  auto read = d->ReadConfig(&error);
-  if (!read.ok()) return Fail("config", pp::Status::kIoError, error);
+  auto read = d->ReadConfig();
+  if (!read.ok()) return Fail("config", pp::Status::kIoError, read.message);
   host::BoardConfig& config = read.value;
   if (what == "show") {
     std::printf("%s\n", host::ConfigToJson(config).dump(c.json ? -1 : 2).c_str());
@@ -142,6 +141,7 @@ int CmdConfig(Context& c, const std::vector<std::string>& args) {
   nlohmann::ordered_json changes = nlohmann::ordered_json::object();
   if (what == "set") {
     for (const std::string& a : rest) {
+      std::string error;
       if (!SetFromArgument(a, config, changes, &error))
         return Usage("config", error + " (nothing was sent)");
     }
@@ -154,5 +154,16 @@ int CmdConfig(Context& c, const std::vector<std::string>& args) {
   }
   return Upload(c, *d, config, {{"file", rest[0]}});
 }
+
+const Command kConfigCommand{
+    "config", "config show|set KEY=VALUE...|load FILE|save|factory-reset",
+    "show: the live configuration (JSON with --json).\n"
+    "set: change fields, e.g. board.host_timeout_us=200000 line2.slew_pa_per_s=100000\n"
+    "     finger4.bias_pa=15000 (lines and fingers numbered from 1); checked locally first.\n"
+    "load FILE: a JSON file {\"board\":{...},\"lines\":[...],\"fingers\":[...]} (partial "
+    "allowed),\n"
+    "     validated as a whole and applied atomically.\n"
+    "save: persist the live configuration. factory-reset: back to the compiled-in one.",
+    CmdConfig};
 
 }  // namespace palpa::cli

@@ -5,14 +5,16 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <memory>
+#include <optional>
 
 #include "cli.h"
 #include "demo_calibration.h"
+#include "demo_chart.h"
 #include "demo_pass.h"
 #include "demo_truth.h"
 #include "palpa/host/file_write.h"
 #include "palpa/host/stimulus_set.h"
-#include "palpa/host/svg_chart.h"
 
 namespace palpa::cli {
 namespace {
@@ -64,9 +66,13 @@ nlohmann::ordered_json PassJson(const PassFigures& f) {
                : nlohmann::ordered_json(nullptr)}};
 }
 
-int CmdDemo(Context& c, const std::vector<std::string>& args) {
-  // The demo always runs on a simulator of its own, whatever --device says.
-  DemoArgs a;
+namespace {
+
+/// The command line and the stimulus sets it names, all checked before anything starts: a usage
+/// error's exit code, else kExitOk.
+int ParseDemoArgs(const std::vector<std::string>& args, DemoArgs& a,
+                  std::optional<host::StimulusSet>& pneumatic_set,
+                  std::optional<host::StimulusSet>& jamming_set) {
   for (size_t i = 0; i < args.size(); ++i) {
     const bool has_value = i + 1 < args.size();
     if (args[i] == "--out") {
@@ -98,7 +104,6 @@ int CmdDemo(Context& c, const std::vector<std::string>& args) {
     return Usage("demo",
                  "--out " + a.out + ": the chart is an SVG drawing; give a name ending in .svg");
   }
-  std::optional<host::StimulusSet> pneumatic_set, jamming_set;
   for (const std::string& name : a.stimuli) {
     if (!LoadSet(name, pneumatic_set, jamming_set)) return kExitUsage;
   }
@@ -112,6 +117,17 @@ int CmdDemo(Context& c, const std::vector<std::string>& args) {
     return Usage("demo",
                  "--out " + a.out + ": " + dir + " is not a directory this user can write to");
   }
+  return kExitOk;
+}
+
+/// The demo's own simulated board, its device on the nominal curves, and its truth channel.
+struct DemoBoard {
+  std::unique_ptr<host::Device> device;
+  std::optional<ClosedOnSignal> closed_on_signal;
+  TruthReader truth;
+};
+
+int StartBoard(const DemoArgs& a, const host::LevelTables& levels, DemoBoard& board) {
   char speed_text[16];
   std::snprintf(speed_text, sizeof(speed_text), "%g", a.speed);
   std::fprintf(
@@ -120,46 +136,62 @@ int CmdDemo(Context& c, const std::vector<std::string>& args) {
       "static errors,\n"
       "hysteretic fingers, real sensors), running %sx faster than real time\n",
       speed_text);
-  std::string truth_address, error;
-  auto transport = host::LaunchSim(kConfig, {"--speed", speed_text, "--truth-every-ms", "10"},
-                                   &truth_address, &error);
-  if (!transport.ok()) return Fail("demo", transport.status, error, kExitConnect);
+  std::string truth_address;
+  auto transport =
+      host::LaunchSim(kConfig, {"--speed", speed_text, "--truth-every-ms", "10"}, &truth_address);
+  if (!transport.ok()) return Fail("demo", transport.status, transport.message, kExitConnect);
   // Nominal curves in the first pass whatever calibrations this user keeps for PN-1 .. PN-5.
   host::DeviceOptions options;
   options.use_calibrations = false;
   options.number_from = 1;
-  options.levels = host::LevelTablesFor(&*pneumatic_set, &*jamming_set);
-  auto device = host::Device::Attach(std::move(transport.value), options, &error);
-  if (!device.ok()) return Fail("demo", device.status, error, kExitConnect);
-  host::Device& d = *device.value;
-  const ClosedOnSignal closed_on_signal(&d);
-  TruthReader truth;
-  if (!truth.Connect(truth_address)) {
+  options.levels = levels;
+  auto device = host::Device::Attach(std::move(transport.value), options);
+  if (!device.ok()) return Fail("demo", device.status, device.message, kExitConnect);
+  board.device = std::move(device.value);
+  board.closed_on_signal.emplace(board.device.get());
+  if (!board.truth.Connect(truth_address)) {
     return Fail("demo", protocol::Status::kUnavailable,
                 "cannot read the simulator's truth channel at " + truth_address, kExitConnect);
   }
+  return kExitOk;
+}
+
+std::string DescribeSet(const host::StimulusSet& set) {
+  std::string levels;
+  for (const host::StimulusLevel& l : set.levels) {
+    char v[16];
+    std::snprintf(v, sizeof(v), "%g", l.kpa);
+    levels += (levels.empty() ? "" : "/") + std::string(v);
+  }
+  return set.name + ": " + std::to_string(set.stimuli.size()) + " of " + levels + " kPa on " +
+         std::to_string(set.fingers) + " fingers";
+}
+
+/// What the two passes measured, for the summary and --json.
+struct DemoFigures {
+  PassFigures nominal, calibrated;
+  std::string compensator;
+};
+
+/// Pass 1 on the nominal curves; then (unless --nominal-only) the pneumatic fingers calibrated
+/// on simulated rigs or from --calibration's files, and pass 2 on them. False (printed) when a
+/// step fails.
+bool PlayPasses(const DemoArgs& a, const host::StimulusSet& pneumatic_set,
+                const host::StimulusSet& jamming_set, DemoBoard& board, DemoTraces& traces,
+                DemoFigures& figures) {
+  host::Device& d = *board.device;
   const PneumaticFingers fingers = FindPneumatic(d);
   std::optional<std::vector<host::CalibrationFile>> files;
   if (!a.calibration_dir.empty()) {
     files = ReadCalibrationDir(fingers, a.calibration_dir);
-    if (!files) return kExitFailed;
+    if (!files) return false;
   }
   std::vector<Step> pneumatic, all;
-  for (const host::Stimulus& st : pneumatic_set->stimuli)
-    pneumatic.push_back({st.levels, false, host::LevelNames(*pneumatic_set, st)});
+  for (const host::Stimulus& st : pneumatic_set.stimuli)
+    pneumatic.push_back({st.levels, false, host::LevelNames(pneumatic_set, st)});
   all = pneumatic;
-  for (const host::Stimulus& st : jamming_set->stimuli)
-    all.push_back({st.levels, true, host::LevelNames(*jamming_set, st)});
-  auto describe = [](const host::StimulusSet& set) {
-    std::string levels;
-    for (const host::StimulusLevel& l : set.levels) {
-      char v[16];
-      std::snprintf(v, sizeof(v), "%g", l.kpa);
-      levels += (levels.empty() ? "" : "/") + std::string(v);
-    }
-    return set.name + ": " + std::to_string(set.stimuli.size()) + " of " + levels + " kPa on " +
-           std::to_string(set.fingers) + " fingers";
-  };
+  for (const host::Stimulus& st : jamming_set.stimuli)
+    all.push_back({st.levels, true, host::LevelNames(jamming_set, st)});
   std::fprintf(
       TextOut(),
       "stimuli: %s; %s at %g kPa bias\n"
@@ -168,97 +200,73 @@ int CmdDemo(Context& c, const std::vector<std::string>& args) {
       "in mm, as thesis Table 5-4 measured it without the top silicone layer (the simulator\n"
       "models the film alone); stiffness in N/mm.\n\n"
       "pass 1: the nominal thesis curves, no hysteresis compensation (the `none` compensator)\n",
-      describe(*pneumatic_set).c_str(), describe(*jamming_set).c_str(), jamming_set->bias_kpa);
-  const host::LevelTables& levels = options.levels;
-  std::vector<host::Series> targets(d.info().finger_count);
-  PassFigures nominal, calibrated;
-  if (!PlaySteps(d, truth, levels, all, targets, nominal)) return kExitFailed;
-  const double first_pass_end_s = truth.now_s();
-  std::vector<host::Series> second_targets(d.info().finger_count);
-  double second_pass_s = 0;
-  std::string compensator;
-  if (a.calibrate) {
-    if (!files) files = CalibrateOnSimulatedRigs(kConfig, fingers, a.speed);
-    if (!files) return kExitFailed;
-    if (!a.calibration_dir.empty())
-      std::fprintf(TextOut(), "\ncalibrations from %s\n", a.calibration_dir.c_str());
-    if (!ApplyCalibrations(d, fingers, *files, &compensator)) return kExitFailed;
-    std::fprintf(TextOut(),
-                 "\npass 2: the pneumatic stimuli again, each finger on its own calibration and "
-                 "compensated\n");
-    second_pass_s = truth.now_s();
-    if (!PlaySteps(d, truth, levels, pneumatic, second_targets, calibrated)) return kExitFailed;
-  }
-  // The chart leaves out the board time spent calibrating (the fingers held still meanwhile):
-  // the second pass is drawn 2 s after the first, and the gap is marked.
-  const double cut_s = a.calibrate ? second_pass_s - first_pass_end_s - 2 : 0;
-  auto drawn_at = [&](double t) { return t >= second_pass_s && a.calibrate ? t - cut_s : t; };
-  // Deformation (mm) and stiffness (N/mm) are different quantities: a panel each.
-  host::Chart pneumatic_panel, jamming_panel;
-  pneumatic_panel.y_label = "deformation (mm), fingers 1-3";
-  jamming_panel.y_label = "stiffness (N/mm), fingers 4-5";
-  pneumatic_panel.x_label = jamming_panel.x_label = "board time (s)";
-  pneumatic_panel.width = jamming_panel.width = 1100;
-  pneumatic_panel.height = 380;
-  jamming_panel.height = 300;
-  if (a.calibrate) {
-    char label[96];
-    std::snprintf(label, sizeof(label), "%.0f s of calibration left out", cut_s);
-    for (host::Chart* panel : {&pneumatic_panel, &jamming_panel})
-      panel->markers.push_back({first_pass_end_s, first_pass_end_s + 2, label});
-  }
-  const auto samples = truth.All();
-  const char* names[] = {"finger 1", "finger 2", "finger 3", "finger 4", "finger 5"};
-  const char* colours[] = {"#2471a3", "#c0392b", "#229954", "#7d3c98", "#d68910"};
-  for (size_t f = 0; f < 5; ++f) {
-    host::Chart& panel = f < 3 ? pneumatic_panel : jamming_panel;
-    host::Series trace{names[f], {}, colours[f], false, false};
-    for (size_t i = 0; i < samples.size(); i += 5) {
-      const double t = samples[i].t_s;
-      if (a.calibrate && t > first_pass_end_s && t < second_pass_s) continue;
-      trace.points.push_back({drawn_at(t), samples[i].outputs[f]});
-    }
-    panel.series.push_back(trace);
-  }
-  for (size_t f = 0; f < 5; ++f) {  // the targets, dashed in the finger's colour
-    host::Chart& panel = f < 3 ? pneumatic_panel : jamming_panel;
-    targets[f].name = std::string("target ") + std::to_string(f + 1);
-    targets[f].color = colours[f];
-    targets[f].dashed = true;
-    panel.series.push_back(targets[f]);
-    if (second_targets[f].points.empty()) continue;
-    for (auto& point : second_targets[f].points) point.first = drawn_at(point.first);
-    second_targets[f].color = colours[f];  // unnamed: the legend lists it once
-    second_targets[f].dashed = true;
-    panel.series.push_back(second_targets[f]);
-  }
-  std::string title =
-      "palpa demo: thesis stimuli on a simulated thesis-5finger board (true outputs, targets "
-      "dashed)";
-  if (a.calibrate) {
-    char text[200];
-    std::snprintf(text, sizeof(text),
-                  "palpa demo: thesis stimuli, nominal, then calibrated from %.0f s (true "
-                  "outputs, targets dashed)",
-                  drawn_at(second_pass_s));
-    title = text;
-  }
-  d.EStop();
-  if (!host::WriteFileWhole(a.out, host::RenderSvgPanels({pneumatic_panel, jamming_panel}, title),
-                            &error)) {
+      DescribeSet(pneumatic_set).c_str(), DescribeSet(jamming_set).c_str(), jamming_set.bias_kpa);
+  const host::LevelTables levels = host::LevelTablesFor(&pneumatic_set, &jamming_set);
+  traces.targets.assign(d.info().finger_count, {});
+  traces.second.assign(d.info().finger_count, {});
+  if (!PlaySteps(d, board.truth, levels, all, traces.targets, figures.nominal)) return false;
+  traces.first_pass_end_s = board.truth.now_s();
+  traces.calibrated = a.calibrate;
+  if (!a.calibrate) return true;
+  if (!files) files = CalibrateOnSimulatedRigs(kConfig, fingers, a.speed);
+  if (!files) return false;
+  if (!a.calibration_dir.empty())
+    std::fprintf(TextOut(), "\ncalibrations from %s\n", a.calibration_dir.c_str());
+  if (!ApplyCalibrations(d, fingers, *files, &figures.compensator)) return false;
+  std::fprintf(TextOut(),
+               "\npass 2: the pneumatic stimuli again, each finger on its own calibration and "
+               "compensated\n");
+  traces.second_pass_s = board.truth.now_s();
+  return PlaySteps(d, board.truth, levels, pneumatic, traces.second, figures.calibrated);
+}
+
+}  // namespace
+
+int CmdDemo(Context& c, const std::vector<std::string>& args) {
+  // The demo always runs on a simulator of its own, whatever --device says.
+  DemoArgs a;
+  std::optional<host::StimulusSet> pneumatic_set, jamming_set;
+  if (const int rc = ParseDemoArgs(args, a, pneumatic_set, jamming_set); rc != kExitOk) return rc;
+  DemoBoard board;
+  const host::LevelTables levels = host::LevelTablesFor(&*pneumatic_set, &*jamming_set);
+  if (const int rc = StartBoard(a, levels, board); rc != kExitOk) return rc;
+  DemoTraces traces;
+  DemoFigures figures;
+  if (!PlayPasses(a, *pneumatic_set, *jamming_set, board, traces, figures)) return kExitFailed;
+  traces.samples = board.truth.All();
+  const std::string svg = DemoChartSvg(traces);
+  board.device->EStop();
+  std::string error;
+  if (!host::WriteFileWhole(a.out, svg, &error)) {
     return Fail("demo", protocol::Status::kIoError, error);
   }
-  PrintSummary(nominal, a.calibrate ? &calibrated : nullptr, compensator);
+  PrintSummary(figures.nominal, a.calibrate ? &figures.calibrated : nullptr, figures.compensator);
   if (c.json) {
-    PrintJson({{"nominal", PassJson(nominal)},
-               {"calibrated", a.calibrate ? PassJson(calibrated) : nlohmann::ordered_json(nullptr)},
-               {"compensator", compensator},
-               {"calibration_left_out_s", cut_s},
+    PrintJson({{"nominal", PassJson(figures.nominal)},
+               {"calibrated",
+                a.calibrate ? PassJson(figures.calibrated) : nlohmann::ordered_json(nullptr)},
+               {"compensator", figures.compensator},
+               {"calibration_left_out_s", traces.CutS()},
                {"chart", a.out}});
   } else {
     std::printf("traces plotted to %s\n", a.out.c_str());
   }
   return kExitOk;
 }
+
+const Command kDemoCommand{
+    "demo",
+    "demo [--out FILE.svg] [--speed X] [--stimuli NAME|FILE]... [--calibration DIR | "
+    "--nominal-only]",
+    "Starts a simulated thesis-5finger board and plays discrimination stimuli: by default\n"
+    "the full thesis sets, 18 three-finger pneumatic combinations and 9 two-finger jamming\n"
+    "ones (--stimuli picks a shipped set, e.g. thesis-pneumatic-14, or a stimulus-set file),\n"
+    "on the nominal curves; then calibrates the pneumatic fingers on simulated rigs (quick\n"
+    "protocol, api) and plays their stimuli again, compensated. Prints target against "
+    "achieved, settling and\n"
+    "latency, the two passes' errors side by side, and plots the traces. --calibration DIR\n"
+    "uses the calibration files in DIR instead (SERIAL.json); --nominal-only stops after the\n"
+    "first pass. --speed X: 0.1-10, default 4.",
+    CmdDemo};
 
 }  // namespace palpa::cli

@@ -222,4 +222,26 @@ int CmdPackage(Context&, const std::vector<std::string>& args) {
   return kExitOk;
 }
 
+const Command kFlashCommand{
+    "flash",
+    "flash PACKAGE [--resume] [--dry-run] [--reset-line CHIP:LINE] [--boot-line CHIP:LINE]",
+    "Updates the board's firmware over its link: checks the package against the board (kind,\n"
+    "anti-rollback counter) and shows the version change, writes the image for the slot the\n"
+    "board reports inactive with a progress bar, verifies its SHA-256, activates it for one\n"
+    "trial boot, waits for the board to answer on it and confirms it. A board reset before "
+    "the\n"
+    "confirmation returns to the old image. --resume goes on from what the board reports\n"
+    "written; --dry-run checks and says what would happen. --reset-line and --boot-line drive\n"
+    "GPIO lines (libgpiod) to start a board whose application cannot run in its bootloader's\n"
+    "recovery mode (reset active low, boot active high). docs/flashing.md.",
+    CmdFlash};
+
+const Command kPackageCommand{
+    "package", "package SLOT0.bin SLOT1.bin --version X.Y.Z --counter N [--kind KIND] --out FILE",
+    "Makes an update package: each slot's binary (linked to run from that slot) gets the "
+    "image\n"
+    "header, board kind, slot, anti-rollback counter and SHA-256. KIND: sim (default),\n"
+    "mps2-an386, stm32f4.",
+    CmdPackage};
+
 }  // namespace palpa::cli

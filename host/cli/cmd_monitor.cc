@@ -56,10 +56,16 @@ bool Options(const std::string& command, const std::vector<std::string>& args, T
 
 /// Samples per second the board sends: one every telemetry_decimation ticks of its loop.
 bool BoardRate(host::Device& d, double& rate, std::string* error) {
-  const auto board = d.ReadBoard(error);
-  if (!board.ok()) return false;
-  const auto stats = d.LoopStats(error);
-  if (!stats.ok()) return false;
+  const auto board = d.ReadBoard();
+  if (!board.ok()) {
+    *error = board.message;
+    return false;
+  }
+  const auto stats = d.LoopStats();
+  if (!stats.ok()) {
+    *error = stats.message;
+    return false;
+  }
   const double period_us = stats.value.period_us > 0 ? stats.value.period_us : 1000;
   rate = 1e6 / (period_us * std::max<uint16_t>(board.value.telemetry_decimation, 1));
   return true;
@@ -224,5 +230,15 @@ int CmdRecord(Context& c, const std::vector<std::string>& args) {
   }
   return rc;
 }
+
+const Command kMonitorCommand{
+    "monitor", "monitor [--rate HZ] [--duration S]",
+    "A live table of every line (one JSON object per sample with --json); Ctrl-C ends it.",
+    CmdMonitor};
+
+const Command kRecordCommand{
+    "record", "record FILE.csv --duration S",
+    "Telemetry to CSV; the first line is a JSON header (board, configuration, units, clock).",
+    CmdRecord};
 
 }  // namespace palpa::cli

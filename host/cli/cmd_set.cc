@@ -214,4 +214,24 @@ int CmdLine(Context& c, const std::vector<std::string>& given) {
   return rc;
 }
 
+const Command kSetCommand{
+    "set", "set F=VALUE ... [--hold S] [--strict-calibration]",
+    "Fingers (numbered from 1): L2 (level), 0.5 (0..1), 1.2mm (pneumatic), 0.9N/mm (jamming),\n"
+    "-10kPa (raw pressure or vacuum). Units are checked per finger kind. Example on\n"
+    "thesis-5finger: palpa set 1=L2 2=0.5 3=1.2mm 4=0.9N/mm 5=-10kPa\n"
+    "Requests go through the curve the board holds (each finger's static inverse). A finger\n"
+    "whose calibration file cannot be used, or disagrees with the board's curve by more than\n"
+    "its fit residual, keeps the board's curve and the reason is printed; --strict-calibration\n"
+    "makes that an error (nothing sent). The fingers return to safe as palpa exits and closes\n"
+    "its session; --hold S keeps them actuated S seconds first (Ctrl-C, SIGTERM or SIGHUP end\n"
+    "the hold early).",
+    CmdSet};
+
+const Command kLineCommand{
+    "line", "line L=VALUE ... [--hold S]",
+    "Raw setpoints in kPa for lines (numbered from 1): palpa line 1=30 6=-40\n"
+    "The lines return to safe as palpa exits and closes its session; --hold S keeps them\n"
+    "there S seconds first (Ctrl-C, SIGTERM or SIGHUP end the hold early).",
+    CmdLine};
+
 }  // namespace palpa::cli

@@ -118,4 +118,17 @@ int CmdSim(Context&, const std::vector<std::string>& args) {
                                         : " (did you mean '" + near + "'?)"));
 }
 
+const Command kSimCommand{
+    "sim", "sim start [--config NAME] [--flash FILE] [--speed X] [--plant N] | stop | status",
+    "Keeps one simulated board running for the commands that follow (they use it when no\n"
+    "--device or $PALPA_DEVICE names another). Its flash is a file, as a board's flash is a\n"
+    "chip: a saved configuration, the boot state and the firmware slots survive 'sim stop' "
+    "and\n"
+    "the next 'sim start'. --config NAME: thesis-5finger (default), thesis-pneumatic-3,\n"
+    "thesis-jamming-2, full-8. --flash FILE: default STATE/sim-CONFIG.flash, STATE being\n"
+    "$PALPA_STATE_DIR, else $XDG_STATE_HOME/palpa, else ~/.local/state/palpa.\n"
+    "--speed X (0.01-100) and --plant N (0-3) as palpa-sim takes them.\n"
+    "Without it, each command starts a throwaway simulated board of its own, and says so.",
+    CmdSim};
+
 }  // namespace palpa::cli

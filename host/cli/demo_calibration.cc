@@ -54,8 +54,11 @@ bool CalibrateOne(const std::string& config, int finger, double speed,
   const host::SimulatedPlant plant;  // the demo board's: palpa-sim's defaults
   std::optional<cal::BoardRig> sim = cal::OpenSimulatedRig(config, finger, speed, plant, 1, error);
   if (!sim) return false;
-  const auto fc = sim->device->ReadFinger(static_cast<uint8_t>(finger), error);
-  if (!fc.ok()) return false;
+  const auto fc = sim->device->ReadFinger(static_cast<uint8_t>(finger));
+  if (!fc.ok()) {
+    *error = fc.message;
+    return false;
+  }
   cal::SessionOptions options;
   options.finger = static_cast<uint8_t>(finger);
   options.protocol = cal::QuickProtocol();
@@ -110,17 +113,19 @@ std::optional<std::vector<host::CalibrationFile>> LoadCalibrations(
   std::vector<host::CalibrationFile> files;
   for (const std::string& serial : serials) {
     // The library's lookup also refuses a file whose actuator is another than its name says.
-    auto file = host::FindCalibration(dir, serial, error);
+    auto file = host::FindCalibration(dir, serial);
     if (file.status == pp::Status::kNotFound) continue;
-    if (!file.ok()) return std::nullopt;
+    if (!file.ok()) {
+      *error = file.message;
+      return std::nullopt;
+    }
     files.push_back(std::move(file.value));
   }
   return files;
 }
 
 std::string Serial(host::Device& d, uint8_t finger) {
-  std::string error;
-  const auto f = d.ReadFinger(finger, &error);
+  const auto f = d.ReadFinger(finger);
   if (!f.ok()) return "";
   return host::FieldText(f.value.actuator_serial);
 }

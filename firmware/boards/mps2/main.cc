@@ -100,6 +100,137 @@ void StackGuard() {
 #endif
 }
 
+/// Who this board is, for Hello: an MPS2 AN386 with a simulated plant, its boot count and
+/// nonce, and why it last reset.
+core::BoardIdentity Identity(protocol::ResetCause cause) {
+  core::BoardIdentity id;
+  id.kind = protocol::BoardKind::kMps2An386;
+  id.board_id = 386;
+  id.plant_simulated = true;
+  id.reset_cause = cause;
+  id.boot_count = g_reset_record.boot_count;
+  id.boot_nonce = 0x4D505332u ^ (g_reset_record.boot_count * 2654435761u);
+  id.rx_buffer_bytes = hal_mps2::Uart::kRxSize;
+  return id;
+}
+
+/// The update engine of an image started by the bootloader from a slot (VTOR says which):
+/// updates go to the other one. None for an image linked to run alone.
+core::UpdateEngine* SlotUpdates(core::BoardIdentity& id) {
+#ifdef PALPA_SLOT_IMAGE
+  const core::FlashLayout& layout = core::kDefaultLayout;
+  static hal_mps2::CodeFlash flash(layout.xip_base, layout.total, layout.sector_size);
+  id.active_slot = *hal_mps2::kScbVtor >= layout.slot_offset[1] ? 1 : 0;
+  static core::UpdateEngine engine(&flash, layout, id.kind, id.active_slot, &g_watchdog);
+  id.rollback_counter = engine.rollback_floor();
+  return &engine;
+#else
+  (void)id;
+  return nullptr;
+#endif
+}
+
+void StartBoard(const core::BoardConfig& config, const core::BoardIdentity& id,
+                core::UpdateEngine* update) {
+  g_board =
+      new (g_board_storage) core::Board(config,
+                                        core::BoardIo{g_clock, g_plant, &g_plant, g_supply, g_dump,
+                                                      g_pump, nullptr, g_uart, nullptr, 0, update},
+                                        id);
+  g_board->Start();
+}
+
+/// The plant follows the board's clock, 1 ms steps. It stands in for the world, which moves on
+/// while a long command (a hash of both slots: about 300 ms of this core) holds the loop, so it
+/// catches up before the next tick reads it. Those steps are the world's time, not the
+/// firmware's: each kicks the watchdog, which still measures every stretch of the firmware's own
+/// work (a hung tick never gets here). Without it, catching up after 180 ms took longer than the
+/// watchdog's 30 ms and reset a board that had done nothing wrong.
+void CatchUpPlant(uint64_t now_us, uint64_t& plant_ms) {
+  while (plant_ms * 1000 < now_us) {
+    const bool held = g_supply.toggled && g_dump.toggled;
+    g_plant.Step(!held || g_board->safe());
+    ++plant_ms;
+    g_watchdog.Kick();
+  }
+}
+
+/// UpdateReboot: its Ack out first, then the bootloader.
+void RebootIfAsked() {
+  if (!g_board->reboot_requested()) return;
+  g_uart.DrainTx();  // within the watchdog's period: it was kicked after the last tick
+  g_reset_record.Set(protocol::ResetCause::kUpdate);
+  hal_mps2::SystemReset();
+}
+
+#ifdef PALPA_SELFTEST
+/// A boot after a watchdog reset: outputs safe and the fault latched, or the test fails.
+void ReportWatchdogBoot(protocol::ResetCause cause) {
+  if (cause != protocol::ResetCause::kWatchdog) return;
+  Print("palpa mps2-an386: booted after a watchdog reset; outputs safe, fault latched\n");
+  SemihostExit(g_board->safe() && (g_board->latched_faults() & 0x10u) ? 42 : 1);
+}
+
+/// After 2 s of ticks: identity and tick counts over semihosting, and exit.
+void ReportAfterTwoSeconds(uint64_t now_us) {
+  if (now_us <= 2000000) return;
+  char text[160];
+  std::snprintf(text, sizeof(text),
+                "palpa mps2-an386 firmware 0.1.0, catalog 0x%08lx, %s, %lu ticks, %lu "
+                "overruns, safe=%d\n",
+                static_cast<unsigned long>(protocol::kCatalogHash), PALPA_BOARD_CONFIG,
+                static_cast<unsigned long>(g_board->tick_stats().ticks),
+                static_cast<unsigned long>(g_board->tick_stats().overruns),
+                g_board->safe() ? 1 : 0);
+  Print(text);
+  SemihostExit(g_board->tick_stats().ticks >= 1900 && g_board->safe() ? 0 : 1);
+}
+#endif
+
+#ifdef PALPA_BENCH
+/// The in-image host: a session, every finger following a target, heartbeats every 20 ms;
+/// 3 000 ticks whatever the start-up took, then exit.
+class BenchHost {
+ public:
+  explicit BenchHost(const core::BoardConfig& config) {
+    Inject(protocol::Hello{kSession, 0});
+    protocol::SetFingerTargets targets{};
+    targets.session = kSession;
+    targets.generation = 1;
+    for (uint8_t f = 0; f < config.finger_count; ++f) {
+      const bool jamming = config.fingers[f].kind == protocol::FingerKind::kJamming;
+      targets.entries[targets.entry_count++] = {
+          f,
+          jamming ? protocol::OutputUnit::kStiffnessMilliNewtonPerMm
+                  : protocol::OutputUnit::kDeformationMicrometre,
+          jamming ? 1000 : 1500};
+    }
+    Inject(targets);
+    next_heartbeat_us_ = g_clock.NowMicros() + 20000;
+  }
+  void Heartbeat(uint64_t now_us) {
+    if (now_us < next_heartbeat_us_) return;
+    Inject(protocol::Heartbeat{kSession, ++heartbeat_});
+    next_heartbeat_us_ += 20000;
+  }
+  void Ticked() {
+    if (++ticks_ == 3000) SemihostExit(g_board->safe() ? 1 : 0);
+  }
+
+ private:
+  static constexpr uint32_t kSession = 1;  // the Hello's nonce, which every stream frame names
+  template <class M>
+  static void Inject(const M& message) {
+    uint8_t frame[protocol::kMaxFrameSize];
+    const auto n = protocol::EncodeMessageFrame(message, 0, 0, frame, sizeof(frame));
+    g_uart.Inject(frame, n.value);
+  }
+  uint32_t heartbeat_ = 0;
+  uint64_t next_heartbeat_us_ = 0;
+  uint32_t ticks_ = 0;
+};
+#endif
+
 }  // namespace
 
 void WriteSafeCodes() {
@@ -149,74 +280,26 @@ int main() {
   StackGuard();
   g_uart.Init();
   g_clock.Init();
-  palpa::core::BoardIdentity id;
-  id.kind = palpa::protocol::BoardKind::kMps2An386;
-  id.board_id = 386;
-  id.plant_simulated = true;
-  id.reset_cause = cause;
-  id.boot_count = g_reset_record.boot_count;
-  id.boot_nonce = 0x4D505332u ^ (g_reset_record.boot_count * 2654435761u);
-  id.rx_buffer_bytes = palpa::hal::mps2::Uart::kRxSize;
-  palpa::core::UpdateEngine* update = nullptr;
-#ifdef PALPA_SLOT_IMAGE
-  // Started by the bootloader from a slot (VTOR says which): updates go to the other one.
-  const palpa::core::FlashLayout& layout = palpa::core::kDefaultLayout;
-  static palpa::hal::mps2::CodeFlash flash(layout.xip_base, layout.total, layout.sector_size);
-  id.active_slot = *palpa::hal::mps2::kScbVtor >= layout.slot_offset[1] ? 1 : 0;
-  static palpa::core::UpdateEngine engine(&flash, layout, id.kind, id.active_slot, &g_watchdog);
-  id.rollback_counter = engine.rollback_floor();
-  update = &engine;
-#endif
-  g_board = new (g_board_storage)
-      palpa::core::Board(*config,
-                         palpa::core::BoardIo{g_clock, g_plant, &g_plant, g_supply, g_dump, g_pump,
-                                              nullptr, g_uart, nullptr, 0, update},
-                         id);
-  g_board->Start();
+  palpa::core::BoardIdentity id = Identity(cause);
+  palpa::core::UpdateEngine* update = SlotUpdates(id);
+  StartBoard(*config, id, update);
 #ifdef PALPA_SELFTEST
-  if (cause == palpa::protocol::ResetCause::kWatchdog) {
-    Print("palpa mps2-an386: booted after a watchdog reset; outputs safe, fault latched\n");
-    SemihostExit(g_board->safe() && (g_board->latched_faults() & 0x10u) ? 42 : 1);
-  }
+  ReportWatchdogBoot(cause);
 #endif
   g_watchdog.Start(30);
   uint64_t plant_ms = 0;
 #ifdef PALPA_BENCH
-  auto inject = [](const auto& message) {
-    uint8_t frame[palpa::protocol::kMaxFrameSize];
-    const auto n = palpa::protocol::EncodeMessageFrame(message, 0, 0, frame, sizeof(frame));
-    g_uart.Inject(frame, n.value);
-  };
-  constexpr uint32_t kSession = 1;  // the Hello's nonce, which every stream frame names
-  inject(palpa::protocol::Hello{kSession, 0});
-  palpa::protocol::SetFingerTargets targets{};
-  targets.session = kSession;
-  targets.generation = 1;
-  for (uint8_t f = 0; f < config->finger_count; ++f) {
-    const bool jamming = config->fingers[f].kind == palpa::protocol::FingerKind::kJamming;
-    targets.entries[targets.entry_count++] = {
-        f,
-        jamming ? palpa::protocol::OutputUnit::kStiffnessMilliNewtonPerMm
-                : palpa::protocol::OutputUnit::kDeformationMicrometre,
-        jamming ? 1000 : 1500};
-  }
-  inject(targets);
-  uint32_t heartbeat = 0;
-  uint64_t next_heartbeat_us = g_clock.NowMicros() + 20000;
-  uint32_t bench_ticks = 0;  // 3 000 ticks whatever the start-up took
+  BenchHost bench(*config);
 #endif
   for (;;) {
     const uint64_t now = g_clock.NowMicros();
 #ifdef PALPA_BENCH
-    if (now >= next_heartbeat_us) {
-      inject(palpa::protocol::Heartbeat{kSession, ++heartbeat});
-      next_heartbeat_us += 20000;
-    }
+    bench.Heartbeat(now);
 #endif
     if (g_board->Step()) {
       g_watchdog.Kick();  // only after a tick wrote its outputs
 #ifdef PALPA_BENCH
-      if (++bench_ticks == 3000) SemihostExit(g_board->safe() ? 1 : 0);
+      bench.Ticked();
 #endif
 #ifdef PALPA_HANG_AFTER_MS
       if (now > PALPA_HANG_AFTER_MS * 1000ull) {
@@ -225,37 +308,11 @@ int main() {
       }
 #endif
     }
-    // The plant follows the board's clock, 1 ms steps. It stands in for the world, which moves
-    // on while a long command (a hash of both slots: about 300 ms of this core) holds the loop,
-    // so it catches up before the next tick reads it. Those steps are the world's time, not the
-    // firmware's: each kicks the watchdog, which still measures every stretch of the firmware's
-    // own work (a hung tick never gets here). Without it, catching up after 180 ms took longer
-    // than the watchdog's 30 ms and reset a board that had done nothing wrong.
-    while (plant_ms * 1000 < now) {
-      const bool held = g_supply.toggled && g_dump.toggled;
-      g_plant.Step(!held || g_board->safe());
-      ++plant_ms;
-      g_watchdog.Kick();
-    }
+    CatchUpPlant(now, plant_ms);
     g_uart.PumpTx();
-    if (g_board->reboot_requested()) {  // UpdateReboot: its Ack out first, then the bootloader
-      g_uart.DrainTx();  // within the watchdog's period: it was kicked after the last tick
-      g_reset_record.Set(palpa::protocol::ResetCause::kUpdate);
-      palpa::hal::mps2::SystemReset();
-    }
+    RebootIfAsked();
 #ifdef PALPA_SELFTEST
-    if (now > 2000000) {
-      char text[160];
-      std::snprintf(text, sizeof(text),
-                    "palpa mps2-an386 firmware 0.1.0, catalog 0x%08lx, %s, %lu ticks, %lu "
-                    "overruns, safe=%d\n",
-                    static_cast<unsigned long>(palpa::protocol::kCatalogHash), PALPA_BOARD_CONFIG,
-                    static_cast<unsigned long>(g_board->tick_stats().ticks),
-                    static_cast<unsigned long>(g_board->tick_stats().overruns),
-                    g_board->safe() ? 1 : 0);
-      Print(text);
-      SemihostExit(g_board->tick_stats().ticks >= 1900 && g_board->safe() ? 0 : 1);
-    }
+    ReportAfterTwoSeconds(now);
 #endif
   }
 }
