@@ -102,7 +102,6 @@ bool StopSim(pid_t pid) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string error;
   if (argc > 6 && std::string(argv[1]) == "--device" && std::string(argv[3]) == "--stamps" &&
       std::string(argv[5]) == "--stop") {
     const std::string uri = argv[2], stamps = argv[4];

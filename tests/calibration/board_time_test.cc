@@ -52,7 +52,6 @@ TEST_GROUP(BoardTime) {
   void Open() {
     CHECK(sim.Start(
         {"--config", "thesis-pneumatic-3", "--listen", "tcp:127.0.0.1:0", "--speed", "10"}));
-    std::string error;
     auto opened = ph::Device::Open(sim.address(), {});
     CHECK_TEXT(opened.ok(), opened.message.c_str());
     device = std::move(opened.value);

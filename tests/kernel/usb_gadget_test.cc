@@ -86,7 +86,6 @@ void HoldLine(ph::Device& d, double kpa) {
 /// refuses commands while the board is gone, reopens it and opens a new session; the board went
 /// safe on host silence meanwhile and takes setpoints again once the fault is cleared.
 void CheckUnplugAndReplug(const std::string& uri) {
-  std::string error;
   auto opened = ph::Device::Open(uri, {});
   CHECK_TEXT(opened.ok(), opened.message.c_str());
   ph::Device& d = *opened.value;
@@ -120,7 +119,6 @@ void CheckUnplugAndReplug(const std::string& uri) {
 /// and still nothing three host-silence timeouts later (a session left to fall silent with a line
 /// actuated would have latched host_silence).
 void CheckCloseEndsTheSessionWithoutAFault(const std::string& uri) {
-  std::string error;
   auto opened = ph::Device::Open(uri, {});
   CHECK_TEXT(opened.ok(), opened.message.c_str());
   ph::Device& d = *opened.value;
@@ -158,7 +156,6 @@ void CheckCloseEndsTheSessionWithoutAFault(const std::string& uri) {
 
 /// Sets the board's telemetry decimation (over vendor bulk, which has room for anything).
 void SetTelemetryDecimation(uint16_t every) {
-  std::string error;
   auto opened = ph::Device::Open("usb:1209:0001", {});
   CHECK_TEXT(opened.ok(), opened.message.c_str());
   auto board = opened.value->ReadBoard();

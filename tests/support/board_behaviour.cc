@@ -35,7 +35,6 @@ class TransportPipe final : public BytePipe {
 }  // namespace
 
 void CheckBoardBehaviour(const std::string& uri, pp::BoardKind kind) {
-  std::string error;
   auto opened = ph::Device::Open(uri, {});
   CHECK_TEXT(opened.ok(), opened.message.c_str());
   ph::Device& d = *opened.value;

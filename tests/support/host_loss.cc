@@ -26,7 +26,6 @@ constexpr double kSettlingUs = 300000;
 /// The child: a host that connects, clears faults, pressurises every line and keeps heartbeating
 /// until it is killed (SIGKILL: it cannot close its session, so the board latches host_silence).
 [[noreturn]] void Host(const std::string& address, int ready_fd) {
-  std::string error;
   auto device = host::Device::Open(address, host::DeviceOptions{});
   if (!device.ok()) {
     std::fprintf(stderr, "host loss: the host cannot open the board: %s\n", device.message.c_str());

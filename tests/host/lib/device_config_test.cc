@@ -18,7 +18,6 @@ namespace pp = palpa::protocol;
 TEST_GROUP(DeviceConfig){};
 
 TEST(DeviceConfig, TheWholeConfigurationReadsBackIsCheckedAsTheBoardWouldAndAppliesStaged) {
-  std::string error;
   ph::DeviceOptions options;
   options.number_from = 1;
   auto opened = ph::Device::Open("sim:thesis-5finger", options);

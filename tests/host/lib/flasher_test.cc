@@ -45,7 +45,6 @@ class CutTransport final : public ph::Transport {
 };
 
 std::unique_ptr<ph::Link> Connect(const std::string& address, size_t budget = SIZE_MAX) {
-  std::string error;
   auto t = ph::OpenTransport(address);
   CHECK_TEXT(t.ok(), t.message.c_str());
   std::unique_ptr<ph::Transport> transport = std::move(t.value);

@@ -180,7 +180,6 @@ TEST_GROUP(HostileCalibrations) {
     ph::DeviceOptions options;
     options.calibration_dir = dir;
     options.invalid_calibration_is_error = strict;
-    std::string error;
     auto opened = ph::Device::Open("sim:thesis-5finger", options);
     CHECK_TEXT(opened.ok(), opened.message.c_str());
     return std::move(opened.value);

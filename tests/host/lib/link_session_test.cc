@@ -40,14 +40,12 @@ class MutableTransport final : public ph::Transport {
 };
 
 std::unique_ptr<ph::Transport> Tcp(const std::string& address) {
-  std::string error;
   auto t = ph::OpenTransport(address);
   CHECK_TEXT(t.ok(), t.message.c_str());
   return std::move(t.value);
 }
 
 std::unique_ptr<ph::Device> OpenDevice(const std::string& address) {
-  std::string error;
   auto d = ph::Device::Open(address, {});
   CHECK_TEXT(d.ok(), d.message.c_str());
   return std::move(d.value);
@@ -88,7 +86,6 @@ TEST_GROUP(LinkSession){};
 TEST(LinkSession, DestroyingTheLinkClosesTheSessionAndTheNextHostOpensAtOnce) {
   TestBoard board(pp::kCatalogHash, 1024, 21);
   {
-    std::string error;
     auto link = ph::Link::Open(std::make_unique<BoardTransport>(board), {});
     CHECK_TEXT(link.ok(), link.message.c_str());
   }
@@ -109,7 +106,6 @@ TEST(LinkSession, AnUnansweredCloseIsRepeatedThenLeftToTheBoardsTimeout) {
   auto* transport = new MutableTransport(std::make_unique<BoardTransport>(board));
   ph::LinkOptions options;
   options.close_attempts = 5;
-  std::string error;
   auto link = ph::Link::Open(std::unique_ptr<ph::Transport>(transport), options);
   CHECK_TEXT(link.ok(), link.message.c_str());
   transport->muted = true;
@@ -127,7 +123,6 @@ TEST(LinkSession, ABootloadersUnsupportedAnswersCloseAndRelease) {
   board.recovery = true;  // no session to end, every line safe: the answer is all that is needed
   ph::LinkOptions options;
   options.close_resend_ms = 200;  // an unheard answer would cost seconds
-  std::string error;
   auto link = ph::Link::Open(std::make_unique<BoardTransport>(board), options);
   CHECK_TEXT(link.ok(), link.message.c_str());
   const auto start = std::chrono::steady_clock::now();
@@ -141,7 +136,6 @@ TEST(LinkSession, ABootloadersUnsupportedAnswersCloseAndRelease) {
 
 TEST(LinkSession, AReleaseStopsResendingWhatWasStreamed) {
   TestBoard board(pp::kCatalogHash, 1024, 25);  // shows nothing applied: streams are resent
-  std::string error;
   auto link = ph::Link::Open(std::make_unique<BoardTransport>(board), {});
   CHECK_TEXT(link.ok(), link.message.c_str());
   pp::SetLineSetpoints m{};
@@ -157,7 +151,6 @@ TEST(LinkSession, AReleaseStopsResendingWhatWasStreamed) {
 
 TEST(LinkSession, NoCloseIsSentToABoardWithAnotherCatalog) {
   TestBoard board(0x12345678, 1024, 23);
-  std::string error;
   auto link = ph::Link::Open(std::make_unique<BoardTransport>(board), {});
   CHECK_TEXT(link.ok(), link.message.c_str());
   LONGS_EQUAL((int)pp::Status::kCatalogMismatch, (int)link.value->Close());
@@ -175,7 +168,6 @@ TEST_GROUP(LinkSessionSim) {
 TEST(LinkSessionSim, ASecondHostIsToldBusyAndGetsTheBoardOnceTheFirstCloses) {
   auto first = OpenDevice(sim.address());
   CHECK(first->SetLines({{0, 30.0}}).ok());
-  std::string error;
   const auto start = std::chrono::steady_clock::now();
   auto second = ph::Device::Open(sim.address(), {});
   const double took =
@@ -195,7 +187,6 @@ TEST(LinkSessionSim, ASecondHostIsToldBusyAndGetsTheBoardOnceTheFirstCloses) {
 
 TEST(LinkSessionSim, AHostThatSeesAnotherHostsHelloReplyKnowsItLostTheBoard) {
   auto* transport = new MutableTransport(Tcp(sim.address()));
-  std::string error;
   auto link = ph::Link::Open(std::unique_ptr<ph::Transport>(transport), {});
   CHECK_TEXT(link.ok(), link.message.c_str());
   transport->muted = true;  // this host goes quiet: the board ends its session (nothing actuated)
@@ -219,7 +210,6 @@ TEST(LinkSessionSim, AHostThatSeesAnotherHostsHelloReplyKnowsItLostTheBoard) {
 
 TEST(LinkSessionSim, AHostTheBoardTimedOutIsToldSoAndOpensANewSession) {
   auto* transport = new MutableTransport(Tcp(sim.address()));
-  std::string error;
   ph::DeviceOptions options;
   auto device = ph::Device::Attach(std::unique_ptr<ph::Transport>(transport), options);
   CHECK_TEXT(device.ok(), device.message.c_str());

@@ -31,7 +31,6 @@ using palpa::testing::TestBoard;
 namespace {
 
 std::unique_ptr<ph::Link> OpenLink(std::unique_ptr<ph::Transport> t, ph::LinkOptions options = {}) {
-  std::string error;
   auto link = ph::Link::Open(std::move(t), options);
   CHECK_TEXT(link.ok(), link.message.c_str());
   return std::move(link.value);
@@ -57,7 +56,6 @@ std::unique_ptr<ph::Transport> LaunchSimAt(const char* speed) {
 
 /// A device on palpa-sim at `speed` times real time.
 std::unique_ptr<ph::Device> OpenSimAt(const char* speed) {
-  std::string error;
   auto device = ph::Device::Attach(LaunchSimAt(speed), {});
   CHECK_TEXT(device.ok(), device.message.c_str());
   return std::move(device.value);
@@ -336,7 +334,6 @@ TEST_GROUP(LinkSim){};
 TEST(LinkSim, StreamsConvergeToTheLatestValueUnderFaults) {
   // At a quarter of real time: until the 1 s timeout below lands, the session runs on the
   // opening 100 ms one, which a starved machine could otherwise trip (400 ms of host time here).
-  std::string error;
   ph::FaultSpec faults;
   faults.drop = 0.01;
   faults.bit_flip = 0.001;
@@ -418,7 +415,6 @@ TEST(LinkSim, ACallbackMayUnsubscribeItself) {
 }
 
 TEST(LinkSim, DeviceConfiguresReadsBackAndRecords) {
-  std::string error;
   auto opened = ph::Device::Open("sim:thesis-jamming-2", {});
   CHECK_TEXT(opened.ok(), opened.message.c_str());
   ph::Device& d = *opened.value;
@@ -491,7 +487,6 @@ TEST(LinkSim, OverARealPtyWithSerialSettings) {
   const std::string path = "/tmp/palpa-host-serial-" + std::to_string(getpid());
   palpa::testing::SimProcess sim;
   CHECK(sim.Start({"--config", "thesis-pneumatic-3", "--listen", "pty:" + path}));
-  std::string error;
   auto device = ph::Device::Open("serial:" + path + "?baud=115200", {});
   CHECK_TEXT(device.ok(), device.message.c_str());
   STRCMP_EQUAL("thesis-pneumatic-3", device.value->info().config_name.data());
@@ -510,7 +505,6 @@ TEST(LinkSim, HeartbeatsFollowAShorterHostTimeoutSetInTheSession) {
   const auto device = OpenSimAt("0.1");
   ConfigureHostTimeout(*device, 20000);
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));
-  std::string error;
   const auto diagnostics = device->Diagnostics();
   CHECK_TEXT(diagnostics.ok(), diagnostics.message.c_str());
   STRCMP_EQUAL("none", ph::FaultNames(diagnostics.value.fault_bitmap).c_str());
@@ -520,7 +514,6 @@ TEST(LinkSim, HeartbeatsFollowAShorterHostTimeoutInAStagedConfiguration) {
   // As above, with the board record inside a staged blob (palpa config set/load): the link reads
   // the timeout from what it staged when the commit goes out.
   const auto device = OpenSimAt("0.1");
-  std::string error;
   auto board = device->ReadBoard();
   CHECK_TEXT(board.ok(), board.message.c_str());
   board.value.host_timeout_us = 20000;

@@ -51,7 +51,6 @@ TEST_GROUP(SerialLock) {
 };
 
 TEST(SerialLock, ASecondOpenIsBusyAndNamesTheHolder) {
-  std::string error;
   auto first = ph::OpenTransport("serial:" + port);
   CHECK_TEXT(first.ok(), first.message.c_str());
   std::ifstream lock(LockFile());
@@ -75,7 +74,6 @@ TEST(SerialLock, AStaleLockIsTakenOver) {
   if (gone == 0) _exit(0);
   waitpid(gone, nullptr, 0);  // a PID that no process has any more
   std::ofstream(LockFile()) << "     " << gone << "\n";
-  std::string error;
   auto t = ph::OpenTransport("serial:" + port);
   CHECK_TEXT(t.ok(), t.message.c_str());
   std::ifstream lock(LockFile());
@@ -85,7 +83,6 @@ TEST(SerialLock, AStaleLockIsTakenOver) {
 }
 
 TEST(SerialLock, TheOpenPortIsExclusive) {
-  std::string error;
   auto t = ph::OpenTransport("serial:" + port);
   CHECK_TEXT(t.ok(), t.message.c_str());
   int exclusive = 0;
@@ -124,7 +121,6 @@ TEST(SerialLock, APortOpenedExclusivelyWithoutALockIsBusy) {
   const pid_t opener = fork();
   if (opener == 0) {
     if (getuid() == 0 && (setgid(65534) != 0 || setuid(65534) != 0)) _exit(2);
-    std::string error;
     const auto t = ph::OpenTransport("serial:" + port);
     const std::string said = std::to_string(static_cast<int>(t.status)) + " " + t.message;
     _exit(write(answer[1], said.data(), said.size()) == static_cast<ssize_t>(said.size()) ? 0 : 1);

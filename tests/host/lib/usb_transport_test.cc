@@ -18,7 +18,6 @@ TEST_GROUP(HidTransport){void setup() override{palpa::testing::ResetFakes();
 }
 void teardown() override { palpa::testing::ResetFakes(); }
 std::unique_ptr<ph::Transport> Open(const char* uri = "hid:1209:0001") {
-  std::string error;
   auto t = ph::OpenTransport(uri);
   CHECK_TEXT(t.ok(), t.message.c_str());
   return std::move(t.value);
@@ -94,7 +93,6 @@ TEST(HidTransport, ASecondHandleThatCannotBeOpenedClosesTheFirst) {
 }
 
 TEST(HidTransport, OtherSerialNumbersAreNotOpened) {
-  std::string error;
   auto t = ph::OpenTransport("hid:1209:0001:XYZ");
   LONGS_EQUAL((int)pp::Status::kNotFound, (int)t.status);
   CHECK(t.message.find("hid:1209:0001:XYZ: no such device") != std::string::npos);
@@ -103,7 +101,6 @@ TEST(HidTransport, OtherSerialNumbersAreNotOpened) {
 
 TEST(HidTransport, MissingDeviceIsNamed) {
   Hid().present = false;
-  std::string error;
   auto t = ph::OpenTransport("hid:1209:0001:ABC");
   LONGS_EQUAL((int)pp::Status::kNotFound, (int)t.status);
   CHECK(t.message.find("hid:1209:0001:ABC") != std::string::npos);
@@ -117,7 +114,6 @@ void teardown() override { palpa::testing::ResetFakes(); }
 ;
 
 TEST(UsbTransport, BulkInAndOutWithShortTransfersAndStalls) {
-  std::string error;
   auto t = ph::OpenTransport("usb:1209:0001:PALPA-0042");
   CHECK_TEXT(t.ok(), t.message.c_str());
   Usb().out_chunk = 7;  // the device takes 7 bytes per transfer

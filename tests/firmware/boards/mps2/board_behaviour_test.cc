@@ -46,7 +46,6 @@ std::unique_ptr<ph::Device> OpenAtTheBoardsOwnSpeed(palpa::testing::QemuProcess&
       access(PALPA_MPS2_IMAGE, R_OK) == 0 &&
           qemu.Start(PALPA_QEMU, {"-icount", "shift=5,align=on", "-kernel", PALPA_MPS2_IMAGE}),
       "QEMU or the mps2 image is missing (build the mps2 preset)");
-  std::string error;
   auto opened = ph::Device::Open(qemu.address(), {});
   CHECK_TEXT(opened.ok(), opened.message.c_str());
   auto board = opened.value->ReadBoard();
@@ -64,7 +63,6 @@ std::unique_ptr<ph::Device> OpenAtTheBoardsOwnSpeed(palpa::testing::QemuProcess&
 /// The board's whole live configuration, read section by section.
 palpa::core::BoardConfig ReadWholeConfig(ph::Device& d) {
   palpa::core::BoardConfig config{};
-  std::string error;
   const auto board = d.ReadBoard();
   CHECK_TEXT(board.ok(), board.message.c_str());
   config.board = board.value;
@@ -90,7 +88,6 @@ TEST(QemuBoard, AtTheBoardsOwnSpeedTheLoopMissesNoDeadline) {
   uint32_t setup_overruns = 0;
   const auto device = OpenAtTheBoardsOwnSpeed(qemu, &setup_overruns);
   ph::Device& d = *device;
-  std::string error;
   ReadWholeConfig(d);
   for (int i = 0; i < 50; ++i) {
     CHECK(d.SetLines({{0, 20.0 + i % 10}}).ok());
@@ -117,7 +114,6 @@ TEST(QemuBoard, AtTheBoardsOwnSpeedAConfigurationChangeCostsAtMostThreeTicks) {
   std::vector<uint8_t> blob(palpa::core::kMaxConfigBlob);
   const auto size = palpa::core::EncodeConfigBlob(config, blob.data(), blob.size());
   CHECK(size.ok());
-  std::string error;
   const auto before = d.LoopStats();
   CHECK_TEXT(before.ok(), before.message.c_str());
   const ph::Outcome applied = d.ConfigureStaged(blob.data(), size.value);

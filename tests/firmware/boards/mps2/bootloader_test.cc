@@ -35,7 +35,6 @@ std::vector<uint8_t> Read(const std::string& path) {
 }
 
 std::unique_ptr<ph::Link> Connect(const QemuProcess& qemu) {
-  std::string error;
   auto t = ph::OpenTransport(qemu.address());
   CHECK_TEXT(t.ok(), t.message.c_str());
   auto link = ph::Link::Open(std::move(t.value), ph::LinkOptions{});
@@ -155,7 +154,6 @@ TEST(QemuBootloader, ThroughTheApplicationAReleaseIsFlashedBootedAndConfirmed) {
   QemuProcess qemu;
   CHECK(qemu.Start(PALPA_QEMU, {"-icount", "shift=5,align=on", "-kernel", kBoot, "-device",
                                 "loader,file=" + SlotImage(0) + ",addr=0x8000,force-raw=on"}));
-  std::string error;
   auto device = ph::Device::Open(qemu.address(), {});
   CHECK_TEXT(device.ok(), device.message.c_str());
   auto board = device.value->ReadBoard();
@@ -184,7 +182,6 @@ TEST(QemuBootloader, ACommandLongerThanTheWatchdogPeriodLeavesAnActuatingApplica
   QemuProcess qemu;
   CHECK(qemu.Start(PALPA_QEMU, {"-icount", "shift=5,align=on", "-kernel", kBoot, "-device",
                                 "loader,file=" + SlotImage(0) + ",addr=0x8000,force-raw=on"}));
-  std::string error;
   auto device = ph::Device::Open(qemu.address(), {});
   CHECK_TEXT(device.ok(), device.message.c_str());
   auto board = device.value->ReadBoard();
@@ -213,7 +210,6 @@ TEST(QemuBootloader, AnUpdateItsHostClosesMidwayLeavesNoFaultAndCanResume) {
   QemuProcess qemu;
   CHECK(qemu.Start(PALPA_QEMU, {"-icount", "shift=5,align=on", "-kernel", kBoot, "-device",
                                 "loader,file=" + SlotImage(0) + ",addr=0x8000,force-raw=on"}));
-  std::string error;
   {  // A host starts an update, writes its first chunk and closes its session.
     auto device = ph::Device::Open(qemu.address(), {});
     CHECK_TEXT(device.ok(), device.message.c_str());
