@@ -10,10 +10,9 @@
 namespace ph = palpa::host;
 
 int main() {
-  std::string error;
-  auto opened = ph::Device::Open("sim:thesis-5finger", {}, &error);
-  if (!opened.ok()) {
-    std::fprintf(stderr, "open: %s\n", error.c_str());
+  auto opened = ph::Device::Open("sim:thesis-5finger", {});
+  if (!opened.ok()) {  // a Result: the value, or the status and its message
+    std::fprintf(stderr, "open: %s\n", opened.message.c_str());
     return 1;
   }
   ph::Device& board = *opened.value;
