@@ -10,9 +10,8 @@
 
 namespace palpa::calibration {
 
-std::optional<BoardRig> OpenSimulatedRig(const std::string& config, int finger, double speed,
-                                         const host::SimulatedPlant& plant, int number_from,
-                                         std::string* error) {
+host::Result<BoardRig> OpenSimulatedRig(const std::string& config, int finger, double speed,
+                                        const host::SimulatedPlant& plant, int number_from) {
   char speed_text[16];
   std::snprintf(speed_text, sizeof(speed_text), "%g", speed);
   std::vector<std::string> sim_args = {"--speed",      speed_text,
@@ -24,31 +23,21 @@ std::optional<BoardRig> OpenSimulatedRig(const std::string& config, int finger, 
   if (!plant.effects.empty()) sim_args.insert(sim_args.end(), {"--effects", plant.effects});
   std::string rig_address;
   auto transport = host::LaunchSim(config, sim_args, nullptr, &rig_address);
-  if (!transport.ok()) {
-    *error = transport.message;
-    return std::nullopt;
-  }
+  if (!transport.ok()) return {Status::kUnavailable, transport.message};
   host::DeviceOptions options;
   options.number_from = static_cast<uint8_t>(number_from);
   auto device = host::Device::Attach(std::move(transport.value), options);
-  if (!device.ok()) {
-    *error = device.message;
-    return std::nullopt;
-  }
+  if (!device.ok()) return {Status::kUnavailable, device.message};
   auto rig = OpenBoardRig(*device.value,
-                          SimRigDescription("modbus-tcp://" + rig_address.substr(4) + "/1"), error);
-  if (!rig) return std::nullopt;
-  rig->own_device = std::move(device.value);
+                          SimRigDescription("modbus-tcp://" + rig_address.substr(4) + "/1"));
+  if (rig.ok()) rig.value.own_device = std::move(device.value);
   return rig;
 }
 
-std::optional<BoardRig> OpenBoardRig(host::Device& device, const RigDescription& description,
-                                     std::string* error) {
-  auto devices = OpenRigDevices(description, error);
-  if (!devices) {
-    *error = "rig " + description.name + ": " + *error;
-    return std::nullopt;
-  }
+host::Result<BoardRig> OpenBoardRig(host::Device& device, const RigDescription& description) {
+  std::string error;
+  auto devices = OpenRigDevices(description, &error);
+  if (!devices) return {Status::kUnavailable, "rig " + description.name + ": " + error};
   BoardRig rig;
   rig.device = &device;
   rig.description = description;
@@ -58,22 +47,19 @@ std::optional<BoardRig> OpenBoardRig(host::Device& device, const RigDescription&
   return rig;
 }
 
-host::Outcome ReadActuatorSerial(host::Device& device, uint8_t finger, std::string* serial) {
+host::Result<std::string> ReadActuatorSerial(host::Device& device, uint8_t finger) {
   if (finger >= device.info().finger_count) {
-    return host::Outcome{protocol::Status::kInvalidArgument,
-                         "the board has " + std::to_string(device.info().finger_count) + " fingers",
-                         {}};
+    return {Status::kInvalidArgument,
+            "the board has " + std::to_string(device.info().finger_count) + " fingers"};
   }
   const auto config = device.ReadFinger(finger);
-  if (!config.ok()) return host::Outcome{config.status, config.message, {}};
-  *serial = host::FieldText(config.value.actuator_serial);
-  if (!host::ValidSerial(*serial)) {
-    return host::Outcome{
-        protocol::Status::kBadValue,
-        device.FingerName(finger) + " has no usable actuator serial ('" + *serial + "')",
-        {}};
+  if (!config.ok()) return config.outcome();
+  std::string serial = host::FieldText(config.value.actuator_serial);
+  if (!host::ValidSerial(serial)) {
+    return {Status::kBadValue,
+            device.FingerName(finger) + " has no usable actuator serial ('" + serial + "')"};
   }
-  return {};
+  return serial;
 }
 
 }  // namespace palpa::calibration

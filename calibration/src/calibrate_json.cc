@@ -87,25 +87,24 @@ host::Outcome CalibrateFromJson(host::Device* device, const std::string& rig,
   } catch (const std::exception& e) {
     return Invalid(e.what());
   }
-  std::string error;
-  std::optional<BoardRig> opened;
+  host::Result<BoardRig> opened{BoardRig{}};
   if (simulated) {
-    opened = OpenSimulatedRig(r.sim_config, r.session.finger, r.sim_speed, *r.session.simulation, 0,
-                              &error);
-    if (!opened) return host::Outcome{Status::kUnavailable, error, {}};
+    opened =
+        OpenSimulatedRig(r.sim_config, r.session.finger, r.sim_speed, *r.session.simulation, 0);
   } else {
     if (device == nullptr) return Invalid("a rig file calibrates beside an open device");
+    std::string error;
     const auto description = LoadRigDescription(rig, &error);
     if (!description) return Invalid(error);
-    opened = OpenBoardRig(*device, *description, &error);
-    if (!opened) return host::Outcome{Status::kUnavailable, error, {}};
+    opened = OpenBoardRig(*device, *description);
   }
-  host::Device& board = *opened->device;
-  std::string serial;
-  if (host::Outcome o = ReadActuatorSerial(board, r.session.finger, &serial); !o.ok()) return o;
+  if (!opened.ok()) return opened.outcome();
+  host::Device& board = *opened.value.device;
+  const host::Result<std::string> serial = ReadActuatorSerial(board, r.session.finger);
+  if (!serial.ok()) return serial.outcome();
   const bool jamming =
       board.info().fingers[r.session.finger].kind == protocol::FingerKind::kJamming;
-  Session session(opened->rig(), serial, board.info().board_id, jamming, r.session);
+  Session session(opened.value.rig(), serial.value, board.info().board_id, jamming, r.session);
   if (host::Outcome o = session.Calibrate(nullptr); !o.ok()) return o;
   if (r.apply) {
     host::Outcome o = board.ApplyCalibration(r.session.finger, session.result().file);

@@ -190,8 +190,9 @@ int OpenRig(Context& c, const CalibrateArgs& a, OpenedRig& r) {
     }
     const std::string config = c.device_uri.size() > 4 ? c.device_uri.substr(4) : "thesis-5finger";
     // Fingers numbered as the command line numbers them.
-    r.rig = cal::OpenSimulatedRig(config, a.finger, a.speed, a.plant, 1, &error);
-    if (!r.rig) return Fail("calibrate", protocol::Status::kUnavailable, error, kExitConnect);
+    auto opened = cal::OpenSimulatedRig(config, a.finger, a.speed, a.plant, 1);
+    if (!opened.ok()) return Fail("calibrate", opened.status, opened.message, kExitConnect);
+    r.rig = std::move(opened.value);
     r.device = r.rig->device;
     r.closed_on_signal.emplace(r.device);
   } else {
@@ -200,17 +201,19 @@ int OpenRig(Context& c, const CalibrateArgs& a, OpenedRig& r) {
     r.device = c.Device();
     if (r.device == nullptr) return kExitConnect;
   }
-  const host::Outcome serial =
-      cal::ReadActuatorSerial(*r.device, static_cast<uint8_t>(a.finger), &r.serial);
+  const host::Result<std::string> serial =
+      cal::ReadActuatorSerial(*r.device, static_cast<uint8_t>(a.finger));
   if (serial.status == protocol::Status::kInvalidArgument)
     return Usage("calibrate", "--finger " + std::to_string(a.finger + 1) + ": " + serial.message);
   if (serial.status == protocol::Status::kBadValue) {
     return Fail("calibrate", serial.status, serial.message + "; set it with palpa config set");
   }
   if (!serial.ok()) return Fail("calibrate", serial.status, serial.message);
+  r.serial = serial.value;
   if (!r.rig) {
-    r.rig = cal::OpenBoardRig(*r.device, *description, &error);
-    if (!r.rig) return Fail("calibrate", protocol::Status::kUnavailable, error, kExitConnect);
+    auto opened = cal::OpenBoardRig(*r.device, *description);
+    if (!opened.ok()) return Fail("calibrate", opened.status, opened.message, kExitConnect);
+    r.rig = std::move(opened.value);
   }
   return kExitOk;
 }

@@ -52,8 +52,12 @@ bool CalibrateOne(const std::string& config, int finger, double speed,
                   const std::function<void(const cal::Progress&)>& progress,
                   host::CalibrationFile* out, std::string* error) {
   const host::SimulatedPlant plant;  // the demo board's: palpa-sim's defaults
-  std::optional<cal::BoardRig> sim = cal::OpenSimulatedRig(config, finger, speed, plant, 1, error);
-  if (!sim) return false;
+  host::Result<cal::BoardRig> opened = cal::OpenSimulatedRig(config, finger, speed, plant, 1);
+  if (!opened.ok()) {
+    *error = opened.message;
+    return false;
+  }
+  cal::BoardRig* sim = &opened.value;
   const auto fc = sim->device->ReadFinger(static_cast<uint8_t>(finger));
   if (!fc.ok()) {
     *error = fc.message;

@@ -32,19 +32,18 @@ struct BoardRig {
 
 /// Starts palpa-sim of `config` at `speed` with `plant` (its unit, seed, level and effects, so a
 /// finger's actuator is the one every other simulator of that configuration and unit has) and
-/// its rig on `finger` (from 0); the board numbers fingers from `number_from`. Empty with *error
-/// when it cannot.
-std::optional<BoardRig> OpenSimulatedRig(const std::string& config, int finger, double speed,
-                                         const host::SimulatedPlant& plant, int number_from,
-                                         std::string* error);
+/// its rig on `finger` (from 0); the board numbers fingers from `number_from`. kUnavailable, and
+/// why, when it cannot.
+host::Result<BoardRig> OpenSimulatedRig(const std::string& config, int finger, double speed,
+                                        const host::SimulatedPlant& plant, int number_from);
 
-/// The stage and force sensor `description` names, beside `device`. Empty with *error ("rig
-/// NAME: ...") when one cannot be opened.
-std::optional<BoardRig> OpenBoardRig(host::Device& device, const RigDescription& description,
-                                     std::string* error);
+/// The stage and force sensor `description` names, beside `device`. kUnavailable ("rig NAME:
+/// ...") when one cannot be opened.
+host::Result<BoardRig> OpenBoardRig(host::Device& device, const RigDescription& description);
 
 /// The actuator serial finger `finger` carries: kInvalidArgument when the board has no such
-/// finger, kBadValue (and the serial as read) when it is not usable for a calibration's name.
-host::Outcome ReadActuatorSerial(host::Device& device, uint8_t finger, std::string* serial);
+/// finger, kBadValue (the message quoting the serial as read) when it is not usable for a
+/// calibration's name.
+host::Result<std::string> ReadActuatorSerial(host::Device& device, uint8_t finger);
 
 }  // namespace palpa::calibration
