@@ -48,9 +48,8 @@ void ConfigureHostTimeout(ph::Device& device, uint32_t host_timeout_us) {
 /// palpa-sim with thesis-5finger running at `speed` times real time (slowed down, a test's
 /// timeouts in board time become longer in host time).
 std::unique_ptr<ph::Transport> LaunchSimAt(const char* speed) {
-  std::string error;
-  auto sim = ph::LaunchSim("thesis-5finger", {"--speed", speed}, nullptr, &error);
-  CHECK_TEXT(sim.ok(), error.c_str());
+  auto sim = ph::LaunchSim("thesis-5finger", {"--speed", speed}, nullptr);
+  CHECK_TEXT(sim.ok(), sim.message.c_str());
   return std::move(sim.value);
 }
 
