@@ -3,9 +3,11 @@
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(CPPUTEST REQUIRED IMPORTED_TARGET cpputest)
 
-# palpa_add_cpputest(NAME SOURCES ... LIBS ... [LABELS ...] [SERIAL_GROUPS ...])
+# palpa_add_cpputest(NAME SOURCES ... LIBS ... [LABELS ...] [SERIAL_GROUPS ...] [LONG_GROUPS ...])
+# LONG_GROUPS run for minutes (calibrations in real time): CTest starts them first, so the short
+# groups fill the other processor meanwhile rather than leaving a long one running alone at the end.
 function(palpa_add_cpputest name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS;LABELS;SERIAL_GROUPS" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS;LABELS;SERIAL_GROUPS;LONG_GROUPS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES} ${PROJECT_SOURCE_DIR}/tests/support/all_tests_main.cc)
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} PkgConfig::CPPUTEST)
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)
@@ -13,7 +15,8 @@ function(palpa_add_cpputest name)
   set(listing "${CMAKE_CURRENT_BINARY_DIR}/${name}_tests.cmake")
   add_custom_command(TARGET ${name} POST_BUILD
     COMMAND ${CMAKE_COMMAND} -DEXECUTABLE=$<TARGET_FILE:${name}> -DNAME=${name}
-            "-DLABELS=${ARG_LABELS}" "-DSERIAL_GROUPS=${ARG_SERIAL_GROUPS}" -DOUTPUT=${listing}
+            "-DLABELS=${ARG_LABELS}" "-DSERIAL_GROUPS=${ARG_SERIAL_GROUPS}"
+            "-DLONG_GROUPS=${ARG_LONG_GROUPS}" -DOUTPUT=${listing}
             -P ${PROJECT_SOURCE_DIR}/cmake/PalpaDiscoverCppUTest.cmake
     VERBATIM)
   set(loader "${CMAKE_CURRENT_BINARY_DIR}/${name}_include.cmake")

@@ -506,6 +506,18 @@ TEST(CliSim, ARecordWhoseBoardIsGoneIsNotUsed) {
   CHECK(Has(r, "throwaway"));
 }
 
+namespace {
+
+// Each group below that calibrates is a CTest entry of its own, so they run side by side. Those
+// that hold what the command does with a calibration (its files, its fallback, its report), not
+// the values the rig reads, run palpa-sim at its top speed, `--speed 10`; the unit test, which
+// holds the readings, runs at calibrate's default speed, as the readings it was set on were taken.
+std::string OnTheSimRig(const std::string& args) {
+  return "calibrate --rig sim --speed 10 " + args;
+}
+
+}  // namespace
+
 TEST_GROUP(CliCalibrate){};
 
 TEST(CliCalibrate, BadArgumentsAreNamedBeforeAnythingStarts) {
@@ -559,7 +571,9 @@ TEST(CliCalibrate, BadArgumentsAreNamedBeforeAnythingStarts) {
   CHECK(access(never.c_str(), F_OK) != 0);
 }
 
-TEST(CliCalibrate, ACalibrationOfSimulatedUnit12HasUnit12sOwnSlopesAndSaysSo) {
+TEST_GROUP(CliCalibrateUnits){};
+
+TEST(CliCalibrateUnits, ACalibrationOfSimulatedUnit12HasUnit12sOwnSlopesAndSaysSo) {
   char pattern[] = "/tmp/palpa-cal-cli-XXXXXX";
   const std::string dir = mkdtemp(pattern);
   const Run r = Palpa("calibrate --rig sim --finger 1 --quick --unit 12 --out " + dir);
@@ -618,7 +632,9 @@ TEST(CliCalibrate, ACalibrationOfSimulatedUnit12HasUnit12sOwnSlopesAndSaysSo) {
   }
 }
 
-TEST(CliCalibrate, ACompensatorTheSweepCannotFitIsAnErrorUnlessFallingBackIsAllowed) {
+TEST_GROUP(CliCalibrateFallback){};
+
+TEST(CliCalibrateFallback, ACompensatorTheSweepCannotFitIsAnErrorUnlessFallingBackIsAllowed) {
   // Refused before the run: the quick sweep says what it can fit, and pi(32) is not among it.
   const std::string never = OwnTempPath("never-fitted");
   Run r = Palpa("calibrate --rig sim --finger 1 --quick --compensator pi:32 --out " + never);
@@ -632,8 +648,7 @@ TEST(CliCalibrate, ACompensatorTheSweepCannotFitIsAnErrorUnlessFallingBackIsAllo
   // Allowed to fall back, the run keeps the static inverse alone and says why, in the file too.
   char pattern[] = "/tmp/palpa-cal-cli-XXXXXX";
   const std::string dir = mkdtemp(pattern);
-  r = Palpa("calibrate --rig sim --finger 1 --quick --compensator pi:32 --allow-fallback --out " +
-            dir);
+  r = Palpa(OnTheSimRig("--finger 1 --quick --compensator pi:32 --allow-fallback --out " + dir));
   LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
   CHECK(Has(r, "compensator none: the static inverse alone (--allow-fallback)"));
   std::ifstream file(dir + "/PN-1.json");
@@ -673,10 +688,12 @@ TEST(CliCalibrate, AFitThatFailsAfterTheRunExits1AndKeepsTheJournal) {
   std::system(("rm -rf " + dir).c_str());
 }
 
-TEST(CliCalibrate, QuickCalibrationOnTheSimulatedRigWritesAValidFileRawDataAndAReport) {
+TEST_GROUP(CliCalibrateQuick){};
+
+TEST(CliCalibrateQuick, QuickCalibrationOnTheSimulatedRigWritesAValidFileRawDataAndAReport) {
   char pattern[] = "/tmp/palpa-cal-cli-XXXXXX";
   const std::string dir = mkdtemp(pattern);
-  const Run r = Palpa("calibrate --rig sim --finger 1 --quick --apply --out " + dir);
+  const Run r = Palpa(OnTheSimRig("--finger 1 --quick --apply --out " + dir));
   LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
   CHECK(Has(r, "calibrated PN-1"));
   CHECK(Has(r, "applied to finger 1"));
@@ -696,11 +713,13 @@ TEST(CliCalibrate, QuickCalibrationOnTheSimulatedRigWritesAValidFileRawDataAndAR
         0);  // a finished run leaves no journal
 }
 
-TEST(CliCalibrate, AdaptiveMapOnAJammingFingerReportsItsChecks) {
+TEST_GROUP(CliCalibrateAdaptive){};
+
+TEST(CliCalibrateAdaptive, AdaptiveMapOnAJammingFingerReportsItsChecks) {
   char pattern[] = "/tmp/palpa-cal-cli-XXXXXX";
   const std::string dir = mkdtemp(pattern);
-  const Run r = Palpa(
-      "calibrate --rig sim --finger 4 --quick --protocol adaptive --max-cycles 8 --out " + dir);
+  const Run r =
+      Palpa(OnTheSimRig("--finger 4 --quick --protocol adaptive --max-cycles 8 --out " + dir));
   LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
   CHECK(Has(r, "stiffness map: adaptive, 8 cycles"));
   for (const char* check : {"check points", "check noise", "check force_zero", "check leak"})
