@@ -19,9 +19,20 @@ function(palpa_add_cpputest name)
             "-DLONG_GROUPS=${ARG_LONG_GROUPS}" -DOUTPUT=${listing}
             -P ${PROJECT_SOURCE_DIR}/cmake/PalpaDiscoverCppUTest.cmake
     VERBATIM)
+  # Not built, the suite is one failing entry that keeps its labels, so a preset that runs a label
+  # (asan: sanitize) fails rather than leaving the suite out.
   set(loader "${CMAKE_CURRENT_BINARY_DIR}/${name}_include.cmake")
   file(WRITE ${loader}
     "if(EXISTS \"${listing}\")\n  include(\"${listing}\")\nelse()\n"
-    "  add_test(${name}_NOT_BUILT ${name}_NOT_BUILT)\nendif()\n")
+    "  add_test(${name}_NOT_BUILT ${name}_NOT_BUILT)\n"
+    "  set_tests_properties(${name}_NOT_BUILT PROPERTIES LABELS [=[${ARG_LABELS}]=])\nendif()\n")
   set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${loader})
+  # One target per label builds the suites that carry it (tests_sanitize, tests_threads): a preset
+  # that runs one label builds only what it runs.
+  foreach(label IN LISTS ARG_LABELS)
+    if(NOT TARGET tests_${label})
+      add_custom_target(tests_${label})
+    endif()
+    add_dependencies(tests_${label} ${name})
+  endforeach()
 endfunction()
