@@ -4,8 +4,9 @@ find_package(PkgConfig REQUIRED)
 pkg_check_modules(CPPUTEST REQUIRED IMPORTED_TARGET cpputest)
 
 # palpa_add_cpputest(NAME SOURCES ... LIBS ... [LABELS ...] [SERIAL_GROUPS ...] [LONG_GROUPS ...])
-# LONG_GROUPS run for minutes (calibrations in real time): CTest starts them first, so the short
-# groups fill the other processor meanwhile rather than leaving a long one running alone at the end.
+# LONG_GROUPS run for a minute or more in some preset (calibrations in real time; in-process ones
+# under the sanitizers): CTest starts them first, so the short groups fill the other processor
+# meanwhile rather than leaving a long one running alone at the end.
 function(palpa_add_cpputest name)
   cmake_parse_arguments(ARG "" "" "SOURCES;LIBS;LABELS;SERIAL_GROUPS;LONG_GROUPS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES} ${PROJECT_SOURCE_DIR}/tests/support/all_tests_main.cc)
