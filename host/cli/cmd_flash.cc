@@ -17,13 +17,12 @@ namespace {
 
 namespace pp = protocol;
 
-/// A whole file within its kind's limit; false with *error naming the file and the reason.
-bool ReadBytes(const std::string& path, const host::FileLimits& limits, std::vector<uint8_t>* out,
-               std::string* error) {
-  const auto bytes = host::ReadFileWhole(path, limits, error);
-  if (!bytes) return false;
-  out->assign(bytes->begin(), bytes->end());
-  return true;
+/// A whole file within its kind's limit, or why not (naming the file).
+host::Result<std::vector<uint8_t>> ReadBytes(const std::string& path,
+                                             const host::FileLimits& limits) {
+  const auto text = host::ReadFileWhole(path, limits);
+  if (!text.ok()) return text.outcome();
+  return std::vector<uint8_t>(text.value.begin(), text.value.end());
 }
 
 void Progress(const host::FlashProgress& p) {
@@ -81,14 +80,13 @@ int CmdFlash(Context& c, const std::vector<std::string>& args) {
     }
   }
   if (package_path.empty()) return Usage("flash", "needs a PACKAGE (made by palpa package)");
-  std::vector<uint8_t> bytes;
-  std::string error;
-  if (!ReadBytes(package_path, host::kPackageFileLimits, &bytes, &error))
-    return Usage("flash", error);
-  const auto package = host::ReadPackage(bytes, &error);
-  if (!package) return Usage("flash", package_path + ": " + error);
+  const auto bytes = ReadBytes(package_path, host::kPackageFileLimits);
+  if (!bytes.ok()) return Usage("flash", bytes.message);
+  const auto package = host::ReadPackage(bytes.value);
+  if (!package.ok()) return Usage("flash", package_path + ": " + package.message);
 
   // Boards whose application cannot take the update: their bootloader, by the pins.
+  std::string error;
   std::unique_ptr<hal::linux_gpio::GpioOutput> reset_pin, boot_pin;
   if (!reset_spec.empty()) {
     reset_pin = hal::linux_gpio::GpioOutput::Open(reset_spec, true, &error);
@@ -115,7 +113,7 @@ int CmdFlash(Context& c, const std::vector<std::string>& args) {
       host::VersionText(before.firmware_major, before.firmware_minor, before.firmware_patch)
           .c_str());
   options.progress = Progress;
-  const host::FlashReport r = host::FlashPackage(device->link(), *package, options);
+  const host::FlashReport r = host::FlashPackage(device->link(), package.value, options);
   std::fprintf(stderr, "\n");
   if (r.status != pp::Status::kOk) {
     return Fail("flash", r.status, r.message,
@@ -195,12 +193,12 @@ int CmdPackage(Context&, const std::vector<std::string>& args) {
   spec.rollback_counter = counter;
   host::UpdatePackage package;
   for (uint8_t slot = 0; slot < 2; ++slot) {
-    std::string error;
-    if (!ReadBytes(bodies[slot], host::kSlotBinaryLimits, &spec.body, &error))
-      return Usage("package", error);
-    auto image = host::BuildSlotImage(spec, slot, &error);
-    if (!image) return Usage("package", bodies[slot] + ": " + error);
-    package.slot_image[slot] = std::move(*image);
+    auto body = ReadBytes(bodies[slot], host::kSlotBinaryLimits);
+    if (!body.ok()) return Usage("package", body.message);
+    spec.body = std::move(body.value);
+    auto image = host::BuildSlotImage(spec, slot);
+    if (!image.ok()) return Usage("package", bodies[slot] + ": " + image.message);
+    package.slot_image[slot] = std::move(image.value);
   }
   const std::vector<uint8_t> bytes = host::WritePackage(package);
   std::string error;

@@ -26,15 +26,16 @@ std::string SizeText(size_t bytes) {
   return std::to_string(bytes) + " bytes";
 }
 
-std::optional<std::string> ReadFileWhole(const std::string& path, const FileLimits& limits,
-                                         std::string* error) {
-  auto fail = [&](const std::string& why) -> std::optional<std::string> {
-    if (error != nullptr) *error = why;
-    return std::nullopt;
+Result<std::string> ReadFileWhole(const std::string& path, const FileLimits& limits) {
+  auto fail = [](std::string why, Status status = Status::kInvalidArgument) -> Result<std::string> {
+    return {status, std::move(why)};
   };
   // O_NONBLOCK: opening a FIFO for reading would otherwise wait for a writer.
   const int fd = open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
-  if (fd < 0) return fail(path + ": cannot be read: " + std::strerror(errno));
+  if (fd < 0) {
+    const Status status = errno == ENOENT ? Status::kNotFound : Status::kIoError;
+    return fail(path + ": cannot be read: " + std::strerror(errno), status);
+  }
   struct stat st;
   if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
     close(fd);
@@ -57,7 +58,7 @@ std::optional<std::string> ReadFileWhole(const std::string& path, const FileLimi
     if (n < 0) {
       const std::string why = std::strerror(errno);
       close(fd);
-      return fail(path + ": cannot be read: " + why);
+      return fail(path + ": cannot be read: " + why, Status::kIoError);
     }
     if (n == 0) break;
     got += static_cast<size_t>(n);

@@ -61,10 +61,9 @@ std::vector<uint8_t> WritePackage(const UpdatePackage& p) {
   return out;
 }
 
-std::optional<UpdatePackage> ReadPackage(const std::vector<uint8_t>& bytes, std::string* error) {
-  auto fail = [&](const std::string& why) {
-    *error = why;
-    return std::nullopt;
+Result<UpdatePackage> ReadPackage(const std::vector<uint8_t>& bytes) {
+  auto fail = [](std::string why) -> Result<UpdatePackage> {
+    return {Status::kImageInvalid, std::move(why)};
   };
   if (bytes.size() < 10 || std::memcmp(bytes.data(), kPackageMagic, 8) != 0)
     return fail("not a palpa update package (no PALPAPKG header)");
@@ -108,8 +107,7 @@ std::optional<UpdatePackage> ReadPackage(const std::vector<uint8_t>& bytes, std:
   return p;
 }
 
-std::optional<std::vector<uint8_t>> BuildSlotImage(ImageSpec spec, uint8_t slot,
-                                                   std::string* error) {
+Result<std::vector<uint8_t>> BuildSlotImage(ImageSpec spec, uint8_t slot) {
   // An MCU's vector table follows the header and must be aligned to its size: pad to 256 bytes.
   spec.header_size =
       spec.board_kind == protocol::BoardKind::kSim || spec.board_kind == protocol::BoardKind::kLinux
@@ -118,9 +116,8 @@ std::optional<std::vector<uint8_t>> BuildSlotImage(ImageSpec spec, uint8_t slot,
   const core::FlashLayout& layout = core::kDefaultLayout;
   if (protocol::ImageSize(static_cast<uint32_t>(spec.body.size()), spec.header_size) >
       layout.slot_size) {
-    *error = std::to_string(spec.body.size()) + " bytes do not fit a slot of " +
-             std::to_string(layout.slot_size);
-    return std::nullopt;
+    return {Status::kOutOfRange, std::to_string(spec.body.size()) + " bytes do not fit a slot of " +
+                                     std::to_string(layout.slot_size)};
   }
   spec.slot = slot;
   spec.load_address = layout.xip_base + layout.slot_offset[slot];

@@ -89,24 +89,27 @@ TEST(FirmwareImage, Sha256MatchesTheSystemsSha256sum) {
 TEST(FirmwareImage, PackagesRefuseWhatIsNotOneRelease) {
   const ph::UpdatePackage a = pt::MakeRelease(1, 1, 2, 2000, 1);
   const ph::UpdatePackage b = pt::MakeRelease(1, 2, 2, 2000, 1);
-  std::string error;
-  CHECK(ph::ReadPackage(ph::WritePackage(a), &error).has_value());
+  CHECK(ph::ReadPackage(ph::WritePackage(a)).ok());
   std::vector<uint8_t> bytes = ph::WritePackage(a);
   bytes.resize(bytes.size() - 100);
-  CHECK_FALSE(ph::ReadPackage(bytes, &error).has_value());
-  CHECK(error.find("truncated") != std::string::npos);
+  auto read = ph::ReadPackage(bytes);
+  LONGS_EQUAL((int)pp::Status::kImageInvalid, (int)read.status);
+  CHECK(read.message.find("truncated") != std::string::npos);
   ph::UpdatePackage mixed = a;
   mixed.slot_image[1] = b.slot_image[1];
-  CHECK_FALSE(ph::ReadPackage(ph::WritePackage(mixed), &error).has_value());
-  CHECK(error.find("not one release") != std::string::npos);
+  read = ph::ReadPackage(ph::WritePackage(mixed));
+  CHECK_FALSE(read.ok());
+  CHECK(read.message.find("not one release") != std::string::npos);
   ph::UpdatePackage swapped = a;
   std::swap(swapped.slot_image[0], swapped.slot_image[1]);
-  CHECK_FALSE(ph::ReadPackage(ph::WritePackage(swapped), &error).has_value());
-  CHECK(error.find("linked for slot") != std::string::npos);
+  read = ph::ReadPackage(ph::WritePackage(swapped));
+  CHECK_FALSE(read.ok());
+  CHECK(read.message.find("linked for slot") != std::string::npos);
   bytes = ph::WritePackage(a);
   bytes[300] ^= 0x10;
-  CHECK_FALSE(ph::ReadPackage(bytes, &error).has_value());
-  CHECK(error.find("SHA-256") != std::string::npos);
+  read = ph::ReadPackage(bytes);
+  CHECK_FALSE(read.ok());
+  CHECK(read.message.find("SHA-256") != std::string::npos);
 }
 
 TEST_GROUP(BootState){};

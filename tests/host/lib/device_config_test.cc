@@ -54,26 +54,26 @@ TEST(DeviceConfig, SlotImagesAreLaidOutForTheBoardKindsFlash) {
   ph::ImageSpec spec;
   spec.board_kind = pp::BoardKind::kMps2An386;
   spec.body.assign(1024, 0xA5);
-  std::string error;
   pp::ImageError why = pp::ImageError::kNone;
   for (uint8_t slot = 0; slot < 2; ++slot) {
-    const auto image = ph::BuildSlotImage(spec, slot, &error);
-    CHECK_TEXT(image.has_value(), error.c_str());
+    const auto image = ph::BuildSlotImage(spec, slot);
+    CHECK_TEXT(image.ok(), image.message.c_str());
     pp::ImageInfo info{};
-    LONGS_EQUAL((int)pp::Status::kOk, (int)ph::VerifyImageBytes(*image, &info, &why));
+    LONGS_EQUAL((int)pp::Status::kOk, (int)ph::VerifyImageBytes(image.value, &info, &why));
     LONGS_EQUAL(256, info.header_size);  // an MCU's vector table is aligned after it
     LONGS_EQUAL(slot, info.slot);
   }
   spec.board_kind = pp::BoardKind::kSim;
-  const auto sim = ph::BuildSlotImage(spec, 0, &error);
-  CHECK(sim.has_value());
+  const auto sim = ph::BuildSlotImage(spec, 0);
+  CHECK(sim.ok());
   pp::ImageInfo info{};
-  LONGS_EQUAL((int)pp::Status::kOk, (int)ph::VerifyImageBytes(*sim, &info, &why));
+  LONGS_EQUAL((int)pp::Status::kOk, (int)ph::VerifyImageBytes(sim.value, &info, &why));
   LONGS_EQUAL(pp::kImageHeaderSize, info.header_size);
 
   spec.body.assign(16 * 1024 * 1024, 0);
-  CHECK_FALSE(ph::BuildSlotImage(spec, 1, &error).has_value());
-  STRCMP_CONTAINS("16777216 bytes do not fit a slot of ", error.c_str());
+  const auto too_large = ph::BuildSlotImage(spec, 1);
+  LONGS_EQUAL((int)pp::Status::kOutOfRange, (int)too_large.status);
+  STRCMP_CONTAINS("16777216 bytes do not fit a slot of ", too_large.message.c_str());
 }
 
 TEST(DeviceConfig, SimulatorConfigurationsAreKnownByName) {

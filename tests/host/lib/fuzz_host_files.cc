@@ -71,11 +71,11 @@ const std::string& ValidCalibrationText() {
 const std::string& SomeValidCalibrationText(uint8_t pick) {
   static const std::string v1[2] = {
       ph::ReadFileWhole(PALPA_TEST_DATA_DIR "/calibration_v1_pneumatic.json",
-                        ph::kCalibrationFileLimits, nullptr)
-          .value(),
+                        ph::kCalibrationFileLimits)
+          .value,
       ph::ReadFileWhole(PALPA_TEST_DATA_DIR "/calibration_v1_jamming.json",
-                        ph::kCalibrationFileLimits, nullptr)
-          .value()};
+                        ph::kCalibrationFileLimits)
+          .value};
   return pick % 3 == 0 ? ValidCalibrationText() : v1[pick % 3 - 1];
 }
 
@@ -200,16 +200,16 @@ void CheckJournal(const std::string& text) {
 }
 
 void CheckPackage(const std::vector<uint8_t>& bytes) {
-  std::string error;
-  const auto package = ph::ReadPackage(bytes, &error);
-  if (!package) {
-    if (error.empty())
+  const auto package = ph::ReadPackage(bytes);
+  if (!package.ok()) {
+    if (package.message.empty() || package.status != pp::Status::kImageInvalid)
       Fail("a refused package came without a reason", std::to_string(bytes.size()));
     return;
   }
-  const auto again = ph::ReadPackage(ph::WritePackage(*package), &error);
-  if (!again) Fail("an accepted package does not read back once written", error);
-  if (again->slot_image != package->slot_image) Fail("a package changes in a round trip", "");
+  const auto again = ph::ReadPackage(ph::WritePackage(package.value));
+  if (!again.ok()) Fail("an accepted package does not read back once written", again.message);
+  if (again.value.slot_image != package.value.slot_image)
+    Fail("a package changes in a round trip", "");
 }
 
 const std::vector<uint8_t>& ValidPackage() {

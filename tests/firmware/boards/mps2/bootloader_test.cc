@@ -44,10 +44,9 @@ std::unique_ptr<ph::Link> Connect(const QemuProcess& qemu) {
 
 /// The release as the build step made it (Python); the host's parser must accept it.
 ph::UpdatePackage BuildStepRelease() {
-  std::string error;
-  auto package = ph::ReadPackage(Read(std::string(PALPA_BOOT_DIR) + "/palpa-mps2.palpa"), &error);
-  CHECK_TEXT(package.has_value(), error.c_str());
-  return *package;
+  auto package = ph::ReadPackage(Read(std::string(PALPA_BOOT_DIR) + "/palpa-mps2.palpa"));
+  CHECK_TEXT(package.ok(), package.message.c_str());
+  return std::move(package.value);
 }
 
 bool ImagesBuilt() {

@@ -7,6 +7,8 @@
 #include <optional>
 #include <string>
 
+#include "palpa/host/outcome.h"
+
 namespace palpa::host {
 
 /// What palpa accepts of one kind of file.
@@ -15,20 +17,23 @@ struct FileLimits {
   size_t max_bytes;
 };
 
-/// The whole of a regular file of at most limits.max_bytes. Nullopt with "PATH: reason" in
-/// *error when it cannot be opened, is not a regular file (never waited on: a FIFO is opened
-/// without blocking and refused), or is larger than the limit (named, with the kind of file).
-std::optional<std::string> ReadFileWhole(const std::string& path, const FileLimits& limits,
-                                         std::string* error);
+/// The whole of a regular file of at most limits.max_bytes. Fails with "PATH: reason" when it
+/// does not exist (not_found) or cannot be read (io_error), is not a regular file (never waited
+/// on: a FIFO is opened without blocking and refused) or is larger than the limit (named, with the
+/// kind of file; both invalid_argument).
+Result<std::string> ReadFileWhole(const std::string& path, const FileLimits& limits);
 
 /// ReadFileWhole, then `parse(text, &why)` (returning an optional); any error starts "PATH: ".
 template <class Parse>
 auto ReadAndParse(const std::string& path, const FileLimits& limits, Parse parse,
                   std::string* error) -> decltype(parse(std::string(), error)) {
-  const auto text = ReadFileWhole(path, limits, error);
-  if (!text) return std::nullopt;
+  const auto text = ReadFileWhole(path, limits);
+  if (!text.ok()) {
+    if (error != nullptr) *error = text.message;
+    return std::nullopt;
+  }
   std::string why;
-  auto parsed = parse(*text, &why);
+  auto parsed = parse(text.value, &why);
   if (!parsed && error != nullptr) *error = path + ": " + why;
   return parsed;
 }

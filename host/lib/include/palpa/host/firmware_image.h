@@ -4,11 +4,11 @@
 
 #include <array>
 #include <cstdint>
-#include <optional>
 #include <string>
 #include <vector>
 
 #include "palpa/host/file_read.h"
+#include "palpa/host/outcome.h"
 #include "palpa/protocol/image.h"
 
 namespace palpa::host {
@@ -30,9 +30,8 @@ std::vector<uint8_t> BuildImage(const ImageSpec& spec);
 /// The image of `slot` in a release (spec's board kind, version, rollback counter and the body
 /// linked for that slot), laid out for the board kind's flash: the header padded to 256 bytes
 /// where an MCU's vector table follows it, loaded where the slot appears in its address map.
-/// Empty with *error ("N bytes do not fit a slot of M") when the body is too large for a slot.
-std::optional<std::vector<uint8_t>> BuildSlotImage(ImageSpec spec, uint8_t slot,
-                                                   std::string* error);
+/// Out of range ("N bytes do not fit a slot of M") when the body is too large for a slot.
+Result<std::vector<uint8_t>> BuildSlotImage(ImageSpec spec, uint8_t slot);
 
 /// Verifies an image held in memory (as the board would, for any slot size).
 protocol::Status VerifyImageBytes(const std::vector<uint8_t>& image, protocol::ImageInfo* info,
@@ -46,7 +45,7 @@ struct UpdatePackage {
 /// "PALPAPKG", version 1, then per slot: slot (u8), size (u32 LE), the image.
 std::vector<uint8_t> WritePackage(const UpdatePackage& package);
 /// Parses and verifies both images (each for its own slot, one board kind, one version);
-/// nullopt with a reason that says what is wrong and where.
-std::optional<UpdatePackage> ReadPackage(const std::vector<uint8_t>& bytes, std::string* error);
+/// image_invalid with a reason that says what is wrong and where.
+Result<UpdatePackage> ReadPackage(const std::vector<uint8_t>& bytes);
 
 }  // namespace palpa::host
