@@ -35,13 +35,13 @@ host::Result<BoardRig> OpenSimulatedRig(const std::string& config, int finger, d
 }
 
 host::Result<BoardRig> OpenBoardRig(host::Device& device, const RigDescription& description) {
-  std::string error;
-  auto devices = OpenRigDevices(description, &error);
-  if (!devices) return {Status::kUnavailable, "rig " + description.name + ": " + error};
+  auto devices = OpenRigDevices(description);
+  if (!devices.ok())
+    return {Status::kUnavailable, "rig " + description.name + ": " + devices.message};
   BoardRig rig;
   rig.device = &device;
   rig.description = description;
-  rig.devices = std::move(*devices);
+  rig.devices = std::move(devices.value);
   rig.board = std::make_unique<DeviceBoardPort>(device);
   rig.time = std::make_unique<BoardTime>(device);
   return rig;

@@ -202,25 +202,19 @@ HysteresisFit FitBranch(const std::vector<SweepSample>& sweep, int points) {
       fit.residual_max = worst;
     }
   }
-  std::string why;
   protocol::ConfigureFinger f{};
-  if (!ApplyFit(fit, f, &why)) fit.error = why;
+  if (const host::Outcome applied = ApplyFit(fit, f); !applied.ok()) fit.error = applied.message;
   return fit;
 }
 
-std::vector<protocol::InversePoint> FitStaticInverse(const std::vector<SweepSample>& sweep,
-                                                     int points, bool vacuum, std::string* error) {
+host::Result<std::vector<protocol::InversePoint>> FitStaticInverse(
+    const std::vector<SweepSample>& sweep, int points, bool vacuum) {
   std::vector<protocol::InversePoint> inverse;
-  if (points < 2 || points > protocol::kMaxInversePoints) {
-    if (error != nullptr) *error = "static inverse points must be 2..16";
-    return inverse;
-  }
+  if (points < 2 || points > protocol::kMaxInversePoints)
+    return {host::Status::kInvalidArgument, "static inverse points must be 2..16"};
   const std::string bad = SweepError(sweep, static_cast<size_t>(2 * points), 1e6);
   const Branches b = bad.empty() ? ReadBranches(sweep, points) : Branches{{}, {}, {}, bad};
-  if (!b.error.empty()) {
-    if (error != nullptr) *error = b.error;
-    return inverse;
-  }
+  if (!b.error.empty()) return {host::Status::kInvalidArgument, b.error};
   for (int k = 0; k < points; ++k) {
     protocol::InversePoint p;
     // Outputs are never negative (a reading just below 0 is the rig's noise at rest).

@@ -93,10 +93,9 @@ host::Outcome CalibrateFromJson(host::Device* device, const std::string& rig,
         OpenSimulatedRig(r.sim_config, r.session.finger, r.sim_speed, *r.session.simulation, 0);
   } else {
     if (device == nullptr) return Invalid("a rig file calibrates beside an open device");
-    std::string error;
-    const auto description = LoadRigDescription(rig, &error);
-    if (!description) return Invalid(error);
-    opened = OpenBoardRig(*device, *description);
+    const auto description = LoadRigDescription(rig);
+    if (!description.ok()) return Invalid(description.message);
+    opened = OpenBoardRig(*device, description.value);
   }
   if (!opened.ok()) return opened.outcome();
   host::Device& board = *opened.value.device;

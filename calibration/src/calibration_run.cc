@@ -253,7 +253,9 @@ void Run::Fits() {
   f.regulator_corrections = corrections_;
   const double drive_max = jamming_ ? o_.jamming_sweep.drive_max : o_.pneumatic_sweep.drive_max;
   const int inverse_points = static_cast<int>(std::clamp<size_t>(sweep_.size() / 2, 2, 12));
-  f.static_inverse = FitStaticInverse(sweep_, inverse_points, jamming_, &inverse_error_);
+  const auto inverse = FitStaticInverse(sweep_, inverse_points, jamming_);
+  inverse_error_ = inverse.message;
+  f.static_inverse = inverse.value;
   fitted_ = f.static_inverse.size() >= 2;  // if not, the detectors still say why
   for (const protocol::InversePoint& q : f.static_inverse) {
     f.curve.push_back({static_cast<double>(q.setpoint_pa), static_cast<double>(q.output)});

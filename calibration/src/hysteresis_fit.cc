@@ -159,8 +159,7 @@ void CountOperators(const PlayModel& m, HysteresisFit& fit) {
 /// Refuses parameter sets the firmware would refuse, with its reason.
 void CheckWithFirmware(HysteresisFit& fit) {
   protocol::ConfigureFinger f{};
-  std::string why;
-  if (!ApplyFit(fit, f, &why)) fit.error = why;
+  if (const host::Outcome applied = ApplyFit(fit, f); !applied.ok()) fit.error = applied.message;
 }
 
 }  // namespace
@@ -262,7 +261,7 @@ HysteresisFit FitCompensator(CompensatorKind kind, int size, const std::vector<S
 }
 
 HysteresisFit FitBetterPlayModel(const std::vector<SweepSample>& sweep, int operators,
-                                 double drive_max, std::string* why) {
+                                 double drive_max, std::string* comparison) {
   HysteresisFit pi = FitPi(sweep, operators, drive_max);
   HysteresisFit api = FitApi(sweep, operators, kApiDeadZones, drive_max);
   const std::string n = "(" + std::to_string(operators) + ")";
@@ -270,17 +269,17 @@ HysteresisFit FitBetterPlayModel(const std::vector<SweepSample>& sweep, int oper
   if (!api.ok()) {
     std::snprintf(text, sizeof(text), "pi%s; api%s not fitted: %s", n.c_str(), n.c_str(),
                   api.error.c_str());
-    *why = text;
+    *comparison = text;
     return pi;
   }
   if (!pi.ok()) {
-    *why = "api" + n + "; pi" + n + " not fitted: " + pi.error;
+    *comparison = "api" + n + "; pi" + n + " not fitted: " + pi.error;
     return api;
   }
   const bool api_better = api.residual_rms <= 0.75 * pi.residual_rms;
   std::snprintf(text, sizeof(text), "%s: api%s %.3g against pi%s %.3g RMS",
                 api_better ? "api" : "pi", n.c_str(), api.residual_rms, n.c_str(), pi.residual_rms);
-  *why = text;
+  *comparison = text;
   return api_better ? api : pi;
 }
 
@@ -297,22 +296,19 @@ PlayModel ModelOf(CompensatorKind kind, const std::vector<float>& params) {
   return m;
 }
 
-bool ApplyFit(const HysteresisFit& fit, protocol::ConfigureFinger& finger, std::string* error) {
-  if (fit.params.size() > protocol::kMaxCompensatorParams) {
-    if (error != nullptr) *error = "more than 80 compensator parameters";
-    return false;
-  }
+host::Outcome ApplyFit(const HysteresisFit& fit, protocol::ConfigureFinger& finger) {
+  if (fit.params.size() > protocol::kMaxCompensatorParams)
+    return host::Outcome::Fail(host::Status::kBadValue, "more than 80 compensator parameters");
   protocol::ConfigureFinger candidate = finger;
   candidate.compensator = fit.kind;
   candidate.param_count = static_cast<uint8_t>(fit.params.size());
   std::copy(fit.params.begin(), fit.params.end(), candidate.params.begin());
   if (const char* why = core::CompensatorParamsError(candidate)) {
-    if (error != nullptr)
-      *error = std::string("the firmware would refuse these parameters: ") + why;
-    return false;
+    return host::Outcome::Fail(host::Status::kBadValue,
+                               std::string("the firmware would refuse these parameters: ") + why);
   }
   finger = candidate;
-  return true;
+  return {};
 }
 
 }  // namespace palpa::calibration

@@ -69,20 +69,19 @@ void CheckJournal(const json& state) {
 
 }  // namespace
 
-std::optional<json> ParseJournal(const std::string& text, std::string* error) {
-  auto state = host::ParseJson(text, error);
-  if (!state) return std::nullopt;
+host::Result<json> ParseJournal(const std::string& text) {
+  auto state = host::ParseJson(text);
+  if (!state.ok()) return state;
   try {
-    CheckJournal(*state);
+    CheckJournal(state.value);
   } catch (const std::exception& e) {  // JsonInvalid names the field
-    if (error != nullptr) *error = e.what();
-    return std::nullopt;
+    return {host::Status::kInvalidArgument, e.what()};
   }
   return state;
 }
 
-std::optional<json> LoadJournal(const std::string& path, std::string* error) {
-  return host::ReadAndParse(path, kJournalLimits, ParseJournal, error);
+host::Result<json> LoadJournal(const std::string& path) {
+  return host::ReadAndParse(path, kJournalLimits, ParseJournal);
 }
 
 }  // namespace palpa::calibration

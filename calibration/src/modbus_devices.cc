@@ -7,21 +7,18 @@
 
 namespace palpa::calibration {
 
-std::unique_ptr<ModbusDevice> ModbusDevice::Open(const RegisterMap& map, std::string* error) {
+host::Result<std::unique_ptr<ModbusDevice>> ModbusDevice::Open(const RegisterMap& map) {
   const ModbusAddress& a = map.address;
   modbus_t* ctx = a.tcp ? modbus_new_tcp(a.host.c_str(), a.port)
                         : modbus_new_rtu(a.host.c_str(), a.baud, 'N', 8, 1);
-  if (ctx == nullptr) {
-    if (error != nullptr) *error = map.uri + ": " + modbus_strerror(errno);
-    return nullptr;
-  }
+  if (ctx == nullptr) return {Status::kUnavailable, map.uri + ": " + modbus_strerror(errno)};
   modbus_set_slave(ctx, a.unit);
   modbus_set_response_timeout(ctx, static_cast<uint32_t>(map.timeout_ms / 1000),
                               static_cast<uint32_t>(map.timeout_ms % 1000) * 1000);
   if (modbus_connect(ctx) != 0) {
-    if (error != nullptr) *error = map.uri + ": cannot connect (" + modbus_strerror(errno) + ")";
+    const std::string why = map.uri + ": cannot connect (" + modbus_strerror(errno) + ")";
     modbus_free(ctx);
-    return nullptr;
+    return {Status::kUnavailable, why};
   }
   return std::unique_ptr<ModbusDevice>(new ModbusDevice(map, ctx));
 }

@@ -13,40 +13,34 @@
 
 namespace palpa::calibration {
 
-std::optional<NetFtConfig> ParseNetFtAddress(const std::string& uri, std::string* error) {
+host::Result<NetFtConfig> ParseNetFtAddress(const std::string& uri) {
   std::smatch m;
-  if (!std::regex_match(uri, m, std::regex(R"(netft://([^:/]+)(:(\d{1,6}))?)"))) {
-    if (error != nullptr) *error = "'" + uri + "' is not netft://HOST[:PORT]";
-    return std::nullopt;
-  }
+  if (!std::regex_match(uri, m, std::regex(R"(netft://([^:/]+)(:(\d{1,6}))?)")))
+    return {Status::kInvalidArgument, "'" + uri + "' is not netft://HOST[:PORT]"};
   NetFtConfig c;
   c.uri = uri;
   c.host = m[1];
   if (m[3].matched) c.port = std::stoi(m[3]);
-  if (c.port < 1 || c.port > 65535) {
-    if (error != nullptr) *error = "'" + uri + "': port 1..65535";
-    return std::nullopt;
-  }
+  if (c.port < 1 || c.port > 65535)
+    return {Status::kInvalidArgument, "'" + uri + "': port 1..65535"};
   return c;
 }
 
-std::unique_ptr<NetFtForceSensor> NetFtForceSensor::Open(const NetFtConfig& config,
-                                                         std::string* error) {
+host::Result<std::unique_ptr<NetFtForceSensor>> NetFtForceSensor::Open(const NetFtConfig& config) {
   addrinfo hints{}, *found = nullptr;
   hints.ai_family = AF_INET;
   hints.ai_socktype = SOCK_DGRAM;
   if (getaddrinfo(config.host.c_str(), std::to_string(config.port).c_str(), &hints, &found) != 0 ||
       found == nullptr) {
-    if (error != nullptr) *error = config.uri + ": cannot resolve " + config.host;
-    return nullptr;
+    return {Status::kNotFound, config.uri + ": cannot resolve " + config.host};
   }
   const int fd = socket(AF_INET, SOCK_DGRAM, 0);
   const bool ok = fd >= 0 && connect(fd, found->ai_addr, found->ai_addrlen) == 0;
   freeaddrinfo(found);
   if (!ok) {
-    if (error != nullptr) *error = config.uri + ": " + std::strerror(errno);
+    const std::string why = std::strerror(errno);
     if (fd >= 0) close(fd);
-    return nullptr;
+    return {Status::kUnavailable, config.uri + ": " + why};
   }
   return std::unique_ptr<NetFtForceSensor>(new NetFtForceSensor(config, fd));
 }

@@ -13,7 +13,7 @@ const std::vector<std::string> kStageRegisters = {"position", "target", "speed",
                                                   "moving"};
 const std::vector<std::string> kForceRegisters = {"force"};
 
-std::optional<ModbusAddress> ParseModbusAddress(const std::string& uri, std::string* error) {
+host::Result<ModbusAddress> ParseModbusAddress(const std::string& uri) {
   std::smatch m;
   ModbusAddress a;
   // Bounded digit counts: every number then fits an int, and the ranges below judge it.
@@ -29,16 +29,14 @@ std::optional<ModbusAddress> ParseModbusAddress(const std::string& uri, std::str
     a.baud = std::stoi(m[2]);
     a.unit = std::stoi(m[3]);
   } else {
-    if (error != nullptr) {
-      *error =
-          "'" + uri + "' is not modbus-tcp://HOST:PORT/UNIT or modbus-rtu:/dev/ttyX?baud=N&unit=U";
-    }
-    return std::nullopt;
+    return {
+        host::Status::kInvalidArgument,
+        "'" + uri + "' is not modbus-tcp://HOST:PORT/UNIT or modbus-rtu:/dev/ttyX?baud=N&unit=U"};
   }
   if (a.port < 1 || a.port > 65535 || a.unit < 0 || a.unit > 247 || a.baud < 1200 ||
       a.baud > 4000000) {
-    if (error != nullptr) *error = "'" + uri + "': port 1..65535, unit 0..247, baud 1200..4000000";
-    return std::nullopt;
+    return {host::Status::kInvalidArgument,
+            "'" + uri + "': port 1..65535, unit 0..247, baud 1200..4000000"};
   }
   return a;
 }
@@ -112,9 +110,8 @@ double RegisterMap::Decode(const Register& r, const uint16_t* words) const {
   return raw * r.scale;
 }
 
-std::optional<RegisterMap> ParseRegisterMap(const nlohmann::json& j, const std::string& path,
-                                            const std::vector<std::string>& required,
-                                            std::string* error) {
+host::Result<RegisterMap> ParseRegisterMap(const nlohmann::json& j, const std::string& path,
+                                           const std::vector<std::string>& required) {
   using host::JsonInvalid;
   using host::JsonObject;
   try {
@@ -122,10 +119,9 @@ std::optional<RegisterMap> ParseRegisterMap(const nlohmann::json& j, const std::
                  {"address", "byte_order", "word_order", "timeout_ms", "registers", "commands"});
     RegisterMap map;
     map.uri = o.Text("address");
-    std::string why;
-    const auto address = ParseModbusAddress(map.uri, &why);
-    if (!address) throw JsonInvalid(o.Join("address") + ": " + why);
-    map.address = *address;
+    const auto address = ParseModbusAddress(map.uri);
+    if (!address.ok()) throw JsonInvalid(o.Join("address") + ": " + address.message);
+    map.address = address.value;
     if (o.Has("byte_order")) map.byte_swap = o.Choice("byte_order", {"big", "little"}) == "little";
     if (o.Has("word_order"))
       map.low_word_first = o.Choice("word_order", {"big", "little"}) == "little";
@@ -183,11 +179,10 @@ std::optional<RegisterMap> ParseRegisterMap(const nlohmann::json& j, const std::
     }
     return map;
   } catch (const host::JsonInvalid& e) {
-    if (error != nullptr) *error = e.what();
+    return {host::Status::kInvalidArgument, e.what()};
   } catch (const nlohmann::json::exception& e) {
-    if (error != nullptr) *error = path + ": " + e.what();
+    return {host::Status::kInvalidArgument, path + ": " + e.what()};
   }
-  return std::nullopt;
 }
 
 }  // namespace palpa::calibration

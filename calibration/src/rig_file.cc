@@ -30,10 +30,9 @@ RegisterMap Device(const JsonObject& o, const char* key, const std::vector<std::
                       "\" is not a driver this build has (modbus)");
   }
   device.erase("driver");
-  std::string error;
-  const auto map = ParseRegisterMap(device, o.Join(key), required, &error);
-  if (!map) throw JsonInvalid(error);
-  return *map;
+  auto map = ParseRegisterMap(device, o.Join(key), required);
+  if (!map.ok()) throw JsonInvalid(map.message);
+  return std::move(map.value);
 }
 
 const char kSimRigJson[] =
@@ -46,14 +45,14 @@ RigDescription SimRigDescription(const std::string& modbus_uri) {
   json j = json::parse(kSimRigJson);
   j["stage"]["address"] = modbus_uri;
   j["force_sensor"]["address"] = modbus_uri;
-  return *ParseRigDescription(j.dump(), nullptr);  // the shipped file is checked by the tests
+  return ParseRigDescription(j.dump()).value;  // the shipped file is checked by the tests
 }
 
-std::optional<RigDescription> ParseRigDescription(const std::string& text, std::string* error) {
-  const auto parsed = host::ParseJson(text, error);
-  if (!parsed) return std::nullopt;
+host::Result<RigDescription> ParseRigDescription(const std::string& text) {
+  const auto parsed = host::ParseJson(text);
+  if (!parsed.ok()) return parsed.outcome();
   try {
-    const json& j = *parsed;
+    const json& j = parsed.value;
     JsonObject o(j, "", {"name", "comment", "stage", "force_sensor", "force_noise_n", "limits"});
     RigDescription rig;
     rig.name = o.Text("name");
@@ -63,9 +62,9 @@ std::optional<RigDescription> ParseRigDescription(const std::string& text, std::
       const json& force = o.At("force_sensor");
       JsonObject f(force, "force_sensor",
                    {"driver", "address", "counts_per_force", "axis", "sign", "timeout_ms"});
-      std::string why;
-      auto c = ParseNetFtAddress(f.Text("address"), &why);
-      if (!c) throw JsonInvalid("force_sensor.address: " + why);
+      auto address = ParseNetFtAddress(f.Text("address"));
+      if (!address.ok()) throw JsonInvalid("force_sensor.address: " + address.message);
+      NetFtConfig* c = &address.value;
       if (f.Has("counts_per_force")) c->counts_per_force = f.Number("counts_per_force", 1, 1e9);
       if (f.Has("axis")) {
         const std::string axis = f.Choice("axis", {"fx", "fy", "fz"});
@@ -76,7 +75,7 @@ std::optional<RigDescription> ParseRigDescription(const std::string& text, std::
         if (c->sign != 1 && c->sign != -1) throw JsonInvalid("force_sensor.sign: must be 1 or -1");
       }
       if (f.Has("timeout_ms")) c->timeout_ms = static_cast<int>(f.Integer("timeout_ms", 10, 10000));
-      rig.netft = c;
+      rig.netft = *c;
     } else {
       rig.force = Device(o, "force_sensor", kForceRegisters);
     }
@@ -95,32 +94,27 @@ std::optional<RigDescription> ParseRigDescription(const std::string& text, std::
     }
     return rig;
   } catch (const std::exception& e) {  // JsonInvalid names the field
-    if (error != nullptr) *error = e.what();
+    return {host::Status::kInvalidArgument, e.what()};
   }
-  return std::nullopt;
 }
 
-std::optional<RigDescription> LoadRigDescription(const std::string& path, std::string* error) {
-  return host::ReadAndParse(path, kRigFileLimits, ParseRigDescription, error);
+host::Result<RigDescription> LoadRigDescription(const std::string& path) {
+  return host::ReadAndParse(path, kRigFileLimits, ParseRigDescription);
 }
 
-std::optional<RigDevices> OpenRigDevices(const RigDescription& rig, std::string* error) {
-  std::string why;
-  auto stage = ModbusDevice::Open(rig.stage, &why);
-  if (!stage) {
-    if (error != nullptr) *error = "stage: " + why;
-    return std::nullopt;
-  }
+host::Result<RigDevices> OpenRigDevices(const RigDescription& rig) {
+  auto stage = ModbusDevice::Open(rig.stage);
+  if (!stage.ok()) return {stage.status, "stage: " + stage.message};
   RigDevices d;
-  d.stage = std::make_unique<ModbusStage>(std::move(stage));
+  d.stage = std::make_unique<ModbusStage>(std::move(stage.value));
   if (rig.netft) {
-    d.force = NetFtForceSensor::Open(*rig.netft, &why);
-  } else if (auto force = ModbusDevice::Open(rig.force, &why)) {
-    d.force = std::make_unique<ModbusForceSensor>(std::move(force));
-  }
-  if (!d.force) {
-    if (error != nullptr) *error = "force sensor: " + why;
-    return std::nullopt;
+    auto force = NetFtForceSensor::Open(*rig.netft);
+    if (!force.ok()) return {force.status, "force sensor: " + force.message};
+    d.force = std::move(force.value);
+  } else {
+    auto force = ModbusDevice::Open(rig.force);
+    if (!force.ok()) return {force.status, "force sensor: " + force.message};
+    d.force = std::make_unique<ModbusForceSensor>(std::move(force.value));
   }
   return d;
 }

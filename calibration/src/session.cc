@@ -57,8 +57,8 @@ host::Outcome Session::OpenOutput() {
   }
   const std::string path = base() + ".journal.json";
   journal_.save = [path, notify = options_.journal_not_saved](const Journal& j) {
-    std::string why;
-    if (!host::WriteFileWhole(path, j.state.dump(), &why) && notify) notify(why);
+    const host::Outcome saved = host::WriteFileWhole(path, j.state.dump());
+    if (!saved.ok() && notify) notify(saved.message);
   };
   return {};
 }
@@ -68,10 +68,9 @@ host::Outcome Session::Resume() {
   struct stat journal_stat;
   if (options_.out_dir.empty() || lstat(path.c_str(), &journal_stat) != 0)
     return Failed(Status::kNotFound, "no journal " + path);
-  std::string error;
-  auto state = LoadJournal(path, &error);
-  if (!state) return Failed(Status::kBadValue, error);
-  journal_.state = std::move(*state);
+  auto state = LoadJournal(path);
+  if (!state.ok()) return Failed(Status::kBadValue, state.message);
+  journal_.state = std::move(state.value);
   return {};
 }
 
@@ -79,9 +78,9 @@ host::Outcome Session::LoadPrevious() {
   const std::string path = options_.previous.empty() ? base() + ".json" : options_.previous;
   if (options_.previous.empty() && (options_.out_dir.empty() || access(path.c_str(), F_OK) != 0))
     return {};
-  std::string error;
-  previous_ = host::LoadCalibration(path, &error);
-  if (!previous_) return Failed(Status::kBadValue, "previous calibration " + error);
+  auto previous = host::LoadCalibration(path);
+  if (!previous.ok()) return Failed(Status::kBadValue, "previous calibration " + previous.message);
+  previous_ = std::move(previous.value);
   if (previous_->actuator_serial != serial_) {
     const std::string other = previous_->actuator_serial;
     previous_.reset();
@@ -113,13 +112,14 @@ host::Outcome Session::Run(const std::function<void(const Progress&)>& progress)
 
 host::Outcome Session::Write() {
   if (options_.out_dir.empty()) return {};
-  std::string csv, error;
+  std::string csv;
   for (const std::string& row : run_.csv) csv += row + "\n";
-  if (!host::WriteFileWhole(base() + ".csv", csv, &error) ||
-      !host::SaveCalibration(run_.file, base() + ".json", &error) ||
-      !host::WriteFileWhole(base() + ".html", RenderReport(run_), &error)) {
+  host::Outcome o = host::WriteFileWhole(base() + ".csv", csv);
+  if (o.ok()) o = host::SaveCalibration(run_.file, base() + ".json");
+  if (o.ok()) o = host::WriteFileWhole(base() + ".html", RenderReport(run_));
+  if (!o.ok()) {
     return Failed(Status::kIoError,
-                  "cannot write the results in " + options_.out_dir + ": " + error);
+                  "cannot write the results in " + options_.out_dir + ": " + o.message);
   }
   unlink((base() + ".journal.json").c_str());
   return {};

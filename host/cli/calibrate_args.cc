@@ -51,8 +51,9 @@ int ParseCalibrateArgs(const std::vector<std::string>& args, CalibrateArgs& a) {
       a.apply = true;
     } else if (arg == "--allow-fallback") {
       a.allow_fallback = true;
-    } else if (std::string why; ParseSimPlantOption(arg, value, a.plant, &why)) {
-      if (!why.empty()) return Usage("calibrate", why);
+    } else if (const host::Result<bool> sim = ParseSimPlantOption(arg, value, a.plant);
+               !sim.ok() || sim.value) {
+      if (!sim.ok()) return Usage("calibrate", sim.message);
       a.plant_options = true;
     } else if (arg == "--rig") {
       if (!value(a.rig)) return Usage("calibrate", "--rig needs FILE or sim");

@@ -72,25 +72,23 @@ extern const Command kListCommand, kInfoCommand, kDiagCommand, kConfigCommand, k
 
 /// One finger request from "N=VALUE": L2 (level), 0.5 (0..1), 1.2mm, 0.9N/mm, -10kPa. Fingers are
 /// numbered from 1 on the command line, up to `finger_count`. Returns false with a message naming
-/// the argument (and the unit meant, for "10kpa").
-bool ParseFingerArgument(const std::string& arg, uint8_t finger_count, host::FingerRequest& out,
-                         std::string* error);
+/// the argument (and the unit meant, for "10kpa"). Every mistake here is an invalid argument.
+host::Result<host::FingerRequest> ParseFingerArgument(const std::string& arg, uint8_t finger_count);
 /// "L=VALUE" with VALUE in kPa (a "kPa" suffix is allowed); lines numbered from 1.
-bool ParseLineArgument(const std::string& arg, uint8_t line_count, std::pair<uint8_t, double>& out,
-                       std::string* error);
+host::Result<std::pair<uint8_t, double>> ParseLineArgument(const std::string& arg,
+                                                           uint8_t line_count);
 /// The same finger or line twice on one command line ("1=L2 1=L1") is refused: which one was
-/// meant? `indices` are 0-based; `what` is "finger" or "line". Returns false with a message.
-bool CheckDistinct(const std::vector<uint8_t>& indices, const std::vector<std::string>& args,
-                   const char* what, std::string* error);
+/// meant? `indices` are 0-based; `what` is "finger" or "line".
+host::Outcome CheckDistinct(const std::vector<uint8_t>& indices,
+                            const std::vector<std::string>& args, const char* what);
 /// Every finger or line named exists on this board; otherwise a message naming the board's range
 /// ("finger 9: this thesis-5finger board has fingers 1 to 5").
-bool CheckOnBoard(const std::vector<uint8_t>& indices, uint8_t count, const char* what,
-                  const std::string& board_name, std::string* error);
+host::Outcome CheckOnBoard(const std::vector<uint8_t>& indices, uint8_t count, const char* what,
+                           const std::string& board_name);
 /// A decimal number ("5", "-10.5", "1e3"), finite: no hex, no "inf", no spaces.
 bool ParseNumber(const std::string& text, double& out);
 /// "--rate 5": the value after option `i`, or a usage message that it is missing.
-bool OptionValue(const std::vector<std::string>& args, size_t i, std::string& value,
-                 std::string* error);
+host::Result<std::string> OptionValue(const std::vector<std::string>& args, size_t i);
 /// "auto", "pi", "api", "pi:8": the compensator a calibration fits (auto: empty, the better of
 /// pi and api); operators 0 when not given.
 bool ParseCompensator(const std::string& text, std::optional<protocol::CompensatorKind>& kind,

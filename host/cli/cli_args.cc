@@ -8,6 +8,14 @@
 #include "cli.h"
 
 namespace palpa::cli {
+namespace {
+
+/// A command-line mistake, named: nothing is sent.
+host::Outcome Invalid(std::string why) {
+  return host::Outcome::Fail(protocol::Status::kInvalidArgument, std::move(why));
+}
+
+}  // namespace
 
 bool ParseNumber(const std::string& text, double& out) {
   // Decimal only: strtod alone would also take "0x1", "inf", "nan" and leading blanks.
@@ -32,14 +40,10 @@ bool ParseNumber(const std::string& text, double& out) {
   return std::isfinite(out);
 }
 
-bool OptionValue(const std::vector<std::string>& args, size_t i, std::string& value,
-                 std::string* error) {
-  if (i + 1 >= args.size() || (args[i + 1].rfind("--", 0) == 0 && args[i + 1].size() > 2)) {
-    *error = args[i] + ": a value is missing";
-    return false;
-  }
-  value = args[i + 1];
-  return true;
+host::Result<std::string> OptionValue(const std::vector<std::string>& args, size_t i) {
+  if (i + 1 >= args.size() || (args[i + 1].rfind("--", 0) == 0 && args[i + 1].size() > 2))
+    return Invalid(args[i] + ": a value is missing");
+  return args[i + 1];
 }
 
 std::string Suggest(const std::string& word, const std::vector<std::string>& candidates) {
@@ -91,34 +95,33 @@ bool EndsWithIgnoringCase(const std::string& s, const std::string& suffix) {
   return true;
 }
 
-bool SplitIndex(const std::string& arg, const char* what, uint8_t count, uint8_t& index,
-                std::string& value, std::string* error) {
+/// "N=VALUE": the 0-based index N-1 (into `index`) and VALUE.
+host::Result<std::string> SplitIndex(const std::string& arg, const char* what, uint8_t count,
+                                     uint8_t& index) {
   const size_t eq = arg.find('=');
   if (eq == std::string::npos || eq == 0) {
-    *error = "'" + arg + "': expected " + what + "=VALUE, e.g. 1=L2";
-    return false;
+    return Invalid("'" + arg + "': expected " + what + "=VALUE, e.g. 1=L2");
   }
   double n = 0;
   if (!ParseNumber(arg.substr(0, eq), n) || n != std::floor(n) || n < 1 || n > count) {
-    *error = "'" + arg + "': " + what + " must be a whole number from 1" +
-             (count < 255 ? " to " + std::to_string(count) : std::string(" (numbered from 1)"));
-    return false;
+    return Invalid(
+        "'" + arg + "': " + what + " must be a whole number from 1" +
+        (count < 255 ? " to " + std::to_string(count) : std::string(" (numbered from 1)")));
   }
   index = static_cast<uint8_t>(n - 1);
-  value = arg.substr(eq + 1);
-  if (value.empty()) {
-    *error = "'" + arg + "': the value is missing";
-    return false;
-  }
-  return true;
+  std::string value = arg.substr(eq + 1);
+  if (value.empty()) return Invalid("'" + arg + "': the value is missing");
+  return value;
 }
 
 }  // namespace
 
-bool ParseFingerArgument(const std::string& arg, uint8_t finger_count, host::FingerRequest& out,
-                         std::string* error) {
-  std::string value;
-  if (!SplitIndex(arg, "finger", finger_count, out.finger, value, error)) return false;
+host::Result<host::FingerRequest> ParseFingerArgument(const std::string& arg,
+                                                      uint8_t finger_count) {
+  host::FingerRequest out;
+  const host::Result<std::string> split = SplitIndex(arg, "finger", finger_count, out.finger);
+  if (!split.ok()) return split.outcome();
+  const std::string& value = split.value;
   struct Suffix {
     const char* text;
     host::TargetKind kind;
@@ -129,84 +132,79 @@ bool ParseFingerArgument(const std::string& arg, uint8_t finger_count, host::Fin
   double n = 0;
   if (value[0] == 'L' || value[0] == 'l') {
     if (!ParseNumber(value.substr(1), n) || n != std::floor(n) || n < 0) {
-      *error = "'" + arg + "': a level is L followed by 0, 1, 2 ...";
-      return false;
+      return Invalid("'" + arg + "': a level is L followed by 0, 1, 2 ...");
     }
     out.request = host::Request{host::TargetKind::kLevel, n};
-    return true;
+    return out;
   }
   for (const Suffix& s : suffixes) {
     if (!EndsWithIgnoringCase(value, s.text)) continue;
     const std::string number = value.substr(0, value.size() - std::string(s.text).size());
     if (!EndsWith(value, s.text)) {  // "10kpa", "1.2MM": units are spelled one way only
-      *error = "'" + arg + "': unknown unit '" + value.substr(number.size()) + "' (did you mean " +
-               number + s.text + "?)";
-      return false;
+      return Invalid("'" + arg + "': unknown unit '" + value.substr(number.size()) +
+                     "' (did you mean " + number + s.text + "?)");
     }
     if (!ParseNumber(number, n)) {
-      *error = "'" + arg + "': '" + value + "' is not a number followed by " + s.text;
-      return false;
+      return Invalid("'" + arg + "': '" + value + "' is not a number followed by " + s.text);
     }
     out.request = host::Request{s.kind, n};
-    return true;
+    return out;
   }
   if (!ParseNumber(value, n)) {
-    *error = "'" + arg + "': expected L<level>, a number 0..1, <mm>mm, <N/mm>N/mm or <kPa>kPa";
-    return false;
+    return Invalid("'" + arg +
+                   "': expected L<level>, a number 0..1, <mm>mm, <N/mm>N/mm or <kPa>kPa");
   }
   if (n < 0 || n > 1) {
-    *error =
+    return Invalid(
         "'" + arg +
-        "': a plain number is a normalised stiffness from 0 to 1 (add a unit for anything else)";
-    return false;
+        "': a plain number is a normalised stiffness from 0 to 1 (add a unit for anything else)");
   }
   out.request = host::Request{host::TargetKind::kNormalized, n};
-  return true;
+  return out;
 }
 
-bool ParseLineArgument(const std::string& arg, uint8_t line_count, std::pair<uint8_t, double>& out,
-                       std::string* error) {
-  std::string value;
-  if (!SplitIndex(arg, "line", line_count, out.first, value, error)) return false;
+host::Result<std::pair<uint8_t, double>> ParseLineArgument(const std::string& arg,
+                                                           uint8_t line_count) {
+  std::pair<uint8_t, double> out;
+  const host::Result<std::string> split = SplitIndex(arg, "line", line_count, out.first);
+  if (!split.ok()) return split.outcome();
+  std::string value = split.value;
   if (EndsWithIgnoringCase(value, "kPa")) {
     const std::string number = value.substr(0, value.size() - 3);
     if (!EndsWith(value, "kPa")) {
-      *error = "'" + arg + "': unknown unit '" + value.substr(number.size()) + "' (did you mean " +
-               number + "kPa?)";
-      return false;
+      return Invalid("'" + arg + "': unknown unit '" + value.substr(number.size()) +
+                     "' (did you mean " + number + "kPa?)");
     }
     value = number;
   }
   if (!ParseNumber(value, out.second)) {
-    *error = "'" + arg + "': expected a pressure in kPa, e.g. 2=30 or 6=-40kPa";
-    return false;
+    return Invalid("'" + arg + "': expected a pressure in kPa, e.g. 2=30 or 6=-40kPa");
   }
-  return true;
+  return out;
 }
 
-bool CheckDistinct(const std::vector<uint8_t>& indices, const std::vector<std::string>& args,
-                   const char* what, std::string* error) {
+host::Outcome CheckDistinct(const std::vector<uint8_t>& indices,
+                            const std::vector<std::string>& args, const char* what) {
   std::map<uint8_t, size_t> first;
   for (size_t i = 0; i < indices.size(); ++i) {
     const auto [at, fresh] = first.emplace(indices[i], i);
     if (!fresh) {
-      *error = std::string(what) + " " + std::to_string(indices[i] + 1) + " is given twice ('" +
-               args[at->second] + "' and '" + args[i] + "'): give each " + what + " once";
-      return false;
+      return Invalid(std::string(what) + " " + std::to_string(indices[i] + 1) +
+                     " is given twice ('" + args[at->second] + "' and '" + args[i] +
+                     "'): give each " + what + " once");
     }
   }
-  return true;
+  return {};
 }
 
-bool CheckOnBoard(const std::vector<uint8_t>& indices, uint8_t count, const char* what,
-                  const std::string& board_name, std::string* error) {
+host::Outcome CheckOnBoard(const std::vector<uint8_t>& indices, uint8_t count, const char* what,
+                           const std::string& board_name) {
   for (uint8_t index : indices) {
     if (index < count) continue;
-    *error = std::string(what) + " " + std::to_string(index + 1) + ": this " + board_name +
-             " board has " + what + "s 1 to " + std::to_string(count);
-    return false;
+    return Invalid(std::string(what) + " " + std::to_string(index + 1) + ": this " + board_name +
+                   " board has " + what + "s 1 to " + std::to_string(count));
   }
-  return true;
+  return {};
 }
 
 }  // namespace palpa::cli

@@ -43,7 +43,6 @@ struct OpenedRig {
 
 /// Opens the rig and reads the finger's actuator serial; an exit code when it cannot.
 int OpenRig(Context& c, const CalibrateArgs& a, OpenedRig& r) {
-  std::string error;
   std::optional<cal::RigDescription> description;
   if (a.rig == "sim") {
     if (!c.device_uri.empty() && c.device_uri.rfind("sim", 0) != 0) {
@@ -57,8 +56,9 @@ int OpenRig(Context& c, const CalibrateArgs& a, OpenedRig& r) {
     r.device = r.rig->device;
     r.closed_on_signal.emplace(r.device);
   } else {
-    description = cal::LoadRigDescription(a.rig, &error);
-    if (!description) return Usage("calibrate", "--rig " + error);
+    auto loaded = cal::LoadRigDescription(a.rig);
+    if (!loaded.ok()) return Usage("calibrate", "--rig " + loaded.message);
+    description = std::move(loaded.value);
     r.device = c.Device();
     if (r.device == nullptr) return kExitConnect;
   }

@@ -32,16 +32,18 @@ int Upload(Context& c, host::Device& d, const host::BoardConfig& config,
 }
 
 /// "board.FIELD=V", "lineN.FIELD=V", "fingerN.FIELD=V" (N from 1) applied onto `config`;
-/// false with a message naming the argument (once) and, for a field that does not exist, the
+/// an invalid argument naming the argument (once) and, for a field that does not exist, the
 /// fields there are.
-bool SetFromArgument(const std::string& arg, host::BoardConfig& config,
-                     nlohmann::ordered_json& changes, std::string* error) {
+host::Outcome SetFromArgument(const std::string& arg, host::BoardConfig& config,
+                              nlohmann::ordered_json& changes) {
+  auto invalid = [](std::string why) {
+    return host::Outcome::Fail(pp::Status::kInvalidArgument, std::move(why));
+  };
   const size_t eq = arg.find('='), dot = arg.find('.');
   if (eq == std::string::npos || dot == std::string::npos || dot > eq) {
-    *error = "'" + arg +
-             "': expected SECTION.FIELD=VALUE, e.g. board.host_timeout_us=200000 or "
-             "line2.slew_pa_per_s=100000";
-    return false;
+    return invalid("'" + arg +
+                   "': expected SECTION.FIELD=VALUE, e.g. board.host_timeout_us=200000 or "
+                   "line2.slew_pa_per_s=100000");
   }
   const std::string section = arg.substr(0, dot), field = arg.substr(dot + 1, eq - dot - 1),
                     text = arg.substr(eq + 1);
@@ -60,38 +62,32 @@ bool SetFromArgument(const std::string& arg, host::BoardConfig& config,
   }
   auto index_of = [&](const std::string& prefix, uint8_t count, uint8_t& index) {
     double n = 0;
-    if (!ParseNumber(section.substr(prefix.size()), n) || n != std::floor(n) || n < 1) {
-      *error = "'" + arg + "': expected " + prefix + "N with N from 1, e.g. " + prefix + "2";
-      return false;
-    }
-    if (n > count) {
-      *error = "'" + arg + "': this board has " + prefix + "s 1 to " + std::to_string(count);
-      return false;
-    }
+    if (!ParseNumber(section.substr(prefix.size()), n) || n != std::floor(n) || n < 1)
+      return invalid("'" + arg + "': expected " + prefix + "N with N from 1, e.g. " + prefix + "2");
+    if (n > count)
+      return invalid("'" + arg + "': this board has " + prefix + "s 1 to " + std::to_string(count));
     index = static_cast<uint8_t>(n - 1);
-    return true;
+    return host::Outcome{};
   };
   pp::ConfigSection kind = pp::ConfigSection::kBoard;
   uint8_t index = 0;
   if (section == "board") {
   } else if (section.rfind("line", 0) == 0) {
     kind = pp::ConfigSection::kLine;
-    if (!index_of("line", config.line_count, index)) return false;
+    if (host::Outcome o = index_of("line", config.line_count, index); !o.ok()) return o;
   } else if (section.rfind("finger", 0) == 0) {
     kind = pp::ConfigSection::kFinger;
-    if (!index_of("finger", config.finger_count, index)) return false;
+    if (host::Outcome o = index_of("finger", config.finger_count, index); !o.ok()) return o;
   } else {
-    *error = "'" + arg + "': the section must be board, lineN or fingerN";
-    return false;
+    return invalid("'" + arg + "': the section must be board, lineN or fingerN");
   }
   try {
     host::SetConfigField(kind, index, field, value, config);
   } catch (const std::exception& e) {
-    *error = "'" + arg + "': " + e.what();
-    return false;
+    return invalid("'" + arg + "': " + e.what());
   }
   changes[section][field] = value;
-  return true;
+  return {};
 }
 
 }  // namespace
@@ -103,10 +99,9 @@ int CmdConfig(Context& c, const std::vector<std::string>& args) {
   json file;
   if (what == "load") {  // the file is read and parsed before anything is sent
     if (rest.size() != 1) return Usage("config", "load takes one FILE");
-    std::string error;
-    auto read = host::ReadJsonFile(rest[0], host::kConfigFileLimits, &error);
-    if (!read) return Usage("config", error + " (nothing was sent)");
-    file = std::move(*read);
+    auto read = host::ReadJsonFile(rest[0], host::kConfigFileLimits);
+    if (!read.ok()) return Usage("config", read.message + " (nothing was sent)");
+    file = std::move(read.value);
   } else if (what == "set") {
     if (rest.empty()) return Usage("config", "set takes SECTION.FIELD=VALUE ...");
   } else if (what == "show" || what == "save" || what == "factory-reset") {
@@ -141,9 +136,8 @@ int CmdConfig(Context& c, const std::vector<std::string>& args) {
   nlohmann::ordered_json changes = nlohmann::ordered_json::object();
   if (what == "set") {
     for (const std::string& a : rest) {
-      std::string error;
-      if (!SetFromArgument(a, config, changes, &error))
-        return Usage("config", error + " (nothing was sent)");
+      if (const host::Outcome o = SetFromArgument(a, config, changes); !o.ok())
+        return Usage("config", o.message + " (nothing was sent)");
     }
     return Upload(c, *d, config, changes);
   }

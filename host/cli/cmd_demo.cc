@@ -33,12 +33,12 @@ struct DemoArgs {
 /// (printed) when it cannot be read or does not fit them.
 bool LoadSet(const std::string& name, std::optional<host::StimulusSet>& pneumatic,
              std::optional<host::StimulusSet>& jamming) {
-  std::string error;
-  std::optional<host::StimulusSet> set = host::LoadStimulusSet(name, &error);
-  if (!set) {
-    Usage("demo", "--stimuli " + error);
+  host::Result<host::StimulusSet> loaded = host::LoadStimulusSet(name);
+  if (!loaded.ok()) {
+    Usage("demo", "--stimuli " + loaded.message);
     return false;
   }
+  std::optional<host::StimulusSet> set = std::move(loaded.value);
   const bool is_jamming = set->fingers_kind == host::StimulusFingers::kJamming;
   const int wanted = is_jamming ? 2 : 3;  // thesis-5finger: fingers 1-3 pneumatic, 4-5 jamming
   if (set->fingers != wanted) {
@@ -236,10 +236,8 @@ int CmdDemo(Context& c, const std::vector<std::string>& args) {
   traces.samples = board.truth.All();
   const std::string svg = DemoChartSvg(traces);
   board.device->EStop();
-  std::string error;
-  if (!host::WriteFileWhole(a.out, svg, &error)) {
-    return Fail("demo", protocol::Status::kIoError, error);
-  }
+  if (const host::Outcome o = host::WriteFileWhole(a.out, svg); !o.ok())
+    return Fail("demo", o.status, o.message);
   PrintSummary(figures.nominal, a.calibrate ? &figures.calibrated : nullptr, figures.compensator);
   if (c.json) {
     PrintJson({{"nominal", PassJson(figures.nominal)},

@@ -201,11 +201,9 @@ int CmdPackage(Context&, const std::vector<std::string>& args) {
     package.slot_image[slot] = std::move(image.value);
   }
   const std::vector<uint8_t> bytes = host::WritePackage(package);
-  std::string error;
-  if (!host::WriteFileWhole(out, {reinterpret_cast<const char*>(bytes.data()), bytes.size()},
-                            &error)) {
-    return Fail("package", pp::Status::kIoError, error);
-  }
+  const host::Outcome written =
+      host::WriteFileWhole(out, {reinterpret_cast<const char*>(bytes.data()), bytes.size()});
+  if (!written.ok()) return Fail("package", written.status, written.message);
   if (JsonOutput()) {
     PrintJson({{"package", out},
                {"kind", kind_text},

@@ -30,11 +30,12 @@ bool Options(const std::string& command, const std::vector<std::string>& args, T
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if (a == "--rate" || a == "--duration") {
-      std::string value, error;
-      if (!OptionValue(args, i, value, &error)) {
-        *usage = Usage(command, error + " (" + a + (a == "--rate" ? " HZ)" : " SECONDS)"));
+      const host::Result<std::string> option = OptionValue(args, i);
+      if (!option.ok()) {
+        *usage = Usage(command, option.message + " (" + a + (a == "--rate" ? " HZ)" : " SECONDS)"));
         return false;
       }
+      const std::string& value = option.value;
       double v = 0;
       if (!ParseNumber(value, v) || v <= 0) {
         *usage = Usage(command, a + " " + value + ": a positive number");
@@ -55,20 +56,13 @@ bool Options(const std::string& command, const std::vector<std::string>& args, T
 }
 
 /// Samples per second the board sends: one every telemetry_decimation ticks of its loop.
-bool BoardRate(host::Device& d, double& rate, std::string* error) {
+host::Result<double> BoardRate(host::Device& d) {
   const auto board = d.ReadBoard();
-  if (!board.ok()) {
-    *error = board.message;
-    return false;
-  }
+  if (!board.ok()) return board.outcome();
   const auto stats = d.LoopStats();
-  if (!stats.ok()) {
-    *error = stats.message;
-    return false;
-  }
+  if (!stats.ok()) return stats.outcome();
   const double period_us = stats.value.period_us > 0 ? stats.value.period_us : 1000;
-  rate = 1e6 / (period_us * std::max<uint16_t>(board.value.telemetry_decimation, 1));
-  return true;
+  return 1e6 / (period_us * std::max<uint16_t>(board.value.telemetry_decimation, 1));
 }
 
 nlohmann::ordered_json SampleJson(const pp::HelloReply& b, const pp::Telemetry& t, uint8_t tick,
@@ -132,9 +126,9 @@ int CmdMonitor(Context& c, const std::vector<std::string>& args) {
   if (!Options("monitor", args, o, false, &usage)) return usage;
   host::Device* d = c.Device();
   if (d == nullptr) return kExitConnect;
-  double board_rate = 0;
-  std::string error;
-  if (!BoardRate(*d, board_rate, &error)) return Fail("monitor", pp::Status::kTimeout, error);
+  const host::Result<double> board = BoardRate(*d);
+  if (!board.ok()) return Fail("monitor", board.status, board.message);
+  const double board_rate = board.value;
   if (o.rate > board_rate) {
     char text[160];
     std::snprintf(text, sizeof(text),

@@ -14,20 +14,21 @@ namespace {
 /// Any finger or line number that fits the wire; each board's own range is checked once open.
 constexpr uint8_t kAnyNumber = 255;
 
-/// Splits off "--hold S"; false with *error on a bad value.
-bool TakeHold(std::vector<std::string>& args, double& hold_s, std::string* error) {
+/// Splits off "--hold S": the seconds (0 without it), or why the value is refused.
+host::Result<double> TakeHold(std::vector<std::string>& args) {
   for (size_t i = 0; i < args.size(); ++i) {
     if (args[i] != "--hold") continue;
-    std::string value;
-    if (!OptionValue(args, i, value, error)) return false;
-    if (!ParseNumber(value, hold_s) || hold_s < 0) {
-      *error = "--hold " + value + ": a number of seconds (0 or more)";
-      return false;
+    const host::Result<std::string> value = OptionValue(args, i);
+    if (!value.ok()) return value.outcome();
+    double hold_s = 0;
+    if (!ParseNumber(value.value, hold_s) || hold_s < 0) {
+      return {protocol::Status::kInvalidArgument,
+              "--hold " + value.value + ": a number of seconds (0 or more)"};
     }
     args.erase(args.begin() + static_cast<long>(i), args.begin() + static_cast<long>(i) + 2);
-    return true;
+    return hold_s;
   }
-  return true;
+  return 0.0;
 }
 
 /// Keeps the session (and so the actuation) for `hold_s`; palpa's exit then closes the session,
@@ -129,11 +130,10 @@ void PrintApplied(const host::Applied& a) {
 int CheckRange(const std::string& command, host::Device& d, const std::vector<uint8_t>& indices,
                bool fingers) {
   const protocol::HelloReply b = d.info();
-  std::string error;
-  if (!CheckOnBoard(indices, fingers ? b.finger_count : b.line_count, fingers ? "finger" : "line",
-                    host::FieldText(b.config_name), &error)) {
-    return Usage(command, error + " (nothing was sent)");
-  }
+  const host::Outcome on_board =
+      CheckOnBoard(indices, fingers ? b.finger_count : b.line_count, fingers ? "finger" : "line",
+                   host::FieldText(b.config_name));
+  if (!on_board.ok()) return Usage(command, on_board.message + " (nothing was sent)");
   return kExitOk;
 }
 
@@ -141,9 +141,9 @@ int CheckRange(const std::string& command, host::Device& d, const std::vector<ui
 
 int CmdSet(Context& c, const std::vector<std::string>& given) {
   std::vector<std::string> args = given;
-  double hold_s = 0;
-  std::string error;
-  if (!TakeHold(args, hold_s, &error)) return Usage("set", error);
+  const host::Result<double> hold = TakeHold(args);
+  if (!hold.ok()) return Usage("set", hold.message);
+  const double hold_s = hold.value;
   const auto strict = std::find(args.begin(), args.end(), "--strict-calibration");
   if (strict != args.end()) {
     c.options.invalid_calibration_is_error = true;
@@ -154,12 +154,13 @@ int CmdSet(Context& c, const std::vector<std::string>& given) {
   std::vector<host::FingerRequest> requests;
   std::vector<uint8_t> fingers;
   for (const std::string& a : args) {  // syntax first: a malformed line sends nothing
-    host::FingerRequest r;
-    if (!ParseFingerArgument(a, kAnyNumber, r, &error)) return Usage("set", error);
-    requests.push_back(r);
-    fingers.push_back(r.finger);
+    const host::Result<host::FingerRequest> r = ParseFingerArgument(a, kAnyNumber);
+    if (!r.ok()) return Usage("set", r.message);
+    requests.push_back(r.value);
+    fingers.push_back(r.value.finger);
   }
-  if (!CheckDistinct(fingers, args, "finger", &error)) return Usage("set", error);
+  if (const host::Outcome o = CheckDistinct(fingers, args, "finger"); !o.ok())
+    return Usage("set", o.message);
   host::Device* d = c.Device();
   if (d == nullptr) return kExitConnect;
   if (const int rc = CheckRange("set", *d, fingers, true); rc != kExitOk) return rc;
@@ -183,20 +184,21 @@ int CmdSet(Context& c, const std::vector<std::string>& given) {
 
 int CmdLine(Context& c, const std::vector<std::string>& given) {
   std::vector<std::string> args = given;
-  double hold_s = 0;
-  std::string error;
-  if (!TakeHold(args, hold_s, &error)) return Usage("line", error);
+  const host::Result<double> hold = TakeHold(args);
+  if (!hold.ok()) return Usage("line", hold.message);
+  const double hold_s = hold.value;
   if (args.empty())
     return Usage("line", "expected at least one L=VALUE in kPa, e.g. palpa line 1=30 6=-40");
   std::vector<std::pair<uint8_t, double>> setpoints;
   std::vector<uint8_t> lines;
   for (const std::string& a : args) {
-    std::pair<uint8_t, double> s;
-    if (!ParseLineArgument(a, kAnyNumber, s, &error)) return Usage("line", error);
-    setpoints.push_back(s);
-    lines.push_back(s.first);
+    const host::Result<std::pair<uint8_t, double>> s = ParseLineArgument(a, kAnyNumber);
+    if (!s.ok()) return Usage("line", s.message);
+    setpoints.push_back(s.value);
+    lines.push_back(s.value.first);
   }
-  if (!CheckDistinct(lines, args, "line", &error)) return Usage("line", error);
+  if (const host::Outcome o = CheckDistinct(lines, args, "line"); !o.ok())
+    return Usage("line", o.message);
   host::Device* d = c.Device();
   if (d == nullptr) return kExitConnect;
   if (const int rc = CheckRange("line", *d, lines, false); rc != kExitOk) return rc;

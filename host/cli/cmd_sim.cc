@@ -15,7 +15,7 @@ nlohmann::ordered_json SimJson(const RunningSim& sim) {
 }
 
 int Start(const std::vector<std::string>& args) {
-  std::string config = "thesis-5finger", flash, value, error;
+  std::string config = "thesis-5finger", flash;
   std::vector<std::string> options;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
@@ -23,7 +23,9 @@ int Start(const std::vector<std::string>& args) {
       return Usage("sim", "start: unexpected argument '" + a +
                               "' (expected --config, --flash, --speed, --plant)");
     }
-    if (!OptionValue(args, i, value, &error)) return Usage("sim", "start: " + error);
+    const host::Result<std::string> option = OptionValue(args, i);
+    if (!option.ok()) return Usage("sim", "start: " + option.message);
+    const std::string& value = option.value;
     ++i;
     if (a == "--config") {
       if (const std::string why = host::SimConfigError(value); !why.empty())
@@ -46,9 +48,9 @@ int Start(const std::vector<std::string>& args) {
                     "); 'palpa sim stop' ends it");
   }
   if (flash.empty()) flash = SimStateDir() + "/sim-" + config + ".flash";
-  RunningSim sim;
-  if (!StartSim(config, flash, options, sim, &error))
-    return Fail("sim", protocol::Status::kUnavailable, error);
+  const host::Result<RunningSim> started = StartSim(config, flash, options);
+  if (!started.ok()) return Fail("sim", started.status, started.message);
+  const RunningSim& sim = started.value;
   if (JsonOutput()) {
     PrintJson(SimJson(sim));
   } else {
@@ -62,7 +64,7 @@ int Start(const std::vector<std::string>& args) {
 }
 
 int Stop() {
-  std::string gone, error;
+  std::string gone;
   const auto sim = FindRunningSim(&gone);
   if (!sim) {
     if (JsonOutput()) {
@@ -73,7 +75,7 @@ int Stop() {
     }
     return kExitOk;
   }
-  if (!StopSim(*sim, &error)) return Fail("sim", protocol::Status::kBusy, error);
+  if (const host::Outcome o = StopSim(*sim); !o.ok()) return Fail("sim", o.status, o.message);
   if (JsonOutput()) {
     PrintJson({{"running", false}, {"stopped", true}, {"pid", sim->pid}, {"flash", sim->flash}});
   } else {

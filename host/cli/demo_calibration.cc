@@ -47,22 +47,16 @@ class ProgressLine {
   std::vector<int> fingers_, done_, total_;
 };
 
-/// One finger on its own simulator: the quick protocol, api(8); false with *error.
-bool CalibrateOne(const std::string& config, int finger, double speed,
-                  const std::function<void(const cal::Progress&)>& progress,
-                  host::CalibrationFile* out, std::string* error) {
+/// One finger on its own simulator: the quick protocol, api(8).
+host::Result<host::CalibrationFile> CalibrateOne(
+    const std::string& config, int finger, double speed,
+    const std::function<void(const cal::Progress&)>& progress) {
   const host::SimulatedPlant plant;  // the demo board's: palpa-sim's defaults
   host::Result<cal::BoardRig> opened = cal::OpenSimulatedRig(config, finger, speed, plant, 1);
-  if (!opened.ok()) {
-    *error = opened.message;
-    return false;
-  }
+  if (!opened.ok()) return opened.outcome();
   cal::BoardRig* sim = &opened.value;
   const auto fc = sim->device->ReadFinger(static_cast<uint8_t>(finger));
-  if (!fc.ok()) {
-    *error = fc.message;
-    return false;
-  }
+  if (!fc.ok()) return fc.outcome();
   cal::SessionOptions options;
   options.finger = static_cast<uint8_t>(finger);
   options.protocol = cal::QuickProtocol();
@@ -74,55 +68,49 @@ bool CalibrateOne(const std::string& config, int finger, double speed,
                        sim->device->info().board_id, false, options);
   const host::Outcome o = session.Run(progress);
   if (!o.ok()) {  // as palpa calibrate: a model asked for and not fitted fails
-    *error = o.status == protocol::Status::kBadValue
-                 ? "api(" + std::to_string(kDemoOperators) +
-                       ") not fitted: " + session.result().fit.error
-                 : o.message;
-    return false;
+    return {o.status, o.status == protocol::Status::kBadValue
+                          ? "api(" + std::to_string(kDemoOperators) +
+                                ") not fitted: " + session.result().fit.error
+                          : o.message};
   }
-  *out = session.result().file;
-  return true;
+  return session.result().file;
 }
 
-/// `fingers` calibrated in parallel, one file each, in order; empty with *error naming the finger
-/// when one fails.
-std::optional<std::vector<host::CalibrationFile>> CalibrateSimulatedFingers(
-    const std::string& config, const std::vector<int>& fingers, double speed, std::string* error) {
-  std::vector<host::CalibrationFile> files(fingers.size());
-  std::vector<std::string> errors(fingers.size());
-  std::vector<char> done(fingers.size(), 0);
+/// `fingers` calibrated in parallel, one file each, in order; the first failure names its finger.
+host::Result<std::vector<host::CalibrationFile>> CalibrateSimulatedFingers(
+    const std::string& config, const std::vector<int>& fingers, double speed) {
+  std::vector<host::Result<host::CalibrationFile>> results(fingers.size(), host::CalibrationFile{});
   {
     ProgressLine line(fingers);
     std::vector<std::thread> threads;
     for (size_t i = 0; i < fingers.size(); ++i) {
       threads.emplace_back([&, i] {
         const auto progress = [&line, i](const cal::Progress& p) { line.Report(i, p); };
-        done[i] = CalibrateOne(config, fingers[i], speed, progress, &files[i], &errors[i]) ? 1 : 0;
+        results[i] = CalibrateOne(config, fingers[i], speed, progress);
       });
     }
     for (std::thread& t : threads) t.join();
   }
+  std::vector<host::CalibrationFile> files;
   for (size_t i = 0; i < fingers.size(); ++i) {
-    if (!done[i]) {
-      *error = "calibrating finger " + std::to_string(fingers[i] + 1) + ": " + errors[i];
-      return std::nullopt;
+    if (!results[i].ok()) {
+      return {results[i].status,
+              "calibrating finger " + std::to_string(fingers[i] + 1) + ": " + results[i].message};
     }
+    files.push_back(std::move(results[i].value));
   }
   return files;
 }
 
-/// DIR/SERIAL.json of each serial that has one; empty with *error when one cannot be read.
-std::optional<std::vector<host::CalibrationFile>> LoadCalibrations(
-    const std::string& dir, const std::vector<std::string>& serials, std::string* error) {
+/// DIR/SERIAL.json of each serial that has one, or why one cannot be read.
+host::Result<std::vector<host::CalibrationFile>> LoadCalibrations(
+    const std::string& dir, const std::vector<std::string>& serials) {
   std::vector<host::CalibrationFile> files;
   for (const std::string& serial : serials) {
     // The library's lookup also refuses a file whose actuator is another than its name says.
     auto file = host::FindCalibration(dir, serial);
     if (file.status == pp::Status::kNotFound) continue;
-    if (!file.ok()) {
-      *error = file.message;
-      return std::nullopt;
-    }
+    if (!file.ok()) return file.outcome();
     files.push_back(std::move(file.value));
   }
   return files;
@@ -148,16 +136,16 @@ PneumaticFingers FindPneumatic(host::Device& d) {
 
 std::optional<std::vector<host::CalibrationFile>> ReadCalibrationDir(const PneumaticFingers& p,
                                                                      const std::string& dir) {
-  std::string error;
-  auto files = LoadCalibrations(dir, p.serials, &error);
-  if (files && files->empty())
-    error = "--calibration " + dir + ": no calibration file of " + p.serials.front() + " .. " +
-            p.serials.back() + " (SERIAL.json)";
-  if (!files || files->empty()) {
-    Fail("demo", protocol::Status::kNotFound, error);
+  auto files = LoadCalibrations(dir, p.serials);
+  if (files.ok() && files.value.empty()) {
+    files.message = "--calibration " + dir + ": no calibration file of " + p.serials.front() +
+                    " .. " + p.serials.back() + " (SERIAL.json)";
+  }
+  if (!files.ok() || files.value.empty()) {
+    Fail("demo", protocol::Status::kNotFound, files.message);
     return std::nullopt;
   }
-  return files;
+  return std::move(files.value);
 }
 
 std::optional<std::vector<host::CalibrationFile>> CalibrateOnSimulatedRigs(
@@ -169,15 +157,14 @@ std::optional<std::vector<host::CalibrationFile>> CalibrateOnSimulatedRigs(
       "rig's stage and force sensor)\n",
       p.fingers.size(), kDemoOperators);
   const auto started = std::chrono::steady_clock::now();
-  std::string error;
-  auto files = CalibrateSimulatedFingers(config, p.fingers, speed, &error);
-  if (!files) {
-    Fail("demo", protocol::Status::kUnavailable, error);
+  auto files = CalibrateSimulatedFingers(config, p.fingers, speed);
+  if (!files.ok()) {
+    Fail("demo", protocol::Status::kUnavailable, files.message);
     return std::nullopt;
   }
   std::fprintf(TextOut(), "  done in %.0f s\n",
                std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
-  return files;
+  return std::move(files.value);
 }
 
 bool ApplyCalibrations(host::Device& d, const PneumaticFingers& p,

@@ -7,8 +7,10 @@
 
 namespace palpa::cli {
 
-bool ParseSimPlantOption(const std::string& arg, const std::function<bool(std::string&)>& next,
-                         host::SimulatedPlant& plant, std::string* error) {
+host::Result<bool> ParseSimPlantOption(const std::string& arg,
+                                       const std::function<bool(std::string&)>& next,
+                                       host::SimulatedPlant& plant) {
+  using protocol::Status;
   // palpa-sim's own ranges (palpa-sim --help), checked here so a bad value is a usage error.
   struct Integer {
     const char* name;
@@ -22,8 +24,8 @@ bool ParseSimPlantOption(const std::string& arg, const std::function<bool(std::s
   if (arg == "--effects") {
     if (!next(v)) v.clear();
     if (const std::string why = host::SimEffectsError(v); v.empty() || !why.empty()) {
-      *error = "--effects " + v + ": " + (v.empty() ? "a list is missing" : why);
-      return true;
+      return {Status::kInvalidArgument,
+              "--effects " + v + ": " + (v.empty() ? "a list is missing" : why)};
     }
     plant.effects = v;
     return true;
@@ -32,8 +34,7 @@ bool ParseSimPlantOption(const std::string& arg, const std::function<bool(std::s
     if (arg != option.name) continue;
     double n = -1;
     if (!next(v) || !ParseNumber(v, n) || n < 0 || n > option.most || n != std::floor(n)) {
-      *error = arg + " " + v + ": expected " + option.expected;
-      return true;
+      return {Status::kInvalidArgument, arg + " " + v + ": expected " + option.expected};
     }
     if (arg == "--unit") plant.actuator_unit = static_cast<uint32_t>(n);
     if (arg == "--seed") plant.seed = static_cast<uint32_t>(n);

@@ -88,14 +88,12 @@ std::optional<RunningSim> FindRunningSim(std::string* gone) {
   return std::nullopt;
 }
 
-bool StartSim(const std::string& config, const std::string& flash,
-              const std::vector<std::string>& options, RunningSim& out, std::string* error) {
+host::Result<RunningSim> StartSim(const std::string& config, const std::string& flash,
+                                  const std::vector<std::string>& options) {
+  using protocol::Status;
   std::error_code ec;
   std::filesystem::create_directories(SimStateDir(), ec);
-  if (ec) {
-    *error = SimStateDir() + ": " + ec.message();
-    return false;
-  }
+  if (ec) return {Status::kIoError, SimStateDir() + ": " + ec.message()};
   const std::string log = SimStateDir() + "/sim.log";
   std::remove(log.c_str());  // what the last run printed must not pass for this one's address
   const std::string program = host::FindPalpaSim();
@@ -103,10 +101,7 @@ bool StartSim(const std::string& config, const std::string& flash,
                                    "tcp:127.0.0.1:0", "--flash",  flash};
   args.insert(args.end(), options.begin(), options.end());
   const pid_t child = fork();
-  if (child < 0) {
-    *error = "cannot start palpa-sim (fork failed)";
-    return false;
-  }
+  if (child < 0) return {Status::kUnavailable, "cannot start palpa-sim (fork failed)"};
   if (child == 0) {
     // A process of its own that outlives this command: its own session, no terminal, output to
     // the log.
@@ -130,6 +125,7 @@ bool StartSim(const std::string& config, const std::string& flash,
     text = ReadText(log);
     const size_t at = text.find("listening on tcp:");
     if (at != std::string::npos && text.find('\n', at) != std::string::npos) {
+      RunningSim out;
       out.pid = child;
       out.uri = text.substr(at + 13, text.find('\n', at) - at - 13);
       out.config = config;
@@ -139,11 +135,12 @@ bool StartSim(const std::string& config, const std::string& flash,
       const nlohmann::json record = {{"pid", out.pid},       {"uri", out.uri},
                                      {"config", out.config}, {"flash", out.flash},
                                      {"log", out.log},       {"started", out.started}};
-      if (!host::WriteFileWhole(RecordPath(), record.dump(2) + "\n", error)) {
+      const host::Outcome kept = host::WriteFileWhole(RecordPath(), record.dump(2) + "\n");
+      if (!kept.ok()) {
         kill(child, SIGTERM);
-        return false;
+        return kept;
       }
-      return true;
+      return out;
     }
     int status = 0;
     if (waitpid(child, &status, WNOHANG) == child) break;  // it stopped: the log says why
@@ -152,11 +149,11 @@ bool StartSim(const std::string& config, const std::string& flash,
   kill(child, SIGKILL);
   waitpid(child, nullptr, 0);
   while (!text.empty() && text.back() == '\n') text.pop_back();
-  *error = "palpa-sim (" + program + ") did not start" + (text.empty() ? "" : ": " + text);
-  return false;
+  return {Status::kUnavailable,
+          "palpa-sim (" + program + ") did not start" + (text.empty() ? "" : ": " + text)};
 }
 
-bool StopSim(const RunningSim& sim, std::string* error) {
+host::Outcome StopSim(const RunningSim& sim) {
   if (IsOurSim(sim.pid, sim.flash)) {
     kill(sim.pid, SIGTERM);
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
@@ -166,12 +163,12 @@ bool StopSim(const RunningSim& sim, std::string* error) {
     for (int i = 0; i < 100 && IsOurSim(sim.pid, sim.flash); ++i)
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     if (IsOurSim(sim.pid, sim.flash)) {
-      *error = "palpa-sim (pid " + std::to_string(sim.pid) + ") does not stop";
-      return false;
+      return host::Outcome::Fail(protocol::Status::kBusy,
+                                 "palpa-sim (pid " + std::to_string(sim.pid) + ") does not stop");
     }
   }
   std::remove(RecordPath().c_str());
-  return true;
+  return {};
 }
 
 }  // namespace palpa::cli

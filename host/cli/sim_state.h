@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "palpa/host/outcome.h"
+
 namespace palpa::cli {
 
 struct RunningSim {
@@ -24,11 +26,12 @@ std::string SimStateDir();
 /// gone (or is no longer palpa-sim) is removed and *gone says so.
 std::optional<RunningSim> FindRunningSim(std::string* gone = nullptr);
 
-/// Starts palpa-sim in the background with a flash file and records it; false with *error.
-bool StartSim(const std::string& config, const std::string& flash,
-              const std::vector<std::string>& options, RunningSim& out, std::string* error);
+/// Starts palpa-sim in the background with a flash file and records it; unavailable when it does
+/// not start (with what it printed), io_error when its record cannot be kept.
+host::Result<RunningSim> StartSim(const std::string& config, const std::string& flash,
+                                  const std::vector<std::string>& options);
 
-/// Stops it (SIGTERM, then SIGKILL after 5 s) and removes the record; false with *error.
-bool StopSim(const RunningSim& sim, std::string* error);
+/// Stops it (SIGTERM, then SIGKILL after 5 s) and removes the record; busy when it does not stop.
+host::Outcome StopSim(const RunningSim& sim);
 
 }  // namespace palpa::cli

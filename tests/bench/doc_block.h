@@ -24,7 +24,7 @@ inline bool ReplaceBlock(const std::string& path, const std::string& name,
   const size_t b = s.find(begin), e = s.find(end);
   if (b == std::string::npos || e == std::string::npos || e < b) return false;
   s = s.substr(0, b + begin.size()) + "\n" + block + s.substr(e);
-  return host::WriteFileWhole(path, s);
+  return host::WriteFileWhole(path, s).ok();
 }
 
 }  // namespace palpa::bench

@@ -172,10 +172,9 @@ int main(int argc, char** argv) {
     }
     auto evaluate = [&](auto&& body) {
       pt::FingerRig rig({0, 2, 22, effects});
-      std::string reason;
-      if (rig.Configure(id.inverse, m.kind, row.fit.params, &reason) != pp::Status::kOk) {
+      if (const auto o = rig.Configure(id.inverse, m.kind, row.fit.params); !o.ok()) {
         std::fprintf(stderr, "%s: the board refused the parameters: %s\n", m.name.c_str(),
-                     reason.c_str());
+                     o.message.c_str());
         std::exit(1);
       }
       body(rig);
@@ -321,7 +320,7 @@ int main(int argc, char** argv) {
                           false});
   chart.series.push_back(
       {"goal: pi(16) <= 300 instr.", {{300, 0}, {300, uncompensated_gap}}, "#bbb", true, false});
-  if (!pb::WriteFileWhole(docs + "/hysteresis.svg", pb::RenderSvg(chart))) {
+  if (!pb::WriteFileWhole(docs + "/hysteresis.svg", pb::RenderSvg(chart)).ok()) {
     std::fprintf(stderr, "cannot write %s/hysteresis.svg\n", docs.c_str());
     return 1;
   }

@@ -320,23 +320,25 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::string dir = argv[1];
-  bool ok = pb::WriteFileWhole(dir + "/plant_table_5_4.svg", pb::RenderSvg(MajorLoop()));
-  ok &= pb::WriteFileWhole(dir + "/plant_fig_5_36.svg", pb::RenderSvg(Stiffness()));
-  ok &= pb::WriteFileWhole(dir + "/plant_press_loops.svg", pb::RenderSvg(PressLoops()));
+  bool ok = pb::WriteFileWhole(dir + "/plant_table_5_4.svg", pb::RenderSvg(MajorLoop())).ok();
+  ok &= pb::WriteFileWhole(dir + "/plant_fig_5_36.svg", pb::RenderSvg(Stiffness())).ok();
+  ok &= pb::WriteFileWhole(dir + "/plant_press_loops.svg", pb::RenderSvg(PressLoops())).ok();
   ok &= pb::WriteFileWhole(
-      dir + "/plant_pressure_steps.svg",
-      pb::RenderSvg(LineSteps("Pneumatic line: regulator commanded, against the fastest step",
-                              {{pp::LineKind::kPressure, 0, 10000},
-                               {pp::LineKind::kPressure, 30000, 0},
-                               {pp::LineKind::kPressure, 0, 80000}},
-                              0.3)));
+            dir + "/plant_pressure_steps.svg",
+            pb::RenderSvg(LineSteps("Pneumatic line: regulator commanded, against the fastest step",
+                                    {{pp::LineKind::kPressure, 0, 10000},
+                                     {pp::LineKind::kPressure, 30000, 0},
+                                     {pp::LineKind::kPressure, 0, 80000}},
+                                    0.3)))
+            .ok();
   ok &= pb::WriteFileWhole(
-      dir + "/plant_vacuum_steps.svg",
-      pb::RenderSvg(LineSteps("Vacuum line: regulator commanded, against the fastest step",
-                              {{pp::LineKind::kVacuum, 0, -10000},
-                               {pp::LineKind::kVacuum, -10000, -100000},
-                               {pp::LineKind::kVacuum, -100000, 0}},
-                              4.0)));
+            dir + "/plant_vacuum_steps.svg",
+            pb::RenderSvg(LineSteps("Vacuum line: regulator commanded, against the fastest step",
+                                    {{pp::LineKind::kVacuum, 0, -10000},
+                                     {pp::LineKind::kVacuum, -10000, -100000},
+                                     {pp::LineKind::kVacuum, -100000, 0}},
+                                    4.0)))
+            .ok();
   ok &= palpa::bench::ReplaceBlock(dir + "/plant.md", "plant-flow", FlowTables());
   std::printf(
       "charts: %s/plant_table_5_4.svg plant_fig_5_36.svg plant_press_loops.svg "

@@ -174,7 +174,7 @@ int main(int argc, char** argv) {
       "(0.26 kPa) + half the dead band (0.05 kPa); feed-forward alone shows the regulator's ~1 "
       "kPa.\n");
   if (argc > 1) {
-    if (!pb::WriteFileWhole(argv[1], pb::RenderSvg(chart))) return 1;
+    if (!pb::WriteFileWhole(argv[1], pb::RenderSvg(chart)).ok()) return 1;
     std::printf("chart: %s\n", argv[1]);
   }
   return 0;

@@ -102,6 +102,6 @@ TEST(AdaptiveProtocol, AWholeCalibrationWithItGivesAFileTheLibraryAccepts) {
   LONGS_EQUAL(4, run.file.quality.checks.size());  // no previous calibration: four detectors
   for (const ph::QualityCheck& k : run.file.quality.checks) CHECK_TEXT(k.passed, k.detail.c_str());
   CHECK(run.file.recommended_bias_pa.has_value());
-  std::string error;
-  CHECK_TEXT(ph::SerializeCalibration(run.file, &error).has_value(), error.c_str());
+  const auto written = ph::SerializeCalibration(run.file);
+  CHECK_TEXT(written.ok(), written.message.c_str());
 }

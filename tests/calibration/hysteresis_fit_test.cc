@@ -61,7 +61,7 @@ TEST(HysteresisFit, PiRecoversItsOwnModelAndTheFirmwareInvertsIt) {
   // The firmware compensator, fed the fitted parameters, asks for the drive that produced each
   // output of a held-out drive sequence.
   pp::ConfigureFinger f{};
-  CHECK(cal::ApplyFit(fit, f, nullptr));
+  CHECK(cal::ApplyFit(fit, f).ok());
   const pc::Compensator c = pc::MakeCompensator(f, 100000);
   pc::CompensatorState s;
   pc::HomeCompensator(c, s);
@@ -157,15 +157,15 @@ TEST(HysteresisFit, BranchCurvesComeFromTheMajorLoop) {
   CHECK_TEXT(fit.ok(), fit.error.c_str());
   // On the major rising pass the rising curve gives the drive back.
   pp::ConfigureFinger f{};
-  CHECK(cal::ApplyFit(fit, f, nullptr));
+  CHECK(cal::ApplyFit(fit, f).ok());
   const pc::Compensator c = pc::MakeCompensator(f, 100000);
   pc::CompensatorState s;
   pc::HomeCompensator(c, s);
   const auto y = truth.Simulate({0, 50000});
   DOUBLES_EQUAL(50000, pc::StepCompensator(c, s, static_cast<float>(y[1]), 0).drive, 1500);
-  std::string error;
-  const auto inverse = cal::FitStaticInverse(sweep, 10, false, &error);
-  CHECK_TEXT(inverse.size() >= 8, error.c_str());
+  const auto fitted = cal::FitStaticInverse(sweep, 10, false);
+  const auto& inverse = fitted.value;
+  CHECK_TEXT(fitted.ok() && inverse.size() >= 8, fitted.message.c_str());
   for (size_t k = 1; k < inverse.size(); ++k) CHECK(inverse[k].output > inverse[k - 1].output);
 }
 

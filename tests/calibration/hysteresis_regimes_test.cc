@@ -47,9 +47,8 @@ std::unique_ptr<pt::FingerRig> Configured(const pt::Method& m, const pt::Identif
   auto rig = std::make_unique<pt::FingerRig>(pt::FingerRigOptions{0, 2, 42, effects});
   const cal::HysteresisFit fit = pt::FitMethod(m, id, rig->drive_max());
   CHECK_TEXT(m.kind == pp::CompensatorKind::kNone || fit.ok(), fit.error.c_str());
-  std::string reason;
-  LONGS_EQUAL_TEXT((int)pp::Status::kOk,
-                   (int)rig->Configure(id.inverse, m.kind, fit.params, &reason), reason.c_str());
+  const palpa::host::Outcome configured = rig->Configure(id.inverse, m.kind, fit.params);
+  LONGS_EQUAL_TEXT((int)pp::Status::kOk, (int)configured.status, configured.message.c_str());
   return rig;
 }
 
@@ -120,7 +119,8 @@ TEST(HysteresisRegimes, BelowTheIdentifiedRangeTheFingerSaturatesAndSaysSo) {
     pt::FingerRig rig({3, 2, 47, palpa::sim::Effects{}});
     const cal::HysteresisFit fit = pt::FitMethod(Named(name), id, rig.drive_max());
     CHECK_TEXT(fit.ok(), fit.error.c_str());
-    LONGS_EQUAL((int)pp::Status::kOk, (int)rig.Configure(id.inverse, Named(name).kind, fit.params));
+    LONGS_EQUAL((int)pp::Status::kOk,
+                (int)rig.Configure(id.inverse, Named(name).kind, fit.params).status);
     bool saturated = false;
     rig.Follow(0.7 * bottom, 2000, [&](double truth) {
       CHECK(std::isfinite(truth));
@@ -139,9 +139,9 @@ TEST(HysteresisRegimes, FewNoisyPointsGiveAWorseButValidCompensator) {
   std::mt19937 rng(9);
   std::normal_distribution<double> noise(0, 0.1 * 4000);
   for (cal::SweepSample& s : id.sweep) s.output += noise(rng);
-  std::string error;
-  id.inverse = cal::FitStaticInverse(id.sweep, 5, false, &error);
-  CHECK_TEXT(id.inverse.size() >= 2, error.c_str());
+  const auto inverse = cal::FitStaticInverse(id.sweep, 5, false);
+  id.inverse = inverse.value;
+  CHECK_TEXT(id.inverse.size() >= 2, inverse.message.c_str());
   for (const char* name : {"pi(4)", "pi(16)", "api(8)", "branch(12)"}) {
     const cal::HysteresisFit fit = pt::FitMethod(Named(name), id, 100000);
     if (!fit.ok()) {

@@ -41,10 +41,9 @@ cal::RigDescription SimRig(const std::string& uri) {
   json j = json::parse(ReadText(std::string(PALPA_SOURCE_DIR) + "/calibration/rigs/sim.json"));
   j["stage"]["address"] = uri;
   j["force_sensor"]["address"] = uri;
-  std::string error;
-  const auto rig = cal::ParseRigDescription(j.dump(), &error);
-  CHECK_TEXT(rig.has_value(), error.c_str());
-  return *rig;
+  const auto rig = cal::ParseRigDescription(j.dump());
+  CHECK_TEXT(rig.ok(), rig.message.c_str());
+  return rig.value;
 }
 
 /// "tcp:127.0.0.1:PORT" → "modbus-tcp://127.0.0.1:PORT/1".
@@ -117,16 +116,15 @@ TEST(RegisterMap, EveryBadFieldIsNamed) {
   for (const Case& c : cases) {
     json j = good;
     c.edit(j);
-    std::string error;
-    CHECK_FALSE(cal::ParseRigDescription(j.dump(), &error).has_value());
-    CHECK_TEXT(error.find(c.names) != std::string::npos,
-               (std::string(c.names) + " / " + error).c_str());
+    const auto parsed = cal::ParseRigDescription(j.dump());
+    CHECK_FALSE(parsed.ok());
+    CHECK_TEXT(parsed.message.find(c.names) != std::string::npos,
+               (std::string(c.names) + " / " + parsed.message).c_str());
   }
-  std::string error;
-  CHECK(cal::ParseRigDescription(good.dump(), &error).has_value());
-  CHECK(cal::ParseModbusAddress("modbus-rtu:/dev/ttyUSB0?baud=19200&unit=3", &error)->baud ==
-        19200);
-  CHECK_FALSE(cal::ParseModbusAddress("modbus-tcp://h:70000/1", &error).has_value());
+  CHECK(cal::ParseRigDescription(good.dump()).ok());
+  CHECK(cal::ParseModbusAddress("modbus-rtu:/dev/ttyUSB0?baud=19200&unit=3").value.baud == 19200);
+  const auto bad = cal::ParseModbusAddress("modbus-tcp://h:70000/1");
+  LONGS_EQUAL((int)palpa::protocol::Status::kInvalidArgument, (int)bad.status);
 }
 
 TEST(RegisterMap, ValuesRoundTripInEveryTypeAndOrder) {
@@ -162,10 +160,9 @@ TEST(ModbusRig, DriversMoveTheSimulatedStageAndReadItsForceOverTcp) {
   pt::SimProcess sim;
   CHECK(sim.Start({"--config", "thesis-5finger", "--listen", "tcp:127.0.0.1:0", "--rig-modbus",
                    "tcp:127.0.0.1:0", "--speed", "10"}));
-  std::string error;
-  auto devices = cal::OpenRigDevices(SimRig(ModbusUri(sim.rig_address())), &error);
-  CHECK_TEXT(devices.has_value(), error.c_str());
-  ExerciseRig(*devices);
+  auto devices = cal::OpenRigDevices(SimRig(ModbusUri(sim.rig_address())));
+  CHECK_TEXT(devices.ok(), devices.message.c_str());
+  ExerciseRig(devices.value);
 }
 
 TEST(ModbusRig, TheForceCanComeFromASimulatedNetFtOverRdt) {
@@ -176,16 +173,16 @@ TEST(ModbusRig, TheForceCanComeFromASimulatedNetFtOverRdt) {
   j["stage"]["address"] = ModbusUri(sim.rig_address());
   j["force_sensor"] = {
       {"driver", "netft"}, {"address", "netft://" + sim.netft_address().substr(4)}, {"axis", "fz"}};
-  std::string error;
-  const auto rig = cal::ParseRigDescription(j.dump(), &error);
-  CHECK_TEXT(rig.has_value(), error.c_str());
-  CHECK(rig->netft.has_value());
-  auto devices = cal::OpenRigDevices(*rig, &error);
-  CHECK_TEXT(devices.has_value(), error.c_str());
-  ExerciseRig(*devices);
+  const auto rig = cal::ParseRigDescription(j.dump());
+  CHECK_TEXT(rig.ok(), rig.message.c_str());
+  CHECK(rig.value.netft.has_value());
+  auto devices = cal::OpenRigDevices(rig.value);
+  CHECK_TEXT(devices.ok(), devices.message.c_str());
+  ExerciseRig(devices.value);
   j["force_sensor"]["axis"] = "fw";
-  CHECK_FALSE(cal::ParseRigDescription(j.dump(), &error).has_value());
-  CHECK(error.find("force_sensor.axis") != std::string::npos);
+  const auto bad = cal::ParseRigDescription(j.dump());
+  LONGS_EQUAL((int)palpa::protocol::Status::kInvalidArgument, (int)bad.status);
+  CHECK(bad.message.find("force_sensor.axis") != std::string::npos);
 }
 
 TEST(ModbusRig, DriversWorkOverRtuOnAPtyPair) {
@@ -203,10 +200,9 @@ TEST(ModbusRig, DriversWorkOverRtuOnAPtyPair) {
     pt::SimProcess sim;
     CHECK(sim.Start({"--config", "thesis-5finger", "--listen", "tcp:127.0.0.1:0", "--rig-modbus",
                      "rtu:" + a, "--speed", "10"}));
-    std::string error;
-    auto devices = cal::OpenRigDevices(SimRig("modbus-rtu:" + b + "?baud=115200&unit=1"), &error);
-    CHECK_TEXT(devices.has_value(), error.c_str());
-    ExerciseRig(*devices);
+    auto devices = cal::OpenRigDevices(SimRig("modbus-rtu:" + b + "?baud=115200&unit=1"));
+    CHECK_TEXT(devices.ok(), devices.message.c_str());
+    ExerciseRig(devices.value);
   }
   kill(socat, SIGTERM);
   waitpid(socat, nullptr, 0);
@@ -238,15 +234,16 @@ TEST(ModbusRig, DriversSpeakStandardModbusToAnIndependentServer) {
       {"address", "modbus-tcp://127.0.0.1:" + std::to_string(port) + "/1"},
       {"byte_order", "little"},
       {"registers", {{"force", {{"table", "input"}, {"address", 200}, {"type", "float32"}}}}}};
-  std::string error;
-  const auto stage_map = cal::ParseRegisterMap(map, "stage", cal::kStageRegisters, &error);
-  const auto force_map = cal::ParseRegisterMap(force, "force_sensor", cal::kForceRegisters, &error);
-  CHECK_TEXT(stage_map && force_map, error.c_str());
+  const auto stage_map = cal::ParseRegisterMap(map, "stage", cal::kStageRegisters);
+  const auto force_map = cal::ParseRegisterMap(force, "force_sensor", cal::kForceRegisters);
+  CHECK_TEXT(stage_map.ok() && force_map.ok(), (stage_map.message + force_map.message).c_str());
   std::unique_ptr<cal::ModbusDevice> stage_device, force_device;
   CHECK(WaitUntil(
-      [&] { return (stage_device = cal::ModbusDevice::Open(*stage_map, &error)) != nullptr; }, 10));
-  force_device = cal::ModbusDevice::Open(*force_map, &error);
-  CHECK_TEXT(force_device != nullptr, error.c_str());
+      [&] { return (stage_device = cal::ModbusDevice::Open(stage_map.value).value) != nullptr; },
+      10));
+  auto force_opened = cal::ModbusDevice::Open(force_map.value);
+  CHECK_TEXT(force_opened.ok(), force_opened.message.c_str());
+  force_device = std::move(force_opened.value);
   cal::ModbusStage stage(std::move(stage_device));
   cal::ModbusForceSensor sensor(std::move(force_device));
   double mm = 0, newtons = 0;

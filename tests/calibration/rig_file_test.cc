@@ -37,9 +37,11 @@ std::string Replaced(std::string text, const std::string& from, const std::strin
 
 /// The error a rig text is refused with ("" when it is accepted).
 std::string RigError(const std::string& text) {
-  std::string error;
-  if (cal::ParseRigDescription(text, &error)) return "";
-  return error.empty() ? "(refused without a reason)" : error;
+  const auto rig = cal::ParseRigDescription(text);
+  if (rig.ok()) return "";
+  if (rig.status != palpa::protocol::Status::kInvalidArgument)
+    return "(refused with another status)";
+  return rig.message.empty() ? "(refused without a reason)" : rig.message;
 }
 
 }  // namespace
@@ -75,12 +77,15 @@ TEST(HostileRigFiles, EveryBadValueIsRefusedNamingItsField) {
 TEST(HostileRigFiles, TheFileIsNamedAndItsLimitsKept) {
   const std::string path = "/tmp/palpa-rig-" + std::to_string(getpid()) + ".json";
   std::ofstream(path) << Replaced(kRig, "\"force_noise_n\": 0.0017", "\"force_noise_n\": 1e400");
-  std::string error;
-  CHECK_FALSE(cal::LoadRigDescription(path, &error).has_value());
-  CHECK_TEXT(error.find(path + ": force_noise_n: ") != std::string::npos, error.c_str());
+  auto loaded = cal::LoadRigDescription(path);
+  CHECK_FALSE(loaded.ok());
+  CHECK_TEXT(loaded.message.find(path + ": force_noise_n: ") != std::string::npos,
+             loaded.message.c_str());
   std::ofstream(path) << std::string(1 << 20, ' ') << kRig;
-  CHECK_FALSE(cal::LoadRigDescription(path, &error).has_value());
-  CHECK_TEXT(error.find(path + ": larger than the") != std::string::npos, error.c_str());
+  loaded = cal::LoadRigDescription(path);
+  CHECK_FALSE(loaded.ok());
+  CHECK_TEXT(loaded.message.find(path + ": larger than the") != std::string::npos,
+             loaded.message.c_str());
   std::remove(path.c_str());
 }
 
@@ -91,8 +96,8 @@ TEST(HostileJournals, ADamagedJournalIsRefusedNamingTheField) {
                      {"corrections", {{"0", {{0, 0, 0}, {50000, 50600, 49500}}}}},
                      {"sweep", {{0, 0}, {10000, 300}}},
                      {"map", {{"grid_done", 1}, {"presses", json::array()}}}};
-  std::string error;
-  CHECK_TEXT(cal::ParseJournal(good.dump(), &error).has_value(), error.c_str());
+  const auto accepted = cal::ParseJournal(good.dump());
+  CHECK_TEXT(accepted.ok(), accepted.message.c_str());
   struct Case {
     json::json_pointer where;
     json value;
@@ -111,10 +116,12 @@ TEST(HostileJournals, ADamagedJournalIsRefusedNamingTheField) {
   for (const Case& c : cases) {
     json j = good;
     j[c.where] = c.value;
-    CHECK_FALSE(cal::ParseJournal(j.dump(), &error).has_value());
-    CHECK_TEXT(error.find(c.names) != std::string::npos,
-               (std::string(c.names) + " / " + error).c_str());
+    const auto refused = cal::ParseJournal(j.dump());
+    CHECK_FALSE(refused.ok());
+    CHECK_TEXT(refused.message.find(c.names) != std::string::npos,
+               (std::string(c.names) + " / " + refused.message).c_str());
   }
-  CHECK_FALSE(cal::ParseJournal("{\"rig_time_s\": 1e400}", &error).has_value());
-  CHECK_TEXT(error.find("rig_time_s: ") != std::string::npos, error.c_str());
+  const auto huge = cal::ParseJournal("{\"rig_time_s\": 1e400}");
+  CHECK_FALSE(huge.ok());
+  CHECK_TEXT(huge.message.find("rig_time_s: ") != std::string::npos, huge.message.c_str());
 }

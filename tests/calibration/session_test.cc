@@ -78,10 +78,9 @@ TEST(CalibrationSession, ItsFilesAreTheProtocolsRunByteForByte) {
     const cal::RigStatus s = cal::RunCalibration(rig, 0, Short(), info, journal, nullptr, &run);
     CHECK_TEXT(s.ok(), s.message.c_str());
     for (const std::string& row : run.csv) csv += row + "\n";
-    std::string error;
-    const auto text = ph::SerializeCalibration(run.file, &error);
-    CHECK_TEXT(text.has_value(), error.c_str());
-    json = *text;
+    const auto text = ph::SerializeCalibration(run.file);
+    CHECK_TEXT(text.ok(), text.message.c_str());
+    json = text.value;
     html = cal::RenderReport(run);
   }
   const std::string dir = TempDir() + "/out";  // made by the session
@@ -112,14 +111,12 @@ TEST(CalibrationSession, EachPhaseSaysWhatFailedWithItsStatus) {
     STRCMP_CONTAINS("no journal", o.message.c_str());
   }
   {
-    std::string error;
-    CHECK(ph::WriteFileWhole(dir + "/PN-1.journal.json", "{\"sweep\": 3}", &error));
+    CHECK(ph::WriteFileWhole(dir + "/PN-1.journal.json", "{\"sweep\": 3}").ok());
     cal::Session session(sim.rig(), "PN-1", 7, false, Options(dir));
     LONGS_EQUAL((int)pp::Status::kBadValue, (int)session.Resume().status);
   }
   {
-    std::string error;
-    CHECK(ph::WriteFileWhole(dir + "/PN-1.json", "{}", &error));
+    CHECK(ph::WriteFileWhole(dir + "/PN-1.json", "{}").ok());
     cal::Session session(sim.rig(), "PN-1", 7, false, Options(dir));
     const ph::Outcome o = session.LoadPrevious();  // OUT/SERIAL.json, unreadable
     LONGS_EQUAL((int)pp::Status::kBadValue, (int)o.status);

@@ -60,8 +60,8 @@ TEST(ThesisProtocol, PneumaticFingerGivesAValidCalibrationCloseToTable54) {
       rig, 0, Short(), Info("PN-1"), journal, [&](const cal::Progress&) { ++reports; }, &run);
   CHECK_TEXT(s.ok(), s.message.c_str());
   CHECK(reports > 10);
-  std::string error;
-  CHECK_TEXT(ph::SerializeCalibration(run.file, &error).has_value(), error.c_str());
+  const auto written = ph::SerializeCalibration(run.file);
+  CHECK_TEXT(written.ok(), written.message.c_str());
   DOUBLES_EQUAL(0.0428, run.file.rising_fit->slope, 0.1 * 0.0428);
   DOUBLES_EQUAL(0.0475, run.file.falling_fit->slope, 0.1 * 0.0475);
   // Left to choose, the protocol fits both play models and says what it compared. Which one it
@@ -233,8 +233,8 @@ TEST(ThesisProtocol, JammingFingerRecommendsTheBiasWithTheSmallerLoop) {
   DOUBLES_EQUAL(1300, run.file.grid[3].stiffness_mean, 150);
   DOUBLES_EQUAL(20000, run.file.grid[3].bias_pa, 0);
   DOUBLES_EQUAL(-100000, run.file.grid[3].vacuum_pa, 0);
-  std::string error;
-  CHECK_TEXT(ph::SerializeCalibration(run.file, &error).has_value(), error.c_str());
+  const auto written = ph::SerializeCalibration(run.file);
+  CHECK_TEXT(written.ok(), written.message.c_str());
   // Whichever model it chose, it fitted one and said why.
   CHECK(run.file.compensator == pp::CompensatorKind::kPrandtlIshlinskii ||
         run.file.compensator == pp::CompensatorKind::kAsymmetricPi);

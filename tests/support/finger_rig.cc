@@ -74,9 +74,9 @@ std::vector<calibration::SweepSample> FingerRig::Sweep(const std::vector<double>
   return out;
 }
 
-pp::Status FingerRig::Configure(const std::vector<pp::InversePoint>& inverse,
-                                pp::CompensatorKind kind, const std::vector<float>& params,
-                                std::string* reason) {
+palpa::host::Outcome FingerRig::Configure(const std::vector<pp::InversePoint>& inverse,
+                                          pp::CompensatorKind kind,
+                                          const std::vector<float>& params) {
   pp::ConfigureFinger f = board_.sim().board().config().fingers[options_.finger];
   f.inverse_count = static_cast<uint8_t>(inverse.size());
   std::copy(inverse.begin(), inverse.end(), f.inverse.begin());
@@ -86,16 +86,15 @@ pp::Status FingerRig::Configure(const std::vector<pp::InversePoint>& inverse,
   // Straight to the board's validation and apply path (what a staged upload ends in).
   core::ConfigError error;
   const pp::Status s = core::ValidateFinger(f, board_.sim().board().config(), &error);
-  if (s != pp::Status::kOk) {
-    if (reason != nullptr) *reason = error.reason;
-    return s;
-  }
+  if (s != pp::Status::kOk) return palpa::host::Outcome::Fail(s, error.reason);
   board_.SendConfig(f);
   board_.Run(5);
   target_mode_ = false;
-  return board_.sim().board().config().fingers[options_.finger].compensator == kind
-             ? pp::Status::kOk
-             : pp::Status::kUnavailable;
+  if (board_.sim().board().config().fingers[options_.finger].compensator != kind) {
+    return palpa::host::Outcome::Fail(pp::Status::kUnavailable,
+                                      "the board did not take the compensator");
+  }
+  return {};
 }
 
 void FingerRig::Follow(double target, int ms, const std::function<void(double)>& each_ms) {

@@ -12,6 +12,7 @@
 #include "palpa/calibration/procedures.h"
 #include "palpa/calibration/sweep.h"
 #include "palpa/hal/sim/rig_measurement.h"
+#include "palpa/host/outcome.h"
 
 namespace palpa::testing {
 
@@ -34,10 +35,10 @@ class FingerRig {
   /// rig's reading of the output (finger unit: µm or mN/mm).
   std::vector<calibration::SweepSample> Sweep(const std::vector<double>& drives, int dwell_ms);
 
-  /// Sends the finger's configuration with a static inverse and compensator; the board's answer.
-  protocol::Status Configure(const std::vector<protocol::InversePoint>& inverse,
-                             protocol::CompensatorKind kind, const std::vector<float>& params,
-                             std::string* reason = nullptr);
+  /// Sends the finger's configuration with a static inverse and compensator; the board's answer
+  /// (with its reason when it refuses).
+  host::Outcome Configure(const std::vector<protocol::InversePoint>& inverse,
+                          protocol::CompensatorKind kind, const std::vector<float>& params);
 
   /// Target mode: sets the target (finger unit) and runs `ms`, calling `each_ms` after every step.
   void Follow(double target, int ms, const std::function<void(double truth)>& each_ms = nullptr);

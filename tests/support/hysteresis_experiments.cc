@@ -29,7 +29,9 @@ std::vector<Method> AllMethods() {
 Identified Identify(FingerRig& rig, const cal::SweepPlan& plan, int dwell_ms) {
   Identified id;
   id.sweep = rig.Sweep(cal::SweepDrives(plan), dwell_ms);
-  id.inverse = cal::FitStaticInverse(id.sweep, 16, rig.jamming(), &id.error);
+  auto inverse = cal::FitStaticInverse(id.sweep, 16, rig.jamming());
+  id.inverse = std::move(inverse.value);
+  id.error = std::move(inverse.message);
   return id;
 }
 

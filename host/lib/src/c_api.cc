@@ -280,13 +280,13 @@ int palpa_config_read(palpa_device* d, char* out, size_t capacity, size_t* lengt
 int palpa_config_apply(palpa_device* d, const char* json) {
   if (d == nullptr || json == nullptr)
     return Invalid(d, "palpa_config_apply: json must not be NULL");
-  std::string error;
-  const auto patch = ph::ParseJson(json, &error);
-  if (!patch) return Invalid(d, "palpa_config_apply: " + error + " (nothing was sent)");
+  const auto patch = ph::ParseJson(json);
+  if (!patch.ok())
+    return Invalid(d, "palpa_config_apply: " + patch.message + " (nothing was sent)");
   auto config = d->device->ReadConfig();
   if (!config.ok()) return Report(d, config);
   try {
-    ph::ApplyConfigJson(*patch, config.value);
+    ph::ApplyConfigJson(patch.value, config.value);
   } catch (const std::exception& e) {
     return Invalid(d, std::string("palpa_config_apply: ") + e.what() + " (nothing was sent)");
   }
@@ -310,12 +310,11 @@ int palpa_calibrate(palpa_device* d, const char* rig, const char* options_json, 
                     size_t capacity, size_t* length) {
   if (rig == nullptr || options_json == nullptr)
     return Invalid(d, "palpa_calibrate: rig and options_json must not be NULL");
-  std::string error;
-  const auto options = ph::ParseJson(options_json, &error);
-  if (!options) return Invalid(d, "palpa_calibrate: options: " + error);
+  const auto options = ph::ParseJson(options_json);
+  if (!options.ok()) return Invalid(d, "palpa_calibrate: options: " + options.message);
   nlohmann::ordered_json summary;
   const ph::Outcome o = palpa::calibration::CalibrateFromJson(
-      d == nullptr ? nullptr : d->device.get(), rig, *options, &summary);
+      d == nullptr ? nullptr : d->device.get(), rig, options.value, &summary);
   if (!o.ok()) {
     (d == nullptr ? g_open_error : d->error) = o.message;
     return static_cast<int>(o.status);

@@ -134,31 +134,31 @@ std::string SimEffectsError(const std::string& effects) {
   return {};
 }
 
-std::optional<CalibrationFile> ParseCalibration(const std::string& text, std::string* error) {
-  const auto j = ParseJson(text, error);
-  if (!j) return std::nullopt;
+Result<CalibrationFile> ParseCalibration(const std::string& text) {
+  const auto j = ParseJson(text);
+  if (!j.ok()) return j.outcome();
   try {
-    return CalibrationFromJson(*j);
+    return CalibrationFromJson(j.value);
   } catch (const std::exception& e) {  // JsonInvalid names the field
-    if (error != nullptr) *error = e.what();
+    return {Status::kInvalidArgument, e.what()};
   }
-  return std::nullopt;
 }
 
-std::optional<CalibrationFile> LoadCalibration(const std::string& path, std::string* error) {
-  return ReadAndParse(path, kCalibrationFileLimits, ParseCalibration, error);
+Result<CalibrationFile> LoadCalibration(const std::string& path) {
+  return ReadAndParse(path, kCalibrationFileLimits, ParseCalibration);
 }
 
-std::optional<std::string> SerializeCalibration(const CalibrationFile& c, std::string* error) {
-  const std::string text = Write(c).dump(2) + "\n";
+Result<std::string> SerializeCalibration(const CalibrationFile& c) {
+  std::string text = Write(c).dump(2) + "\n";
   // What is written must read back: the same validation guards both directions.
-  if (!ParseCalibration(text, error)) return std::nullopt;
+  if (const auto back = ParseCalibration(text); !back.ok()) return back.outcome();
   return text;
 }
 
-bool SaveCalibration(const CalibrationFile& c, const std::string& path, std::string* error) {
-  const auto text = SerializeCalibration(c, error);
-  return text && WriteFileWhole(path, *text, error);
+Outcome SaveCalibration(const CalibrationFile& c, const std::string& path) {
+  const auto text = SerializeCalibration(c);
+  if (!text.ok()) return text.outcome();
+  return WriteFileWhole(path, text.value);
 }
 
 std::string DefaultCalibrationDir() {
@@ -199,14 +199,13 @@ Result<CalibrationFile> FindCalibration(const std::string& dir, const std::strin
   struct stat st;
   if (lstat(path.c_str(), &st) != 0)
     return {pp::Status::kNotFound, "no calibration for " + serial + " in " + dir};
-  std::string error;
-  auto c = LoadCalibration(path, &error);
-  if (!c) return {pp::Status::kBadValue, error};
-  if (c->actuator_serial != serial) {
+  auto c = LoadCalibration(path);
+  if (!c.ok()) return {pp::Status::kBadValue, c.message};
+  if (c.value.actuator_serial != serial) {
     return {pp::Status::kBadValue,
-            path + ": actuator_serial is " + c->actuator_serial + ", not " + serial};
+            path + ": actuator_serial is " + c.value.actuator_serial + ", not " + serial};
   }
-  return std::move(*c);
+  return std::move(c.value);
 }
 
 std::string CompensatorLabel(const CalibrationFile& c) {

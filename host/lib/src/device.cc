@@ -69,8 +69,7 @@ Result<std::unique_ptr<Device>> Device::Open(const std::string& uri, DeviceOptio
   if (!transport.ok()) return transport.outcome();
   // A board on USB can be unplugged and plugged back in: the link opens it again by its URI.
   // A simulator child or a TCP server that went away is another board when it comes back.
-  DeviceUri parsed;
-  ParseDeviceUri(uri, parsed, nullptr);
+  const DeviceUri parsed = ParseDeviceUri(uri).value;
   const bool pluggable = parsed.kind == DeviceUri::Kind::kUsb ||
                          parsed.kind == DeviceUri::Kind::kHid ||
                          parsed.kind == DeviceUri::Kind::kSerial;

@@ -135,8 +135,8 @@ Result<std::unique_ptr<Transport>> OpenSerial(const DeviceUri& uri) {
 
 namespace {
 
-/// A connected TCP socket with Nagle off, or -1 with *error (and *status) set.
-int ConnectTcp(const DeviceUri& uri, std::string* error, Status* status) {
+/// A connected TCP socket with Nagle off, or why not (not_found, unavailable).
+Result<int> ConnectTcp(const DeviceUri& uri) {
   addrinfo hints{};
   hints.ai_family = AF_UNSPEC;
   hints.ai_socktype = SOCK_STREAM;
@@ -144,9 +144,7 @@ int ConnectTcp(const DeviceUri& uri, std::string* error, Status* status) {
   const std::string where = "tcp:" + uri.host + ":" + std::to_string(uri.port);
   if (getaddrinfo(uri.host.c_str(), std::to_string(uri.port).c_str(), &hints, &found) != 0 ||
       found == nullptr) {
-    *error = where + ": unknown host";
-    *status = Status::kNotFound;
-    return -1;
+    return {Status::kNotFound, where + ": unknown host"};
   }
   int fd = -1;
   for (addrinfo* a = found; a != nullptr && fd < 0; a = a->ai_next) {
@@ -159,9 +157,7 @@ int ConnectTcp(const DeviceUri& uri, std::string* error, Status* status) {
   const int saved = errno;
   freeaddrinfo(found);
   if (fd < 0) {
-    *error = where + ": " + std::strerror(saved);
-    *status = Status::kUnavailable;
-    return -1;
+    return {Status::kUnavailable, where + ": " + std::strerror(saved)};
   }
   const int one = 1;
   setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof(one));
@@ -171,12 +167,10 @@ int ConnectTcp(const DeviceUri& uri, std::string* error, Status* status) {
 }  // namespace
 
 Result<std::unique_ptr<Transport>> OpenTcp(const DeviceUri& uri) {
-  Status status = Status::kOk;
-  std::string error;
-  const int fd = ConnectTcp(uri, &error, &status);
-  if (fd < 0) return {status, error};
+  const Result<int> fd = ConnectTcp(uri);
+  if (!fd.ok()) return fd.outcome();
   return std::unique_ptr<Transport>(
-      new FdTransport(fd, "tcp:" + uri.host + ":" + std::to_string(uri.port)));
+      new FdTransport(fd.value, "tcp:" + uri.host + ":" + std::to_string(uri.port)));
 }
 
 SimTransport::~SimTransport() {
@@ -314,23 +308,20 @@ Result<std::unique_ptr<Transport>> LaunchSim(const std::string& config,
   DeviceUri tcp;
   tcp.host = address.substr(0, address.rfind(':'));
   tcp.port = static_cast<uint16_t>(std::stoi(address.substr(address.rfind(':') + 1)));
-  Status status = Status::kOk;
-  std::string error;
-  const int fd = ConnectTcp(tcp, &error, &status);
-  if (fd < 0) {
+  const Result<int> fd = ConnectTcp(tcp);
+  if (!fd.ok()) {
     kill(child, SIGKILL);
     waitpid(child, nullptr, 0);
-    return {status, error};
+    return fd.outcome();
   }
-  return std::unique_ptr<Transport>(
-      new SimTransport(fd, child, "sim:" + uri.config + " (palpa-sim on tcp:" + address + ")"));
+  return std::unique_ptr<Transport>(new SimTransport(
+      fd.value, child, "sim:" + uri.config + " (palpa-sim on tcp:" + address + ")"));
 }
 
 Result<std::unique_ptr<Transport>> OpenTransport(const std::string& uri) {
-  DeviceUri parsed;
-  std::string error;
-  const Status s = ParseDeviceUri(uri, parsed, &error);
-  if (s != Status::kOk) return {s, error};
+  const Result<DeviceUri> uri_parsed = ParseDeviceUri(uri);
+  if (!uri_parsed.ok()) return uri_parsed.outcome();
+  const DeviceUri& parsed = uri_parsed.value;
   switch (parsed.kind) {
     case DeviceUri::Kind::kSim:
       return OpenSim(parsed);

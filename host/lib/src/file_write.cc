@@ -5,8 +5,11 @@
 
 namespace palpa::host {
 
-bool WriteFileWhole(const std::string& path, std::string_view bytes, std::string* error) {
-  return hal::linux_files::WriteFileWhole(path, bytes, error);
+Outcome WriteFileWhole(const std::string& path, std::string_view bytes) {
+  std::string error;
+  if (!hal::linux_files::WriteFileWhole(path, bytes, &error))
+    return Outcome::Fail(Status::kIoError, std::move(error));
+  return {};
 }
 
 }  // namespace palpa::host

@@ -78,12 +78,11 @@ std::string Words(const std::exception& e) {
 
 }  // namespace
 
-std::optional<nlohmann::json> ParseJson(const std::string& text, std::string* error) {
+Result<nlohmann::json> ParseJson(const std::string& text) {
   PathTracker tracker;
-  auto fail = [&](const std::string& why) -> std::optional<nlohmann::json> {
+  auto fail = [&](const std::string& why) -> Result<nlohmann::json> {
     const std::string path = tracker.Path();
-    if (error != nullptr) *error = (path.empty() ? "" : path + ": ") + why;
-    return std::nullopt;
+    return {Status::kInvalidArgument, (path.empty() ? "" : path + ": ") + why};
   };
   try {
     return nlohmann::json::parse(text, std::ref(tracker));
@@ -103,9 +102,8 @@ std::optional<nlohmann::json> ParseJson(const std::string& text, std::string* er
   }
 }
 
-std::optional<nlohmann::json> ReadJsonFile(const std::string& path, const FileLimits& limits,
-                                           std::string* error) {
-  return ReadAndParse(path, limits, ParseJson, error);
+Result<nlohmann::json> ReadJsonFile(const std::string& path, const FileLimits& limits) {
+  return ReadAndParse(path, limits, ParseJson);
 }
 
 JsonObject::JsonObject(const nlohmann::json& j, std::string path, std::set<std::string> known)

@@ -37,24 +37,22 @@ std::string CurveRange(const FingerCurves& c, const char* nominal) {
   return c.calibrated.empty() ? nominal : "the calibrated range";
 }
 
-/// Keeps v in [lo, hi] under the policy; false (with *error) when refused. A value that is not
-/// a finite number has no place in any range: refused under every policy. `range` names the
-/// range ("the calibrated range", "the range").
-bool InRange(double& v, double lo, double hi, RangePolicy policy, const std::string& what,
-             const std::string& range, std::string* note, std::string* error) {
-  if (!std::isfinite(v)) {
-    *error = what + " " + Num(v) + " is not a finite number";
-    return false;
-  }
-  if (v >= lo && v <= hi) return true;
+/// Keeps v in [lo, hi] under the policy (a clamp is added to *note); out of range when refused.
+/// A value that is not a finite number has no place in any range: refused under every policy.
+/// `range` names the range ("the calibrated range", "the range").
+Outcome InRange(double& v, double lo, double hi, RangePolicy policy, const std::string& what,
+                const std::string& range, std::string* note) {
+  if (!std::isfinite(v))
+    return Outcome::Fail(Status::kOutOfRange, what + " " + Num(v) + " is not a finite number");
+  if (v >= lo && v <= hi) return {};
   if (policy == RangePolicy::kRefuse) {
-    *error = what + " " + Num(v) + " is outside " + range + " " + Num(lo) + " … " + Num(hi);
-    return false;
+    return Outcome::Fail(Status::kOutOfRange, what + " " + Num(v) + " is outside " + range + " " +
+                                                  Num(lo) + " … " + Num(hi));
   }
   const double clamped = v < lo ? lo : hi;
   *note += "clamped " + what + " " + Num(v) + " to " + Num(clamped) + "; ";
   v = clamped;
-  return true;
+  return {};
 }
 
 /// The calibrated curve at kpa (inside its range: callers check first).
@@ -98,7 +96,7 @@ std::vector<double> Levels(const JsonObject& o, double lo, double hi) {
   return levels;
 }
 
-bool ParseTables(const nlohmann::json& j, LevelTables& out, std::string* error) {
+Result<LevelTables> ParseTables(const nlohmann::json& j) {
   try {
     JsonObject o(j, "", {"comment", "pneumatic", "jamming"});
     LevelTables t;
@@ -109,31 +107,24 @@ bool ParseTables(const nlohmann::json& j, LevelTables& out, std::string* error) 
     t.jamming_bias_kpa = jam.Number("bias_kpa", 0, 100);
     if (jam.Has("alternative_middle_kpa"))
       t.jamming_alternative_middle_kpa = jam.Number("alternative_middle_kpa", -100, 0);
-    out = t;
-    return true;
+    return t;
   } catch (const std::exception& e) {  // JsonInvalid names the field
-    if (error != nullptr) *error = e.what();
-    return false;
+    return {Status::kInvalidArgument, e.what()};
   }
 }
 
 }  // namespace
 
 LevelTables LevelTables::Shipped() {
-  LevelTables t;
-  ParseTables(nlohmann::json::parse(kShippedLevels), t, nullptr);
-  return t;
+  return ParseTables(nlohmann::json::parse(kShippedLevels)).value;
 }
 
-bool LevelTables::Load(const std::string& path, LevelTables& out, std::string* error) {
-  const auto j = ReadJsonFile(path, kLevelsFileLimits, error);
-  if (!j) return false;
-  std::string why;
-  if (!ParseTables(*j, out, &why)) {
-    if (error != nullptr) *error = path + ": " + why;
-    return false;
-  }
-  return true;
+Result<LevelTables> LevelTables::Load(const std::string& path) {
+  const auto j = ReadJsonFile(path, kLevelsFileLimits);
+  if (!j.ok()) return j.outcome();
+  auto tables = ParseTables(j.value);
+  if (!tables.ok()) tables.message = path + ": " + tables.message;
+  return tables;
 }
 
 Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& levels,
@@ -161,13 +152,15 @@ Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& leve
     case TargetKind::kPressureKpa: {
       double v = request.value;
       if (jamming) {
-        if (!InRange(v, -100, 0, policy, "vacuum (kPa)", "the range", &m.note, &m.error))
-          return Refuse(m.error);
+        if (const Outcome r = InRange(v, -100, 0, policy, "vacuum (kPa)", "the range", &m.note);
+            !r.ok())
+          return Refuse(r.message);
         m.line_a_pa = static_cast<int32_t>(levels.jamming_bias_kpa * 1000);
         m.line_b_pa = static_cast<int32_t>(std::lround(v * 1000));
       } else {
-        if (!InRange(v, 0, 100, policy, "pressure (kPa)", "the range", &m.note, &m.error))
-          return Refuse(m.error);
+        if (const Outcome r = InRange(v, 0, 100, policy, "pressure (kPa)", "the range", &m.note);
+            !r.ok())
+          return Refuse(r.message);
         m.line_a_pa = static_cast<int32_t>(std::lround(v * 1000));
       }
       m.raw = true;
@@ -182,13 +175,15 @@ Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& leve
             Status::kBadValue);
       }
       double v = request.value;
-      if (!InRange(v, curves.stiffness_at_0, curves.stiffness_at_full_vacuum, policy,
-                   "stiffness (N/mm)",
-                   CurveRange(curves,
-                              "the nominal curve's range (Fig 5-36(c)'s axis range, an "
-                              "assumption until the finger is calibrated)"),
-                   &m.note, &m.error)) {
-        return Refuse(m.error);
+      if (const Outcome r = InRange(v, curves.stiffness_at_0, curves.stiffness_at_full_vacuum,
+                                    policy, "stiffness (N/mm)",
+                                    CurveRange(curves,
+                                               "the nominal curve's range (Fig 5-36(c)'s axis "
+                                               "range, an assumption until the finger is "
+                                               "calibrated)"),
+                                    &m.note);
+          !r.ok()) {
+        return Refuse(r.message);
       }
       m.target = static_cast<int32_t>(std::lround(v * 1000));
       return m;
@@ -201,19 +196,22 @@ Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& leve
             Status::kBadValue);
       }
       double v = request.value;
-      if (!InRange(v, 0, curves.max_deformation_mm, policy, "deformation (mm)",
-                   CurveRange(curves,
-                              "the nominal curve's range (Table 5-4's bare film, no top "
-                              "layer)"),
-                   &m.note, &m.error))
-        return Refuse(m.error);
+      if (const Outcome r =
+              InRange(v, 0, curves.max_deformation_mm, policy, "deformation (mm)",
+                      CurveRange(curves,
+                                 "the nominal curve's range (Table 5-4's bare film, no top "
+                                 "layer)"),
+                      &m.note);
+          !r.ok())
+        return Refuse(r.message);
       m.target = static_cast<int32_t>(std::lround(v * 1000));
       return m;
     }
     case TargetKind::kNormalized: {
       double v = request.value;
-      if (!InRange(v, 0, 1, policy, "normalised stiffness", "the range", &m.note, &m.error))
-        return Refuse(m.error);
+      if (const Outcome r = InRange(v, 0, 1, policy, "normalised stiffness", "the range", &m.note);
+          !r.ok())
+        return Refuse(r.message);
       m.target = jamming
                      ? static_cast<int32_t>(std::lround(
                            1000 * (curves.stiffness_at_0 +
@@ -226,9 +224,12 @@ Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& leve
   if (from_pressure && !curves.calibrated.empty()) {
     // A calibrated curve covers what was measured, no more.
     const double a = curves.calibrated.front().first, b = curves.calibrated.back().first;
-    if (kpa != 0 && !InRange(kpa, std::min(a, b), std::max(a, b), policy, "level pressure (kPa)",
-                             "the calibrated range", &m.note, &m.error)) {
-      return Refuse(m.error);
+    if (const Outcome r = kpa != 0
+                              ? InRange(kpa, std::min(a, b), std::max(a, b), policy,
+                                        "level pressure (kPa)", "the calibrated range", &m.note)
+                              : Outcome{};
+        !r.ok()) {
+      return Refuse(r.message);
     }
   }
   if (from_pressure) {

@@ -178,14 +178,13 @@ std::vector<std::vector<int>> TumourCombinations(size_t fingers, int levels) {
   return out;
 }
 
-std::optional<StimulusSet> ParseStimulusSet(const std::string& text, std::string* error) {
-  const std::optional<nlohmann::json> j = ParseJson(text, error);
-  if (!j) return std::nullopt;
+Result<StimulusSet> ParseStimulusSet(const std::string& text) {
+  const Result<nlohmann::json> j = ParseJson(text);
+  if (!j.ok()) return j.outcome();
   try {
-    return Parse(*j);
+    return Parse(j.value);
   } catch (const JsonInvalid& e) {
-    if (error != nullptr) *error = e.what();
-    return std::nullopt;
+    return {Status::kInvalidArgument, e.what()};
   }
 }
 
@@ -202,28 +201,24 @@ std::string ShippedStimulusSetText(const std::string& name) {
   return "";
 }
 
-std::optional<StimulusSet> LoadStimulusSet(const std::string& name_or_path, std::string* error) {
-  std::string e;
+Result<StimulusSet> LoadStimulusSet(const std::string& name_or_path) {
   const bool file =
       name_or_path.find('/') != std::string::npos ||
       (name_or_path.size() > 5 && name_or_path.compare(name_or_path.size() - 5, 5, ".json") == 0);
   if (!file) {
     for (const Shipped& s : kShipped) {
       if (name_or_path == s.name) {
-        auto set = ParseStimulusSet(s.text, &e);
-        if (!set && error != nullptr) *error = name_or_path + ": " + e;
+        auto set = ParseStimulusSet(s.text);
+        if (!set.ok()) set.message = name_or_path + ": " + set.message;
         return set;
       }
     }
-    if (error != nullptr) {
-      std::string names;
-      for (const Shipped& s : kShipped) names += (names.empty() ? "" : ", ") + std::string(s.name);
-      *error = "no stimulus set \"" + name_or_path + "\" (shipped: " + names +
-               "; a file needs a path or a .json name)";
-    }
-    return std::nullopt;
+    std::string names;
+    for (const Shipped& s : kShipped) names += (names.empty() ? "" : ", ") + std::string(s.name);
+    return {Status::kNotFound, "no stimulus set \"" + name_or_path + "\" (shipped: " + names +
+                                   "; a file needs a path or a .json name)"};
   }
-  return ReadAndParse(name_or_path, kStimulusSetLimits, ParseStimulusSet, error);
+  return ReadAndParse(name_or_path, kStimulusSetLimits, ParseStimulusSet);
 }
 
 LevelTables LevelTablesFor(const StimulusSet* pneumatic, const StimulusSet* jamming,

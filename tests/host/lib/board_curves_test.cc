@@ -32,8 +32,8 @@ pp::ConfigureFinger WithInverse(const ph::CalibrationFile& c) {
 std::unique_ptr<ph::Device> OpenWith(const ph::CalibrationFile& held,
                                      const ph::CalibrationFile& file, std::string& dir) {
   dir = TempDir();
-  std::string error;
-  CHECK_TEXT(ph::SaveCalibration(file, ph::CalibrationPath(dir, "PN-1"), &error), error.c_str());
+  const ph::Outcome saved = ph::SaveCalibration(file, ph::CalibrationPath(dir, "PN-1"));
+  CHECK_TEXT(saved.ok(), saved.message.c_str());
   ph::DeviceOptions options;
   options.calibration_dir = dir;
   auto opened = ph::Device::Open("sim:thesis-5finger", options);
@@ -131,9 +131,8 @@ TEST(BoardCurves, AFileEditedBeyondItsResidualIsNamedBesideTheBoard) {
 
 TEST(BoardCurves, ACalibrationNotOnItsNominalBoardIsNamedAndTheNominalCurveFollowed) {
   const std::string dir = TempDir();
-  std::string error;
-  CHECK(ph::SaveCalibration(palpa::testing::ExampleCalibration(), ph::CalibrationPath(dir, "PN-1"),
-                            &error));
+  CHECK(ph::SaveCalibration(palpa::testing::ExampleCalibration(), ph::CalibrationPath(dir, "PN-1"))
+            .ok());
   ph::DeviceOptions options;
   options.calibration_dir = dir;
   auto opened = ph::Device::Open("sim:thesis-5finger", options);

@@ -32,11 +32,12 @@ std::string TempDir() {
 }
 
 std::string ErrorAfter(const std::function<void(json&)>& edit) {
-  std::string error;
-  json j = json::parse(*ph::SerializeCalibration(Example(), &error));
+  json j = json::parse(ph::SerializeCalibration(Example()).value);
   edit(j);
-  CHECK_FALSE(ph::ParseCalibration(j.dump(), &error).has_value());
-  return error;
+  const auto parsed = ph::ParseCalibration(j.dump());
+  CHECK_FALSE(parsed.ok());
+  LONGS_EQUAL((int)pp::Status::kInvalidArgument, (int)parsed.status);
+  return parsed.message;
 }
 
 }  // namespace
@@ -45,9 +46,8 @@ TEST_GROUP(CalibrationFile){};
 
 TEST(CalibrationFile, SavesAtomicallyAndReadsBackEveryField) {
   const std::string dir = TempDir();
-  std::string error;
-  CHECK_TEXT(ph::SaveCalibration(Example(), ph::CalibrationPath(dir, "PN-1"), &error),
-             error.c_str());
+  const ph::Outcome saved = ph::SaveCalibration(Example(), ph::CalibrationPath(dir, "PN-1"));
+  CHECK_TEXT(saved.ok(), saved.message.c_str());
   const auto found = ph::FindCalibration(dir, "PN-1");
   CHECK_TEXT(found.ok(), found.message.c_str());
   const ph::CalibrationFile* back = &found.value;
@@ -75,8 +75,9 @@ TEST(CalibrationFile, SavesAtomicallyAndReadsBackEveryField) {
   // An invalid calibration writes nothing, and the good file stays as it was.
   ph::CalibrationFile bad = Example();
   bad.static_inverse[1].setpoint_pa = 50000;  // no longer increasing
-  CHECK_FALSE(ph::SaveCalibration(bad, ph::CalibrationPath(dir, "PN-1"), &error));
-  CHECK(error.find("static_inverse.setpoint_pa[2]") != std::string::npos);
+  const ph::Outcome refused = ph::SaveCalibration(bad, ph::CalibrationPath(dir, "PN-1"));
+  CHECK_FALSE(refused.ok());
+  CHECK(refused.message.find("static_inverse.setpoint_pa[2]") != std::string::npos);
   CHECK(ph::FindCalibration(dir, "PN-1").ok());
   auto missing = ph::FindCalibration(dir, "PN-2");
   LONGS_EQUAL((int)pp::Status::kNotFound, (int)missing.status);
@@ -148,9 +149,9 @@ TEST(CalibrationFile, EveryBadFieldIsNamedByItsPath) {
     CHECK_TEXT(error.find(c.names) != std::string::npos,
                (std::string("expected '") + c.names + "' in '" + error + "'").c_str());
   }
-  std::string error;
-  CHECK_FALSE(ph::ParseCalibration("{not json", &error).has_value());
-  CHECK(error.find("not valid JSON") != std::string::npos);
+  const auto not_json = ph::ParseCalibration("{not json");
+  LONGS_EQUAL((int)pp::Status::kInvalidArgument, (int)not_json.status);
+  CHECK(not_json.message.find("not valid JSON") != std::string::npos);
 }
 
 TEST(CalibrationFile, TheStiffnessMapReadsTheCalibratedCurveAndNeverExtrapolates) {
@@ -178,8 +179,7 @@ TEST(CalibrationFile, TheStiffnessMapReadsTheCalibratedCurveAndNeverExtrapolates
 
 TEST(CalibrationFile, DeviceFindsCalibrationsByActuatorSerialAndUploadsThemAtomically) {
   const std::string dir = TempDir();
-  std::string error;
-  CHECK(ph::SaveCalibration(Example(), ph::CalibrationPath(dir, "PN-1"), &error));
+  CHECK(ph::SaveCalibration(Example(), ph::CalibrationPath(dir, "PN-1")).ok());
   ph::DeviceOptions options;
   options.calibration_dir = dir;
   auto opened = ph::Device::Open("sim:thesis-5finger", options);

@@ -80,10 +80,9 @@ std::vector<json> WrittenExamples() {
   std::vector<json> files;
   for (const ph::CalibrationFile& c :
        {palpa::testing::ExampleCalibration(), palpa::testing::ExampleJammingCalibration()}) {
-    std::string error;
-    const auto text = ph::SerializeCalibration(c, &error);
-    CHECK_TEXT(text.has_value(), error.c_str());
-    files.push_back(json::parse(*text));
+    const auto text = ph::SerializeCalibration(c);
+    CHECK_TEXT(text.ok(), text.message.c_str());
+    files.push_back(json::parse(text.value));
   }
   return files;
 }
@@ -164,9 +163,9 @@ TEST(CalibrationSchema, Version1FilesAreReadInTheBoardsUnits) {
     const std::string text = ReadFile(std::string(PALPA_TEST_DATA_DIR) + "/" + name);
     const json old = json::parse(text);
     LONGS_EQUAL(1, old["schema_version"].get<int>());
-    std::string error;
-    const auto c = ph::ParseCalibration(text, &error);
-    CHECK_TEXT(c.has_value(), (std::string(name) + ": " + error).c_str());
+    const auto parsed = ph::ParseCalibration(text);
+    CHECK_TEXT(parsed.ok(), (std::string(name) + ": " + parsed.message).c_str());
+    const ph::CalibrationFile* c = &parsed.value;
     LONGS_EQUAL(1, c->schema_version);
     // kPa → Pa, mm → µm, N/mm → mN/mm, N → mN; what was in the board's units stays.
     DOUBLES_EQUAL(1000 * old["conditions"]["speed_mm_s"].get<double>(), c->speed_um_s, 1e-9);
@@ -203,12 +202,12 @@ TEST(CalibrationSchema, Version1FilesAreReadInTheBoardsUnits) {
                     c->rising_fit->intercept, 1e-9);
     }
     // Written again, it is a version 2 file that reads back the same.
-    const auto written = ph::SerializeCalibration(*c, &error);
-    CHECK_TEXT(written.has_value(), error.c_str());
-    CHECK_EQUAL(2, json::parse(*written)["schema_version"].get<int>());
-    const auto again = ph::ParseCalibration(*written, &error);
-    CHECK_TEXT(again.has_value(), error.c_str());
-    STRCMP_EQUAL(written->c_str(), ph::SerializeCalibration(*again, &error)->c_str());
+    const auto written = ph::SerializeCalibration(*c);
+    CHECK_TEXT(written.ok(), written.message.c_str());
+    CHECK_EQUAL(2, json::parse(written.value)["schema_version"].get<int>());
+    const auto again = ph::ParseCalibration(written.value);
+    CHECK_TEXT(again.ok(), again.message.c_str());
+    STRCMP_EQUAL(written.value.c_str(), ph::SerializeCalibration(again.value).value.c_str());
     // The stiffness map reads it as it read the file before: mm or N/mm against kPa.
     const ph::FingerCurves curves = ph::CurvesFromCalibration(*c);
     DOUBLES_EQUAL(old["curve"][1]["kpa"].get<double>(), curves.calibrated[1].first, 1e-9);
@@ -218,8 +217,8 @@ TEST(CalibrationSchema, Version1FilesAreReadInTheBoardsUnits) {
   json old =
       json::parse(ReadFile(std::string(PALPA_TEST_DATA_DIR) + "/calibration_v1_pneumatic.json"));
   old["conditions"]["speed_um_s"] = 100;
-  std::string error;
-  CHECK_FALSE(ph::ParseCalibration(old.dump(), &error).has_value());
-  CHECK_TEXT(error.find("conditions.speed_um_s: unknown field") != std::string::npos,
-             error.c_str());
+  const auto refused = ph::ParseCalibration(old.dump());
+  CHECK_FALSE(refused.ok());
+  CHECK_TEXT(refused.message.find("conditions.speed_um_s: unknown field") != std::string::npos,
+             refused.message.c_str());
 }

@@ -64,27 +64,29 @@ TEST_GROUP(FileWrite) {
 TEST(FileWrite, WritesANewFileAndReplacesAnOldOneWhole) {
   const fs::path file = dir / "out.bin";
   const std::string first("first\0with a zero byte", 22);
-  CHECK(ph::WriteFileWhole(file.string(), first));
+  CHECK(ph::WriteFileWhole(file.string(), first).ok());
   CHECK(ReadAll(file) == first);
   const std::string second(100000, 'x');
-  CHECK(ph::WriteFileWhole(file.string(), second));
+  CHECK(ph::WriteFileWhole(file.string(), second).ok());
   CHECK(ReadAll(file) == second);
-  CHECK(ph::WriteFileWhole(file.string(), ""));
+  CHECK(ph::WriteFileWhole(file.string(), "").ok());
   LONGS_EQUAL(0, fs::file_size(file));
   LONGS_EQUAL(1, Entries());  // no temporary left beside it
 }
 
 TEST(FileWrite, AFailedWriteNamesTheFileAndLeavesNothing) {
-  std::string error;
   const fs::path missing = dir / "no-such-dir" / "out.svg";
-  CHECK_FALSE(ph::WriteFileWhole(missing.string(), "data", &error));
+  ph::Outcome written = ph::WriteFileWhole(missing.string(), "data");
+  LONGS_EQUAL((int)palpa::protocol::Status::kIoError, (int)written.status);
+  const std::string& error = written.message;
   CHECK(error.find(missing.string()) != std::string::npos);
   CHECK(error.find("No such file") != std::string::npos);
   // The target is a directory: refused, and nothing is left behind.
   const fs::path taken = dir / "taken";
   fs::create_directory(taken);
   fs::create_directory(taken / "inside");
-  CHECK_FALSE(ph::WriteFileWhole(taken.string(), "data", &error));
+  written = ph::WriteFileWhole(taken.string(), "data");
+  CHECK_FALSE(written.ok());
   CHECK_TEXT(error.find("is a directory") != std::string::npos, error.c_str());
   CHECK(fs::is_directory(taken / "inside"));
   LONGS_EQUAL(1, Entries());
@@ -100,8 +102,8 @@ TEST(FileWrite, ASymlinkPlantedWhereTheTemporaryMightGoIsNeverFollowed) {
                                   std::string("out.pkg.part"), std::string("out.pkg.tmp")}) {
     fs::create_symlink(victim, dir / name);
   }
-  std::string error;
-  CHECK_TEXT(ph::WriteFileWhole(out.string(), "package", &error), error.c_str());
+  const ph::Outcome written = ph::WriteFileWhole(out.string(), "package");
+  CHECK_TEXT(written.ok(), written.message.c_str());
   STRCMP_EQUAL("precious", ReadAll(victim).c_str());
   STRCMP_EQUAL("package", ReadAll(out).c_str());
   CHECK(fs::is_symlink(dir / "out.pkg.part"));  // planted links are left as they were
@@ -112,9 +114,9 @@ TEST(FileWrite, ASymlinkAtTheTargetIsRefusedNotFollowedOrReplaced) {
   std::ofstream(victim) << "precious";
   const fs::path out = dir / "calibration.json";
   fs::create_symlink(victim, out);
-  std::string error;
-  CHECK_FALSE(ph::WriteFileWhole(out.string(), "{}", &error));
-  CHECK_TEXT(error.find("symbolic link") != std::string::npos, error.c_str());
+  const ph::Outcome written = ph::WriteFileWhole(out.string(), "{}");
+  CHECK_FALSE(written.ok());
+  CHECK_TEXT(written.message.find("symbolic link") != std::string::npos, written.message.c_str());
   STRCMP_EQUAL("precious", ReadAll(victim).c_str());
   CHECK(fs::is_symlink(out));
   LONGS_EQUAL(2, Entries());
@@ -122,24 +124,24 @@ TEST(FileWrite, ASymlinkAtTheTargetIsRefusedNotFollowedOrReplaced) {
 
 TEST(FileWrite, TheReplacedFileKeepsItsMode) {
   const fs::path file = dir / "private.json";
-  CHECK(ph::WriteFileWhole(file.string(), "one"));
+  CHECK(ph::WriteFileWhole(file.string(), "one").ok());
   chmod(file.c_str(), 0600);
-  CHECK(ph::WriteFileWhole(file.string(), "two"));
+  CHECK(ph::WriteFileWhole(file.string(), "two").ok());
   LONGS_EQUAL(0600, fs::status(file).permissions() & fs::perms::all);
   chmod(file.c_str(), 0640);
-  CHECK(ph::WriteFileWhole(file.string(), "three"));
+  CHECK(ph::WriteFileWhole(file.string(), "three").ok());
   LONGS_EQUAL(0640, fs::status(file).permissions() & fs::perms::all);
   // A new file gets the usual mode for the process's umask.
   const mode_t mask = umask(022);
   const fs::path fresh = dir / "fresh.json";
-  CHECK(ph::WriteFileWhole(fresh.string(), "new"));
+  CHECK(ph::WriteFileWhole(fresh.string(), "new").ok());
   umask(mask);
   LONGS_EQUAL(0644, fs::status(fresh).permissions() & fs::perms::all);
 }
 
 TEST(FileWrite, TheFileAndThenItsDirectoryReachTheDisk) {
   g_record_fsyncs = true;
-  CHECK(ph::WriteFileWhole((dir / "out.csv").string(), "data"));
+  CHECK(ph::WriteFileWhole((dir / "out.csv").string(), "data").ok());
   g_record_fsyncs = false;
   // The contents before the rename, the directory entry after it.
   CHECK_EQUAL(2u, g_fsync_count);

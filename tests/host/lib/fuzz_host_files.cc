@@ -59,10 +59,9 @@ void CheckReason(const char* kind, const std::string& error, const std::string& 
 
 const std::string& ValidCalibrationText() {
   static const std::string text = [] {
-    std::string error;
-    const auto s = ph::SerializeCalibration(palpa::testing::ExampleCalibration(), &error);
-    if (!s) Fail("the reference calibration does not serialise", error);
-    return *s;
+    const auto s = ph::SerializeCalibration(palpa::testing::ExampleCalibration());
+    if (!s.ok()) Fail("the reference calibration does not serialise", s.message);
+    return s.value;
   }();
   return text;
 }
@@ -81,18 +80,18 @@ const std::string& SomeValidCalibrationText(uint8_t pick) {
 
 /// Parse, and check what comes back: an error with a reason, or a calibration that round-trips.
 void CheckCalibration(const std::string& text) {
-  std::string error;
-  const auto parsed = ph::ParseCalibration(text, &error);
-  if (!parsed) {
-    CheckReason("calibration", error, text);
+  const auto parsed = ph::ParseCalibration(text);
+  if (!parsed.ok()) {
+    CheckReason("calibration", parsed.message, text);
     return;
   }
-  const auto written = ph::SerializeCalibration(*parsed, &error);
-  if (!written) Fail("an accepted calibration does not serialise", error);
-  const auto again = ph::ParseCalibration(*written, &error);
-  if (!again) Fail("a serialised calibration does not parse back", error);
-  const auto rewritten = ph::SerializeCalibration(*again, &error);
-  if (!rewritten || *rewritten != *written) Fail("a calibration changes in a round trip", *written);
+  const auto written = ph::SerializeCalibration(parsed.value);
+  if (!written.ok()) Fail("an accepted calibration does not serialise", written.message);
+  const auto again = ph::ParseCalibration(written.value);
+  if (!again.ok()) Fail("a serialised calibration does not parse back", again.message);
+  const auto rewritten = ph::SerializeCalibration(again.value);
+  if (!rewritten.ok() || rewritten.value != written.value)
+    Fail("a calibration changes in a round trip", written.value);
 }
 
 /// Any JSON value: integers and floats of every magnitude, strings, null, booleans, containers.
@@ -149,15 +148,14 @@ void EditOneLeaf(Bytes& in, json& j) {
 /// applies it: refused with the field's path, or accepted and then printed and read back
 /// unchanged; the firmware's validation must then judge it without crashing.
 void CheckConfigText(const pc::BoardConfig& base, const std::string& text) {
-  std::string error;
-  const auto file = ph::ParseJson(text, &error);
-  if (!file) {
-    CheckReason("configuration", error, text);
+  const auto file = ph::ParseJson(text);
+  if (!file.ok()) {
+    CheckReason("configuration", file.message, text);
     return;
   }
   pc::BoardConfig applied = base;
   try {
-    ph::ApplyConfigJson(*file, applied);
+    ph::ApplyConfigJson(file.value, applied);
   } catch (const std::exception& e) {
     CheckReason("configuration", e.what(), text);
     return;
@@ -177,8 +175,8 @@ const char kSimRigText[] =
 
 /// A rig file: refused with the field named, or accepted.
 void CheckRig(const std::string& text) {
-  std::string error;
-  if (!cal::ParseRigDescription(text, &error)) CheckReason("rig file", error, text);
+  const auto rig = cal::ParseRigDescription(text);
+  if (!rig.ok()) CheckReason("rig file", rig.message, text);
 }
 
 const std::string& ValidJournalText() {
@@ -195,8 +193,8 @@ const std::string& ValidJournalText() {
 
 /// A journal: refused with the field named, or accepted.
 void CheckJournal(const std::string& text) {
-  std::string error;
-  if (!cal::ParseJournal(text, &error)) CheckReason("journal", error, text);
+  const auto journal = cal::ParseJournal(text);
+  if (!journal.ok()) CheckReason("journal", journal.message, text);
 }
 
 void CheckPackage(const std::vector<uint8_t>& bytes) {
@@ -303,12 +301,12 @@ std::string Changed(Bytes& in, int variant, const std::string& valid) {
 /// A stimulus set: refused with a reason, or accepted with every stimulus inside its levels and
 /// fingers and following the tumour rule it states.
 void CheckStimulusSet(const std::string& text) {
-  std::string error;
-  const auto set = ph::ParseStimulusSet(text, &error);
-  if (!set) {
-    CheckReason("stimulus set", error, text);
+  const auto parsed = ph::ParseStimulusSet(text);
+  if (!parsed.ok()) {
+    CheckReason("stimulus set", parsed.message, text);
     return;
   }
+  const ph::StimulusSet* set = &parsed.value;
   for (const ph::Stimulus& s : set->stimuli) {
     if (s.levels.size() != static_cast<size_t>(set->fingers))
       Fail("an accepted stimulus has the wrong finger count", set->name);
@@ -325,8 +323,8 @@ void CheckStimulusSet(const std::string& text) {
 std::string ShippedStimulusSet(Bytes& in) {
   const auto names = ph::ShippedStimulusSets();
   const std::string name = names[in.Byte() % names.size()];
-  std::string error;
-  if (!ph::LoadStimulusSet(name, &error)) Fail("a shipped stimulus set does not load", error);
+  if (const auto set = ph::LoadStimulusSet(name); !set.ok())
+    Fail("a shipped stimulus set does not load", set.message);
   return ph::ShippedStimulusSetText(name);
 }
 

@@ -26,14 +26,19 @@ namespace pp = palpa::protocol;
 
 namespace {
 
+/// Why `r` was refused, or "" when it was not.
+template <class R>
+std::string Refusal(const R& r) {
+  return r.ok() ? "" : r.message;
+}
+
 std::string TempDir() {
   char pattern[] = "/tmp/palpa-hostile-XXXXXX";
   return mkdtemp(pattern);
 }
 
 std::string ValidText() {
-  std::string error;
-  return *ph::SerializeCalibration(palpa::testing::ExampleCalibration(), &error);
+  return ph::SerializeCalibration(palpa::testing::ExampleCalibration()).value;
 }
 
 /// `text` with the first `from` replaced by `to`.
@@ -75,12 +80,13 @@ TEST(HostileFiles, AFifoNamedLikeACalibrationIsRefusedNotWaitedOn) {
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
   });
-  std::string error;
-  const auto c = ph::LoadCalibration(path, &error);
+  const auto c = ph::LoadCalibration(path);
   writer.join();
-  CHECK_FALSE(c.has_value());
+  CHECK_FALSE(c.ok());
+  std::string error = c.message;
   CHECK_TEXT(Contains(error, path + ": not a regular file"), error.c_str());
-  CHECK_FALSE(ph::LoadCalibration("/dev/null", &error).has_value());
+  error = Refusal(ph::LoadCalibration("/dev/null"));
+  CHECK_FALSE(error.empty());
   CHECK_TEXT(Contains(error, "/dev/null: not a regular file"), error.c_str());
 }
 
@@ -88,62 +94,68 @@ TEST(HostileFiles, AFileLargerThanItsKindAllowsIsRefusedNamingTheLimit) {
   // A valid calibration padded far beyond any real one: refused before it is read into memory.
   const std::string path = Write("PN-1.json", ValidText() + std::string(3 << 20, ' '));
   std::string error;
-  CHECK_FALSE(ph::LoadCalibration(path, &error).has_value());
+  error = Refusal(ph::LoadCalibration(path));
+  CHECK_FALSE(error.empty());
   CHECK_TEXT(Contains(error, path + ": larger than the"), error.c_str());
   CHECK_TEXT(Contains(error, "limit for a calibration file"), error.c_str());
   // A stimulus set likewise, and one that is a device is never read from.
   const std::string set =
       Write("set.json", ph::ShippedStimulusSetText("thesis-jamming-8") + std::string(1 << 20, ' '));
-  CHECK_FALSE(ph::LoadStimulusSet(set, &error).has_value());
+  error = Refusal(ph::LoadStimulusSet(set));
+  CHECK_FALSE(error.empty());
   CHECK_TEXT(Contains(error, set + ": larger than the 256 KiB limit for a stimulus set"),
              error.c_str());
-  CHECK_FALSE(ph::LoadStimulusSet("/dev/zero", &error).has_value());
+  error = Refusal(ph::LoadStimulusSet("/dev/zero"));
+  CHECK_FALSE(error.empty());
   CHECK_TEXT(Contains(error, "/dev/zero: not a regular file"), error.c_str());
 }
 
 TEST(HostileFiles, DeepNestingIsRefusedNamingTheLimit) {
   const std::string deep = std::string(100000, '[') + std::string(100000, ']');
   std::string error;
-  CHECK_FALSE(ph::ParseCalibration(deep, &error).has_value());
+  error = Refusal(ph::ParseCalibration(deep));
+  CHECK_FALSE(error.empty());
   CHECK_TEXT(Contains(error, "nested deeper than"), error.c_str());
   // Within a level file's size limit, nesting alone is refused.
   const std::string path = Write(
       "levels.json", "{\"pneumatic\": " + std::string(20000, '[') + std::string(20000, ']') + "}");
-  ph::LevelTables t;
-  CHECK_FALSE(ph::LevelTables::Load(path, t, &error));
+  error = Refusal(ph::LevelTables::Load(path));
+  CHECK_FALSE(error.empty());
   CHECK_TEXT(Contains(error, path + ": pneumatic"), error.c_str());
   CHECK_TEXT(Contains(error, "nested deeper than"), error.c_str());
 }
 
 TEST(HostileFiles, NumbersJsonCannotHoldAreNamedByTheirField) {
-  std::string error;
-  CHECK_FALSE(ph::ParseCalibration(
-                  Replaced(ValidText(), "\"speed_um_s\": 100.0", "\"speed_um_s\": 1e400"), &error)
-                  .has_value());
+  std::string error = Refusal(ph::ParseCalibration(
+      Replaced(ValidText(), "\"speed_um_s\": 100.0", "\"speed_um_s\": 1e400")));
+  CHECK_FALSE(error.empty());
   CHECK_TEXT(Contains(error, "conditions.speed_um_s: "), error.c_str());
   CHECK_TEXT(Contains(error, "1e400"), error.c_str());
   CHECK_FALSE(Contains(error, "[json.exception"));  // words for people, not the library's codes
   const std::string curve = Replaced(ValidText(), "\"output\": 300.0", "\"output\": -1e999");
-  CHECK_FALSE(ph::ParseCalibration(curve, &error).has_value());
+  error = Refusal(ph::ParseCalibration(curve));
+  CHECK_FALSE(error.empty());
   CHECK_TEXT(Contains(error, "curve[1].output: "), error.c_str());
 }
 
 TEST(HostileFiles, LevelFilesNameTheFieldOfEveryMistake) {
-  ph::LevelTables t;
   std::string error;
   std::string path =
       Write("levels.json",
             "{\"pneumatic\": {\"levels_kpa\": \"high\"}, \"jamming\": {\"bias_kpa\": "
             "20, \"levels_kpa\": [0]}}");
-  CHECK_FALSE(ph::LevelTables::Load(path, t, &error));
+  error = Refusal(ph::LevelTables::Load(path));
+  CHECK_FALSE(error.empty());
   CHECK_TEXT(Contains(error, path + ": pneumatic.levels_kpa: must be an array"), error.c_str());
   path = Write("levels.json",
                "{\"pneumatic\": {\"levels_kpa\": [0, 10]}, \"jamming\": {\"bias_kpa\": 1e400, "
                "\"levels_kpa\": [0]}}");
-  CHECK_FALSE(ph::LevelTables::Load(path, t, &error));
+  error = Refusal(ph::LevelTables::Load(path));
+  CHECK_FALSE(error.empty());
   CHECK_TEXT(Contains(error, path + ": jamming.bias_kpa: "), error.c_str());
   path = Write("levels.json", "{\"pneumatic\": {\"levels_kpa\": [0, 10]}}");
-  CHECK_FALSE(ph::LevelTables::Load(path, t, &error));
+  error = Refusal(ph::LevelTables::Load(path));
+  CHECK_FALSE(error.empty());
   CHECK_TEXT(Contains(error, path + ": jamming: missing"), error.c_str());
 }
 

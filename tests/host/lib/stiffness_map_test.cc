@@ -77,10 +77,10 @@ TEST(StiffnessMap, NormalizedAndRawPressure) {
 }
 
 TEST(StiffnessMap, LevelFilesAreValidated) {
-  ph::LevelTables t;
-  std::string error;
-  CHECK_FALSE(ph::LevelTables::Load("/nonexistent.json", t, &error));
-  CHECK(error.find("/nonexistent.json: cannot be read: No such file") != std::string::npos);
+  const auto missing = ph::LevelTables::Load("/nonexistent.json");
+  LONGS_EQUAL((int)pp::Status::kNotFound, (int)missing.status);
+  CHECK(missing.message.find("/nonexistent.json: cannot be read: No such file") !=
+        std::string::npos);
   const std::string path = "/tmp/palpa-levels-test-" + std::to_string(getpid()) + ".json";
   FILE* f = fopen(path.c_str(), "w");
   fputs(
@@ -88,8 +88,8 @@ TEST(StiffnessMap, LevelFilesAreValidated) {
       "[0]}}",
       f);
   fclose(f);
-  const bool loaded = ph::LevelTables::Load(path, t, &error);
+  const auto loaded = ph::LevelTables::Load(path);
   std::remove(path.c_str());
-  CHECK_FALSE(loaded);
-  CHECK(error.find("150") != std::string::npos);
+  LONGS_EQUAL((int)pp::Status::kInvalidArgument, (int)loaded.status);
+  CHECK(loaded.message.find("150") != std::string::npos);
 }

@@ -15,10 +15,9 @@ namespace ph = palpa::host;
 namespace {
 
 ph::StimulusSet Shipped(const char* name) {
-  std::string error;
-  const auto set = ph::LoadStimulusSet(name, &error);
-  CHECK_TEXT(set.has_value(), error.c_str());
-  return *set;
+  const auto set = ph::LoadStimulusSet(name);
+  CHECK_TEXT(set.ok(), set.message.c_str());
+  return set.value;
 }
 
 std::vector<std::vector<int>> Levels(const ph::StimulusSet& set) {
@@ -41,10 +40,10 @@ nlohmann::json Valid() {
 }
 
 std::string Refusal(const nlohmann::json& j) {
-  std::string error;
-  const auto set = ph::ParseStimulusSet(j.dump(), &error);
-  CHECK_TEXT(!set.has_value(), "accepted");
-  return error;
+  const auto set = ph::ParseStimulusSet(j.dump());
+  CHECK_TEXT(!set.ok(), "accepted");
+  LONGS_EQUAL((int)palpa::protocol::Status::kInvalidArgument, (int)set.status);
+  return set.message;
 }
 
 #define CHECK_REFUSED(json, starts)                                                  \
@@ -106,18 +105,19 @@ TEST(StimulusSets, TheSubsetsHaveTheThesisSizesAndTheirStatedChoice) {
 TEST(StimulusSets, ShippedNamesFilesAndUnknownNames) {
   const auto names = ph::ShippedStimulusSets();
   LONGS_EQUAL(4, names.size());
-  std::string error;
-  CHECK(!ph::LoadStimulusSet("thesis-pneumatic-15", &error).has_value());
-  CHECK(error.find("thesis-pneumatic-14") != std::string::npos);  // lists what there is
-  CHECK(!ph::LoadStimulusSet("/nonexistent/set.json", &error).has_value());
-  CHECK(error.find("cannot be read") != std::string::npos);
+  auto set = ph::LoadStimulusSet("thesis-pneumatic-15");
+  LONGS_EQUAL((int)palpa::protocol::Status::kNotFound, (int)set.status);
+  CHECK(set.message.find("thesis-pneumatic-14") != std::string::npos);  // lists what there is
+  set = ph::LoadStimulusSet("/nonexistent/set.json");
+  LONGS_EQUAL((int)palpa::protocol::Status::kNotFound, (int)set.status);
+  CHECK(set.message.find("cannot be read") != std::string::npos);
 }
 
 TEST(StimulusSets, EveryBadFieldIsNamed) {
-  CHECK(ph::ParseStimulusSet(Valid().dump(), nullptr).has_value());
-  std::string error;
-  CHECK(!ph::ParseStimulusSet("{", &error).has_value());
-  CHECK_TEXT(error.rfind("not valid JSON", 0) == 0, error.c_str());
+  CHECK(ph::ParseStimulusSet(Valid().dump()).ok());
+  const auto broken = ph::ParseStimulusSet("{");
+  CHECK_FALSE(broken.ok());
+  CHECK_TEXT(broken.message.rfind("not valid JSON", 0) == 0, broken.message.c_str());
   nlohmann::json j = Valid();
   j["colour"] = 1;
   CHECK_REFUSED(j, "colour: unknown field");

@@ -80,10 +80,10 @@ inline constexpr host::FileLimits kJournalLimits{"calibration journal", 16 * 102
 
 /// A journal's state as a stopped run left it, every field the protocol reads back checked (a
 /// damaged journal is refused naming the field, e.g. "sweep[3][0]: must be a number", before
-/// anything moves); nullopt with *error otherwise. LoadJournal reads the file within
-/// kJournalLimits and names it in the error.
-std::optional<nlohmann::json> ParseJournal(const std::string& text, std::string* error);
-std::optional<nlohmann::json> LoadJournal(const std::string& path, std::string* error);
+/// anything moves: an invalid argument). LoadJournal reads the file within kJournalLimits and
+/// names it in the error.
+host::Result<nlohmann::json> ParseJournal(const std::string& text);
+host::Result<nlohmann::json> LoadJournal(const std::string& path);
 
 struct Progress {
   int done = 0, total = 0;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "palpa/calibration/play_operators.h"
+#include "palpa/host/outcome.h"
 #include "palpa/protocol/enums.h"
 #include "palpa/protocol/messages_config.h"
 
@@ -51,10 +52,10 @@ HysteresisFit FitApi(const std::vector<SweepSample>& sweep, int operators, int d
 HysteresisFit FitBranch(const std::vector<SweepSample>& sweep, int points);
 
 /// The better play model on this sweep: api when it fits and leaves at most three quarters of
-/// pi's RMS residual (its dead zones must earn their extra cost per step), else pi. `why` says
-/// what was compared ("api(16): 9.1 against pi(16): 58.7 um RMS").
+/// pi's RMS residual (its dead zones must earn their extra cost per step), else pi. `comparison`
+/// says what was compared ("api(16): 9.1 against pi(16): 58.7 um RMS").
 HysteresisFit FitBetterPlayModel(const std::vector<SweepSample>& sweep, int operators,
-                                 double drive_max, std::string* why);
+                                 double drive_max, std::string* comparison);
 
 /// The fit of one compensator kind: `size` operators (pi, api) or curve points (branch); `none`
 /// is an empty parameter set.
@@ -62,14 +63,15 @@ HysteresisFit FitCompensator(protocol::CompensatorKind kind, int size,
                              const std::vector<SweepSample>& sweep, double drive_max);
 
 /// The static inverse (none): the mid-line of the rising and falling curves at `points` outputs.
-/// `vacuum` makes setpoints negative (jamming fingers). Empty on a bad sweep (*error set).
-std::vector<protocol::InversePoint> FitStaticInverse(const std::vector<SweepSample>& sweep,
-                                                     int points, bool vacuum, std::string* error);
+/// `vacuum` makes setpoints negative (jamming fingers). An invalid argument on a bad sweep.
+host::Result<std::vector<protocol::InversePoint>> FitStaticInverse(
+    const std::vector<SweepSample>& sweep, int points, bool vacuum);
 
 /// The PlayModel a pi/api parameter set stands for (for residuals and charts).
 PlayModel ModelOf(protocol::CompensatorKind kind, const std::vector<float>& params);
 
-/// Writes kind and params into a finger's configuration; false (and *error) when they do not fit.
-bool ApplyFit(const HysteresisFit& fit, protocol::ConfigureFinger& finger, std::string* error);
+/// Writes kind and params into a finger's configuration; bad_value (the firmware's reason) when
+/// they do not fit, the finger unchanged.
+host::Outcome ApplyFit(const HysteresisFit& fit, protocol::ConfigureFinger& finger);
 
 }  // namespace palpa::calibration

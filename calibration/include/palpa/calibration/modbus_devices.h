@@ -15,8 +15,8 @@ namespace palpa::calibration {
 /// One Modbus connection with reads and writes by register name.
 class ModbusDevice {
  public:
-  /// Connects; nullptr with *error when the address cannot be reached.
-  static std::unique_ptr<ModbusDevice> Open(const RegisterMap& map, std::string* error);
+  /// Connects; unavailable when the address cannot be reached.
+  static host::Result<std::unique_ptr<ModbusDevice>> Open(const RegisterMap& map);
   ~ModbusDevice();
   RigStatus Read(const std::string& name, double* value);
   RigStatus Write(const std::string& name, double value);

@@ -20,12 +20,13 @@ struct NetFtConfig {
   int timeout_ms = 200;
 };
 
-std::optional<NetFtConfig> ParseNetFtAddress(const std::string& uri, std::string* error);
+/// netft://HOST[:PORT]; an invalid argument saying what is wrong.
+host::Result<NetFtConfig> ParseNetFtAddress(const std::string& uri);
 
 class NetFtForceSensor final : public ForceSensor {
  public:
-  /// Opens the UDP socket; nullptr with *error when it cannot.
-  static std::unique_ptr<NetFtForceSensor> Open(const NetFtConfig& config, std::string* error);
+  /// Opens the UDP socket; not_found (an unknown host) or unavailable when it cannot.
+  static host::Result<std::unique_ptr<NetFtForceSensor>> Open(const NetFtConfig& config);
   ~NetFtForceSensor() override;
   RigStatus Read(double* newtons) override;
   RigStatus Tare() override;

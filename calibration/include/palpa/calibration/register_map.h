@@ -11,6 +11,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "palpa/host/outcome.h"
+
 namespace palpa::calibration {
 
 enum class RegisterTable { kHolding, kInput };
@@ -33,7 +35,8 @@ struct ModbusAddress {
   int baud = 115200;
   int unit = 1;
 };
-std::optional<ModbusAddress> ParseModbusAddress(const std::string& uri, std::string* error);
+/// An invalid argument saying what is wrong with the address.
+host::Result<ModbusAddress> ParseModbusAddress(const std::string& uri);
 
 struct RegisterMap {
   ModbusAddress address;
@@ -50,10 +53,10 @@ struct RegisterMap {
   double Decode(const Register& r, const uint16_t* words) const;
 };
 
-/// `required`: register names the device kind needs. Errors name the JSON path (prefix first).
-std::optional<RegisterMap> ParseRegisterMap(const nlohmann::json& j, const std::string& path,
-                                            const std::vector<std::string>& required,
-                                            std::string* error);
+/// `required`: register names the device kind needs. Errors (invalid argument) name the JSON
+/// path (prefix first).
+host::Result<RegisterMap> ParseRegisterMap(const nlohmann::json& j, const std::string& path,
+                                           const std::vector<std::string>& required);
 
 /// Register names each kind needs.
 extern const std::vector<std::string>

@@ -25,8 +25,10 @@ struct RigDescription {
 /// A rig file is a few KiB.
 inline constexpr host::FileLimits kRigFileLimits{"rig file", 64 * 1024};
 
-std::optional<RigDescription> ParseRigDescription(const std::string& text, std::string* error);
-std::optional<RigDescription> LoadRigDescription(const std::string& path, std::string* error);
+/// A rig file's text; a bad one is an invalid argument naming the field by its JSON path.
+host::Result<RigDescription> ParseRigDescription(const std::string& text);
+/// The file read (within kRigFileLimits) and parsed; errors start with "PATH: ".
+host::Result<RigDescription> LoadRigDescription(const std::string& path);
 
 struct RigDevices {
   std::unique_ptr<Stage> stage;
@@ -37,7 +39,8 @@ struct RigDevices {
 /// `modbus_uri` (modbus-tcp://127.0.0.1:PORT/1, as palpa-sim printed it).
 RigDescription SimRigDescription(const std::string& modbus_uri);
 
-/// Connects both devices; on failure nothing is left open and *error says which device and why.
-std::optional<RigDevices> OpenRigDevices(const RigDescription& rig, std::string* error);
+/// Connects both devices; on failure (unavailable, or not_found for an unknown host) nothing is
+/// left open and the message says which device and why.
+host::Result<RigDevices> OpenRigDevices(const RigDescription& rig);
 
 }  // namespace palpa::calibration

@@ -114,16 +114,17 @@ struct CalibrationFile {
   CalibrationQuality quality;
 };
 
-/// Parses and validates; on failure returns nullopt and names the field (a JSON path) and the
-/// rule in *error, e.g. "static_inverse[3].setpoint_pa: -120000 is outside -100000 … 100000".
-std::optional<CalibrationFile> ParseCalibration(const std::string& text, std::string* error);
-std::optional<CalibrationFile> LoadCalibration(const std::string& path, std::string* error);
+/// Parses and validates; a bad file is an invalid argument naming the field (a JSON path) and the
+/// rule, e.g. "static_inverse[3].setpoint_pa: -120000 is outside -100000 … 100000".
+Result<CalibrationFile> ParseCalibration(const std::string& text);
+/// The file read (within its size limit) and parsed; errors start with "PATH: ".
+Result<CalibrationFile> LoadCalibration(const std::string& path);
 
 /// Validates and serialises; nothing is written when the calibration is invalid.
-std::optional<std::string> SerializeCalibration(const CalibrationFile& c, std::string* error);
+Result<std::string> SerializeCalibration(const CalibrationFile& c);
 /// Written to a temporary file beside `path`, flushed and renamed: a reader sees the old file or
-/// the new one, never half of either.
-bool SaveCalibration(const CalibrationFile& c, const std::string& path, std::string* error);
+/// the new one, never half of either (an invalid calibration, or io_error naming the file).
+Outcome SaveCalibration(const CalibrationFile& c, const std::string& path);
 
 /// Serials name files: 1–11 characters of [A-Za-z0-9_-] (they also fit ConfigureFinger's field).
 bool ValidSerial(const std::string& serial);

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string>
 
-#include "palpa/protocol/status.h"
+#include "palpa/host/outcome.h"
 
 namespace palpa::host {
 
@@ -19,7 +19,9 @@ struct DeviceUri {
   std::string serial_number;              ///< hid, usb (optional)
 };
 
-protocol::Status ParseDeviceUri(const std::string& uri, DeviceUri& out, std::string* error);
+/// sim:CONFIG, serial:PATH[?baud=N], tcp:HOST:PORT, hid:VID:PID[:SERIAL], usb:VID:PID[:SERIAL];
+/// an invalid argument naming the part that is wrong ("device 'tcp:x': expected tcp:HOST:PORT").
+Result<DeviceUri> ParseDeviceUri(const std::string& uri);
 
 /// Empty when palpa-sim knows the board configuration `config` (sim:CONFIG); else
 /// "unknown configuration (thesis-pneumatic-3, ...)", naming those it knows.

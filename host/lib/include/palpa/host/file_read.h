@@ -4,7 +4,6 @@
 #pragma once
 
 #include <cstddef>
-#include <optional>
 #include <string>
 
 #include "palpa/host/outcome.h"
@@ -23,18 +22,14 @@ struct FileLimits {
 /// kind of file; both invalid_argument).
 Result<std::string> ReadFileWhole(const std::string& path, const FileLimits& limits);
 
-/// ReadFileWhole, then `parse(text, &why)` (returning an optional); any error starts "PATH: ".
+/// ReadFileWhole, then `parse(text)` (returning a Result); any error starts "PATH: ".
 template <class Parse>
-auto ReadAndParse(const std::string& path, const FileLimits& limits, Parse parse,
-                  std::string* error) -> decltype(parse(std::string(), error)) {
+auto ReadAndParse(const std::string& path, const FileLimits& limits, Parse parse)
+    -> decltype(parse(std::string())) {
   const auto text = ReadFileWhole(path, limits);
-  if (!text.ok()) {
-    if (error != nullptr) *error = text.message;
-    return std::nullopt;
-  }
-  std::string why;
-  auto parsed = parse(text.value, &why);
-  if (!parsed && error != nullptr) *error = path + ": " + why;
+  if (!text.ok()) return text.outcome();
+  auto parsed = parse(text.value);
+  if (!parsed.ok()) parsed.message = path + ": " + parsed.message;
   return parsed;
 }
 

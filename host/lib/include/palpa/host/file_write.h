@@ -6,13 +6,15 @@
 #include <string>
 #include <string_view>
 
+#include "palpa/host/outcome.h"
+
 namespace palpa::host {
 
 /// Writes `bytes` to `path` so that a reader finds the old file or the whole new one, never a
 /// part, even across a crash or power cut. The temporary is never written through a link planted
 /// beside the target; a target that is a link, a directory or anything but a regular file is
-/// refused. On failure the temporary is removed, the old file is untouched and `error` (when
-/// given) names the file and the reason.
-bool WriteFileWhole(const std::string& path, std::string_view bytes, std::string* error = nullptr);
+/// refused. On failure (io_error) the temporary is removed, the old file is untouched and the
+/// message names the file and the reason.
+Outcome WriteFileWhole(const std::string& path, std::string_view bytes);
 
 }  // namespace palpa::host

@@ -3,7 +3,6 @@
 // and getters that check type and range. Used by every JSON file palpa reads.
 #pragma once
 
-#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -18,15 +17,14 @@ namespace palpa::host {
 /// it is built (nesting costs memory and recursion elsewhere).
 inline constexpr int kMaxJsonDepth = 16;
 
-/// Parses JSON text. Nullopt with *error on anything the parser refuses, named by the path of
-/// the value it was reading: a syntax error ("not valid JSON at line 3, column 7: ..."), a number
+/// Parses JSON text. Invalid argument on anything the parser refuses, named by the path of the
+/// value it was reading: a syntax error ("not valid JSON at line 3, column 7: ..."), a number
 /// no double holds ("board.host_timeout_us: the number 1e400 is beyond a double's range"), or
 /// nesting deeper than kMaxJsonDepth.
-std::optional<nlohmann::json> ParseJson(const std::string& text, std::string* error);
+Result<nlohmann::json> ParseJson(const std::string& text);
 
 /// ReadFileWhole within `limits`, then ParseJson; errors start with "PATH: ".
-std::optional<nlohmann::json> ReadJsonFile(const std::string& path, const FileLimits& limits,
-                                           std::string* error);
+Result<nlohmann::json> ReadJsonFile(const std::string& path, const FileLimits& limits);
 
 /// A validation failure; what() starts with the JSON path of the field.
 struct JsonInvalid : std::runtime_error {

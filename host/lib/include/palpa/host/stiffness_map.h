@@ -25,8 +25,8 @@ struct LevelTables {
 
   /// The tables shipped with the library (host/lib/data/levels.json).
   static LevelTables Shipped();
-  /// Reads a levels file; on a bad file returns false and names the field in *error.
-  static bool Load(const std::string& path, LevelTables& out, std::string* error);
+  /// Reads a levels file; a bad file is an invalid argument naming the field.
+  static Result<LevelTables> Load(const std::string& path);
 };
 
 /// How a finger's output unit relates to pressure: the nominal thesis curves until a

@@ -51,18 +51,18 @@ std::optional<std::vector<int>> TumourFingers(const std::vector<int>& levels);
 /// fingers at three levels, 9 for two): no tumour first, then by contrast.
 std::vector<std::vector<int>> TumourCombinations(size_t fingers, int levels);
 
-/// Parses a stimulus-set document; on a bad one nullopt and the first wrong field by its path in
-/// *error (`stimuli[3].tumour: ...`). Every stimulus must follow the rule and say what it gives.
-std::optional<StimulusSet> ParseStimulusSet(const std::string& text, std::string* error);
+/// Parses a stimulus-set document; a bad one is an invalid argument naming the first wrong field by
+/// its path (`stimuli[3].tumour: ...`). Every stimulus must follow the rule and say what it gives.
+Result<StimulusSet> ParseStimulusSet(const std::string& text);
 
 /// The sets shipped with the library (host/lib/data/stimuli): thesis-pneumatic-18, -14,
 /// thesis-jamming-9, -8.
 std::vector<std::string> ShippedStimulusSets();
 /// A shipped set's file text (empty for an unknown name): to copy and edit into a set of one's own.
 std::string ShippedStimulusSetText(const std::string& name);
-/// A shipped set by name, or a file by path (anything with a '/' or ending in .json); nullopt
-/// with the reason in *error.
-std::optional<StimulusSet> LoadStimulusSet(const std::string& name_or_path, std::string* error);
+/// A shipped set by name, or a file by path (anything with a '/' or ending in .json); not_found for
+/// an unknown name, else why the file is refused.
+Result<StimulusSet> LoadStimulusSet(const std::string& name_or_path);
 
 /// Level tables carrying these sets' levels (a pneumatic set, a jamming set, either may be null),
 /// so that a level request plays the set's values; the rest from `base`.
