@@ -1,15 +1,14 @@
-// RunCalibration in its phases: zero, regulator correction, stiffness map (jamming), hysteresis
-// sweep, fits and file, failure detectors — each journalled so a stopped run resumes.
+// RunCalibration and its measuring phases: zero, regulator correction, stiffness map (jamming),
+// hysteresis sweep — each journalled so a stopped run resumes. The fits, the file and the
+// failure detectors that follow are calibration_results.cc.
 #include <algorithm>
 #include <cstdio>
 
-#include "palpa/calibration/calibration_protocol.h"
-#include "palpa/calibration/quality_checks.h"
+#include "calibration_run.h"
 
 namespace palpa::calibration {
+namespace run_internal {
 namespace {
-
-using nlohmann::json;
 
 std::string Csv(const std::vector<double>& v, const std::string& phase) {
   std::string row = phase;
@@ -33,98 +32,7 @@ std::vector<SweepSample> SamplesFrom(const json& j) {
   return s;
 }
 
-/// Straight lines through the major rising and falling passes over 10–90 % of the range (the
-/// Table 5-4 comparison), in µm against Pa (µm/Pa is the thesis's mm/kPa).
-void BranchFits(const std::vector<SweepSample>& sweep, double drive_max, host::CalibrationFile& f) {
-  size_t top = 0;
-  for (size_t k = 0; k < sweep.size(); ++k) {
-    if (sweep[k].drive_pa > sweep[top].drive_pa) top = k;
-  }
-  std::vector<std::pair<double, double>> up, down;
-  for (size_t k = 0; k <= top; ++k) {
-    if (sweep[k].drive_pa >= 0.1 * drive_max && sweep[k].drive_pa <= 0.9 * drive_max) {
-      up.push_back({sweep[k].drive_pa, sweep[k].output});
-    }
-  }
-  for (size_t k = top; k < sweep.size() && (k == top || sweep[k].drive_pa <= sweep[k - 1].drive_pa);
-       ++k) {
-    if (sweep[k].drive_pa >= 0.1 * drive_max && sweep[k].drive_pa <= 0.9 * drive_max) {
-      down.push_back({sweep[k].drive_pa, sweep[k].output});
-    }
-  }
-  const Line r = FitLine(up), d = FitLine(down);
-  f.rising_fit = host::LineFit{r.slope, r.intercept, std::clamp(r.r2, 0.0, 1.0)};
-  f.falling_fit = host::LineFit{d.slope, d.intercept, std::clamp(d.r2, 0.0, 1.0)};
-}
-
-/// One run: what the phases share, and the phases in the order they run.
-class Run {
- public:
-  Run(Rig& rig, uint8_t finger, const ProtocolOptions& o, const RunInfo& info, Journal& journal,
-      const std::function<void(const Progress&)>& progress, CalibrationRun* out)
-      : rig_(rig),
-        finger_(finger),
-        o_(o),
-        info_(info),
-        journal_(journal),
-        progress_(progress),
-        out_(out),
-        jamming_(rig.board.jamming(finger)),
-        adaptive_(o.map_protocol == MapProtocol::kAdaptive),
-        st_(journal.state),
-        drives_(SweepDrives(jamming_ ? o.jamming_sweep : o.pneumatic_sweep)),
-        started_(rig.time.Now()),
-        earlier_(st_.value("rig_time_s", 0.0)) {
-    const int grid_points = !jamming_ ? 0
-                            : adaptive_
-                                ? o.adaptive.max_cycles
-                                : static_cast<int>(o.biases_kpa.size() * o.vacuums_kpa.size());
-    p_ = Progress{0, 2 + grid_points + static_cast<int>(drives_.size()), ""};
-    // Columns per phase (docs/calibration.md), in the calibration file's units: correction: line,
-    // command, rising, falling (Pa); grid: bias, vacuum (Pa), stiffness mean, spread (mN/mm), loop
-    // area (mJ); sweep: commanded and measured drive (Pa), output (µm or mN/mm).
-    out_->csv = {"phase,v1,v2,v3,v4,v5"};
-  }
-
-  RigStatus Zero();
-  RigStatus Corrections();
-  RigStatus Map();
-  RigStatus Sweep();
-  void Fits();
-  RigStatus Detectors();
-
- private:
-  void Step(const std::string& what) {
-    p_.step = what;
-    if (progress_) progress_(p_);
-  }
-  void Done() {
-    ++p_.done;
-    st_["rig_time_s"] = earlier_ + rig_.time.Now() - started_;
-    if (journal_.save) journal_.save(journal_);
-    if (progress_) progress_(p_);
-  }
-
-  Rig& rig_;
-  const uint8_t finger_;
-  const ProtocolOptions& o_;
-  const RunInfo& info_;
-  Journal& journal_;
-  const std::function<void(const Progress&)>& progress_;
-  CalibrationRun* out_;
-  const bool jamming_, adaptive_;
-  json& st_;
-  const std::vector<double> drives_;  // Pa
-  const double started_, earlier_;
-  Progress p_;
-  double zero_ = 0, tare_noise_ = 0, end_free_ = 0;
-  std::vector<host::RegulatorCorrection> corrections_;
-  double bias_ = 0;
-  std::vector<ConditionSummary> grid_;
-  std::vector<SweepSample> sweep_;
-  bool fitted_ = false;
-  std::string inverse_error_;
-};
+}  // namespace
 
 /// 1. Zero (every run, also a resumed one: the rig may have been moved).
 RigStatus Run::Zero() {
@@ -234,99 +142,13 @@ RigStatus Run::Sweep() {
   return {};
 }
 
-/// 5. Fits and the calibration file.
-void Run::Fits() {
-  host::CalibrationFile& f = out_->file;
-  f.actuator_serial = info_.actuator_serial;
-  f.kind = jamming_ ? protocol::FingerKind::kJamming : protocol::FingerKind::kPneumatic;
-  f.board_id = info_.board_id;
-  f.finger = finger_;
-  f.date = info_.date;
-  f.rig = info_.rig;
-  f.simulation = info_.simulation;
-  f.speed_um_s = 1000 * (jamming_ ? o_.press_speed_mm_s : o_.contact.speed_mm_s);
-  f.depth_um = jamming_ ? 1000 * o_.press_depth_mm : 0;
-  f.repeats = jamming_ ? o_.repeats : 1;
-  if (jamming_) f.bias_pa = 1000 * bias_;
-  f.raw_data = info_.raw_data;
-  for (const ConditionSummary& c : grid_) f.grid.push_back(FileGridPoint(c));
-  f.regulator_corrections = corrections_;
-  const double drive_max = jamming_ ? o_.jamming_sweep.drive_max : o_.pneumatic_sweep.drive_max;
-  const int inverse_points = static_cast<int>(std::clamp<size_t>(sweep_.size() / 2, 2, 12));
-  const auto inverse = FitStaticInverse(sweep_, inverse_points, jamming_);
-  inverse_error_ = inverse.message;
-  f.static_inverse = inverse.value;
-  fitted_ = f.static_inverse.size() >= 2;  // if not, the detectors still say why
-  for (const protocol::InversePoint& q : f.static_inverse) {
-    f.curve.push_back({static_cast<double>(q.setpoint_pa), static_cast<double>(q.output)});
-  }
-  if (!jamming_ && fitted_) BranchFits(sweep_, drive_max, f);
-  HysteresisFit& fit = out_->fit;
-  const int operators = SweepFor(o_, jamming_).operators;
-  if (!o_.compensator) {
-    fit = FitBetterPlayModel(sweep_, operators, drive_max, &out_->compensator_choice);
-  } else {
-    fit = FitCompensator(*o_.compensator, operators, sweep_, drive_max);
-    const bool play = *o_.compensator == protocol::CompensatorKind::kPrandtlIshlinskii ||
-                      *o_.compensator == protocol::CompensatorKind::kAsymmetricPi;
-    if (!play) fit.error = "a calibration fits pi or api";  // their residuals are output units
-  }
-  if (fit.ok()) {
-    f.compensator = fit.kind;
-    f.compensator_params = fit.params;
-    f.quality.residual_rms = fit.residual_rms;  // in the sweep's output unit, as the curve
-    f.quality.residual_max = fit.residual_max;
-  } else {
-    f.quality.flags.push_back("compensator not fitted: " + fit.error);
-  }
-  if (jamming_) f.recommended_bias_pa = 1000 * bias_;
-  f.quality.points = static_cast<int>(sweep_.size());
-  f.quality.protocol = jamming_ && adaptive_ ? "adaptive" : "thesis";
-  f.quality.cycles = static_cast<int>(out_->map.size());
-  f.quality.rig_time_s = earlier_ + rig_.time.Now() - started_;
-  if (jamming_) f.quality.map_error = out_->map_estimate.map_error;
-}
-
-/// 6. The failure detectors; a static inverse that could not be fitted ends the run here.
-RigStatus Run::Detectors() {
-  host::CalibrationFile& f = out_->file;
-  CheckInputs in;
-  in.jamming = jamming_;
-  in.force_noise_class_n = rig_.force_noise_n;
-  in.tare_noise_n = tare_noise_;
-  in.map = out_->map;
-  in.free_readings = {end_free_};
-  in.sweep_points = static_cast<int>(sweep_.size());
-  in.corrections = corrections_;
-  in.box = o_.adaptive.box;
-  in.previous = info_.previous;
-  f.quality.checks = RunQualityChecks(in, f);
-  for (const host::QualityCheck& c : f.quality.checks) {
-    if (!c.passed) f.quality.flags.push_back(c.name + ": " + c.detail);
-  }
-  if (jamming_ && adaptive_ && out_->map_estimate.map_error > o_.adaptive.target_error) {
-    char why[160];
-    std::snprintf(why, sizeof(why),
-                  "map: estimated error %.1f %% still above the %.1f %% target after the budget "
-                  "of %d cycles",
-                  100 * out_->map_estimate.map_error, 100 * o_.adaptive.target_error,
-                  o_.adaptive.max_cycles);
-    f.quality.flags.push_back(why);
-  }
-  if (!fitted_) {
-    std::string why = "static inverse: " + inverse_error_;
-    for (const std::string& flag : f.quality.flags) why += "; " + flag;
-    return RigStatus::Fail(Status::kUnavailable, why);
-  }
-  return {};
-}
-
-}  // namespace
+}  // namespace run_internal
 
 RigStatus RunCalibration(Rig& rig, uint8_t finger, const ProtocolOptions& o, const RunInfo& info,
                          Journal& journal, const std::function<void(const Progress&)>& progress,
                          CalibrationRun* out) {
-  Run run(rig, finger, o, info, journal, progress, out);
+  run_internal::Run run(rig, finger, o, info, journal, progress, out);
+  using run_internal::Run;
   for (RigStatus (Run::*phase)() : {&Run::Zero, &Run::Corrections, &Run::Map, &Run::Sweep}) {
     if (RigStatus s = (run.*phase)(); !s.ok()) return s;
   }
