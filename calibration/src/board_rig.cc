@@ -21,16 +21,31 @@ host::Result<BoardRig> OpenSimulatedRig(const std::string& config, int finger, d
                                        "--seed",       std::to_string(plant.seed),
                                        "--plant",      std::to_string(plant.plant_level)};
   if (!plant.effects.empty()) sim_args.insert(sim_args.end(), {"--effects", plant.effects});
-  std::string rig_address;
-  auto transport = host::LaunchSim(config, sim_args, nullptr, &rig_address);
+  std::string rig_address, announcement;
+  auto transport = host::LaunchSim(config, sim_args, nullptr, &rig_address, &announcement);
   if (!transport.ok()) return {Status::kUnavailable, transport.message};
+  // What the simulator says it runs, not what was asked of it, is what the calibration records.
+  host::SimulatedPlant running;
+  running.effects = plant.effects;
+  if (std::sscanf(announcement.c_str(), "palpa-sim: %*[^,], plant level %d, unit %u, seed %u",
+                  &running.plant_level, &running.actuator_unit, &running.seed) != 3) {
+    return {Status::kUnavailable, "palpa-sim did not say which plant it runs: " + announcement};
+  }
+  if (running.actuator_unit != plant.actuator_unit || running.seed != plant.seed ||
+      running.plant_level != plant.plant_level) {
+    return {Status::kUnavailable,
+            "palpa-sim runs another plant than the one asked for: " + announcement};
+  }
   host::DeviceOptions options;
   options.number_from = static_cast<uint8_t>(number_from);
   auto device = host::Device::Attach(std::move(transport.value), options);
   if (!device.ok()) return {Status::kUnavailable, device.message};
   auto rig = OpenBoardRig(*device.value,
                           SimRigDescription("modbus-tcp://" + rig_address.substr(4) + "/1"));
-  if (rig.ok()) rig.value.own_device = std::move(device.value);
+  if (rig.ok()) {
+    rig.value.own_device = std::move(device.value);
+    rig.value.simulation = running;
+  }
   return rig;
 }
 

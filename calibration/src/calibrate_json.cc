@@ -98,6 +98,7 @@ host::Outcome CalibrateFromJson(host::Device* device, const std::string& rig,
     opened = OpenBoardRig(*device, description.value);
   }
   if (!opened.ok()) return opened.outcome();
+  if (simulated) r.session.simulation = opened.value.simulation;  // as the simulator runs it
   host::Device& board = *opened.value.device;
   const host::Result<std::string> serial = ReadActuatorSerial(board, r.session.finger);
   if (!serial.ok()) return serial.outcome();

@@ -79,7 +79,9 @@ int OpenRig(Context& c, const CalibrateArgs& a, OpenedRig& r) {
   return kExitOk;
 }
 
-cal::SessionOptions SessionOptionsOf(const CalibrateArgs& a, bool simulated) {
+/// `simulation`: the simulator's own account of its plant (--rig sim), else null.
+cal::SessionOptions SessionOptionsOf(const CalibrateArgs& a,
+                                     const host::SimulatedPlant* simulation) {
   cal::SessionOptions s;
   s.finger = static_cast<uint8_t>(a.finger);
   cal::ProtocolOptions& options = s.protocol;
@@ -94,7 +96,7 @@ cal::SessionOptions SessionOptionsOf(const CalibrateArgs& a, bool simulated) {
   s.resume = a.resume;
   s.previous = a.previous;
   s.allow_fallback = a.allow_fallback;
-  if (simulated) s.simulation = a.plant;
+  if (simulation != nullptr) s.simulation = *simulation;
   s.journal_not_saved = [](const std::string& why) {
     std::fprintf(stderr, "\npalpa calibrate: journal not saved (%s): a stopped run cannot resume\n",
                  why.c_str());
@@ -163,12 +165,14 @@ int RunSession(cal::Session& session) {
 }
 
 /// The files, the fits and the detectors' verdicts, as a person reads them.
-void PrintResult(const CalibrateArgs& a, const cal::Session& session, bool simulated) {
+void PrintResult(const CalibrateArgs& a, const cal::Session& session) {
   const cal::CalibrationRun& run = session.result();
   const std::string base = session.base();
+  // The plant as the simulator said it runs it (the file records the same).
+  const std::optional<host::SimulatedPlant>& simulation = run.file.simulation;
   std::fprintf(TextOut(), "calibrated %s (finger %d%s): %s.json, %s.csv, %s.html\n",
                session.serial().c_str(), a.finger + 1,
-               simulated ? (", " + DescribeSimulatedPlant(a.plant)).c_str() : "", base.c_str(),
+               simulation ? (", " + DescribeSimulatedPlant(*simulation)).c_str() : "", base.c_str(),
                base.c_str(), base.c_str());
   if (run.file.rising_fit) {
     std::fprintf(TextOut(),
@@ -221,13 +225,14 @@ int CmdCalibrate(Context& c, const std::vector<std::string>& args) {
   if (const int rc = OpenRig(c, a, opened); rc != kExitOk) return rc;
   host::Device& device = *opened.device;
   const bool jamming = device.info().fingers[a.finger].kind == protocol::FingerKind::kJamming;
-  const bool simulated = opened.rig->simulated();
+  const host::SimulatedPlant* simulation =
+      opened.rig->simulated() ? &opened.rig->simulation : nullptr;
   cal::Session session(opened.rig->rig(), opened.serial, device.info().board_id, jamming,
-                       SessionOptionsOf(a, simulated));
+                       SessionOptionsOf(a, simulation));
   if (const int rc = AnnounceSweep(a, session); rc != kExitOk) return rc;
   if (const int rc = PrepareSession(a, session); rc != kExitOk) return rc;
   if (const int rc = RunSession(session); rc != kExitOk) return rc;
-  PrintResult(a, session, simulated);
+  PrintResult(a, session);
   if (a.apply) {
     const host::Outcome o =
         device.ApplyCalibration(static_cast<uint8_t>(a.finger), session.result().file);

@@ -63,7 +63,7 @@ host::Result<host::CalibrationFile> CalibrateOne(
   options.protocol.compensator = protocol::CompensatorKind::kAsymmetricPi;
   options.protocol.compensator_operators = kDemoOperators;
   options.date = "";  // nothing written and nothing to resume: a failed demo is run again
-  options.simulation = plant;
+  options.simulation = sim->simulation;
   cal::Session session(sim->rig(), host::FieldText(fc.value.actuator_serial),
                        sim->device->info().board_id, false, options);
   const host::Outcome o = session.Run(progress);

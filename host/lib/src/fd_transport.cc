@@ -237,7 +237,8 @@ Result<std::unique_ptr<Transport>> OpenSim(const DeviceUri& uri) {
 
 Result<std::unique_ptr<Transport>> LaunchSim(const std::string& config,
                                              const std::vector<std::string>& options,
-                                             std::string* truth_address, std::string* rig_address) {
+                                             std::string* truth_address, std::string* rig_address,
+                                             std::string* announcement) {
   DeviceUri uri;
   uri.config = config;
   const std::string program = FindPalpaSim();
@@ -305,6 +306,7 @@ Result<std::unique_ptr<Transport>> LaunchSim(const std::string& config,
                                       ") did not start" +
                                       (text.empty() ? std::string() : ": " + text)};
   }
+  if (announcement != nullptr) *announcement = text.substr(0, text.find('\n'));
   DeviceUri tcp;
   tcp.host = address.substr(0, address.rfind(':'));
   tcp.port = static_cast<uint16_t>(std::stoi(address.substr(address.rfind(':') + 1)));

@@ -19,8 +19,6 @@
 #include "cli_run.h"
 #include "mini_client.h"
 #include "palpa/calibration/calibration_protocol.h"
-#include "palpa/core/board_configs.h"
-#include "palpa/hal/sim/plant.h"
 
 #include "palpa/host/stimulus_set.h"
 
@@ -573,63 +571,25 @@ TEST(CliCalibrate, BadArgumentsAreNamedBeforeAnythingStarts) {
 
 TEST_GROUP(CliCalibrateUnits){};
 
-TEST(CliCalibrateUnits, ACalibrationOfSimulatedUnit12HasUnit12sOwnSlopesAndSaysSo) {
+TEST(CliCalibrateUnits, ACalibrationOfSimulatedUnit12IsOfUnit12AndSaysSo) {
+  // The unit reaches palpa-sim, and what the command says and records is the plant palpa-sim
+  // announced it runs: a command line that dropped --unit, or a library that did not pass it on,
+  // would say unit 0 here (or refuse the run). That a calibration of unit 12 then finds unit
+  // 12's own slopes, not the nominal unit's, is CalibrationUnits (virtual time, so the comparison
+  // does not depend on how busy the machine is).
   char pattern[] = "/tmp/palpa-cal-cli-XXXXXX";
   const std::string dir = mkdtemp(pattern);
-  const Run r = Palpa("calibrate --rig sim --finger 1 --quick --unit 12 --out " + dir);
+  const Run r =
+      Palpa("calibrate --rig sim --finger 1 --quick --speed 10 --unit 12 --seed 3 --out " + dir);
   LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
-  CHECK_TEXT(Has(r, "calibrated PN-1 (finger 1, simulated unit 12, seed 1, plant level 3)"),
+  CHECK_TEXT(Has(r, "calibrated PN-1 (finger 1, simulated unit 12, seed 3, plant level 3)"),
              r.output.c_str());
   std::ifstream file(dir + "/PN-1.json");
   const nlohmann::json j = nlohmann::json::parse(file);
   CHECK(j["simulation"] ==
         nlohmann::json::parse(
-            R"({"actuator_unit": 12, "seed": 1, "plant_level": 3, "effects": ""})"));
-  // The true branches of units 0 and 12 (finger 1 of thesis-5finger), through the readings the
-  // quick sweep takes on each branch within 10-90 kPa: the calibration must find how unit 12's
-  // slopes differ from unit 0's. Unit 12's are about 10 % lower: the rig reads a slope within
-  // about 2 % (its readings repeat to 2.82 %, five touches averaged), so a unit much closer to
-  // the nominal one (unit 2, 3.5 %) would be told apart by the rig's scatter, not its own shape.
-  auto truth = [](uint32_t unit) {
-    const auto& config = *palpa::core::FindBoardConfig("thesis-5finger");
-    palpa::sim::PlantOptions o;
-    o.unit = unit;
-    palpa::sim::Plant plant(config.lines.data(), config.line_count, config.fingers.data(),
-                            config.finger_count, o);
-    const std::vector<double> kpa = {10, 20, 30, 40, 50, 60, 70, 80, 90};
-    auto slope = [&](float (palpa::sim::PneumaticActuator::*branch)(float) const) {
-      double sxy = 0, sxx = 0;  // least squares, mm/kPa (= µm/Pa, the file's unit)
-      for (double x : kpa) {
-        sxy += (x - 50) * (plant.pneumatic(0)->*branch)(static_cast<float>(x));
-        sxx += (x - 50) * (x - 50);
-      }
-      return sxy / sxx;
-    };
-    return std::pair<double, double>{slope(&palpa::sim::PneumaticActuator::RisingMajorMm),
-                                     slope(&palpa::sim::PneumaticActuator::FallingMajorMm)};
-  };
-  // The rig reads a slope a few percent off the truth, as much as units 0 and 2 differ: unit 0
-  // calibrated on the same rig gives that offset, and the two calibrations must differ as the
-  // units do.
-  char pattern0[] = "/tmp/palpa-cal-cli-XXXXXX";
-  const std::string dir0 = mkdtemp(pattern0);
-  const Run r0 = Palpa("calibrate --rig sim --finger 1 --quick --unit 0 --out " + dir0);
-  LONGS_EQUAL_TEXT(0, r0.code, r0.output.c_str());
-  std::ifstream file0(dir0 + "/PN-1.json");
-  const nlohmann::json j0 = nlohmann::json::parse(file0);
-  const auto [own_rising, own_falling] = truth(12);
-  const auto [nominal_rising, nominal_falling] = truth(0);
-  CHECK_TEXT(std::fabs(own_rising - nominal_rising) > 0.01 * nominal_rising, "units differ");
-  for (const char* branch : {"rising", "falling"}) {
-    const bool rising = std::string(branch) == "rising";
-    const double truly = rising ? own_rising - nominal_rising : own_falling - nominal_falling;
-    const double found =
-        j["fits"][branch]["slope"].get<double>() - j0["fits"][branch]["slope"].get<double>();
-    CHECK_TEXT(std::fabs(found - truly) < 0.4 * std::fabs(truly),
-               (std::string(branch) + ": units 12 and 0 calibrated " + std::to_string(found) +
-                " apart, truly " + std::to_string(truly))
-                   .c_str());
-  }
+            R"({"actuator_unit": 12, "seed": 3, "plant_level": 3, "effects": ""})"));
+  CHECK(j["fits"]["rising"]["slope"].get<double>() > 0);
 }
 
 TEST_GROUP(CliCalibrateFallback){};

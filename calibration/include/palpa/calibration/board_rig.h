@@ -21,6 +21,9 @@ struct BoardRig {
   RigDevices devices;
   std::unique_ptr<DeviceBoardPort> board;
   std::unique_ptr<BoardTime> time;
+  /// palpa-sim's own account of the plant it runs (its unit, seed and level as it announced them;
+  /// the effects asked for): what a calibration on it records and says.
+  host::SimulatedPlant simulation;
 
   bool simulated() const { return own_device != nullptr; }
   /// The rig as procedures and sessions take it.
@@ -33,7 +36,7 @@ struct BoardRig {
 /// Starts palpa-sim of `config` at `speed` with `plant` (its unit, seed, level and effects, so a
 /// finger's actuator is the one every other simulator of that configuration and unit has) and
 /// its rig on `finger` (from 0); the board numbers fingers from `number_from`. kUnavailable, and
-/// why, when it cannot.
+/// why, when it cannot, or when palpa-sim does not announce the plant asked for.
 host::Result<BoardRig> OpenSimulatedRig(const std::string& config, int finger, double speed,
                                         const host::SimulatedPlant& plant, int number_from);
 

@@ -36,10 +36,13 @@ Result<std::unique_ptr<Transport>> OpenTransport(const std::string& uri);
 /// connects to it. With `truth_address` non-null the simulator also streams its truth side channel
 /// (for demos and benchmarks) and *truth_address receives where ("tcp:127.0.0.1:PORT"); with
 /// `rig_address` non-null (and --rig-modbus among the options) it waits for the rig's address too.
+/// `announcement`, when given, receives the line in which palpa-sim says what it runs
+/// ("palpa-sim: thesis-5finger, plant level 3, unit 12, seed 1, speed 1x").
 Result<std::unique_ptr<Transport>> LaunchSim(const std::string& config,
                                              const std::vector<std::string>& options,
                                              std::string* truth_address,
-                                             std::string* rig_address = nullptr);
+                                             std::string* rig_address = nullptr,
+                                             std::string* announcement = nullptr);
 
 /// Where palpa-sim is: $PALPA_SIM, next to the running executable, installed beside the library
 /// (an application or python3 using an installed libpalpa), the build tree, or PATH.
