@@ -34,7 +34,8 @@ Plant::Plant(const protocol::ConfigureLine* lines, uint8_t line_count,
   for (uint8_t i = 0; i < line_count; ++i) {
     Line line;
     line.config = lines[i];
-    RegulatorSetup setup = NominalRegulatorSetup(lines[i].kind);
+    RegulatorSetup setup = NominalRegulatorSetup(lines[i].kind, options.flow);
+    setup.dead_time_s *= options.dead_time_scale;
     if (options.level < 1) setup.min_set_pa = 0.0f;
     setup.dynamics = options.level >= 1;
     const RegulatorErrors drawn = DrawErrors(rng);

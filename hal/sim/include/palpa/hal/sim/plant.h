@@ -24,6 +24,10 @@ struct PlantOptions {
   uint32_t seed = 1;          ///< regulator and sensor units, noise
   bool static_errors = true;  ///< regulator static errors (level ≥ 1)
   Effects effects{};
+  /// Sweeps of the air path's assumed numbers and of the regulators' dead time (evaluations of
+  /// how control copes with a plant unlike the nominal one); the defaults are the frozen plant.
+  FlowAssumptions flow{};
+  float dead_time_scale = 1;
 };
 
 struct LineTruth {
