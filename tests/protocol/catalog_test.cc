@@ -70,15 +70,15 @@ TEST(CatalogHash, RenumberedOrAddedFaultOrStatusBitsGiveADifferentHash) {
   CHECK(base != pp::ComputeCatalogHash(BaseCatalog{}, pp::BitNames{kInserted, 11}));
   CHECK(base != pp::ComputeCatalogHash(BaseCatalog{}, pp::BitNames{kInserted, 9}));  // one fewer
   // Two status bits swapped.
-  constexpr const char* kSwapped[] = {"safe",      "trim_clamped", "slewing",     "saturated",
-                                      "open_loop", "raw",          "sensor_fault"};
+  constexpr const char* kSwapped[] = {"safe",      "trim_clamped", "slewing",      "saturated",
+                                      "open_loop", "raw",          "sensor_fault", "shaping"};
   CHECK(base !=
-        pp::ComputeCatalogHash(BaseCatalog{}, pp::kFaultBitNames, pp::BitNames{kSwapped, 7}));
+        pp::ComputeCatalogHash(BaseCatalog{}, pp::kFaultBitNames, pp::BitNames{kSwapped, 8}));
   // The same names from another array: the same hash.
   constexpr const char* kSame[] = {"safe",      "slewing", "trim_clamped", "saturated",
-                                   "open_loop", "raw",     "sensor_fault"};
+                                   "open_loop", "raw",     "sensor_fault", "shaping"};
   UNSIGNED_LONGS_EQUAL(
-      base, pp::ComputeCatalogHash(BaseCatalog{}, pp::kFaultBitNames, pp::BitNames{kSame, 7}));
+      base, pp::ComputeCatalogHash(BaseCatalog{}, pp::kFaultBitNames, pp::BitNames{kSame, 8}));
 }
 
 TEST(CatalogHash, IsAComputedConstant) {

@@ -63,6 +63,19 @@ LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us)
   p.model_alpha = tau > 0 ? dt / (tau + dt) : 1.0f;
   const uint32_t dead = tick_us > 0 ? (line.model_dead_time_us + tick_us / 2) / tick_us : 0;
   p.delay_length = static_cast<uint8_t>((dead < kMaxDeadTicks ? dead : kMaxDeadTicks - 1) + 1);
+  // Step shaping: a model of the chamber's lag, inverted (line_step.h).
+  const float chamber_tau = static_cast<float>(line.chamber_tau_us) * 1e-6f;
+  p.shaping = line.chamber_tau_us > 0 && line.overdrive_pa > 0;
+  p.chamber_alpha = p.shaping ? dt / (chamber_tau + dt) : 1.0f;
+  p.chamber_gain = 1.0f / p.chamber_alpha;
+  p.overdrive_pa = p.shaping ? static_cast<float>(line.overdrive_pa) : 0.0f;
+  // The regulator model's dead time and three lags of it and the chamber: the reference and the
+  // sensor settle on the target again before the trim compares them.
+  const float settle_ticks = dt > 0 ? 3.0f * (tau + chamber_tau) / dt : 0.0f;
+  p.shape_hold_ticks =
+      p.shaping
+          ? static_cast<uint16_t>(p.delay_length + (settle_ticks < 60000 ? settle_ticks : 60000))
+          : 0;
   p.correction_count = line.correction_count;
   for (uint8_t i = 0; i < line.correction_count; ++i) {
     p.correction_command[i] = static_cast<float>(line.correction[i].command_pa);
@@ -81,6 +94,8 @@ void ResetLineState(const LineParams& p, LineState& s, float pa) {
   // Only the line's own delay slots are read; the safe path runs this every tick.
   for (uint8_t i = 0; i < p.delay_length; ++i) s.delay[i] = pa;
   s.delay_index = 0;
+  s.chamber_pa = pa;
+  s.trim_hold = 0;
   s.rising = true;
 }
 

@@ -19,6 +19,20 @@ namespace line_step {
 /// steady). Only lines with a correction track the direction; it is read nowhere else.
 float FeedForward(const LineParams& p, LineState& s, float previous, float slewed);
 
+/// A shaped step's command: what brings the chamber model onto `target` in one tick, held within
+/// the overdrive beyond the target and the line's limits. The model then moves by that command, so
+/// it reaches the target as fast as the bound allows and stays there: once there the command is
+/// the target itself, and the steady-state loop takes over without a bump. The model is
+/// open-loop, so nothing the sensor reads can wind it up or make it ring.
+[[gnu::always_inline]] inline float Shape(const LineParams& p, LineState& s, float target) {
+  const float model = s.chamber_pa;
+  float command = model + (target - model) * p.chamber_gain;
+  command = Clamp(command, target - p.overdrive_pa, target + p.overdrive_pa);
+  command = Clamp(command, p.limit_min_pa, p.limit_max_pa);
+  s.chamber_pa = model + p.chamber_alpha * (command - model);
+  return command;
+}
+
 }  // namespace line_step
 
 /// StepLine's body (line_pipeline.h has the contract).
@@ -39,11 +53,27 @@ float FeedForward(const LineParams& p, LineState& s, float previous, float slewe
   const float slewed = previous + step;
   s.slewed_pa = slewed;
 
-  // 2. Regulator model (dead time + lag): the reference the trim compares the sensor with. The
-  // slot after this tick's holds the setpoint of the dead time ago (this tick's when none).
+  // 1b. Step shaping: beyond the target while the chamber model lags it; the trim holds from then
+  // until the reference and the sensor have settled on the target again.
+  float wanted = slewed;
+  if (p.shaping) {
+    wanted = line_step::Shape(p, s, slewed);
+    if (wanted != slewed) {
+      s.trim_hold = p.shape_hold_ticks;
+      status |= ls::kShaping;
+      // The overdrive met the line's limits: the step takes longer than the model asked for.
+      if (wanted == p.limit_min_pa || wanted == p.limit_max_pa) status |= ls::kSaturated;
+    } else if (s.trim_hold > 0) {
+      --s.trim_hold;
+    }
+  }
+
+  // 2. Regulator model (dead time + lag) of what the regulator is commanded: the reference the
+  // trim compares the sensor with. The slot after this tick's holds the command of the dead time
+  // ago (this tick's when none).
   uint8_t next = static_cast<uint8_t>(s.delay_index + 1);
   if (next >= p.delay_length) next = 0;
-  s.delay[s.delay_index] = slewed;
+  s.delay[s.delay_index] = wanted;
   s.delay_index = next;
   s.reference_pa += p.model_alpha * (s.delay[next] - s.reference_pa);
 
@@ -57,11 +87,17 @@ float FeedForward(const LineParams& p, LineState& s, float previous, float slewe
 
   // 4. Feed-forward through the static correction (the nominal scaling without one), plus the PI
   // trim where a sensor reads.
-  float command = p.correction_count >= 2 ? line_step::FeedForward(p, s, previous, slewed) : slewed;
+  // A shaped step's overdrive rides on the target's corrected command (the correction's points
+  // need not reach beyond the target).
+  float command = p.correction_count >= 2
+                      ? line_step::FeedForward(p, s, previous, slewed) + (wanted - slewed)
+                      : wanted;
   float integrator = s.integrator_pa;
   if (reading.valid) {
     const float error = s.reference_pa - reading.pa;
-    const float effective = Abs(error) <= p.dead_band_pa ? 0.0f : error;
+    // Held through a shaped step: the outlet lags an overdriven reference by the flow it passes,
+    // which is no static error for the trim to learn.
+    const float effective = Abs(error) <= p.dead_band_pa || s.trim_hold > 0 ? 0.0f : error;
     integrator += p.ki_dt * effective;
     float trim = p.kp * effective + integrator;
     // Back-calculation at the authority clamp: the integrator gives up what the clamp cut.
@@ -82,7 +118,9 @@ float FeedForward(const LineParams& p, LineState& s, float previous, float slewe
   // 5. Final clamp to the line's limits, with back-calculation into the integrator.
   if (command < p.limit_min_pa || command > p.limit_max_pa) {
     const float limit = command < p.limit_min_pa ? p.limit_min_pa : p.limit_max_pa;
-    integrator = Clamp(integrator + (limit - command), -p.authority_pa, p.authority_pa);
+    // A shaped step's overdrive meeting the limit is no reason for the trim to unlearn.
+    if (s.trim_hold == 0)
+      integrator = Clamp(integrator + (limit - command), -p.authority_pa, p.authority_pa);
     command = limit;
     status |= ls::kSaturated;
   }

@@ -80,12 +80,13 @@ inline constexpr uint8_t kSaturated = 1u << 3;    ///< output clamped to the lin
 inline constexpr uint8_t kOpenLoop = 1u << 4;     ///< no sensor, or below regulator minimum
 inline constexpr uint8_t kRaw = 1u << 5;          ///< finger in raw mode
 inline constexpr uint8_t kSensorFault = 1u << 6;  ///< implausible reading
+inline constexpr uint8_t kShaping = 1u << 7;      ///< a shaped step drives beyond the target
 }  // namespace line_status
 
 /// The line status bits' names, bit 0 first: hashed into the catalog (they give the bits meaning).
 inline constexpr const char* const kLineStatusNames[] = {
-    "safe", "slewing", "trim_clamped", "saturated", "open_loop", "raw", "sensor_fault"};
-static_assert(sizeof(kLineStatusNames) / sizeof(kLineStatusNames[0]) == 7 &&
-              line_status::kSensorFault == 1u << 6);
+    "safe", "slewing", "trim_clamped", "saturated", "open_loop", "raw", "sensor_fault", "shaping"};
+static_assert(sizeof(kLineStatusNames) / sizeof(kLineStatusNames[0]) == 8 &&
+              line_status::kShaping == 1u << 7);
 
 }  // namespace palpa::protocol

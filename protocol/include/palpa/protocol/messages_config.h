@@ -33,7 +33,7 @@ struct CorrectionPoint {
 struct ConfigureLine {
   static constexpr MessageInfo kInfo{
       MessageType::kConfigureLine, "ConfigureLine", Sender::kHost, Delivery::kReliable,
-      "scaling, limits, slew, safe value, sensor, PI trim, correction"};
+      "scaling, limits, slew, safe value, sensor, PI trim, step shaping, correction"};
   uint8_t line = 0;
   LineKind kind = LineKind::kPressure;
   uint8_t dac_bits = 12;
@@ -57,6 +57,11 @@ struct ConfigureLine {
   int32_t trim_dead_band_pa = 0;
   uint32_t model_tau_us = 0;        ///< regulator-model lag
   uint32_t model_dead_time_us = 0;  ///< regulator-model dead time
+  /// The chamber's response to the regulator's command, a lag identified by calibration; 0: not
+  /// known, and steps are not shaped.
+  uint32_t chamber_tau_us = 0;
+  /// How far beyond its target a shaped step may drive the regulator; 0: steps are not shaped.
+  int32_t overdrive_pa = 0;
   uint8_t correction_count = 0;
   std::array<CorrectionPoint, kMaxCorrectionPoints> correction{};
   template <class V, class M>
@@ -84,6 +89,8 @@ struct ConfigureLine {
     v.Field("trim_dead_band_pa", m.trim_dead_band_pa, 0, 5000);
     v.Field("model_tau_us", m.model_tau_us, 0u, 10000000u);
     v.Field("model_dead_time_us", m.model_dead_time_us, 0u, 1000000u);
+    v.Field("chamber_tau_us", m.chamber_tau_us, 0u, 10000000u);
+    v.Field("overdrive_pa", m.overdrive_pa, 0, 100000);
     v.Array("correction", m.correction, m.correction_count);
   }
 };

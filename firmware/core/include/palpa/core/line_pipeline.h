@@ -1,5 +1,5 @@
-// One regulated line per tick (2-DOF): slew → feed-forward through the static correction → PI
-// trim against the regulator-model reference → final clamp → DAC counts. Pure: no I/O.
+// One regulated line per tick (2-DOF): slew → step shaping → feed-forward through the static
+// correction → PI trim against the regulator-model reference → final clamp → DAC counts. Pure.
 #pragma once
 
 #include <array>
@@ -37,6 +37,13 @@ struct LineParams {
   /// The regulator model's dead time in ticks, plus one: the delay line holds this tick's setpoint
   /// too.
   uint8_t delay_length = 1;
+  /// Step shaping, on when the chamber's lag is known and an overdrive allowed: the chamber
+  /// model's lag per tick and its inverse, how far beyond the target the command may go, and how
+  /// many ticks the trim holds after the command last left the target (dead time + settling).
+  bool shaping = false;
+  float chamber_alpha = 1, chamber_gain = 1;
+  float overdrive_pa = 0;
+  uint16_t shape_hold_ticks = 0;
   uint8_t correction_count = 0;
   std::array<float, protocol::kMaxCorrectionPoints> correction_command{};
   std::array<float, protocol::kMaxCorrectionPoints> correction_rising{};
@@ -52,6 +59,8 @@ struct LineState {
   /// Slewed setpoints of the last delay_length ticks; the next one goes to delay_index.
   std::array<float, kMaxDeadTicks> delay{};
   uint8_t delay_index = 0;
+  float chamber_pa = 0;    ///< shaping: where the chamber model says the chamber is (no dead time)
+  uint16_t trim_hold = 0;  ///< shaping: ticks left before the trim acts again
   bool rising = true;  ///< direction for the correction branch, kept while steady (lines with one)
 };
 

@@ -1,0 +1,254 @@
+// Shaped steps in the line pipeline: off until the chamber model is known, beyond the target only
+// as far as the bounds allow, a bumpless handover, the reference following what was commanded,
+// the trim held through the step, and fast target streams against a misidentified chamber that
+// stay bounded and stable, with the supervisor's slow monitors quiet throughout.
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <random>
+
+#include "CppUTest/TestHarness.h"
+#include "palpa/core/line_pipeline.h"
+#include "palpa/core/supervisor.h"
+
+namespace pc = palpa::core;
+namespace pp = palpa::protocol;
+namespace ls = pp::line_status;
+
+namespace {
+
+pp::ConfigureLine ShapedLine(uint32_t chamber_tau_us = 20000, int32_t overdrive_pa = 30000) {
+  pp::ConfigureLine c{};
+  c.kind = pp::LineKind::kPressure;
+  c.dac_bits = 12;
+  c.command_min_pa = 0;
+  c.command_max_pa = c.limit_max_pa = 100000;
+  c.regulator_min_pa = 1000;
+  c.sensor = pp::SensorKind::kAnalog;
+  c.trim_kp = 0.1f;
+  c.trim_ki_per_s = 1.0f;
+  c.trim_authority_pa = 5000;
+  c.trim_dead_band_pa = 100;
+  c.model_tau_us = 20000;
+  c.model_dead_time_us = 5000;
+  c.chamber_tau_us = chamber_tau_us;
+  c.overdrive_pa = overdrive_pa;
+  return c;
+}
+
+/// A regulator (dead time, pilot lag, outlet moving at most `rate` Pa a tick: its valve's flow)
+/// and a chamber lagging the outlet; the sensor reads the outlet, as on the board.
+struct Air {
+  std::deque<float> pipe;
+  float pilot = 0, outlet = 0, chamber = 0, chamber_alpha, rate;
+  Air(int dead_ticks, float chamber_tau_s, float rate_pa_per_tick = 1e9f)
+      : pipe(static_cast<size_t>(dead_ticks), 0.0f),
+        chamber_alpha(0.001f / (chamber_tau_s + 0.001f)),
+        rate(rate_pa_per_tick) {}
+  void Step(float command) {
+    pipe.push_back(command);
+    const float delayed = pipe.front();
+    pipe.pop_front();
+    pilot += (0.001f / 0.021f) * (delayed - pilot);
+    outlet += std::clamp(pilot - outlet, -rate, rate);
+    chamber += chamber_alpha * (outlet - chamber);
+  }
+};
+
+float Run(const pc::LineParams& p, pc::LineState& s, float setpoint, float measured,
+          pc::LineOutput& out) {
+  pc::StepLine(p, s, setpoint, pc::LineReading{true, 0, measured}, out);
+  return out.command_pa;
+}
+
+}  // namespace
+
+TEST_GROUP(StepShaping){};
+
+TEST(StepShaping, OffUntilTheChamberModelIsKnownAndAnOverdriveAllowed) {
+  for (const auto& c : {ShapedLine(0, 30000), ShapedLine(20000, 0)}) {
+    const pc::LineParams p = pc::MakeLineParams(c, 1000);
+    CHECK_FALSE(p.shaping);
+    pc::LineState s;
+    pc::ResetLineState(p, s, 10000);
+    pc::LineOutput out;
+    DOUBLES_EQUAL(30000, Run(p, s, 30000, 10000, out), 1e-3);
+    CHECK_FALSE(out.status & ls::kShaping);
+  }
+}
+
+TEST(StepShaping, DrivesBeyondTheTargetThenHandsOverWithoutABump) {
+  // The model is the regulator's own lag here, the chamber following the outlet at once.
+  const pc::LineParams p = pc::MakeLineParams(ShapedLine(20000), 1000);
+  CHECK(p.shaping);
+  pc::LineState s;
+  pc::ResetLineState(p, s, 10000);
+  pc::LineOutput out;
+  Air shaped(0, 0.0f), plain(0, 0.0f);
+  for (Air* a : {&shaped, &plain}) a->pilot = a->outlet = a->chamber = 10000;
+  // The first tick goes to the bound: the target plus the overdrive.
+  DOUBLES_EQUAL(60000, Run(p, s, 30000, 10000, out), 1e-3);
+  CHECK(out.status & ls::kShaping);
+  float previous = out.command_pa;
+  int handover = -1, shaped_at = -1, plain_at = -1;
+  float highest = 0;
+  for (int k = 0; k < 400; ++k) {
+    const float command = k == 0 ? previous : Run(p, s, 30000, shaped.outlet, out);
+    // Coming down from the overdrive, never below the target, then exactly the target for good.
+    CHECK(command <= previous + 1e-3f);
+    CHECK(command >= 30000 - 1e-3f);
+    if (handover < 0 && command == 30000.0f) handover = k;
+    if (handover >= 0) DOUBLES_EQUAL(30000, command, 1e-3);
+    previous = command;
+    shaped.Step(command);
+    plain.Step(30000);
+    highest = std::max(highest, shaped.chamber);
+    if (shaped_at < 0 && std::fabs(shaped.chamber - 30000) < 400) shaped_at = k;
+    if (plain_at < 0 && std::fabs(plain.chamber - 30000) < 400) plain_at = k;
+  }
+  CHECK(handover > 0 && handover < 100);
+  DOUBLES_EQUAL(30000, s.chamber_pa, 1e-3);
+  // Against an air path like the model: there in a quarter of the time, and no further.
+
+  CHECK(shaped_at < plain_at / 4);
+  CHECK(highest < 30000 + 100);
+}
+
+TEST(StepShaping, NeverBeyondTheOverdriveBoundOrTheLineLimitsAndSaysSo) {
+  pp::ConfigureLine c = ShapedLine(40000, 20000);
+  c.limit_max_pa = 45000;
+  const pc::LineParams p = pc::MakeLineParams(c, 1000);
+  pc::LineState s;
+  pc::ResetLineState(p, s, 0);
+  pc::LineOutput out;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> target(0, 60000);
+  bool saturated = false;
+  for (int k = 0; k < 20000; ++k) {
+    const float t = k % 37 == 0 ? target(rng) : s.slewed_pa;
+    const float command = Run(p, s, t, 0, out);
+    const float goal = std::min(t, 45000.0f);
+    CHECK(command <= 45000.0f + 1e-3f);
+    CHECK(command >= 0.0f);
+    // The overdrive's bound, and the trim's authority on top of it.
+    CHECK(command <= goal + 25000 + 1e-3f && command >= goal - 25000 - 1e-3f);
+    saturated = saturated || (out.status & ls::kSaturated) != 0;
+  }
+  CHECK(saturated);  // some overdrive met the 45 kPa limit
+}
+
+TEST(StepShaping, TheReferenceFollowsWhatWasCommanded) {
+  const pc::LineParams shaped = pc::MakeLineParams(ShapedLine(), 1000);
+  const pc::LineParams plain = pc::MakeLineParams(ShapedLine(0), 1000);
+  pc::LineState a, b;
+  pc::ResetLineState(shaped, a, 10000);
+  pc::ResetLineState(plain, b, 10000);
+  pc::LineOutput out;
+  for (int k = 0; k < 15; ++k) {
+    Run(shaped, a, 30000, 10000, out);
+    Run(plain, b, 30000, 10000, out);
+  }
+  // The regulator model saw the overdrive: ahead of where the target alone would have taken it.
+  CHECK(a.reference_pa > b.reference_pa + 3000);
+}
+
+TEST(StepShaping, TheTrimHoldsThroughTheStepAndResumesAfter) {
+  pp::ConfigureLine c = ShapedLine();
+  c.limit_max_pa = 45000;  // the overdrive meets the limit, and the final clamp with it
+  const pc::LineParams p = pc::MakeLineParams(c, 1000);
+  pc::LineState s;
+  pc::ResetLineState(p, s, 10000);
+  s.integrator_pa = 1200;  // what the trim had learnt of the regulator's static error
+  pc::LineOutput out;
+  // The outlet lags far behind an overdriven reference, then the step is held. Until the hold
+  // ends the integrator keeps what it learnt; the final clamp does not unwind it either.
+  int k = 0;
+  for (; s.trim_hold > 0 || k == 0; ++k) {
+    Run(p, s, 30000, 10000, out);
+    if (s.trim_hold > 0) DOUBLES_EQUAL(1200, s.integrator_pa, 1e-3);
+  }
+  CHECK(k >= p.shape_hold_ticks);
+  for (int j = 0; j < 10; ++j) Run(p, s, 30000, 10000, out);
+  CHECK(s.integrator_pa > 1200);  // the trim integrates a real shortfall again
+}
+
+TEST(StepShaping, FastTargetStreamsStayBoundedAgainstAMisidentifiedChamber) {
+  for (float truth : {0.5f, 2.0f}) {  // the real chamber's lag × the model's
+    const pc::LineParams p = pc::MakeLineParams(ShapedLine(20000, 30000), 1000);
+    pc::LineState s;
+    pc::ResetLineState(p, s, 0);
+    pc::LineOutput out;
+    Air air(10, 0.02f * truth, 150.0f);  // twice the modelled dead time, a flow limit
+    // A square wave faster than the chamber follows, then one it can follow: the overshoot of
+    // each period of the slow wave does not grow, and every command stays within its bounds.
+    float overshoot[6] = {};
+    for (int k = 0; k < 12000; ++k) {
+      const bool fast = k < 6000;
+      const int period = fast ? 30 : 1000;
+      const float target = (k / (period / 2)) % 2 == 0 ? 60000.0f : 20000.0f;
+      const float command = Run(p, s, target, air.outlet, out);
+      CHECK(command >= 0 && command <= 90000.0f + 1e-3f);
+      CHECK(std::fabs(s.integrator_pa) <= 5000.0f + 1e-3f);
+      air.Step(command);
+      if (!fast && target > 50000) {
+        float& o = overshoot[(k - 6000) / 1000];
+        o = std::max(o, air.chamber - 60000);
+      }
+    }
+    // (It changes from period to period only as the trim learns between steps: by less each time.)
+    for (int i = 3; i < 6; ++i) {
+      CHECK(overshoot[i] - overshoot[i - 1] <= 0.6f * (overshoot[i - 1] - overshoot[i - 2]) + 50);
+    }
+    CHECK(overshoot[5] < 2000);
+    // Held at one target at the end, the chamber settles: no limit cycle.
+    float low = 1e9f, high = -1e9f;
+    for (int k = 0; k < 3000; ++k) {
+      air.Step(Run(p, s, 40000, air.outlet, out));
+      if (k > 2000) {
+        low = std::min(low, air.outlet);
+        high = std::max(high, air.outlet);
+      }
+    }
+    CHECK(high - low < 200);
+    DOUBLES_EQUAL(40000, air.chamber, 500);
+  }
+}
+
+TEST(StepShaping, TheSlowMonitorsStayQuietThroughShapedSteps) {
+  const pc::LineParams p = pc::MakeLineParams(ShapedLine(20000, 30000), 1000);
+  pc::LineState s;
+  pc::ResetLineState(p, s, 0);
+  pc::LineOutput out;
+  pc::SupervisorSettings settings;
+  settings.host_timeout_us = 100000;
+  settings.sensor_window_us = 3000000;
+  settings.leak_timeout_us = 5000000;
+  settings.pump_max_run_us = 60000000;
+  settings.tolerance_pa = 5000;
+  pc::SupervisorState state;
+  pc::SupervisorInput in;
+  in.session_open = in.actuating = true;
+  Air air(5, 0.04f, 100.0f);  // a chamber slower than the model: the outlet leads it
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> target(0, 100000);
+  float t = 0;
+  for (int k = 0; k < 30000; ++k) {
+    if (k % 150 == 0) t = target(rng);
+    const float command = Run(p, s, t, air.outlet, out);
+    air.Step(command);
+    pc::LineObservation& o = in.lines[0];
+    o.configured = o.has_sensor = o.reading.valid = true;
+    o.closed_loop = (out.status & ls::kOpenLoop) == 0;
+    o.alarm_below_pa = -5000;
+    o.alarm_above_pa = 105000;
+    o.reading.pa = air.outlet;
+    o.raw_counts = static_cast<uint32_t>(air.outlet);
+    o.reference_pa = s.reference_pa;
+    o.setpoint_pa = s.slewed_pa;
+    in.now_us = static_cast<uint64_t>(k) * 1000;
+    in.last_host_frame_us = in.now_us;
+    in.readings = {};
+    pc::NoteReading(in.readings, 0, o.reading, o);
+    LONGS_EQUAL(0, pc::Supervise(settings, state, in));
+  }
+}
