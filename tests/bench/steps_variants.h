@@ -34,6 +34,9 @@ struct Variant {
   bool named = true;  ///< also run the named transitions (not only the random steps)
   bool trim = true;
   float dead_time_scale = 1;  ///< the plant's regulators' dead time
+  uint32_t slew_pa_per_s = 200000;
+  uint32_t chamber_tau_us = 0;  ///< the chamber model the board shapes steps with; 0: none
+  int32_t overdrive_pa = 0;
 
   std::unique_ptr<RawLineSession> Open(uint32_t seed) const {
     sim::PlantOptions plant;
@@ -41,15 +44,25 @@ struct Variant {
     plant.seed = seed;
     plant.unit = seed;
     plant.dead_time_scale = dead_time_scale;
-    const bool with_trim = trim;
-    return std::make_unique<RawLineSession>(plant, [with_trim](protocol::ConfigureLine& c) {
-      if (!with_trim) c.trim_kp = c.trim_ki_per_s = 0;
+    const Variant v = *this;
+    return std::make_unique<RawLineSession>(plant, [v](protocol::ConfigureLine& c) {
+      if (!v.trim) c.trim_kp = c.trim_ki_per_s = 0;
+      c.slew_pa_per_s = v.slew_pa_per_s;
+      c.chamber_tau_us = v.chamber_tau_us;
+      c.overdrive_pa = v.overdrive_pa;
     });
   }
 };
 
 inline std::vector<Variant> Variants() {
-  return {{"feed-forward only", true, false}, {"feed-forward + trim", true, true}};
+  // name, named transitions too, trim, plant dead time ×, slew, chamber lag (µs), overdrive (Pa)
+  return {{"feed-forward only", true, false},
+          {"feed-forward + trim (today)", true, true},
+          {"feed-forward + trim, no slew", false, true, 1, 0},
+          {"+ shaping (chamber lag 20 ms)", true, true, 1, 0, 20000, 30000},
+          {"shaping, model ×0.5", false, true, 1, 0, 10000, 30000},
+          {"shaping, model ×2", false, true, 1, 0, 40000, 30000},
+          {"shaping, dead time doubled", false, true, 2, 0, 20000, 30000}};
 }
 
 struct ChartPoint {
