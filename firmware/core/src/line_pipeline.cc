@@ -15,6 +15,15 @@ float line_step::FeedForward(const LineParams& p, LineState& s, float previous, 
   if (grown > 0) s.rising = true;
   if (grown < 0) s.rising = false;
   const float* produced = s.rising ? p.correction_rising.data() : p.correction_falling.data();
+  // Beyond the measured points (a correction covers 10-90 % of the range) the nearest end's
+  // offset holds: the end's command itself would ask a 3 kPa target for what made 10 kPa.
+  const uint8_t last = static_cast<uint8_t>(p.correction_count - 1);
+  const bool up = produced[last] > produced[0];
+  const float low = up ? produced[0] : produced[last], high = up ? produced[last] : produced[0];
+  if (slewed < low || slewed > high) {
+    const uint8_t end = (slewed < low) == up ? 0 : last;
+    return slewed + (p.correction_command[end] - produced[end]);
+  }
   return Interpolate(produced, p.correction_command.data(), p.correction_count, slewed);
 }
 

@@ -80,6 +80,31 @@ TEST(LinePipeline, FeedForwardInvertsTheRisingAndFallingCorrection) {
   DOUBLES_EQUAL((40000 - 1000) / 0.99, out.command_pa, 1);
 }
 
+TEST(LinePipeline, BeyondTheCorrectionsPointsTheNearestEndsOffsetHolds) {
+  // Measured over 10-90 kPa: the regulator makes 0.5 kPa less than commanded at the bottom and
+  // 1 kPa less at the top.
+  for (const bool vacuum : {false, true}) {
+    auto c = PressureLine();
+    c.sensor = pp::SensorKind::kNone;
+    const int32_t sign = vacuum ? -1 : 1;
+    if (vacuum) {
+      c.kind = pp::LineKind::kVacuum;
+      c.command_min_pa = 0;
+      c.command_max_pa = c.limit_min_pa = -100000;
+      c.limit_max_pa = 0;
+    }
+    c.correction_count = 2;
+    c.correction[0] = {sign * 10000, sign * 9500, sign * 9500};
+    c.correction[1] = {sign * 90000, sign * 89000, sign * 89000};
+    const pc::LineParams p = pc::MakeLineParams(c, 1000);
+    pc::LineState s;
+    pc::ResetLineState(p, s, 0);
+    DOUBLES_EQUAL(sign * 3500, Step(p, s, sign * 3000).command_pa, 1);  // not the 10 kPa point's
+    DOUBLES_EQUAL(sign * 96000, Step(p, s, sign * 95000).command_pa, 1);
+    DOUBLES_EQUAL(sign * (10000 + 40250 * 80000.0 / 79500), Step(p, s, sign * 49750).command_pa, 1);
+  }
+}
+
 TEST(LinePipeline, WithoutCorrectionTheCommandIsTheSetpoint) {
   auto c = PressureLine();
   c.sensor = pp::SensorKind::kNone;
