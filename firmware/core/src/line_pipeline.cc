@@ -10,8 +10,9 @@
 namespace palpa::core {
 namespace ls = protocol::line_status;
 
-float line_step::FeedForward(const LineParams& p, LineState& s, float previous, float slewed) {
-  const float grown = Abs(slewed) - Abs(previous);
+float line_step::FeedForward(const LineParams& p, LineState& s, float previous, float now,
+                             float slewed) {
+  const float grown = Abs(now) - Abs(previous);
   if (grown > 0) s.rising = true;
   if (grown < 0) s.rising = false;
   const float* produced = s.rising ? p.correction_rising.data() : p.correction_falling.data();
@@ -75,8 +76,12 @@ LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us)
   // Step shaping: a model of the chamber's lag, inverted (line_step.h).
   const float chamber_tau = static_cast<float>(line.chamber_tau_us) * 1e-6f;
   p.shaping = line.chamber_tau_us > 0 && line.overdrive_pa > 0;
+  p.regulator_gain = 1.0f / p.model_alpha;
   p.chamber_alpha = p.shaping ? dt / (chamber_tau + dt) : 1.0f;
-  p.chamber_gain = 1.0f / p.chamber_alpha;
+  // A chamber slower than the regulator reaches the target without overshoot when the regulator
+  // leads it by this much per Pa it is short (two lags in series: the slow mode then vanishes).
+  const float lead = (chamber_tau - tau) / (tau + dt);
+  p.chamber_lead = p.shaping && lead > 0 ? lead : 0.0f;
   p.overdrive_pa = p.shaping ? static_cast<float>(line.overdrive_pa) : 0.0f;
   // The regulator model's dead time and three lags of it and the chamber: the reference and the
   // sensor settle on the target again before the trim compares them.
@@ -103,6 +108,8 @@ void ResetLineState(const LineParams& p, LineState& s, float pa) {
   // Only the line's own delay slots are read; the safe path runs this every tick.
   for (uint8_t i = 0; i < p.delay_length; ++i) s.delay[i] = pa;
   s.delay_index = 0;
+  s.wanted_pa = pa;
+  s.regulator_pa = pa;
   s.chamber_pa = pa;
   s.trim_hold = 0;
   s.rising = true;

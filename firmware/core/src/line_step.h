@@ -15,21 +15,28 @@ namespace line_step {
 }
 
 /// Command that makes the regulator produce `slewed`, from its measured static curve: the rising
-/// branch while the setpoint's magnitude grows, the falling one while it shrinks (kept while
-/// steady). Only lines with a correction track the direction; it is read nowhere else.
-float FeedForward(const LineParams& p, LineState& s, float previous, float slewed);
+/// branch while the command's magnitude grows (from `previous` to `now`: the slewed setpoint, or
+/// a shaped step's command, which comes back to the target from beyond it), the falling one
+/// while it shrinks (kept while steady). Only lines with a correction track the direction; it is
+/// read nowhere else.
+float FeedForward(const LineParams& p, LineState& s, float previous, float now, float slewed);
 
-/// A shaped step's command: what brings the chamber model onto `target` in one tick, held within
-/// the overdrive beyond the target and the line's limits. The model then moves by that command, so
-/// it reaches the target as fast as the bound allows and stays there: once there the command is
-/// the target itself, and the steady-state loop takes over without a bump. The model is
-/// open-loop, so nothing the sensor reads can wind it up or make it ring.
+/// A shaped step's command: what brings the regulator model in one tick to where it should be —
+/// the target, or beyond it by the chamber's lead while a slower chamber is short of it — held
+/// within the overdrive beyond the target and the line's limits. The models then move by that
+/// command, so the chamber model closes in on the target as fast as the bound allows without
+/// passing it; within the trim's dead band the command is the target itself, and the steady-state
+/// loop takes over without a bump. The models are open-loop, so nothing the sensor reads can
+/// wind them up or make them ring.
 [[gnu::always_inline]] inline float Shape(const LineParams& p, LineState& s, float target) {
-  const float model = s.chamber_pa;
-  float command = model + (target - model) * p.chamber_gain;
+  const float regulator = s.regulator_pa, chamber = s.chamber_pa;
+  const float wanted = target + p.chamber_lead * (target - chamber);
+  float command = regulator + (wanted - regulator) * p.regulator_gain;
   command = Clamp(command, target - p.overdrive_pa, target + p.overdrive_pa);
   command = Clamp(command, p.limit_min_pa, p.limit_max_pa);
-  s.chamber_pa = model + p.chamber_alpha * (command - model);
+  if (Abs(command - target) <= p.dead_band_pa) command = target;
+  s.regulator_pa = regulator + p.model_alpha * (command - regulator);
+  s.chamber_pa = chamber + p.chamber_alpha * (s.regulator_pa - chamber);
   return command;
 }
 
@@ -56,6 +63,7 @@ float FeedForward(const LineParams& p, LineState& s, float previous, float slewe
   // 1b. Step shaping: beyond the target while the chamber model lags it; the trim holds from then
   // until the reference and the sensor have settled on the target again.
   float wanted = slewed;
+  const float previous_wanted = s.wanted_pa;
   if (p.shaping) {
     wanted = line_step::Shape(p, s, slewed);
     if (wanted != slewed) {
@@ -67,6 +75,8 @@ float FeedForward(const LineParams& p, LineState& s, float previous, float slewe
       --s.trim_hold;
     }
   }
+
+  s.wanted_pa = wanted;
 
   // 2. Regulator model (dead time + lag) of what the regulator is commanded: the reference the
   // trim compares the sensor with. The slot after this tick's holds the command of the dead time
@@ -89,9 +99,10 @@ float FeedForward(const LineParams& p, LineState& s, float previous, float slewe
   // trim where a sensor reads.
   // A shaped step's overdrive rides on the target's corrected command (the correction's points
   // need not reach beyond the target).
-  float command = p.correction_count >= 2
-                      ? line_step::FeedForward(p, s, previous, slewed) + (wanted - slewed)
-                      : wanted;
+  float command =
+      p.correction_count >= 2
+          ? line_step::FeedForward(p, s, previous_wanted, wanted, slewed) + (wanted - slewed)
+          : wanted;
   float integrator = s.integrator_pa;
   if (reading.valid) {
     const float error = s.reference_pa - reading.pa;

@@ -37,11 +37,13 @@ struct LineParams {
   /// The regulator model's dead time in ticks, plus one: the delay line holds this tick's setpoint
   /// too.
   uint8_t delay_length = 1;
-  /// Step shaping, on when the chamber's lag is known and an overdrive allowed: the chamber
-  /// model's lag per tick and its inverse, how far beyond the target the command may go, and how
-  /// many ticks the trim holds after the command last left the target (dead time + settling).
+  /// Step shaping, on when the chamber's lag is known and an overdrive allowed: the regulator
+  /// model's lag inverted, the chamber model's lag per tick, how far beyond the target the
+  /// regulator is led while a chamber slower than it closes in (per Pa the chamber is short), how
+  /// far beyond the target the command may go, and how many ticks the trim holds after the command
+  /// last left the target (dead time + settling).
   bool shaping = false;
-  float chamber_alpha = 1, chamber_gain = 1;
+  float regulator_gain = 1, chamber_alpha = 1, chamber_lead = 0;
   float overdrive_pa = 0;
   uint16_t shape_hold_ticks = 0;
   uint8_t correction_count = 0;
@@ -59,9 +61,12 @@ struct LineState {
   /// Slewed setpoints of the last delay_length ticks; the next one goes to delay_index.
   std::array<float, kMaxDeadTicks> delay{};
   uint8_t delay_index = 0;
-  float chamber_pa = 0;    ///< shaping: where the chamber model says the chamber is (no dead time)
+  /// Shaping: where the models of the regulator's output and of the chamber say they are, the
+  /// dead time left out (the regulator sees the commands in the same order, only later).
+  float regulator_pa = 0, chamber_pa = 0;
   uint16_t trim_hold = 0;  ///< shaping: ticks left before the trim acts again
-  bool rising = true;  ///< direction for the correction branch, kept while steady (lines with one)
+  float wanted_pa = 0;  ///< what the regulator was last asked for (the slewed or shaped setpoint)
+  bool rising = true;   ///< direction for the correction branch, kept while steady (lines with one)
 };
 
 /// Resets the state to hold `pa` steadily (after configuration, or leaving the safe state).
