@@ -53,6 +53,19 @@ RigStatus DeviceBoardPort::LineRangeKpa(uint8_t line, double* kpa) {
 }
 
 RigStatus DeviceBoardPort::SetTrim(uint8_t line, bool on) {
+  return Reconfigure(line, [on](protocol::ConfigureLine& c) {
+    if (!on) c.trim_kp = c.trim_ki_per_s = 0;
+  });
+}
+
+RigStatus DeviceBoardPort::SetBareLine(uint8_t line, bool bare) {
+  return Reconfigure(line, [bare](protocol::ConfigureLine& c) {
+    if (bare) MakeBare(c);
+  });
+}
+
+RigStatus DeviceBoardPort::Reconfigure(uint8_t line,
+                                       const std::function<void(protocol::ConfigureLine&)>& edit) {
   if (!known_[line]) {
     const auto read = device_.ReadLine(line);
     if (!read.ok()) return read.outcome();
@@ -60,7 +73,7 @@ RigStatus DeviceBoardPort::SetTrim(uint8_t line, bool on) {
     known_[line] = true;
   }
   protocol::ConfigureLine c = configured_[line];
-  if (!on) c.trim_kp = c.trim_ki_per_s = 0;
+  edit(c);
   const host::Outcome o = device_.ConfigureLine(c);
   return o.ok() ? RigStatus{} : o;
 }

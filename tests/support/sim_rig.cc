@@ -123,6 +123,16 @@ RigStatus SimRig::SetTrim(uint8_t line, bool on) {
              : RigStatus::Fail(pp::Status::kBadValue, "the board refused the trim change");
 }
 
+RigStatus SimRig::SetBareLine(uint8_t line, bool bare) {
+  pp::ConfigureLine c = configured_[line];
+  if (bare) calibration::MakeBare(c);
+  board_.SendConfig(c);
+  board_.Run(2);
+  return board_.config().lines[line].slew_pa_per_s == c.slew_pa_per_s
+             ? RigStatus{}
+             : RigStatus::Fail(pp::Status::kBadValue, "the board refused the line's change");
+}
+
 RigStatus SimRig::Faults(uint32_t* bitmap) {
   *bitmap = board_.sim().board().latched_faults();
   return {};
@@ -135,6 +145,26 @@ RigStatus SimRig::VentAll() {
   for (uint8_t i = 0; i < board_.config().line_count; ++i) sp.entries[sp.entry_count++] = {i, 0};
   board_.Send(sp);
   return {};
+}
+
+std::vector<std::pair<double, double>> TrueChamberStep(const SimRigOptions& options,
+                                                       double from_kpa, double to_kpa) {
+  SimRig sim(options);
+  const uint8_t finger = options.finger, line = sim.driven_line(finger);
+  const bool jamming = sim.jamming(finger);
+  sim.SetBareLine(line, true);
+  auto drive = [&](double kpa) {
+    jamming ? sim.SetDrive(finger, 20, -kpa) : sim.SetDrive(finger, kpa, 0);
+  };
+  drive(from_kpa);
+  sim.Wait(1.0);
+  std::vector<std::pair<double, double>> samples;
+  for (int i = -100; i < 600; ++i) {
+    if (i == 0) drive(to_kpa);
+    samples.push_back({i * 0.001, sim.board().sim().plant().regulator(line).chamber_pa()});
+    sim.Wait(0.001);
+  }
+  return samples;
 }
 
 }  // namespace palpa::testing

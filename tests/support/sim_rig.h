@@ -5,6 +5,8 @@
 
 #include <memory>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include "in_process_board.h"
 #include "palpa/calibration/rig.h"
@@ -69,6 +71,7 @@ class SimRig final : public calibration::RigTime,
   calibration::RigStatus MeasuredKpa(uint8_t line, double* kpa) override;
   calibration::RigStatus LineRangeKpa(uint8_t line, double* kpa) override;
   calibration::RigStatus SetTrim(uint8_t line, bool on) override;
+  calibration::RigStatus SetBareLine(uint8_t line, bool bare) override;
   calibration::RigStatus Faults(uint32_t* bitmap) override;
   calibration::RigStatus VentAll() override;
 
@@ -80,5 +83,11 @@ class SimRig final : public calibration::RigTime,
   std::unique_ptr<sim::RigModel> model_;
   std::array<protocol::ConfigureLine, protocol::kMaxLines> configured_{};  ///< trims to restore
 };
+
+/// The true chamber pressure (Pa) of a finger's driven line through a step of the bare line from
+/// `from_kpa` to `to_kpa` (magnitudes; a jamming finger's bias at 20 kPa), on a fresh rig of
+/// `options`' unit: (s from the command, Pa), 0.1 s before it to 0.6 s after, every millisecond.
+std::vector<std::pair<double, double>> TrueChamberStep(const SimRigOptions& options,
+                                                       double from_kpa, double to_kpa);
 
 }  // namespace palpa::testing

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <functional>
 #include <mutex>
 
 #include "palpa/calibration/rig.h"
@@ -24,6 +25,7 @@ class DeviceBoardPort final : public BoardPort {
   RigStatus MeasuredKpa(uint8_t line, double* kpa) override;
   RigStatus LineRangeKpa(uint8_t line, double* kpa) override;
   RigStatus SetTrim(uint8_t line, bool on) override;
+  RigStatus SetBareLine(uint8_t line, bool bare) override;
   RigStatus Faults(uint32_t* bitmap) override;
   RigStatus VentAll() override;
 
@@ -36,6 +38,8 @@ class DeviceBoardPort final : public BoardPort {
   double last_frame_s_ = 0;
   std::array<protocol::ConfigureLine, protocol::kMaxLines> configured_{};
   std::array<bool, protocol::kMaxLines> known_{};
+  /// The line's configuration as read at first use, edited, sent.
+  RigStatus Reconfigure(uint8_t line, const std::function<void(protocol::ConfigureLine&)>& edit);
 };
 
 /// The board's own clock, read from its telemetry: a wait lasts as long in board time as asked,

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "palpa/host/outcome.h"
+#include "palpa/protocol/messages_config.h"
 
 namespace palpa::calibration {
 
@@ -53,7 +54,7 @@ class ForceSensor {
 };
 
 /// What procedures need of the board: raw drives on a finger's lines, the line's measured
-/// pressure, the trim on or off, faults, and venting everything.
+/// pressure, the trim on or off, a bare line for step responses, faults, and venting everything.
 class BoardPort {
  public:
   virtual ~BoardPort() = default;
@@ -68,9 +69,20 @@ class BoardPort {
   virtual RigStatus LineRangeKpa(uint8_t line, double* kpa) = 0;
   /// Turns the line's PI trim off (feed-forward only) or back to its configured gains.
   virtual RigStatus SetTrim(uint8_t line, bool on) = 0;
+  /// A bare line for a step response (`bare`): the trim, the slew limit and step shaping off, so
+  /// a new drive reaches the regulator at once and unshaped; or the line's configuration back.
+  virtual RigStatus SetBareLine(uint8_t line, bool bare) = 0;
   virtual RigStatus Faults(uint32_t* bitmap) = 0;
   virtual RigStatus VentAll() = 0;
 };
+
+/// A line as a step response needs it: no trim, no slew limit, no step shaping.
+inline void MakeBare(protocol::ConfigureLine& c) {
+  c.trim_kp = c.trim_ki_per_s = 0;
+  c.slew_pa_per_s = 0;
+  c.chamber_tau_us = 0;
+  c.overdrive_pa = 0;
+}
 
 /// Limits a run must keep; crossing one aborts it and leaves everything safe.
 struct SafetyLimits {

@@ -1,0 +1,55 @@
+// A line's chamber dynamics, identified on the rig: the indenter held against the finger (a fixed
+// depth into the film, or a fixed press into the jamming material), the force read every
+// millisecond through a step of the bare line's drive, and a dead time and the chamber's lag behind
+// the regulator's own fitted to it. The board shapes its steps with that lag
+// (ConfigureLine::chamber_tau_us).
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include "palpa/calibration/procedures.h"
+#include "palpa/calibration/rig.h"
+
+namespace palpa::calibration {
+
+/// Dead time, the regulator's lag (given) and the chamber's lag behind it (fitted), in series, to a
+/// step response normalised from 0 to 1.
+struct ChamberFit {
+  double dead_time_s = 0;
+  double regulator_tau_s = 0;
+  double tau_s = 0;  ///< the chamber's
+  double rms = 0;    ///< of the normalised response's residuals (0 … 1: a fraction of the step)
+  bool ok = false;
+};
+
+/// Fits (time from the command in s, reading) samples: the reading before the command is the
+/// step's start, the mean of its last 50 ms its end; `regulator_tau_s` is the line's regulator
+/// model (ConfigureLine::model_tau_us). Not ok when the step is lost in the noise.
+ChamberFit FitChamberStep(const std::vector<std::pair<double, double>>& samples,
+                          double regulator_tau_s, double noise = 0.0);
+
+/// What the fit predicts, 0 … 1 of the step, `t` seconds after the command.
+double ChamberResponse(const ChamberFit& fit, double t);
+
+struct ChamberStepOptions {
+  double from_kpa = 20, to_kpa = 40;  ///< magnitudes: a vacuum line's drives are negative
+  double depth_mm = 0.05;             ///< pneumatic: into the film at the start's surface
+  double press_mm = 1.0;              ///< jamming: into the material at the start's surface
+  double before_s = 0.1, after_s = 0.6;
+  double sample_s = 0.001;        ///< force readings 1 kHz
+  double regulator_tau_s = 0.02;  ///< the line's regulator model (model_tau_us)
+};
+
+struct ChamberStep {
+  ChamberFit fit;
+  std::vector<std::pair<double, double>> samples;  ///< (s from the command, N)
+};
+
+/// Holds the finger's driven line at `from`, finds its surface, presses in, steps the bare line to
+/// `to` and reads the force through the step; retracts, restores the line and leaves the finger
+/// vented. `zero_mm`: the vented surface (ZeroOnVentedSurface).
+RigStatus MeasureChamberStep(Rig& rig, uint8_t finger, double zero_mm, const ContactOptions& o,
+                             const ChamberStepOptions& options, ChamberStep* out);
+
+}  // namespace palpa::calibration

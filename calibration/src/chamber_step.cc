@@ -1,0 +1,106 @@
+// The chamber's step response on the rig and its dead time + lag fit.
+#include "palpa/calibration/chamber_step.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace palpa::calibration {
+using host::Status;
+
+double ChamberResponse(const ChamberFit& fit, double t) {
+  if (t <= fit.dead_time_s) return 0;
+  const double s = t - fit.dead_time_s, a = fit.regulator_tau_s, b = fit.tau_s;
+  if (a <= 0 || b <= 0) {  // one lag, or none
+    const double tau = a > 0 ? a : b;
+    return tau > 0 ? 1.0 - std::exp(-s / tau) : 1.0;
+  }
+  if (std::fabs(a - b) < 1e-6) return 1.0 - (1.0 + s / a) * std::exp(-s / a);
+  return 1.0 - (a * std::exp(-s / a) - b * std::exp(-s / b)) / (a - b);
+}
+
+ChamberFit FitChamberStep(const std::vector<std::pair<double, double>>& samples,
+                          double regulator_tau_s, double noise) {
+  ChamberFit best;
+  double start = 0, end = 0, last_t = 0;
+  int before = 0, tail = 0;
+  for (const auto& [t, v] : samples) last_t = std::max(last_t, t);
+  for (const auto& [t, v] : samples) {
+    if (t < 0) start += v, ++before;
+    if (t > last_t - 0.05) end += v, ++tail;
+  }
+  if (before == 0 || tail == 0) return best;
+  start /= before;
+  end /= tail;
+  const double span = end - start;
+  // A step the readings' noise could fake is no step to fit.
+  if (std::fabs(span) < std::max(10.0 * noise, 1e-12)) return best;
+  auto cost = [&](const ChamberFit& f) {
+    double sum = 0;
+    int n = 0;
+    for (const auto& [t, v] : samples) {
+      if (t < 0) continue;
+      const double e = (v - start) / span - ChamberResponse(f, t);
+      sum += e * e;
+      ++n;
+    }
+    return n > 0 ? std::sqrt(sum / n) : 1e9;
+  };
+  // A grid: dead time by 0.5 ms up to 50 ms; the chamber's lag none, or 0.5 ms to 2 s by 2 %.
+  best.rms = 1e9;
+  for (double dead = 0; dead <= 0.05; dead += 0.0005) {
+    for (double tau = 0; tau <= 2.0; tau = tau == 0 ? 0.0005 : tau * 1.02) {
+      const ChamberFit f{dead, regulator_tau_s, tau, 0, true};
+      const double c = cost(f);
+      if (c < best.rms) best = ChamberFit{dead, regulator_tau_s, tau, c, true};
+    }
+  }
+  return best;
+}
+
+RigStatus MeasureChamberStep(Rig& rig, uint8_t finger, double zero_mm, const ContactOptions& o,
+                             const ChamberStepOptions& options, ChamberStep* out) {
+  *out = ChamberStep{};
+  const bool jamming = rig.board.jamming(finger);
+  const uint8_t line = rig.board.driven_line(finger);
+  // A jamming finger's bias at its working value, the step on its vacuum.
+  auto drive = [&](double kpa) {
+    return jamming ? rig.board.SetDrive(finger, 20, -kpa) : rig.board.SetDrive(finger, kpa, 0);
+  };
+  RigStatus s = rig.board.SetBareLine(line, true);
+  if (!s.ok()) return AbortSafe(rig, s.status, "board: " + s.message);
+  s = drive(options.from_kpa);
+  if (s.ok()) rig.time.Wait(1.0);
+  double surface = 0;
+  if (s.ok()) s = FindSurface(rig, zero_mm, o, &surface);
+  if (!s.ok()) {
+    rig.board.SetBareLine(line, false);
+    return s;
+  }
+  const double into = jamming ? options.press_mm : options.depth_mm;
+  s = GuardedMove(rig, surface - into, jamming ? 0.5 : o.speed_mm_s);
+  if (s.ok()) rig.time.Wait(0.5);  // the contact settles (a granular press relaxes)
+  const int before = static_cast<int>(std::lround(options.before_s / options.sample_s));
+  const int after = static_cast<int>(std::lround(options.after_s / options.sample_s));
+  for (int i = -before; i < after && s.ok(); ++i) {
+    if (i == 0) s = drive(options.to_kpa);
+    double force = 0;
+    if (s.ok()) s = rig.force.Read(&force);
+    if (!s.ok()) break;
+    if (force > rig.limits.max_force_n) {
+      s = RigStatus::Fail(Status::kOutOfRange, "force above the rig's limit during the step");
+      break;
+    }
+    out->samples.push_back({i * options.sample_s, force});
+    rig.time.Wait(options.sample_s);
+  }
+  rig.board.SetBareLine(line, false);
+  if (!s.ok()) return AbortSafe(rig, s.status, "chamber step: " + s.message);
+  s = GuardedMove(rig, surface + o.approach_mm, o.fast_mm_s);
+  if (!s.ok()) return s;
+  out->fit = FitChamberStep(out->samples, options.regulator_tau_s, rig.force_noise_n);
+  if (!out->fit.ok)
+    return AbortSafe(rig, Status::kBadValue, "chamber step: the force did not follow the step");
+  return rig.board.SetDrive(finger, 0, 0);
+}
+
+}  // namespace palpa::calibration

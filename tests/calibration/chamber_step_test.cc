@@ -1,0 +1,75 @@
+// The chamber's step response on the in-process simulated rig: the fit recovers a known dead time
+// and lag, refuses a step lost in the noise, and on the rig follows what the true chamber pressure
+// did (the plant's truth, which the procedure never reads).
+#include <cmath>
+#include <random>
+#include <string>
+
+#include "palpa/calibration/chamber_step.h"
+#include "sim_rig.h"
+
+#include "CppUTest/TestHarness.h"
+
+namespace cal = palpa::calibration;
+namespace pt = palpa::testing;
+
+TEST_GROUP(ChamberStep){};
+
+TEST(ChamberStep, TheFitRecoversADeadTimeAndLagThroughNoise) {
+  std::mt19937 rng(4);
+  std::normal_distribution<double> noise(0, 0.002);
+  std::vector<std::pair<double, double>> samples;
+  for (int i = -100; i < 600; ++i) {
+    const double t = i * 0.001;
+    const double v = cal::ChamberResponse({0.007, 0.02, 0.045, 0, true}, t);
+    samples.push_back({t, 0.2 + 0.3 * v + noise(rng)});
+  }
+  const cal::ChamberFit f = cal::FitChamberStep(samples, 0.02, 0.002);
+  CHECK(f.ok);
+  DOUBLES_EQUAL(0.007, f.dead_time_s, 0.001);
+  DOUBLES_EQUAL(0.045, f.tau_s, 0.002);
+  CHECK(f.rms < 0.02);
+  // A step the size of the noise is refused.
+  for (auto& s : samples) s.second = 0.2 + 0.01 * (s.second - 0.2);
+  CHECK_FALSE(cal::FitChamberStep(samples, 0.02, 0.002).ok);
+}
+
+namespace {
+
+/// The fit of the true chamber pressure through the same step on the same unit: what the
+/// force-based fit should agree with.
+cal::ChamberFit TruthFit(uint8_t finger, uint32_t unit, double from_kpa, double to_kpa) {
+  return cal::FitChamberStep(
+      pt::TrueChamberStep({"thesis-5finger", finger, unit, unit}, from_kpa, to_kpa), 0.02);
+}
+
+void MeasureAgainstTruth(uint8_t finger, double from_kpa, double to_kpa) {
+  pt::SimRig sim({"thesis-5finger", finger, 5, 5});
+  cal::Rig rig = sim.rig();
+  cal::ContactOptions o;
+  double zero = 0;
+  CHECK(cal::ZeroOnVentedSurface(rig, finger, o, &zero).ok());
+  cal::ChamberStepOptions options;
+  options.from_kpa = from_kpa;
+  options.to_kpa = to_kpa;
+  cal::ChamberStep step;
+  const cal::RigStatus s = cal::MeasureChamberStep(rig, finger, zero, o, options, &step);
+  CHECK_TEXT(s.ok(), s.message.c_str());
+  CHECK(step.samples.size() >= 700);  // 1 kHz through the step
+  const cal::ChamberFit truth = TruthFit(finger, 5, from_kpa, to_kpa);
+  const std::string what = "force fit tau " + std::to_string(step.fit.tau_s) + " dead " +
+                           std::to_string(step.fit.dead_time_s) + ", truth tau " +
+                           std::to_string(truth.tau_s) + " dead " +
+                           std::to_string(truth.dead_time_s);
+  CHECK_TEXT(step.fit.rms < 0.05, what.c_str());
+  CHECK_TEXT(std::fabs(step.fit.tau_s - truth.tau_s) < 0.25 * truth.tau_s + 0.002, what.c_str());
+  // The line is back as configured, the finger vented.
+  const uint8_t line = sim.driven_line(finger);
+  LONGS_EQUAL(sim.board().config().lines[line].slew_pa_per_s, 200000);
+}
+
+}  // namespace
+
+TEST(ChamberStep, PneumaticOnTheRigFollowsTheTrueChamber) { MeasureAgainstTruth(0, 20, 40); }
+
+TEST(ChamberStep, JammingOnTheRigFollowsTheTrueChamber) { MeasureAgainstTruth(3, 20, 50); }
