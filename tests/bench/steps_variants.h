@@ -2,11 +2,13 @@
 // alone, with the trim), and the settling-against-overshoot charts it draws from them.
 #pragma once
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "raw_line_session.h"
+#include "steps_calibration.h"
 
 namespace palpa::bench {
 
@@ -31,12 +33,13 @@ inline std::vector<LineUnderTest> Lines() {
 /// One way of driving the lines, on a plant that may differ from the nominal one.
 struct Variant {
   const char* name;
-  bool named = true;  ///< also run the named transitions (not only the random steps)
+  bool named = true;       ///< also run the named transitions (not only the random steps)
+  bool calibrated = true;  ///< the unit's static correction uploaded
   bool trim = true;
-  float dead_time_scale = 1;  ///< the plant's regulators' dead time
   uint32_t slew_pa_per_s = 200000;
-  uint32_t chamber_tau_us = 0;  ///< the chamber model the board shapes steps with; 0: none
-  int32_t overdrive_pa = 0;
+  float model_scale = 0;  ///< × the identified chamber lag the board shapes with; 0: no shaping
+  float dead_time_scale = 1;  ///< the plant's regulators' dead time
+  int32_t overdrive_pa = 30000;
 
   std::unique_ptr<RawLineSession> Open(uint32_t seed) const {
     sim::PlantOptions plant;
@@ -45,24 +48,37 @@ struct Variant {
     plant.unit = seed;
     plant.dead_time_scale = dead_time_scale;
     const Variant v = *this;
-    return std::make_unique<RawLineSession>(plant, [v](protocol::ConfigureLine& c) {
+    const UnitCalibration& u = CalibrationFor(seed);
+    return std::make_unique<RawLineSession>(plant, [v, &u](protocol::ConfigureLine& c) {
       if (!v.trim) c.trim_kp = c.trim_ki_per_s = 0;
       c.slew_pa_per_s = v.slew_pa_per_s;
-      c.chamber_tau_us = v.chamber_tau_us;
-      c.overdrive_pa = v.overdrive_pa;
+      if (v.calibrated && !u.correction[c.line].empty()) {
+        c.correction_count = static_cast<uint8_t>(u.correction[c.line].size());
+        for (size_t i = 0; i < u.correction[c.line].size(); ++i)
+          c.correction[i] = u.correction[c.line][i];
+      }
+      // Misidentified: the air path's model (the regulator's lag and the chamber's) scaled.
+      if (v.model_scale > 0 && u.chamber[c.line].ok) {
+        c.model_tau_us = static_cast<uint32_t>(v.model_scale * c.model_tau_us);
+        c.chamber_tau_us =
+            std::max(1u, static_cast<uint32_t>(v.model_scale * u.chamber[c.line].tau_s * 1e6));
+        c.overdrive_pa = v.overdrive_pa;
+      }
     });
   }
 };
 
 inline std::vector<Variant> Variants() {
-  // name, named transitions too, trim, plant dead time ×, slew, chamber lag (µs), overdrive (Pa)
-  return {{"feed-forward only", true, false},
-          {"feed-forward + trim (today)", true, true},
-          {"feed-forward + trim, no slew", false, true, 1, 0},
-          {"+ shaping (chamber lag 20 ms)", true, true, 1, 0, 20000, 30000},
-          {"shaping, model ×0.5", false, true, 1, 0, 10000, 30000},
-          {"shaping, model ×2", false, true, 1, 0, 40000, 30000},
-          {"shaping, dead time doubled", false, true, 2, 0, 20000, 30000}};
+  // name, named transitions too, calibrated, trim, slew, air-path model ×, plant dead time ×,
+  // overdrive
+  return {{"uncalibrated, feed-forward + trim", false, false},
+          {"feed-forward only", true, true, false},
+          {"feed-forward + trim (today)", true, true, true},
+          {"feed-forward + trim, no slew", false, true, true, 0},
+          {"+ shaping (identified chamber)", true, true, true, 0, 1, 1, 20000},
+          {"shaping, model ×0.5", false, true, true, 0, 0.5f, 1, 20000},
+          {"shaping, model ×2", false, true, true, 0, 2, 1, 20000},
+          {"shaping, dead time doubled", false, true, true, 0, 1, 2, 20000}};
 }
 
 struct ChartPoint {

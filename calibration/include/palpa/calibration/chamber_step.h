@@ -41,6 +41,15 @@ struct ChamberStepOptions {
   double regulator_tau_s = 0.02;  ///< the line's regulator model (model_tau_us)
 };
 
+/// The step each kind is identified with: 20 → 40 kPa on a film; 5 → 20 kPa of vacuum under
+/// granules, where their air is fastest (deeper, it flows slower: a lag identified there would
+/// lead small steps too far).
+inline ChamberStepOptions ChamberStepFor(bool jamming) {
+  ChamberStepOptions o;
+  if (jamming) o.from_kpa = 5, o.to_kpa = 20;
+  return o;
+}
+
 struct ChamberStep {
   ChamberFit fit;
   std::vector<std::pair<double, double>> samples;  ///< (s from the command, N)
