@@ -207,6 +207,10 @@ class BenchHost {
     }
     Inject(targets);
     next_heartbeat_us_ = g_clock.NowMicros() + 20000;
+#ifdef PALPA_BENCH_SHAPED
+    targets_ = targets;
+    for (uint8_t i = 0; i < targets.entry_count; ++i) first_[i] = targets.entries[i].target;
+#endif
   }
   void Heartbeat(uint64_t now_us) {
     if (now_us < next_heartbeat_us_) return;
@@ -215,6 +219,15 @@ class BenchHost {
   }
   void Ticked() {
     if (++ticks_ == 3000) SemihostExit(g_board->safe() ? 1 : 0);
+#ifdef PALPA_BENCH_SHAPED
+    if (ticks_ % 40 == 0) {  // a new target for every finger: a shaped step on every line
+      for (uint8_t i = 0; i < targets_.entry_count; ++i) {
+        targets_.entries[i].target = ticks_ % 80 == 0 ? first_[i] : first_[i] + first_[i] / 4;
+      }
+      targets_.generation++;
+      Inject(targets_);
+    }
+#endif
   }
 
  private:
@@ -228,6 +241,10 @@ class BenchHost {
   uint32_t heartbeat_ = 0;
   uint64_t next_heartbeat_us_ = 0;
   uint32_t ticks_ = 0;
+#ifdef PALPA_BENCH_SHAPED
+  protocol::SetFingerTargets targets_{};
+  int32_t first_[protocol::kMaxFingers] = {};
+#endif
 };
 #endif
 
@@ -264,6 +281,14 @@ const palpa::core::BoardConfig* WithPi16OnEveryFinger(const palpa::core::BoardCo
       finger.params[18 + i] = jamming ? 0.0002f : 0.001f;
     }
   }
+#ifdef PALPA_BENCH_SHAPED
+  // Shaped steps on every line: a chamber model slower than the regulator's, so the lead is taken.
+  for (uint8_t i = 0; i < g_pi16_config.line_count; ++i) {
+    g_pi16_config.lines[i].chamber_tau_us = 40000;
+    g_pi16_config.lines[i].overdrive_pa = 20000;
+    g_pi16_config.lines[i].slew_pa_per_s = 0;
+  }
+#endif
   return &g_pi16_config;
 }
 }  // namespace

@@ -46,7 +46,7 @@ void BoardLines::Step(bool safe, SupervisorInput& in) {
   bool vacuum = false;  // a vacuum line commands more than its regulator's minimum: the pump runs
   for (; p != end; ++p, ++state, ++out, ++o, ++setpoint, ++flags, ++code) {
     *code = safe ? HoldLineSafe(*p, *state, o->reading, *out)
-                 : StepLineInline(*p, *state, *setpoint, o->reading, *out);
+                 : StepLineEither(*p, *state, *setpoint, o->reading, *out);
     out->status |= *flags;
     vacuum |= out->command_pa < p->pump_below_pa;
   }

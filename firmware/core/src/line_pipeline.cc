@@ -109,6 +109,7 @@ void ResetLineState(const LineParams& p, LineState& s, float pa) {
   for (uint8_t i = 0; i < p.delay_length; ++i) s.delay[i] = pa;
   s.delay_index = 0;
   s.wanted_pa = pa;
+  s.steady_pa = pa;
   s.regulator_pa = pa;
   s.chamber_pa = pa;
   s.trim_hold = 0;
@@ -131,7 +132,7 @@ uint32_t HoldLineSafe(const LineParams& p, LineState& s, const LineReading& read
 
 uint32_t StepLine(const LineParams& p, LineState& s, float setpoint_pa, const LineReading& reading,
                   LineOutput& out) {
-  return StepLineInline(p, s, setpoint_pa, reading, out);
+  return StepLineEither(p, s, setpoint_pa, reading, out);
 }
 
 }  // namespace palpa::core

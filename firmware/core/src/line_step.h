@@ -23,7 +23,9 @@ float FeedForward(const LineParams& p, LineState& s, float previous, float now, 
 
 /// A shaped step's command: what brings the regulator model in one tick to where it should be —
 /// the target, or beyond it by the chamber's lead while a slower chamber is short of it — held
-/// within the overdrive beyond the target and the line's limits. The models then move by that
+/// within the overdrive beyond the target (the final clamp holds the line's limits and says
+/// `saturated`; the models then run ahead of a limited step, which ends its overdrive early, so
+/// it is slower but does not overshoot). The models then move by that
 /// command, so the chamber model closes in on the target as fast as the bound allows without
 /// passing it; within the trim's dead band the command is the target itself, and the steady-state
 /// loop takes over without a bump. The models are open-loop, so nothing the sensor reads can
@@ -33,7 +35,6 @@ float FeedForward(const LineParams& p, LineState& s, float previous, float now, 
   const float wanted = target + p.chamber_lead * (target - chamber);
   float command = regulator + (wanted - regulator) * p.regulator_gain;
   command = Clamp(command, target - p.overdrive_pa, target + p.overdrive_pa);
-  command = Clamp(command, p.limit_min_pa, p.limit_max_pa);
   if (Abs(command - target) <= p.dead_band_pa) command = target;
   s.regulator_pa = regulator + p.model_alpha * (command - regulator);
   s.chamber_pa = chamber + p.chamber_alpha * (s.regulator_pa - chamber);
@@ -42,7 +43,9 @@ float FeedForward(const LineParams& p, LineState& s, float previous, float now, 
 
 }  // namespace line_step
 
-/// StepLine's body (line_pipeline.h has the contract).
+/// StepLine's body (line_pipeline.h has the contract), for lines with step shaping (kShaping,
+/// p.shaping) or without: two copies, so a line that shapes nothing pays nothing for it.
+template <bool kShaping>
 [[gnu::always_inline]] inline uint32_t StepLineInline(const LineParams& p, LineState& s,
                                                       float setpoint_pa, const LineReading& reading,
                                                       LineOutput& out) {
@@ -60,23 +63,28 @@ float FeedForward(const LineParams& p, LineState& s, float previous, float now, 
   const float slewed = previous + step;
   s.slewed_pa = slewed;
 
-  // 1b. Step shaping: beyond the target while the chamber model lags it; the trim holds from then
-  // until the reference and the sensor have settled on the target again.
+  // 1b. Step shaping, while a step is under way: beyond the target while the chamber model lags
+  // it. The trim holds from then until the reference and the sensor have settled on the target
+  // again; then the models are on the target, and a steady line pays for the trim only.
   float wanted = slewed;
-  const float previous_wanted = s.wanted_pa;
-  if (p.shaping) {
+  float direction_from = previous;  // where the command moved from (the correction's branch)
+  bool held = false;
+  if (kShaping && slewed != s.steady_pa) {
+    held = true;
+    direction_from = s.wanted_pa;
     wanted = line_step::Shape(p, s, slewed);
+    s.wanted_pa = wanted;
     if (wanted != slewed) {
       s.trim_hold = p.shape_hold_ticks;
+      s.steady_pa = kUnbounded;  // no setpoint: the step goes on until the hold ends
       status |= ls::kShaping;
-      // The overdrive met the line's limits: the step takes longer than the model asked for.
-      if (wanted == p.limit_min_pa || wanted == p.limit_max_pa) status |= ls::kSaturated;
-    } else if (s.trim_hold > 0) {
+    } else if (s.trim_hold <= 1) {
+      s.trim_hold = 0;
+      s.steady_pa = s.regulator_pa = s.chamber_pa = slewed;
+    } else {
       --s.trim_hold;
     }
   }
-
-  s.wanted_pa = wanted;
 
   // 2. Regulator model (dead time + lag) of what the regulator is commanded: the reference the
   // trim compares the sensor with. The slot after this tick's holds the command of the dead time
@@ -101,14 +109,16 @@ float FeedForward(const LineParams& p, LineState& s, float previous, float now, 
   // need not reach beyond the target).
   float command =
       p.correction_count >= 2
-          ? line_step::FeedForward(p, s, previous_wanted, wanted, slewed) + (wanted - slewed)
+          ? line_step::FeedForward(p, s, direction_from, wanted, slewed) + (wanted - slewed)
           : wanted;
   float integrator = s.integrator_pa;
-  if (reading.valid) {
-    const float error = s.reference_pa - reading.pa;
+  if (kShaping && reading.valid && held) {
     // Held through a shaped step: the outlet lags an overdriven reference by the flow it passes,
-    // which is no static error for the trim to learn.
-    const float effective = Abs(error) <= p.dead_band_pa || s.trim_hold > 0 ? 0.0f : error;
+    // which is no static error for the trim to learn. What it learnt stays on.
+    command += integrator;
+  } else if (reading.valid) {
+    const float error = s.reference_pa - reading.pa;
+    const float effective = Abs(error) <= p.dead_band_pa ? 0.0f : error;
     integrator += p.ki_dt * effective;
     float trim = p.kp * effective + integrator;
     // Back-calculation at the authority clamp: the integrator gives up what the clamp cut.
@@ -130,7 +140,7 @@ float FeedForward(const LineParams& p, LineState& s, float previous, float now, 
   if (command < p.limit_min_pa || command > p.limit_max_pa) {
     const float limit = command < p.limit_min_pa ? p.limit_min_pa : p.limit_max_pa;
     // A shaped step's overdrive meeting the limit is no reason for the trim to unlearn.
-    if (s.trim_hold == 0)
+    if (!kShaping || !held)
       integrator = Clamp(integrator + (limit - command), -p.authority_pa, p.authority_pa);
     command = limit;
     status |= ls::kSaturated;
@@ -140,6 +150,14 @@ float FeedForward(const LineParams& p, LineState& s, float previous, float now, 
   out.status = status;
   // Within the limits, so within the command range: a code between the signal's ends.
   return static_cast<uint32_t>(line_step::Code(p, command));
+}
+
+/// StepLineInline for the line's kind of step.
+[[gnu::always_inline]] inline uint32_t StepLineEither(const LineParams& p, LineState& s,
+                                                      float setpoint_pa, const LineReading& reading,
+                                                      LineOutput& out) {
+  return p.shaping ? StepLineInline<true>(p, s, setpoint_pa, reading, out)
+                   : StepLineInline<false>(p, s, setpoint_pa, reading, out);
 }
 
 }  // namespace palpa::core

@@ -65,8 +65,9 @@ struct LineState {
   /// dead time left out (the regulator sees the commands in the same order, only later).
   float regulator_pa = 0, chamber_pa = 0;
   uint16_t trim_hold = 0;  ///< shaping: ticks left before the trim acts again
-  float wanted_pa = 0;  ///< what the regulator was last asked for (the slewed or shaped setpoint)
-  bool rising = true;   ///< direction for the correction branch, kept while steady (lines with one)
+  float wanted_pa = 0;     ///< shaping: what the regulator was last asked for (slewed or shaped)
+  float steady_pa = 0;     ///< shaping: the setpoint the line has settled on; none during a step
+  bool rising = true;  ///< direction for the correction branch, kept while steady (lines with one)
 };
 
 /// Resets the state to hold `pa` steadily (after configuration, or leaving the safe state).
