@@ -72,7 +72,7 @@ LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us)
   const float tau = static_cast<float>(line.model_tau_us) * 1e-6f;
   p.model_alpha = tau > 0 ? dt / (tau + dt) : 1.0f;
   const uint32_t dead = tick_us > 0 ? (line.model_dead_time_us + tick_us / 2) / tick_us : 0;
-  p.delay_length = static_cast<uint8_t>((dead < kMaxDeadTicks ? dead : kMaxDeadTicks - 1) + 1);
+  p.delay_ticks = static_cast<uint8_t>(dead < kMaxDeadTicks ? dead : kMaxDeadTicks - 1);
   // Step shaping: a model of the chamber's lag, inverted (line_step.h).
   const float chamber_tau = static_cast<float>(line.chamber_tau_us) * 1e-6f;
   p.shaping = line.chamber_tau_us > 0 && line.overdrive_pa > 0;
@@ -88,7 +88,7 @@ LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us)
   const float settle_ticks = dt > 0 ? 3.0f * (tau + chamber_tau) / dt : 0.0f;
   p.shape_hold_ticks =
       p.shaping
-          ? static_cast<uint16_t>(p.delay_length + (settle_ticks < 60000 ? settle_ticks : 60000))
+          ? static_cast<uint16_t>(p.delay_ticks + 1 + (settle_ticks < 60000 ? settle_ticks : 60000))
           : 0;
   p.correction_count = line.correction_count;
   for (uint8_t i = 0; i < line.correction_count; ++i) {
@@ -105,8 +105,9 @@ void ResetLineState(const LineParams& p, LineState& s, float pa) {
   s.slewed_pa = pa;
   s.integrator_pa = 0;
   s.reference_pa = pa;
-  // Only the line's own delay slots are read; the safe path runs this every tick.
-  for (uint8_t i = 0; i < p.delay_length; ++i) s.delay[i] = pa;
+  // Only the slots read before they are written again: the dead time's behind the next write
+  // (the safe path runs this every tick).
+  for (uint8_t k = 1; k <= p.delay_ticks; ++k) s.delay[kMaxDeadTicks - k] = pa;
   s.delay_index = 0;
   s.wanted_pa = pa;
   s.steady_pa = pa;

@@ -87,13 +87,13 @@ template <bool kShaping>
   }
 
   // 2. Regulator model (dead time + lag) of what the regulator is commanded: the reference the
-  // trim compares the sensor with. The slot after this tick's holds the command of the dead time
-  // ago (this tick's when none).
-  uint8_t next = static_cast<uint8_t>(s.delay_index + 1);
-  if (next >= p.delay_length) next = 0;
-  s.delay[s.delay_index] = wanted;
-  s.delay_index = next;
-  s.reference_pa += p.model_alpha * (s.delay[next] - s.reference_pa);
+  // trim compares the sensor with: the command of the dead time ago (this tick's when none), from
+  // a ring of the last kMaxDeadTicks commands.
+  const uint8_t index = s.delay_index;
+  s.delay[index] = wanted;
+  const float delayed = s.delay[(index - p.delay_ticks) & (kMaxDeadTicks - 1)];
+  s.delay_index = static_cast<uint8_t>((index + 1) & (kMaxDeadTicks - 1));
+  s.reference_pa += p.model_alpha * (delayed - s.reference_pa);
 
   // 3. Below the regulator's minimum set pressure: command 0, integrator off.
   if (Abs(slewed) < p.regulator_min_pa) {

@@ -9,7 +9,8 @@
 
 namespace palpa::core {
 
-inline constexpr uint8_t kMaxDeadTicks = 32;
+inline constexpr uint8_t kMaxDeadTicks = 32;  ///< a power of two: the delay line is a ring
+static_assert((kMaxDeadTicks & (kMaxDeadTicks - 1)) == 0);
 
 /// Per-line constants, derived once from a ConfigureLine when it is applied.
 struct LineParams {
@@ -34,9 +35,8 @@ struct LineParams {
   float kp = 0, ki_dt = 0;                    ///< ki already multiplied by the tick period
   float authority_pa = 0, dead_band_pa = 0;
   float model_alpha = 1;  ///< regulator-model lag per tick
-  /// The regulator model's dead time in ticks, plus one: the delay line holds this tick's setpoint
-  /// too.
-  uint8_t delay_length = 1;
+  /// The regulator model's dead time in ticks (at most kMaxDeadTicks - 1).
+  uint8_t delay_ticks = 0;
   /// Step shaping, on when the chamber's lag is known and an overdrive allowed: the regulator
   /// model's lag inverted, the chamber model's lag per tick, how far beyond the target the
   /// regulator is led while a chamber slower than it closes in (per Pa the chamber is short), how
@@ -58,7 +58,7 @@ struct LineState {
   float slewed_pa = 0;  ///< setpoint after the slew limiter
   float integrator_pa = 0;
   float reference_pa = 0;  ///< regulator-model output: where the pressure should be now
-  /// Slewed setpoints of the last delay_length ticks; the next one goes to delay_index.
+  /// The commands of the last kMaxDeadTicks ticks, a ring; the next one goes to delay_index.
   std::array<float, kMaxDeadTicks> delay{};
   uint8_t delay_index = 0;
   /// Shaping: where the models of the regulator's output and of the chamber say they are, the
