@@ -23,19 +23,27 @@ float FeedForward(const LineParams& p, LineState& s, float previous, float now, 
 
 /// A shaped step's command: what brings the regulator model in one tick to where it should be —
 /// the target, or beyond it by the chamber's lead while a slower chamber is short of it — held
-/// within the overdrive beyond the target (the final clamp holds the line's limits and says
-/// `saturated`; the models then run ahead of a limited step, which ends its overdrive early, so
-/// it is slower but does not overshoot). The models then move by that
+/// within the overdrive beyond the target and the line's limits (meeting them adds `saturated` to
+/// `status`). The models then move by that
 /// command, so the chamber model closes in on the target as fast as the bound allows without
 /// passing it; within the trim's dead band the command is the target itself, and the steady-state
 /// loop takes over without a bump. The models are open-loop, so nothing the sensor reads can
 /// wind them up or make them ring.
-[[gnu::always_inline]] inline float Shape(const LineParams& p, LineState& s, float target) {
+[[gnu::always_inline]] inline float Shape(const LineParams& p, LineState& s, float target,
+                                          uint8_t& status) {
   const float regulator = s.regulator_pa, chamber = s.chamber_pa;
   const float wanted = target + p.chamber_lead * (target - chamber);
   float command = regulator + (wanted - regulator) * p.regulator_gain;
   command = Clamp(command, target - p.overdrive_pa, target + p.overdrive_pa);
   if (Abs(command - target) <= p.dead_band_pa) command = target;
+  // The overdrive met the line's limits: the step takes longer than the model asked for.
+  if (command < p.limit_min_pa) {
+    command = p.limit_min_pa;
+    status |= protocol::line_status::kSaturated;
+  } else if (command > p.limit_max_pa) {
+    command = p.limit_max_pa;
+    status |= protocol::line_status::kSaturated;
+  }
   s.regulator_pa = regulator + p.model_alpha * (command - regulator);
   s.chamber_pa = chamber + p.chamber_alpha * (s.regulator_pa - chamber);
   return command;
@@ -46,9 +54,10 @@ float FeedForward(const LineParams& p, LineState& s, float previous, float now, 
 /// StepLine's body (line_pipeline.h has the contract), for lines with step shaping (kShaping,
 /// p.shaping) or without: two copies, so a line that shapes nothing pays nothing for it.
 template <bool kShaping>
-[[gnu::always_inline]] inline uint32_t StepLineInline(const LineParams& p, LineState& s,
-                                                      float setpoint_pa, const LineReading& reading,
-                                                      LineOutput& out) {
+[[gnu::always_inline]] inline uint32_t StepLineInline(const LineParams& __restrict p,
+                                                      LineState& __restrict s, float setpoint_pa,
+                                                      const LineReading& __restrict reading,
+                                                      LineOutput& __restrict out) {
   namespace ls = protocol::line_status;
 
   uint8_t status = reading.status;
@@ -72,7 +81,7 @@ template <bool kShaping>
   if (kShaping && slewed != s.steady_pa) {
     held = true;
     direction_from = s.wanted_pa;
-    wanted = line_step::Shape(p, s, slewed);
+    wanted = line_step::Shape(p, s, slewed, status);
     s.wanted_pa = wanted;
     if (wanted != slewed) {
       s.trim_hold = p.shape_hold_ticks;
@@ -121,14 +130,12 @@ template <bool kShaping>
     const float effective = Abs(error) <= p.dead_band_pa ? 0.0f : error;
     integrator += p.ki_dt * effective;
     float trim = p.kp * effective + integrator;
-    // Back-calculation at the authority clamp: the integrator gives up what the clamp cut.
-    if (trim > p.authority_pa) {
-      integrator += p.authority_pa - trim;
-      trim = p.authority_pa;
-      status |= ls::kTrimClamped;
-    } else if (trim < -p.authority_pa) {
-      integrator += -p.authority_pa - trim;
-      trim = -p.authority_pa;
+    // Back-calculation at the authority clamp: the integrator gives up what the clamp cut (one
+    // compare in the common case, inside the authority).
+    if (Abs(trim) > p.authority_pa) {
+      const float clamp = trim > 0 ? p.authority_pa : -p.authority_pa;
+      integrator += clamp - trim;
+      trim = clamp;
       status |= ls::kTrimClamped;
     }
     command += trim;
