@@ -52,6 +52,7 @@ void Run::Fits() {
   f.raw_data = info_.raw_data;
   for (const ConditionSummary& c : grid_) f.grid.push_back(FileGridPoint(c));
   f.regulator_corrections = corrections_;
+  if (chamber_) f.chamber_models = {*chamber_};
   const double drive_max = jamming_ ? o_.jamming_sweep.drive_max : o_.pneumatic_sweep.drive_max;
   const int inverse_points = static_cast<int>(std::clamp<size_t>(sweep_.size() / 2, 2, 12));
   const auto inverse = FitStaticInverse(sweep_, inverse_points, jamming_);

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "calibration_run.h"
+#include "palpa/calibration/chamber_step.h"
 
 namespace palpa::calibration {
 namespace run_internal {
@@ -132,13 +133,47 @@ RigStatus Run::Sweep() {
     Done();
   }
   rig_.board.SetDrive(finger_, 0, 0);
-  s = GuardedMove(rig_, rig_.limits.retract_mm, 2.0);
+  s = Chamber();
+  if (s.ok()) s = GuardedMove(rig_, rig_.limits.retract_mm, 2.0);
   if (s.ok()) s = ReadForceMean(rig_, 10, &end_free_);  // clear of everything: the end's zero
   if (!s.ok()) return s;
   for (size_t k = 0; k < sweep_.size(); ++k) {
     out_->csv.push_back(Csv({drives_[k], sweep_[k].drive_pa, sweep_[k].output, 0, 0}, "sweep"));
   }
   out_->sweep = sweep_;
+  return {};
+}
+
+/// 4b. The driven line's chamber, once the sweep is done (its pressure history would otherwise be
+///     the sweep's): its step response on the rig and the lag fitted to it, which the board
+///     shapes that line's steps with. None identified is no failure: the line is not shaped.
+RigStatus Run::Chamber() {
+  const uint8_t line = rig_.board.driven_line(finger_);
+  if (!st_.contains("chamber")) {
+    Step("chamber step response, line " + std::to_string(line + 1));
+    ChamberStep step;
+    const RigStatus s =
+        MeasureChamberStep(rig_, finger_, zero_, o_.contact, ChamberStepFor(jamming_), &step);
+    if (!s.ok()) return s;
+    st_["chamber"] = json::array();
+    if (step.fit.ok) {
+      st_["chamber"].push_back(
+          {step.fit.dead_time_s, step.fit.regulator_tau_s, step.fit.tau_s, step.fit.rms});
+    }
+    if (journal_.save) journal_.save(journal_);
+  }
+  for (const json& c : st_["chamber"]) {
+    host::ChamberModel m;
+    m.line = line;
+    m.dead_time_s = c[0].get<double>();
+    m.regulator_tau_s = c[1].get<double>();
+    m.chamber_tau_s = std::max(1e-6, c[2].get<double>());
+    m.fit_rms = c[3].get<double>();
+    chamber_ = m;
+    out_->csv.push_back(Csv({static_cast<double>(line + 1), m.dead_time_s, m.regulator_tau_s,
+                             m.chamber_tau_s, m.fit_rms},
+                            "chamber"));
+  }
   return {};
 }
 

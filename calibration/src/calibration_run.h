@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,12 +38,14 @@ class Run {
     p_ = Progress{0, 2 + grid_points + static_cast<int>(drives_.size()), ""};
     // Columns per phase (docs/calibration.md), in the calibration file's units: correction: line,
     // command, rising, falling (Pa); grid: bias, vacuum (Pa), stiffness mean, spread (mN/mm), loop
-    // area (mJ); sweep: commanded and measured drive (Pa), output (µm or mN/mm).
+    // area (mJ); sweep: commanded and measured drive (Pa), output (µm or mN/mm); chamber: line,
+    // dead time, regulator and chamber lags (s), fit residual (a fraction of the step).
     out_->csv = {"phase,v1,v2,v3,v4,v5"};
   }
 
   RigStatus Zero();
   RigStatus Corrections();
+  RigStatus Chamber();
   RigStatus Map();
   RigStatus Sweep();
   void Fits();
@@ -74,6 +77,7 @@ class Run {
   Progress p_;
   double zero_ = 0, tare_noise_ = 0, end_free_ = 0;
   std::vector<host::RegulatorCorrection> corrections_;
+  std::optional<host::ChamberModel> chamber_;
   double bias_ = 0;
   std::vector<ConditionSummary> grid_;
   std::vector<SweepSample> sweep_;

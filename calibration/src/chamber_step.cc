@@ -79,10 +79,14 @@ RigStatus MeasureChamberStep(Rig& rig, uint8_t finger, double zero_mm, const Con
   const double into = jamming ? options.press_mm : options.depth_mm;
   s = GuardedMove(rig, surface - into, jamming ? 0.5 : o.speed_mm_s);
   if (s.ok()) rig.time.Wait(0.5);  // the contact settles (a granular press relaxes)
-  const int before = static_cast<int>(std::lround(options.before_s / options.sample_s));
-  const int after = static_cast<int>(std::lround(options.after_s / options.sample_s));
-  for (int i = -before; i < after && s.ok(); ++i) {
-    if (i == 0) s = drive(options.to_kpa);
+  // Readings on the rig's clock, from before the command to after_s past it.
+  const double start = rig.time.Now(), command = start + options.before_s;
+  bool stepped = false;
+  while (s.ok() && rig.time.Now() < command + options.after_s) {
+    if (!stepped && rig.time.Now() >= command) {
+      s = drive(options.to_kpa);
+      stepped = true;
+    }
     double force = 0;
     if (s.ok()) s = rig.force.Read(&force);
     if (!s.ok()) break;
@@ -90,16 +94,22 @@ RigStatus MeasureChamberStep(Rig& rig, uint8_t finger, double zero_mm, const Con
       s = RigStatus::Fail(Status::kOutOfRange, "force above the rig's limit during the step");
       break;
     }
-    out->samples.push_back({i * options.sample_s, force});
+    out->samples.push_back({rig.time.Now() - command, force});
     rig.time.Wait(options.sample_s);
   }
   rig.board.SetBareLine(line, false);
   if (!s.ok()) return AbortSafe(rig, s.status, "chamber step: " + s.message);
   s = GuardedMove(rig, surface + o.approach_mm, o.fast_mm_s);
   if (!s.ok()) return s;
-  out->fit = FitChamberStep(out->samples, options.regulator_tau_s, rig.force_noise_n);
-  if (!out->fit.ok)
-    return AbortSafe(rig, Status::kBadValue, "chamber step: the force did not follow the step");
+  const double period =
+      (options.before_s + options.after_s) / std::max<size_t>(1, out->samples.size());
+  if (period > 0.002) {
+    out->why = "force readings every " + std::to_string(std::lround(1000 * period)) +
+               " ms: a chamber's step needs 500 Hz";
+  } else {
+    out->fit = FitChamberStep(out->samples, options.regulator_tau_s, rig.force_noise_n);
+    if (!out->fit.ok) out->why = "the force did not follow the step";
+  }
   return rig.board.SetDrive(finger, 0, 0);
 }
 

@@ -43,7 +43,7 @@ void CheckRows(const json& list, const std::string& path, size_t most, size_t wi
 }
 
 void CheckJournal(const json& state) {
-  JsonObject o(state, "", {"rig_time_s", "corrections", "map", "sweep"});
+  JsonObject o(state, "", {"rig_time_s", "corrections", "map", "sweep", "chamber"});
   if (o.Has("rig_time_s")) o.Number("rig_time_s", 0, 1e9);
   if (o.Has("corrections")) {
     const json& corrections = o.At("corrections");
@@ -65,6 +65,8 @@ void CheckJournal(const json& state) {
     if (map.Has("presses")) CheckRows(map.At("presses"), "map.presses", 100000, 11, 1u << 9, false);
   }
   if (o.Has("sweep")) CheckRows(o.At("sweep"), "sweep", 100000, 2, 0, false);
+  // The chamber's fit (dead time, regulator and chamber lags, residual), or none identified.
+  if (o.Has("chamber")) CheckRows(o.At("chamber"), "chamber", 1, 4, 0, false);
 }
 
 }  // namespace

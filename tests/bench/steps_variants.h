@@ -100,7 +100,7 @@ inline bool WriteCharts(const std::string& docs, const std::vector<ChartPoint>& 
     const std::string path = docs + "/steps_" +
                              (l.kind == protocol::LineKind::kVacuum ? "jamming" : "pneumatic") +
                              ".svg";
-    if (!host::WriteFileWhole(path, host::RenderSvg(chart))) return false;
+    if (!host::WriteFileWhole(path, host::RenderSvg(chart)).ok()) return false;
   }
   return true;
 }

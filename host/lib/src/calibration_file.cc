@@ -80,6 +80,7 @@ json Write(const CalibrationFile& c) {
       j["regulator_corrections"].push_back({{"line", rc.line}, {"points", points}});
     }
   }
+  if (!c.chamber_models.empty()) j["chamber_models"] = ChamberModelsJson(c);
   j["compensator"] = {
       {"kind", pp::EnumNames(pp::CompensatorKind{})[static_cast<size_t>(c.compensator)]},
       {"params", c.compensator_params}};

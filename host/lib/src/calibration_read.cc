@@ -300,15 +300,19 @@ CalibrationFile CalibrationFromJson(const json& root) {
          "grid",
          "static_inverse",
          "regulator_corrections",
+         "chamber_models",
          "compensator",
          "recommended_bias_kpa",
          "recommended_bias_pa",
          "quality"});
   CalibrationFile c;
   const Version v = ReadIdentity(o, c);
-  // The fields the other version has.
-  for (const char* other : v.v1() ? std::vector<const char*>{"simulation", "recommended_bias_pa"}
-                                  : std::vector<const char*>{"recommended_bias_kpa"}) {
+  // The fields the other versions have.
+  std::vector<const char*> others =
+      v.v1() ? std::vector<const char*>{"simulation", "recommended_bias_pa"}
+             : std::vector<const char*>{"recommended_bias_kpa"};
+  if (v.number < 3) others.push_back("chamber_models");
+  for (const char* other : others) {
     if (root.contains(other)) {
       throw Invalid(std::string(other) + ": unknown field in schema version " +
                     std::to_string(v.number));
@@ -321,6 +325,7 @@ CalibrationFile CalibrationFromJson(const json& root) {
   ReadGrid(o, c, v);
   ReadStaticInverse(o, c, jamming);
   ReadRegulatorCorrections(o, c);
+  ReadChamberModels(o, c);
   ReadCompensator(o, c);
   if (o.Has(recommended))
     c.recommended_bias_pa = v.Number(o, "recommended_bias_kpa", "recommended_bias_pa", 0, 20000);

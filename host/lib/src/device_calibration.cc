@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <type_traits>
 
+#include "calibration_json.h"
 #include "palpa/host/board_curves.h"
 #include "palpa/host/calibration_file.h"
 #include "palpa/host/device.h"
@@ -134,6 +135,25 @@ Outcome Device::ApplyCalibration(uint8_t finger, const CalibrationFile& c) {
   };
   if (!append(f))
     return Outcome{Status::kBadValue, "apply calibration: the finger record cannot be encoded", {}};
+  // Each of the finger's lines once, with its correction and its chamber model (step shaping).
+  for (const uint8_t index : {f.line_a, f.line_b}) {
+    if (index == pp::kNoLine) continue;
+    const auto rc = std::find_if(c.regulator_corrections.begin(), c.regulator_corrections.end(),
+                                 [index](const RegulatorCorrection& r) { return r.line == index; });
+    const auto chamber = std::find_if(c.chamber_models.begin(), c.chamber_models.end(),
+                                      [index](const ChamberModel& m) { return m.line == index; });
+    if (rc == c.regulator_corrections.end() && chamber == c.chamber_models.end()) continue;
+    const auto line = ReadLine(index);
+    if (!line.ok()) return Outcome{line.status, "apply calibration: " + line.message, {}};
+    pp::ConfigureLine l = line.value;
+    if (rc != c.regulator_corrections.end()) {
+      l.correction_count = static_cast<uint8_t>(rc->points.size());
+      std::copy(rc->points.begin(), rc->points.end(), l.correction.begin());
+    }
+    if (chamber != c.chamber_models.end()) ShapeLine(*chamber, l);
+    if (!append(l))
+      return Outcome{Status::kBadValue, "apply calibration: the line record cannot be encoded", {}};
+  }
   for (const RegulatorCorrection& rc : c.regulator_corrections) {
     if (rc.line != f.line_a && rc.line != f.line_b) {
       return Outcome{Status::kBadValue,
@@ -141,13 +161,14 @@ Outcome Device::ApplyCalibration(uint8_t finger, const CalibrationFile& c) {
                          ", which is not one of this finger's",
                      {}};
     }
-    const auto line = ReadLine(rc.line);
-    if (!line.ok()) return Outcome{line.status, "apply calibration: " + line.message, {}};
-    pp::ConfigureLine l = line.value;
-    l.correction_count = static_cast<uint8_t>(rc.points.size());
-    std::copy(rc.points.begin(), rc.points.end(), l.correction.begin());
-    if (!append(l))
-      return Outcome{Status::kBadValue, "apply calibration: the line record cannot be encoded", {}};
+  }
+  for (const ChamberModel& m : c.chamber_models) {
+    if (m.line != f.line_a && m.line != f.line_b) {
+      return Outcome{Status::kBadValue,
+                     "apply calibration: a chamber model is for " + LineName(m.line) +
+                         ", which is not one of this finger's",
+                     {}};
+    }
   }
   Outcome o = ConfigureStaged(records.data(), records.size());
   if (!o.ok()) {
@@ -159,6 +180,8 @@ Outcome Device::ApplyCalibration(uint8_t finger, const CalibrationFile& c) {
   calibration_problems_[finger].clear();
   std::erase_if(curve_warnings_, [&](const CurveWarning& w) { return w.finger == finger; });
   calibration_notes_[finger] = FingerName(finger) + ": " + curves_[finger].source;
+  if (const std::string note = ChamberNote(c); !note.empty())
+    calibration_notes_[finger] += "; " + note;
   return o;
 }
 

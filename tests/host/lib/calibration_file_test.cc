@@ -59,6 +59,9 @@ TEST(CalibrationFile, SavesAtomicallyAndReadsBackEveryField) {
   STRCMP_EQUAL("creep,rate", back->simulation->effects.c_str());
   LONGS_EQUAL(30000, back->static_inverse[2].setpoint_pa);
   LONGS_EQUAL(49500, back->regulator_corrections[0].points[1].falling_pa);
+  LONGS_EQUAL(1, back->chamber_models.size());
+  DOUBLES_EQUAL(0.005, back->chamber_models[0].chamber_tau_s, 1e-12);
+  STRCMP_EQUAL("", ph::ChamberNote(*back).c_str());
   CHECK(back->compensator == pp::CompensatorKind::kPrandtlIshlinskii);
   LONGS_EQUAL(6, back->compensator_params.size());
   DOUBLES_EQUAL(0.98, back->falling_fit->r2, 1e-12);
@@ -92,6 +95,25 @@ TEST(CalibrationFile, SavesAtomicallyAndReadsBackEveryField) {
   CHECK(missing.message.find("PN-3.json: schema: missing") != std::string::npos);
 }
 
+TEST(CalibrationFile, AVersion2FileIsReadWithANoteThatItsStepsAreNotShaped) {
+  json j = json::parse(ph::SerializeCalibration(Example()).value);
+  j["schema_version"] = 2;
+  j.erase("chamber_models");
+  const auto c = ph::ParseCalibration(j.dump());
+  CHECK_TEXT(c.ok(), c.message.c_str());
+  LONGS_EQUAL(2, c.value.schema_version);
+  CHECK(c.value.chamber_models.empty());
+  STRCMP_EQUAL(
+      "schema version 2 has no chamber model: steps are not shaped until the finger is "
+      "calibrated again",
+      ph::ChamberNote(c.value).c_str());
+  // Written again it is a version 3 file, still without a chamber model.
+  const auto again = ph::ParseCalibration(ph::SerializeCalibration(c.value).value);
+  CHECK_TEXT(again.ok(), again.message.c_str());
+  LONGS_EQUAL(ph::kCalibrationSchemaVersion, again.value.schema_version);
+  STRCMP_EQUAL("no chamber model: steps are not shaped", ph::ChamberNote(again.value).c_str());
+}
+
 TEST(CalibrationFile, EveryBadFieldIsNamedByItsPath) {
   struct Case {
     std::function<void(json&)> edit;
@@ -101,9 +123,18 @@ TEST(CalibrationFile, EveryBadFieldIsNamedByItsPath) {
       {[](json& j) { j.erase("date"); }, "date: missing"},
       {[](json& j) { j["date"] = "yesterday"; }, "date: must be UTC"},
       {[](json& j) { j["colour"] = "red"; }, "colour: unknown field"},
-      {[](json& j) { j["schema_version"] = 3; }, "schema_version: 3 is not"},
+      {[](json& j) { j["schema_version"] = 4; }, "schema_version: 4 is not"},
       {[](json& j) { j["recommended_bias_kpa"] = 20; },
-       "recommended_bias_kpa: unknown field in schema version 2"},
+       "recommended_bias_kpa: unknown field in schema version 3"},
+      {[](json& j) { j["schema_version"] = 2; },
+       "chamber_models: unknown field in schema version 2"},
+      {[](json& j) { j["chamber_models"][0]["chamber_tau_s"] = 0; },
+       "chamber_models[0].chamber_tau_s: 0 is outside"},
+      {[](json& j) { j["chamber_models"][0]["fit_rms"] = 2; }, "chamber_models[0].fit_rms"},
+      {[](json& j) { j["chamber_models"][0].erase("dead_time_s"); },
+       "chamber_models[0].dead_time_s: missing"},
+      {[](json& j) { j["chamber_models"].push_back(j["chamber_models"][0]); },
+       "chamber_models[1].line: line 0 appears twice"},
       {[](json& j) { j["simulation"]["effects"] = "creep,wind"; }, "simulation.effects"},
       {[](json& j) { j["simulation"]["plant_level"] = 4; }, "simulation.plant_level: 4"},
       {[](json& j) { j["actuator_serial"] = "a/b"; }, "actuator_serial"},
@@ -195,6 +226,17 @@ TEST(CalibrationFile, DeviceFindsCalibrationsByActuatorSerialAndUploadsThemAtomi
   CHECK(finger.value.compensator == pp::CompensatorKind::kPrandtlIshlinskii);
   LONGS_EQUAL(5, finger.value.inverse_count);
   LONGS_EQUAL(3, d.ReadLine(0).value.correction_count);
+  // The chamber model went with the correction, in the same line record: steps are shaped.
+  LONGS_EQUAL(5000, d.ReadLine(0).value.chamber_tau_us);
+  LONGS_EQUAL(ph::kShapingOverdrivePa, d.ReadLine(0).value.overdrive_pa);
+  LONGS_EQUAL(0, d.ReadLine(0).value.slew_pa_per_s);
+  // A chamber model for a line that is not the finger's is refused, naming it.
+  ph::CalibrationFile elsewhere = Example();
+  elsewhere.chamber_models[0].line = 3;
+  const ph::Outcome foreign = d.ApplyCalibration(0, elsewhere);
+  LONGS_EQUAL((int)pp::Status::kBadValue, (int)foreign.status);
+  CHECK_TEXT(foreign.message.find("a chamber model is for") != std::string::npos,
+             foreign.message.c_str());
   // The wrong actuator, and a set the board would refuse: nothing of either is applied.
   ph::Outcome wrong = d.ApplyCalibration(1, Example());
   LONGS_EQUAL((int)pp::Status::kBadValue, (int)wrong.status);

@@ -201,10 +201,11 @@ TEST(CalibrationSchema, Version1FilesAreReadInTheBoardsUnits) {
       DOUBLES_EQUAL(1000 * old["fits"]["rising"]["intercept"].get<double>(),
                     c->rising_fit->intercept, 1e-9);
     }
-    // Written again, it is a version 2 file that reads back the same.
+    // Written again, it is a file of the current version that reads back the same.
     const auto written = ph::SerializeCalibration(*c);
     CHECK_TEXT(written.ok(), written.message.c_str());
-    CHECK_EQUAL(2, json::parse(written.value)["schema_version"].get<int>());
+    CHECK_EQUAL(ph::kCalibrationSchemaVersion,
+                json::parse(written.value)["schema_version"].get<int>());
     const auto again = ph::ParseCalibration(written.value);
     CHECK_TEXT(again.ok(), again.message.c_str());
     STRCMP_EQUAL(written.value.c_str(), ph::SerializeCalibration(again.value).value.c_str());

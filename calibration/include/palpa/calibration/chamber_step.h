@@ -5,6 +5,7 @@
 // (ConfigureLine::chamber_tau_us).
 #pragma once
 
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -51,13 +52,16 @@ inline ChamberStepOptions ChamberStepFor(bool jamming) {
 }
 
 struct ChamberStep {
-  ChamberFit fit;
-  std::vector<std::pair<double, double>> samples;  ///< (s from the command, N)
+  ChamberFit fit;  ///< not ok: no model (`why` says why); the run goes on without one
+  std::string why;
+  std::vector<std::pair<double, double>> samples;  ///< (s from the command on the rig's clock, N)
 };
 
 /// Holds the finger's driven line at `from`, finds its surface, presses in, steps the bare line to
 /// `to` and reads the force through the step; retracts, restores the line and leaves the finger
-/// vented. `zero_mm`: the vented surface (ZeroOnVentedSurface).
+/// vented. `zero_mm`: the vented surface (ZeroOnVentedSurface). A step whose readings came slower
+/// than 500 Hz, or that the force did not follow, gives no model but is no failure; a limit or a
+/// lost device is, as everywhere.
 RigStatus MeasureChamberStep(Rig& rig, uint8_t finger, double zero_mm, const ContactOptions& o,
                              const ChamberStepOptions& options, ChamberStep* out);
 

@@ -15,9 +15,11 @@
 
 namespace palpa::host {
 
-/// Version 2: one unit per quantity, the board's (calibration_units.h); version 1 files (kPa, mm,
-/// N/mm and N beside the board's Pa, µm and mN/mm) are still read, converted on loading.
-inline constexpr int kCalibrationSchemaVersion = 2;
+/// Version 3: the chamber models (step shaping). Version 2: one unit per quantity, the board's
+/// (calibration_units.h). Older files are still read: version 1's units (kPa, mm, N/mm and N
+/// beside the board's Pa, µm and mN/mm) converted on loading, and neither carries a chamber model
+/// (the finger's steps are not shaped until it is calibrated again; ChamberNote says so).
+inline constexpr int kCalibrationSchemaVersion = 3;
 /// The largest valid calibration (1024 grid points, 256 curve points, every optional part,
 /// pretty-printed) is about 310 KiB.
 inline constexpr FileLimits kCalibrationFileLimits{"calibration file", 1024 * 1024};
@@ -78,6 +80,21 @@ struct RegulatorCorrection {
   std::vector<protocol::CorrectionPoint> points;  ///< command → measured, rising and falling
 };
 
+/// A line's chamber dynamics, fitted to its step response on the rig (docs/calibration.md): dead
+/// time, the regulator's lag the fit assumed (the line's model_tau_us) and the chamber's behind
+/// it. Applying the calibration gives the line chamber_tau_us and the overdrive bound, so the
+/// board shapes its steps.
+struct ChamberModel {
+  uint8_t line = 0;
+  double dead_time_s = 0;
+  double regulator_tau_s = 0;
+  double chamber_tau_s = 0;
+  double fit_rms = 0;  ///< of the normalised step response: a fraction of the step
+};
+
+/// How far beyond its target a calibrated line's shaped step may drive the regulator.
+inline constexpr int32_t kShapingOverdrivePa = 20000;
+
 /// The simulated plant a calibration on palpa-sim's rig was taken on (`--rig sim`): which unit,
 /// so evaluations on held-out units can tell their calibrations apart.
 struct SimulatedPlant {
@@ -107,7 +124,8 @@ struct CalibrationFile {
   std::vector<GridPoint> grid;                     ///< jamming indentation grid
   std::vector<protocol::InversePoint> static_inverse;
   std::vector<RegulatorCorrection>
-      regulator_corrections;  ///< one per line of the finger, at most two
+      regulator_corrections;                 ///< one per line of the finger, at most two
+  std::vector<ChamberModel> chamber_models;  ///< version 3 on; at most two
   protocol::CompensatorKind compensator = protocol::CompensatorKind::kNone;
   std::vector<float> compensator_params;
   std::optional<double> recommended_bias_pa;
@@ -147,6 +165,11 @@ Result<CalibrationFile> FindCalibration(const std::string& dir, const std::strin
 
 /// The curves a calibration gives the stiffness map: its measured curve and its range.
 FingerCurves CurvesFromCalibration(const CalibrationFile& c);
+
+/// What a calibration without a chamber model means for the finger's steps (empty when it has one):
+/// e.g. "schema version 2 has no chamber model: steps are not shaped until the finger is
+/// calibrated again".
+std::string ChamberNote(const CalibrationFile& c);
 
 /// The compensator a calibration carries, as people name it: "api(8)", "pi(16)", "branch(12)",
 /// "none" (operators or curve points from the parameters' layout, docs/hysteresis.md).

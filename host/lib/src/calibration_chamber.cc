@@ -1,0 +1,63 @@
+// The calibration file's chamber models: read with their checks, written, noted when absent, and
+// what applying one does to its line (step shaping on).
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "calibration_json.h"
+
+namespace palpa::host {
+
+namespace pp = protocol;
+
+void ReadChamberModels(JsonObject& o, CalibrationFile& c) {
+  if (!o.Has("chamber_models")) return;
+  const nlohmann::json& list = o.List("chamber_models", 0, 2);
+  for (size_t k = 0; k < list.size(); ++k) {
+    const std::string where = o.Item("chamber_models", k);
+    JsonObject m(list[k], where,
+                 {"line", "dead_time_s", "regulator_tau_s", "chamber_tau_s", "fit_rms"});
+    ChamberModel model;
+    model.line = static_cast<uint8_t>(m.Integer("line", 0, pp::kMaxLines - 1));
+    for (const ChamberModel& other : c.chamber_models) {
+      if (other.line == model.line)
+        throw JsonInvalid(where + ".line: line " + std::to_string(model.line) + " appears twice");
+    }
+    model.dead_time_s = m.Number("dead_time_s", 0, 1);
+    model.regulator_tau_s = m.Number("regulator_tau_s", 0, 10);
+    // 0 would mean no model (the board would not shape): a file that says 0 says nothing.
+    model.chamber_tau_s = m.Number("chamber_tau_s", 1e-6, 10);
+    model.fit_rms = m.Number("fit_rms", 0, 1);
+    c.chamber_models.push_back(model);
+  }
+}
+
+nlohmann::json ChamberModelsJson(const CalibrationFile& c) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const ChamberModel& m : c.chamber_models) {
+    list.push_back({{"line", m.line},
+                    {"dead_time_s", m.dead_time_s},
+                    {"regulator_tau_s", m.regulator_tau_s},
+                    {"chamber_tau_s", m.chamber_tau_s},
+                    {"fit_rms", m.fit_rms}});
+  }
+  return list;
+}
+
+std::string ChamberNote(const CalibrationFile& c) {
+  if (!c.chamber_models.empty()) return "";
+  if (c.schema_version < 3) {
+    return "schema version " + std::to_string(c.schema_version) +
+           " has no chamber model: steps are not shaped until the finger is calibrated again";
+  }
+  return "no chamber model: steps are not shaped";
+}
+
+void ShapeLine(const ChamberModel& m, pp::ConfigureLine& line) {
+  line.chamber_tau_us = static_cast<uint32_t>(std::max(1L, std::lround(1e6 * m.chamber_tau_s)));
+  line.overdrive_pa = kShapingOverdrivePa;
+  // The overdrive bounds a shaped step; a slew limit would only slow it (docs/firmware.md).
+  line.slew_pa_per_s = 0;
+}
+
+}  // namespace palpa::host
