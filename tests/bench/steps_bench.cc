@@ -10,6 +10,7 @@
 
 #include "doc_block.h"
 #include "steps_measure.h"
+#include "steps_stability.h"
 #include "steps_variants.h"
 
 namespace pb = palpa::bench;
@@ -156,10 +157,20 @@ int main(int argc, char** argv) {
                             std::to_string(kRandomUnits) + " held-out units × " +
                             std::to_string(kRandomSteps) + " steps:\n\n" + random;
   std::printf("%s", block.c_str());
+  std::vector<uint32_t> units;
+  for (uint32_t u = 0; u < kUnits; ++u) units.push_back(101 + u);
+  const std::string fit = pb::ChamberFitTable(units);
+  std::printf("\n%s", fit.c_str());
+  std::string map;
+  for (const pb::LineUnderTest& l : pb::Lines())
+    map += (map.empty() ? "" : "\n") + pb::StabilityMap(l);
+  std::printf("\n%s", map.c_str());
   if (argc > 1) {
     const std::string docs = argv[1];
-    if (!pb::ReplaceBlock(docs + "/performance.md", "steps", block)) {
-      std::fprintf(stderr, "cannot write the steps block into %s/performance.md\n", docs.c_str());
+    if (!pb::ReplaceBlock(docs + "/performance.md", "steps", block) ||
+        !pb::ReplaceBlock(docs + "/performance.md", "steps-fit", fit) ||
+        !pb::ReplaceBlock(docs + "/performance.md", "steps-map", map)) {
+      std::fprintf(stderr, "cannot write the steps blocks into %s/performance.md\n", docs.c_str());
       return 1;
     }
     if (!pb::WriteCharts(docs, points)) return 1;

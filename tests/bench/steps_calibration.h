@@ -4,8 +4,11 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <map>
+#include <string>
 #include <vector>
 
 #include "palpa/calibration/chamber_step.h"
@@ -39,6 +42,65 @@ inline const UnitCalibration& CalibrationFor(uint32_t seed) {
     u.chamber[line] = measured.fit;
   }
   return u;
+}
+
+/// RMS of the normalised true chamber response of a step against what `fit` predicts for it.
+inline double PredictionRms(const std::vector<std::pair<double, double>>& truth,
+                            const calibration::ChamberFit& fit) {
+  double start = 0, end = 0, sum = 0;
+  int before = 0, tail = 0, n = 0;
+  for (const auto& [t, v] : truth) {
+    if (t < 0) start += v, ++before;
+    if (t > truth.back().first - 0.05) end += v, ++tail;
+  }
+  start /= before;
+  end /= tail;
+  for (const auto& [t, v] : truth) {
+    if (t < 0) continue;
+    const double e = (v - start) / (end - start) - calibration::ChamberResponse(fit, t);
+    sum += e * e;
+    ++n;
+  }
+  return std::sqrt(sum / n);
+}
+
+/// The identification's figures per kind over `units`: the fitted lag (mean and range), the lag
+/// a fit of the true chamber pressure gives, and the fit's error predicting the true step of
+/// the same unit and of the next one (held out).
+inline std::string ChamberFitTable(const std::vector<uint32_t>& units) {
+  std::string t =
+      "| line | identification step | chamber lag fitted from the force (ms): mean, range | from "
+      "the true pressure (ms) | prediction RMS, same unit | prediction RMS, held-out unit |\n"
+      "|---|---|---|---:|---:|---:|\n";
+  for (uint8_t finger : {0, 3}) {
+    const bool jamming = finger == 3;
+    const uint8_t line = jamming ? 5 : 0;
+    const calibration::ChamberStepOptions step = calibration::ChamberStepFor(jamming);
+    double sum = 0, low = 1e9, high = 0, truth_sum = 0, same = 0, other = 0;
+    for (size_t i = 0; i < units.size(); ++i) {
+      const calibration::ChamberFit& fit = CalibrationFor(units[i]).chamber[line];
+      const uint32_t next = units[(i + 1) % units.size()];
+      const auto truth = testing::TrueChamberStep({"thesis-5finger", finger, units[i], units[i]},
+                                                  step.from_kpa, step.to_kpa);
+      const auto held_out = testing::TrueChamberStep({"thesis-5finger", finger, next, next},
+                                                     step.from_kpa, step.to_kpa);
+      sum += fit.tau_s;
+      low = std::min(low, fit.tau_s);
+      high = std::max(high, fit.tau_s);
+      truth_sum += calibration::FitChamberStep(truth, step.regulator_tau_s).tau_s;
+      same += PredictionRms(truth, fit);
+      other += PredictionRms(held_out, fit);
+    }
+    const double n = static_cast<double>(units.size());
+    char row[320];
+    std::snprintf(row, sizeof(row),
+                  "| %s | %.0f → %.0f kPa%s | %.1f (%.1f – %.1f) | %.1f | %.1f %% | %.1f %% |\n",
+                  jamming ? "jamming vacuum" : "pneumatic", step.from_kpa, step.to_kpa,
+                  jamming ? " of vacuum" : "", 1000 * sum / n, 1000 * low, 1000 * high,
+                  1000 * truth_sum / n, 100 * same / n, 100 * other / n);
+    t += row;
+  }
+  return t;
 }
 
 }  // namespace palpa::bench

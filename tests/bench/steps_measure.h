@@ -18,12 +18,15 @@ namespace palpa::bench {
 
 inline constexpr double kNever = std::numeric_limits<double>::infinity();
 
+/// One step's figures. Settling: within the band for good, from the command (kNever: not within
+/// the dwell).
 struct StepFigures {
-  double settle_ms =
-      kNever;  ///< within the band for good, from the command; kNever: not in the dwell
+  double settle_ms = kNever;
   double overshoot_pa = 0;  ///< beyond the target in the step's direction (true chamber)
   double error_pa = 0;      ///< steady state: mean chamber − target over the dwell's last 200 ms
   double abs_error_pa = 0;  ///< mean |chamber − target| over the whole dwell
+  int crossings = 0;       ///< times the chamber went from beyond the band on one side to the other
+  bool saturated = false;  ///< the line said `saturated` during the step
 };
 
 /// The settling band: 2 % of the step, at least 0.5 kPa.
@@ -38,12 +41,18 @@ inline StepFigures RunStep(RawLineSession& s, uint8_t line, double from_pa, doub
   s.Set({{line, static_cast<int32_t>(to_pa)}});
   StepFigures f;
   const double band = Band(from_pa, to_pa), direction = to_pa >= from_pa ? 1 : -1;
-  int last_outside = 0, tail = 0;
+  int last_outside = 0, tail = 0, side = 0;
   double sum_tail = 0, sum_abs = 0;
   for (int ms = 1; ms <= dwell_ms; ++ms) {
     s.Tick();
     const double chamber = s.Chamber(line);
-    if (std::fabs(chamber - to_pa) > band) last_outside = ms;
+    if (std::fabs(chamber - to_pa) > band) {
+      last_outside = ms;
+      const int now = chamber > to_pa ? 1 : -1;
+      if (side != 0 && now != side) ++f.crossings;
+      side = now;
+    }
+    f.saturated = f.saturated || (s.Status(line) & protocol::line_status::kSaturated) != 0;
     f.overshoot_pa = std::max(f.overshoot_pa, direction * (chamber - to_pa));
     sum_abs += std::fabs(chamber - to_pa);
     if (ms > dwell_ms - 200) {

@@ -40,6 +40,7 @@ struct Variant {
   float model_scale = 0;  ///< × the identified chamber lag the board shapes with; 0: no shaping
   float dead_time_scale = 1;  ///< the plant's regulators' dead time
   int32_t overdrive_pa = 30000;
+  float flow_scale = 1;  ///< the plant's valves' full flow
 
   std::unique_ptr<RawLineSession> Open(uint32_t seed) const {
     sim::PlantOptions plant;
@@ -47,6 +48,7 @@ struct Variant {
     plant.seed = seed;
     plant.unit = seed;
     plant.dead_time_scale = dead_time_scale;
+    plant.flow.flow = flow_scale;
     const Variant v = *this;
     const UnitCalibration& u = CalibrationFor(seed);
     return std::make_unique<RawLineSession>(plant, [v, &u](protocol::ConfigureLine& c) {
