@@ -1,6 +1,7 @@
 // Links protocol/ into a program with no C or C++ runtime at all: any use of the heap, exceptions,
 // RTTI or static-init guards leaves an undefined symbol and fails the build.
 #include "palpa/protocol/codec.h"
+#include "palpa/protocol/ed25519.h"
 #include "palpa/protocol/reliable_receiver.h"
 #include "palpa/protocol/reliable_sender.h"
 #include "palpa/protocol/session.h"
@@ -37,6 +38,9 @@ int Exercise() {
   pp::HostSession session;
   char text[96];
   session.DescribeVersions(text, sizeof(text));
+  const uint8_t key[32] = {1}, signature[64] = {};  // the identity as a key: refused
+  if (pp::Ed25519Verify(signature, 64, key, 32, key, 32) != pp::SignatureCheck::kSmallOrderKey)
+    return 5;
   return frames == 1 ? 0 : 4;
 }
 
