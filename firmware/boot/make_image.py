@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
 """The build step from a slot's binary to a firmware image (docs/flashing.md): header, body,
-protected TLVs (board kind, load slot, anti-rollback counter), TLVs (SHA-256). A second,
+protected TLVs (board kind, load slot, anti-rollback counter), TLVs (SHA-256; the signer's Ed25519
+public key and its signature of the SHA-256, made with Python's cryptography package). A second,
 independent writer of the format the C++ parser in protocol/image.h checks.
 
     make_image.py --kind mps2-an386 --slot 0 --load-address 0x8000 --version 0.1.0 \
-                  --counter 1 [--header-size 256] BODY.bin OUT.img
+                  --counter 1 --key KEY_FILE [--header-size 256] BODY.bin OUT.img
     make_image.py --package SLOT0.img SLOT1.img OUT.palpa    (the update package: both slots)
 """
 import argparse
@@ -12,9 +13,13 @@ import hashlib
 import struct
 import sys
 
+from cryptography.hazmat.primitives import serialization
+from cryptography.hazmat.primitives.asymmetric.ed25519 import Ed25519PrivateKey
+
 IMAGE_MAGIC = 0x96F3B83D
 TLV_INFO_MAGIC, PROTECTED_TLV_INFO_MAGIC = 0x6907, 0x6908
-TLV_SHA256, TLV_SECURITY_COUNTER, TLV_BOARD_KIND, TLV_LOAD_SLOT = 0x10, 0x50, 0xA0, 0xA1
+TLV_PUBKEY, TLV_SHA256, TLV_ED25519 = 0x02, 0x10, 0x24
+TLV_SECURITY_COUNTER, TLV_BOARD_KIND, TLV_LOAD_SLOT = 0x50, 0xA0, 0xA1
 BOARD_KINDS = ["sim", "mps2-an386", "stm32f4", "linux"]
 
 
@@ -22,7 +27,19 @@ def tlv(kind, value):
     return struct.pack("<HH", kind, len(value)) + value
 
 
-def build(body, kind, slot, load_address, version, counter, header_size):
+def read_key(path):
+    """A palpa key file: '#' comment lines, then one line of 64 hexadecimal digits (the seed)."""
+    with open(path) as f:
+        lines = [line.strip() for line in f if line.strip() and not line.startswith("#")]
+    try:
+        if len(lines) != 1 or len(lines[0]) != 64:
+            raise ValueError
+        return Ed25519PrivateKey.from_private_bytes(bytes.fromhex(lines[0]))
+    except ValueError:
+        sys.exit(f"make_image.py: {path}: expected one line of 64 hexadecimal digits (a private key)")
+
+
+def build(body, kind, slot, load_address, version, counter, header_size, key):
     major, minor, patch = version
     protected = (tlv(TLV_BOARD_KIND, bytes([BOARD_KINDS.index(kind)])) +
                  tlv(TLV_LOAD_SLOT, bytes([slot])) +
@@ -33,7 +50,9 @@ def build(body, kind, slot, load_address, version, counter, header_size):
     header += bytes(header_size - len(header))
     covered = header + body + protected
     digest = hashlib.sha256(covered).digest()
-    return covered + struct.pack("<HH", TLV_INFO_MAGIC, 4 + 4 + 32) + tlv(TLV_SHA256, digest)
+    public = key.public_key().public_bytes(serialization.Encoding.Raw, serialization.PublicFormat.Raw)
+    tlvs = tlv(TLV_SHA256, digest) + tlv(TLV_PUBKEY, public) + tlv(TLV_ED25519, key.sign(digest))
+    return covered + struct.pack("<HH", TLV_INFO_MAGIC, 4 + len(tlvs)) + tlvs
 
 
 def package(slot0, slot1, out):
@@ -58,6 +77,7 @@ def main():
     p.add_argument("--version", required=True)
     p.add_argument("--counter", required=True, type=int)
     p.add_argument("--header-size", type=int, default=32)
+    p.add_argument("--key", required=True, help="the private key file to sign with")
     p.add_argument("body")
     p.add_argument("out")
     a = p.parse_args()
@@ -71,7 +91,8 @@ def main():
         sys.exit(f"make_image.py: --header-size {a.header_size}: expected 32 to 1024, a multiple of 4")
     with open(a.body, "rb") as f:
         body = f.read()
-    image = build(body, a.kind, a.slot, a.load_address, version, a.counter, a.header_size)
+    image = build(body, a.kind, a.slot, a.load_address, version, a.counter, a.header_size,
+                  read_key(a.key))
     with open(a.out, "wb") as f:
         f.write(image)
 

@@ -1,4 +1,4 @@
-// Image header and TLV parsing with the hash check, read in 64-byte pieces.
+// Image header and TLV parsing with the hash and signature checks, read in 64-byte pieces.
 #include "palpa/protocol/image.h"
 
 #include "palpa/protocol/little_endian.h"
@@ -42,11 +42,11 @@ uint32_t PutTlv(uint8_t* p, TlvType type, const uint8_t* value, uint16_t length)
 }  // namespace
 
 uint32_t WriteImage(const ImageFields& f, const uint8_t* body, uint32_t body_size, uint8_t* out,
-                    uint32_t capacity) {
+                    uint32_t capacity, ImageSigner* signer) {
   const uint16_t header_size = f.header_size;
   if (header_size < kImageHeaderSize || header_size > kMaxImageHeaderSize || header_size % 4 != 0)
     return 0;
-  const uint32_t size = ImageSize(body_size, header_size);
+  const uint32_t size = ImageSize(body_size, header_size, signer != nullptr);
   if (size > capacity || body_size > capacity) return 0;
   constexpr uint16_t kProtectedSize = 4 + 5 + 5 + 8;
   uint8_t* h = out;
@@ -74,8 +74,15 @@ uint32_t WriteImage(const ImageFields& f, const uint8_t* body, uint32_t body_siz
   const Sha256Digest digest = Sha256Of(out, header_size + body_size + kProtectedSize);
   uint8_t* t = p + kProtectedSize;
   StoreLe16(t, kTlvInfoMagic);
-  StoreLe16(t + 2, 4 + 4 + 32);
-  PutTlv(t + 4, TlvType::kSha256, digest.data(), 32);
+  uint32_t tlvs = 4;
+  tlvs += PutTlv(t + tlvs, TlvType::kSha256, digest.data(), 32);
+  if (signer != nullptr) {
+    uint8_t signature[kEd25519SignatureSize];
+    if (!signer->Sign(digest, signature)) return 0;
+    tlvs += PutTlv(t + tlvs, TlvType::kPublicKey, signer->PublicKey(), kEd25519PublicKeySize);
+    tlvs += PutTlv(t + tlvs, TlvType::kEd25519, signature, kEd25519SignatureSize);
+  }
+  StoreLe16(t + 2, static_cast<uint16_t>(tlvs));
   return size;
 }
 
@@ -97,11 +104,18 @@ const char* ImageErrorName(ImageError e) {
       return "board kind, slot, rollback counter or SHA-256 missing";
     case ImageError::kHashMismatch:
       return "SHA-256 does not match";
+    case ImageError::kUnsigned:
+      return "not signed";
+    case ImageError::kUntrustedKey:
+      return "signed by a key this board does not trust";
+    case ImageError::kBadSignature:
+      return "signature does not verify";
   }
   return "?";
 }
 
-Status VerifyImage(ImageSource& source, uint32_t slot_size, ImageInfo* info, ImageError* error) {
+Status VerifyImage(ImageSource& source, uint32_t slot_size, const TrustedKeys* trusted,
+                   ImageInfo* info, ImageError* error, VerifyProgress* progress) {
   *error = ImageError::kNone;
   *info = ImageInfo{};
   uint8_t h[kImageHeaderSize];
@@ -155,16 +169,34 @@ Status VerifyImage(ImageSource& source, uint32_t slot_size, ImageInfo* info, Ima
   if (!protected_ok || protected_total != protected_size)
     return Fail(ImageError::kBadTlvArea, error);
 
-  // Unprotected TLVs: the hash (the signature slot is reserved and not yet checked).
-  bool hashed = false;
+  // Unprotected TLVs: the hash, the signer's key and the signature (each at most once).
+  bool hashed = false, keyed = false, signed_ = false;
+  uint16_t key_length = 0, signature_length = 0;
   Sha256Digest recorded{};
+  uint8_t signature[kEd25519SignatureSize] = {};
   uint32_t tlv_total = 0;
-  const bool tlv_ok = WalkTlvs(source, protected_at + protected_total, kTlvInfoMagic, slot_size,
-                               &tlv_total, [&](TlvType type, uint16_t length, uint32_t at) {
-                                 if (type != TlvType::kSha256) return true;
-                                 hashed = length == 32 && source.Read(at, recorded.data(), 32);
-                                 return hashed;
-                               });
+  const bool tlv_ok = WalkTlvs(
+      source, protected_at + protected_total, kTlvInfoMagic, slot_size, &tlv_total,
+      [&](TlvType type, uint16_t length, uint32_t at) {
+        switch (type) {
+          case TlvType::kSha256:
+            if (hashed) return false;
+            hashed = length == 32 && source.Read(at, recorded.data(), 32);
+            return hashed;
+          case TlvType::kPublicKey:  // a wrong length is read as far as it fits, and refused
+            if (keyed) return false;
+            keyed = true;
+            key_length = length;
+            return source.Read(at, info->signer, length < 32 ? length : 32);
+          case TlvType::kEd25519:
+            if (signed_) return false;
+            signed_ = true;
+            signature_length = length;
+            return source.Read(at, signature, length < 64 ? length : 64);
+          default:
+            return true;
+        }
+      });
   if (!tlv_ok) return Fail(ImageError::kBadTlvArea, error);
   if (!kind || !slot || !counter || !hashed) return Fail(ImageError::kMissingTlv, error);
   info->total_size = protected_at + protected_total + tlv_total;
@@ -180,6 +212,23 @@ Status VerifyImage(ImageSource& source, uint32_t slot_size, ImageInfo* info, Ima
   }
   info->sha256 = hasher.Finish();
   if (info->sha256 != recorded) return Fail(ImageError::kHashMismatch, error);
+
+  // The signature of the digest, by a key the board trusts (or, for the host, the named key).
+  info->has_signature = keyed && signed_;
+  if (!info->has_signature) return Fail(ImageError::kUnsigned, error);
+  if (trusted != nullptr) {
+    for (uint8_t k = 0; k < trusted->count && k < kMaxTrustedKeys; ++k) {
+      bool same = key_length == kEd25519PublicKeySize;
+      for (size_t i = 0; same && i < kEd25519PublicKeySize; ++i)
+        same = trusted->key[k][i] == info->signer[i];
+      if (same) info->trusted_index = k;
+    }
+    if (info->trusted_index == 0xFF) return Fail(ImageError::kUntrustedKey, error);
+  }
+  const uint8_t* key = trusted != nullptr ? trusted->key[info->trusted_index] : info->signer;
+  info->signature = Ed25519Verify(signature, signature_length, info->sha256.data(),
+                                  info->sha256.size(), key, key_length, progress);
+  if (info->signature != SignatureCheck::kValid) return Fail(ImageError::kBadSignature, error);
   return Status::kOk;
 }
 

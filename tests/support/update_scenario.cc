@@ -7,7 +7,8 @@ namespace palpa::testing {
 namespace pp = protocol;
 
 host::UpdatePackage MakeRelease(uint8_t major, uint8_t minor, uint32_t rollback_counter,
-                                uint32_t body_size, uint32_t seed, pp::BoardKind kind) {
+                                uint32_t body_size, uint32_t seed, pp::BoardKind kind,
+                                pp::ImageSigner* signer) {
   std::mt19937 rng(seed * 977u + major * 31u + minor);
   std::vector<uint8_t> body(body_size);
   for (uint8_t& b : body) b = static_cast<uint8_t>(rng());
@@ -21,6 +22,7 @@ host::UpdatePackage MakeRelease(uint8_t major, uint8_t minor, uint32_t rollback_
     spec.board_kind = kind;
     spec.slot = slot;
     spec.rollback_counter = rollback_counter;
+    spec.signer = signer;
     p.slot_image[slot] = host::BuildImage(spec);
   }
   return p;

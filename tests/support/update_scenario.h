@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "development_signer.h"
 #include "palpa/core/boot_state.h"
 #include "palpa/core/update_engine.h"
 #include "palpa/hal/fake/simulated_nor_flash.h"
@@ -14,10 +15,12 @@
 
 namespace palpa::testing {
 
-/// A release: the images of both slots, with a body of `body_size` random bytes.
+/// A release: the images of both slots, with a body of `body_size` random bytes, signed by
+/// `signer` (the development key the simulated board trusts; nullptr: unsigned).
 host::UpdatePackage MakeRelease(uint8_t major, uint8_t minor, uint32_t rollback_counter,
                                 uint32_t body_size, uint32_t seed,
-                                protocol::BoardKind kind = protocol::BoardKind::kSim);
+                                protocol::BoardKind kind = protocol::BoardKind::kSim,
+                                protocol::ImageSigner* signer = &DevelopmentSigner());
 
 /// A board as it leaves the factory: release 1.0 in slot 0, first boot done (confirmed).
 struct UpdateWorld {

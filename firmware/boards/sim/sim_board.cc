@@ -2,6 +2,8 @@
 #include "sim_board.h"
 
 #include "palpa/core/board_configs.h"
+#include "palpa/hal/linux/ed25519_signer.h"
+#include "palpa/keys/development_keys.h"
 
 namespace palpa::sim {
 
@@ -48,8 +50,9 @@ std::unique_ptr<SimBoard> SimBoard::Create(const SimBoardOptions& options, hal::
   f.slot = 0;
   f.rollback_counter = 1;
   uint8_t image[protocol::ImageSize(sizeof(kBody))];
+  hal::linux_signing::Ed25519Signer factory_key(keys::DevelopmentSeed());  // DEVELOPMENT ONLY
   const uint32_t size = protocol::WriteImage(f, reinterpret_cast<const uint8_t*>(kBody),
-                                             sizeof(kBody), image, sizeof(image));
+                                             sizeof(kBody), image, sizeof(image), &factory_key);
   sim->flash_->Program(layout.slot_offset[0], image, size);
   sim->storage_ = sim->flash_.get();
   if (!options.flash_file.empty()) {  // the flash as the last run left it, kept from now on

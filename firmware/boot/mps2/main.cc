@@ -67,6 +67,13 @@ void Send(const M& m, uint8_t seq, uint8_t flags) {
   if (n.ok()) g_uart.Write(frame, n.value);
 }
 
+/// What recovery mode speaks: Hello, EStop and the update set. Other types are Nacked unsupported
+/// without being decoded (their decoders would not fit the bootloader's 32 KiB beside the
+/// signature check).
+using RecoverySet =
+    pp::MessageList<pp::Hello, pp::EStop, pp::UpdateEnter, pp::UpdateErase, pp::UpdateWrite,
+                    pp::UpdateQuery, pp::UpdateActivate, pp::UpdateReboot, pp::SlotsQuery>;
+
 /// Recovery mode: Hello, EStop and the update set; everything else is not spoken here.
 [[noreturn]] void Recovery(core::UpdateEngine& engine, uint32_t floor) {
   constexpr uint32_t kBootNonce = 0x424F4F54u;  // "BOOT"
@@ -91,7 +98,7 @@ void Send(const M& m, uint8_t seq, uint8_t flags) {
         }
       };
       pp::FieldError field;
-      const pp::Status decoded = pp::DispatchFrame(
+      const pp::Status decoded = pp::DispatchFrameOf<RecoverySet>(
           frame,
           [&](const auto& m, const pp::Header&) {
             using M = std::decay_t<decltype(m)>;

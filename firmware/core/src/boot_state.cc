@@ -1,6 +1,7 @@
 // Boot-state records and the bootloader's choice of slot.
 #include "palpa/core/boot_state.h"
 
+#include "palpa/core/trusted_keys.h"
 #include "palpa/protocol/little_endian.h"
 
 #include "palpa/protocol/crc32.h"
@@ -12,14 +13,18 @@ using protocol::Status;
 
 constexpr uint32_t kRecordMagic = 0x54534250;  // "PBST"
 
-/// A slot of flash read as an image.
-class SlotSource final : public protocol::ImageSource {
+/// A slot of flash read as an image; the watchdog is kicked for every block the hash reads and
+/// every step of the signature check.
+class SlotSource final : public protocol::ImageSource, public protocol::VerifyProgress {
  public:
   SlotSource(hal::Flash& flash, uint32_t base, hal::Watchdog* watchdog)
       : flash_(flash), base_(base), watchdog_(watchdog) {}
   bool Read(uint32_t offset, uint8_t* out, size_t size) override {
     if (watchdog_ != nullptr) watchdog_->Kick();  // the hash reads a block at a time
     return flash_.Read(base_ + offset, out, size) == Status::kOk;
+  }
+  void Step() override {
+    if (watchdog_ != nullptr) watchdog_->Kick();
   }
 
  private:
@@ -125,7 +130,8 @@ SlotImage InspectSlot(hal::Flash& flash, const FlashLayout& layout, uint8_t slot
                       protocol::BoardKind kind, hal::Watchdog* watchdog) {
   SlotImage s;
   SlotSource source(flash, layout.slot_offset[slot], watchdog);
-  s.valid = protocol::VerifyImage(source, layout.slot_size, &s.info, &s.error) == Status::kOk;
+  s.valid = protocol::VerifyImage(source, layout.slot_size, &TrustedImageKeys(), &s.info, &s.error,
+                                  &source) == Status::kOk;
   if (s.valid && (s.info.board_kind != kind || s.info.slot != slot ||
                   s.info.load_address != layout.xip_base + layout.slot_offset[slot])) {
     s.valid = false;  // a good image, but not for this board or not linked for this slot
@@ -186,8 +192,7 @@ BootDecision DecideBoot(const BootState& state, const SlotImage slots[2]) {
     d.next.confirmed = slot;
     d.next.trial = kNoSlot;
     d.next.trial_state = TrialState::kNone;
-    if (slots[slot].info.rollback_counter > d.next.rollback_floor)
-      d.next.rollback_floor = slots[slot].info.rollback_counter;
+    // The floor stays: it moves only when the host confirms an image it activated.
     return choose(slot, state.sequence == 0 ? BootReason::kFirstBoot : BootReason::kFallback);
   }
   d.write_state = false;

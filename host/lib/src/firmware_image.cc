@@ -31,9 +31,10 @@ constexpr char kPackageMagic[8] = {'P', 'A', 'L', 'P', 'A', 'P', 'K', 'G'};
 
 std::vector<uint8_t> BuildImage(const ImageSpec& s) {
   const auto body_size = static_cast<uint32_t>(s.body.size());
-  std::vector<uint8_t> image(protocol::ImageSize(body_size, s.header_size));
-  protocol::WriteImage(s, s.body.data(), body_size, image.data(),
-                       static_cast<uint32_t>(image.size()));
+  std::vector<uint8_t> image(protocol::ImageSize(body_size, s.header_size, s.signer != nullptr));
+  if (protocol::WriteImage(s, s.body.data(), body_size, image.data(),
+                           static_cast<uint32_t>(image.size()), s.signer) == 0)
+    return {};
   return image;
 }
 
@@ -41,7 +42,7 @@ protocol::Status VerifyImageBytes(const std::vector<uint8_t>& image, protocol::I
                                   protocol::ImageError* error) {
   MemorySource source(image);
   const protocol::Status s =
-      protocol::VerifyImage(source, static_cast<uint32_t>(image.size()), info, error);
+      protocol::VerifyImage(source, static_cast<uint32_t>(image.size()), nullptr, info, error);
   if (s == protocol::Status::kOk && info->total_size != image.size()) {
     *error = protocol::ImageError::kBadTlvArea;  // trailing bytes: not one image
     return protocol::Status::kImageInvalid;

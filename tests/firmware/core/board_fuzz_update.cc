@@ -1,5 +1,6 @@
 // The board fuzzer's firmware-update operations and their checks (see board_fuzz_update.h).
 #include "board_fuzz_update.h"
+#include "development_signer.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -123,8 +124,9 @@ void UpdateFuzzer::SendWholeImage(FuzzInput& s, uint8_t slot, const SendMessage&
   std::vector<uint8_t> image_body(body_size);
   for (uint8_t& b : image_body) b = s.Byte();
   std::vector<uint8_t> image(pp::ImageSize(body_size));
-  const uint32_t size = pp::WriteImage(fields, image_body.data(), body_size, image.data(),
-                                       static_cast<uint32_t>(image.size()));
+  const uint32_t size =
+      pp::WriteImage(fields, image_body.data(), body_size, image.data(),
+                     static_cast<uint32_t>(image.size()), &palpa::testing::DevelopmentSigner());
   if ((flags & 8) != 0) image[s.Word() % image.size()] ^= static_cast<uint8_t>(1 + s.Byte() % 255);
   if ((flags & 16) == 0) {
     Encode(pp::UpdateEnter{slot, size}, pp::MessageType::kUpdateEnter, send);

@@ -11,6 +11,7 @@
 #include <random>
 #include <string>
 
+#include "development_signer.h"
 #include "update_scenario.h"
 
 #include "CppUTest/TestHarness.h"
@@ -50,6 +51,7 @@ TEST(FirmwareImage, APaddedHeaderPutsTheBodyOnItsBoundaryAndTheHashCoversThePadd
   spec.body = {1, 2, 3, 4, 5, 6, 7, 8};
   spec.header_size = 256;  // a Cortex-M vector table after it is 256-byte aligned
   spec.board_kind = pp::BoardKind::kMps2An386;
+  spec.signer = &pt::DevelopmentSigner();
   std::vector<uint8_t> image = ph::BuildImage(spec);
   pp::ImageInfo info;
   pp::ImageError error;

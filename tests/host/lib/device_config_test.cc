@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "development_signer.h"
 #include "palpa/host/device.h"
 #include "palpa/host/device_uri.h"
 #include "palpa/host/firmware_image.h"
@@ -54,6 +55,7 @@ TEST(DeviceConfig, SlotImagesAreLaidOutForTheBoardKindsFlash) {
   ph::ImageSpec spec;
   spec.board_kind = pp::BoardKind::kMps2An386;
   spec.body.assign(1024, 0xA5);
+  spec.signer = &palpa::testing::DevelopmentSigner();
   pp::ImageError why = pp::ImageError::kNone;
   for (uint8_t slot = 0; slot < 2; ++slot) {
     const auto image = ph::BuildSlotImage(spec, slot);

@@ -22,6 +22,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "development_signer.h"
 #include "example_calibration.h"
 #include "fuzz_input.h"
 #include "palpa/calibration/calibration_protocol.h"
@@ -220,6 +221,7 @@ const std::vector<uint8_t>& ValidPackage() {
       spec.version_minor = 3;
       spec.rollback_counter = 2;
       spec.board_kind = pp::BoardKind::kSim;
+      spec.signer = &palpa::testing::DevelopmentSigner();
       p.slot_image[slot] = ph::BuildImage(spec);
     }
     return ph::WritePackage(p);

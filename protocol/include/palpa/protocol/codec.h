@@ -72,11 +72,13 @@ Result<size_t> EncodeMessageFrame(const M& m, uint8_t seq, uint8_t header_flags,
 }
 
 /// Decodes a frame's body as the message its header names and calls handler(message, header).
-/// Returns kUnsupported for an unknown type (handler not called) or the decode status.
-template <class Handler>
-Status DispatchFrame(const Frame& frame, Handler&& handler, FieldError* error = nullptr) {
+/// Returns kUnsupported for a type not in `List` (handler not called) or the decode status. A
+/// board that speaks part of the catalog (the bootloader's recovery mode) names its part, and
+/// decoders for the rest are not even compiled in.
+template <class List, class Handler>
+Status DispatchFrameOf(const Frame& frame, Handler&& handler, FieldError* error = nullptr) {
   Status result = Status::kUnsupported;
-  ForEachMessage(Catalog{}, [&]<class M>() {
+  ForEachMessage(List{}, [&]<class M>() {
     if (static_cast<uint8_t>(M::kInfo.type) != frame.header.type) return;
     M message{};
     result = DecodeBody(frame.body, frame.body_size, message, error);
@@ -86,6 +88,12 @@ Status DispatchFrame(const Frame& frame, Handler&& handler, FieldError* error = 
     *error = FieldError{Status::kUnsupported, "type", 1};
   }
   return result;
+}
+
+/// DispatchFrameOf the whole catalog.
+template <class Handler>
+Status DispatchFrame(const Frame& frame, Handler&& handler, FieldError* error = nullptr) {
+  return DispatchFrameOf<Catalog>(frame, handler, error);
 }
 
 }  // namespace palpa::protocol

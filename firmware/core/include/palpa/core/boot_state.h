@@ -58,13 +58,15 @@ class BootStore {
 
 /// What is in a slot, as the bootloader sees it.
 struct SlotImage {
-  bool valid = false;  ///< header, TLVs and hash check, for this board kind and this slot
+  bool valid = false;  ///< header, TLVs, hash and trusted signature check, for this kind and slot
   protocol::ImageInfo info{};
   protocol::ImageError error = protocol::ImageError::kBadMagic;
 };
 
-/// Verifies the image in `slot` of `flash` (for `kind`). Hashing a whole slot outlasts a
-/// watchdog period on a slow core, so `watchdog` (may be nullptr) is kicked for every block read.
+/// Verifies the image in `slot` of `flash` (for `kind`), signed by one of the compiled-in
+/// TrustedImageKeys(). Hashing a whole slot and checking its signature outlast a watchdog period
+/// on a slow core, so `watchdog` (may be nullptr) is kicked for every block read and every step of
+/// the signature check.
 SlotImage InspectSlot(hal::Flash& flash, const FlashLayout& layout, uint8_t slot,
                       protocol::BoardKind kind, hal::Watchdog* watchdog = nullptr);
 

@@ -22,9 +22,11 @@ inline constexpr FileLimits kSlotBinaryLimits{"slot binary", 8 * 1024 * 1024};
 /// where the slot appears in the board's address map) and the body.
 struct ImageSpec : protocol::ImageFields {
   std::vector<uint8_t> body;  ///< the binary linked to run from the slot
+  /// Signs the image (its key and signature TLVs); nullptr: unsigned, which boards refuse.
+  protocol::ImageSigner* signer = nullptr;
 };
 
-/// Header, body, protected TLVs (kind, slot, counter), TLVs (SHA-256).
+/// Header, body, protected TLVs (kind, slot, counter), TLVs (SHA-256; key and signature).
 std::vector<uint8_t> BuildImage(const ImageSpec& spec);
 
 /// The image of `slot` in a release (spec's board kind, version, rollback counter and the body
@@ -33,7 +35,8 @@ std::vector<uint8_t> BuildImage(const ImageSpec& spec);
 /// Out of range ("N bytes do not fit a slot of M") when the body is too large for a slot.
 Result<std::vector<uint8_t>> BuildSlotImage(ImageSpec spec, uint8_t slot);
 
-/// Verifies an image held in memory (as the board would, for any slot size).
+/// Verifies an image held in memory (as the board would, for any slot size), its signature
+/// against the key it names: which keys a board trusts is the board's to say.
 protocol::Status VerifyImageBytes(const std::vector<uint8_t>& image, protocol::ImageInfo* info,
                                   protocol::ImageError* error);
 
