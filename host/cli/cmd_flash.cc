@@ -11,6 +11,7 @@
 #include "palpa/host/boot_pins.h"
 #include "palpa/host/file_write.h"
 #include "palpa/host/flasher.h"
+#include "palpa/host/signing_key.h"
 
 namespace palpa::cli {
 namespace {
@@ -68,6 +69,10 @@ int CmdFlash(Context& c, const std::vector<std::string>& args) {
       options.resume = true;
     } else if (a == "--dry-run") {
       options.dry_run = true;
+    } else if (a == "--allow-downgrade") {
+      options.allow_downgrade = true;
+    } else if (a == "--allow-counter-jump") {
+      options.allow_counter_jump = true;
     } else if (a == "--reset-line" || a == "--boot-line") {
       if (i + 1 >= args.size()) return Usage("flash", a + " needs CHIP:LINE");
       (a == "--reset-line" ? reset_spec : boot_spec) = args[++i];
@@ -115,6 +120,11 @@ int CmdFlash(Context& c, const std::vector<std::string>& args) {
   options.progress = Progress;
   const host::FlashReport r = host::FlashPackage(device->link(), package.value, options);
   std::fprintf(stderr, "\n");
+  if (!r.signer_key_id.empty() && !c.json) {
+    std::fprintf(TextOut(),
+                 "package %s, anti-rollback counter %u (board's floor %u), signed by key %s\n",
+                 r.to_version.c_str(), r.package_counter, r.board_floor, r.signer_key_id.c_str());
+  }
   if (r.status != pp::Status::kOk) {
     return Fail("flash", r.status, r.message,
                 r.status == pp::Status::kRollbackRefused || r.status == pp::Status::kImageInvalid
@@ -124,6 +134,8 @@ int CmdFlash(Context& c, const std::vector<std::string>& args) {
   if (c.json) {
     PrintJson({{"result", r.message},
                {"dry_run", options.dry_run},
+               {"signed_by", r.signer_key_id},
+               {"counter", r.package_counter},
                {"bytes_written", r.bytes_written},
                {"resumed_from", r.resumed_from},
                {"write_seconds", r.write_seconds}});
@@ -146,7 +158,7 @@ int CmdFlash(Context& c, const std::vector<std::string>& args) {
 }
 
 int CmdPackage(Context&, const std::vector<std::string>& args) {
-  std::string kind_text = "sim", version_text, out;
+  std::string kind_text = "sim", version_text, out, key_path;
   std::vector<std::string> bodies;
   uint32_t counter = 0;
   bool have_counter = false;
@@ -170,14 +182,21 @@ int CmdPackage(Context&, const std::vector<std::string>& args) {
       have_counter = true;
     } else if (a == "--out") {
       if (!value(out)) return Usage("package", "--out needs a file");
+    } else if (a == "--sign") {
+      if (!value(key_path)) return Usage("package", "--sign needs a private key file");
     } else if (!a.empty() && a[0] == '-') {
       return Usage("package", "unexpected option '" + a + "'");
     } else {
       bodies.push_back(a);
     }
   }
-  if (bodies.size() != 2 || version_text.empty() || !have_counter || out.empty())
-    return Usage("package", "needs SLOT0.bin SLOT1.bin --version X.Y.Z --counter N --out FILE");
+  if (bodies.size() != 2 || version_text.empty() || !have_counter || out.empty() ||
+      key_path.empty())
+    return Usage("package",
+                 "needs SLOT0.bin SLOT1.bin --version X.Y.Z --counter N --sign KEY --out FILE");
+  const auto seed = host::ReadSigningKey(key_path);
+  if (!seed.ok()) return Usage("package", "--sign " + seed.message);
+  host::Ed25519Signer signer(seed.value);
   host::ImageSpec spec;
   if (!ParseVersion(version_text, &spec.version_major, &spec.version_minor, &spec.version_revision))
     return Usage("package", "--version " + version_text + ": expected MAJOR.MINOR.PATCH");
@@ -191,6 +210,7 @@ int CmdPackage(Context&, const std::vector<std::string>& args) {
   if (!known)
     return Usage("package", "--kind " + kind_text + ": expected sim, mps2-an386, stm32f4 or linux");
   spec.rollback_counter = counter;
+  spec.signer = &signer;
   host::UpdatePackage package;
   for (uint8_t slot = 0; slot < 2; ++slot) {
     auto body = ReadBytes(bodies[slot], host::kSlotBinaryLimits);
@@ -209,21 +229,28 @@ int CmdPackage(Context&, const std::vector<std::string>& args) {
                {"kind", kind_text},
                {"version", version_text},
                {"counter", counter},
+               {"key_id", host::KeyId(signer.PublicKey())},
                {"slot_image_bytes", {package.slot_image[0].size(), package.slot_image[1].size()}}});
     return kExitOk;
   }
-  std::printf("%s: %s %s, counter %u, slot images of %zu and %zu bytes\n", out.c_str(),
-              kind_text.c_str(), version_text.c_str(), counter, package.slot_image[0].size(),
-              package.slot_image[1].size());
+  std::printf("%s: %s %s, counter %u, slot images of %zu and %zu bytes, signed by key %s\n",
+              out.c_str(), kind_text.c_str(), version_text.c_str(), counter,
+              package.slot_image[0].size(), package.slot_image[1].size(),
+              host::KeyId(signer.PublicKey()).c_str());
   return kExitOk;
 }
 
 const Command kFlashCommand{
     "flash",
-    "flash PACKAGE [--resume] [--dry-run] [--reset-line CHIP:LINE] [--boot-line CHIP:LINE]",
-    "Updates the board's firmware over its link: checks the package against the board (kind,\n"
-    "anti-rollback counter) and shows the version change, writes the image for the slot the\n"
-    "board reports inactive with a progress bar, verifies its SHA-256, activates it for one\n"
+    "flash PACKAGE [--resume] [--dry-run] [--allow-downgrade] [--allow-counter-jump]\n"
+    "      [--reset-line CHIP:LINE] [--boot-line CHIP:LINE]",
+    "Updates the board's firmware over its link: checks the package against the board (its\n"
+    "signature, kind, anti-rollback counter) and shows the version change and who signed it\n"
+    "(key id). Before writing anything it refuses a lower version at the board's counter unless\n"
+    "--allow-downgrade, and a counter more than one above the board's unless\n"
+    "--allow-counter-jump (once confirmed, nothing below it can be installed again). It writes\n"
+    "the image for the slot the board reports inactive with a progress bar, verifies its\n"
+    "SHA-256, activates it (the board checks the signature against its own keys) for one\n"
     "trial boot, waits for the board to answer on it and confirms it. A board reset before "
     "the\n"
     "confirmation returns to the old image. --resume goes on from what the board reports\n"
@@ -233,11 +260,13 @@ const Command kFlashCommand{
     CmdFlash};
 
 const Command kPackageCommand{
-    "package", "package SLOT0.bin SLOT1.bin --version X.Y.Z --counter N [--kind KIND] --out FILE",
+    "package",
+    "package SLOT0.bin SLOT1.bin --version X.Y.Z --counter N --sign KEY [--kind KIND] --out FILE",
     "Makes an update package: each slot's binary (linked to run from that slot) gets the "
     "image\n"
-    "header, board kind, slot, anti-rollback counter and SHA-256. KIND: sim (default),\n"
-    "mps2-an386, stm32f4.",
+    "header, board kind, slot, anti-rollback counter and SHA-256, signed with the private key\n"
+    "KEY (palpa keygen; boards take only images signed by a key built into them). KIND: sim\n"
+    "(default), mps2-an386, stm32f4.",
     CmdPackage};
 
 }  // namespace palpa::cli

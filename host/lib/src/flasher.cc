@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "flash_update.h"
+#include "palpa/host/signing_key.h"
 
 namespace palpa::host {
 namespace flash_internal {
@@ -23,16 +24,22 @@ std::string Why(const CommandResult& r) {
   return s;
 }
 
-/// The package against the board: a valid image for this board's kind, not older than the
-/// anti-rollback floor.
+/// The package against the board: a valid image signed by the key it names (whether the board
+/// trusts that key, the board says at activation), for this board's kind, not older than the
+/// anti-rollback floor, not jumping past it, not a downgrade at an equal counter.
 bool Update::Check() {
   pp::ImageInfo info;
   pp::ImageError error;
   if (VerifyImageBytes(image_, &info, &error) != Status::kOk) {
+    std::string why = pp::ImageErrorName(error);
+    if (error == pp::ImageError::kBadSignature)
+      why += std::string(" (") + pp::SignatureCheckName(info.signature) + ")";
     return Fail(Status::kImageInvalid, std::string("the package's slot ") + std::to_string(slot_) +
-                                           " image is invalid: " + pp::ImageErrorName(error));
+                                           " image is invalid: " + why);
   }
+  report_.signer_key_id = KeyId(info.signer);
   report_.to_version = VersionText(info.version_major, info.version_minor, info.version_revision);
+  report_.package_counter = info.rollback_counter;
   if (info.board_kind != board_.board_kind) {
     return Fail(Status::kImageInvalid,
                 std::string("the package is for a ") +
@@ -50,11 +57,33 @@ bool Update::Check() {
         floor = std::max(floor, slots.slots[k].rollback_counter);
     }
   }
+  report_.board_floor = floor;
   if (info.rollback_counter < floor) {
     return Fail(Status::kRollbackRefused, "refused: the package's anti-rollback counter " +
                                               std::to_string(info.rollback_counter) +
                                               " is below the board's " + std::to_string(floor) +
                                               " (an older release)");
+  }
+  if (info.rollback_counter > floor + 1ull && !o_.allow_counter_jump) {
+    return Fail(Status::kRollbackRefused,
+                "refused: the package's anti-rollback counter " +
+                    std::to_string(info.rollback_counter) + " jumps from the board's " +
+                    std::to_string(floor) + "; once confirmed, no release below " +
+                    std::to_string(info.rollback_counter) +
+                    " can ever be installed on this board. Nothing was written; if the jump is "
+                    "meant, flash with --allow-counter-jump");
+  }
+  const auto version = [](unsigned major, unsigned minor, unsigned patch) {
+    return uint64_t{major} << 32 | uint64_t{minor} << 16 | patch;
+  };
+  if (info.rollback_counter == floor && !o_.allow_downgrade &&
+      version(info.version_major, info.version_minor, info.version_revision) <
+          version(board_.firmware_major, board_.firmware_minor, board_.firmware_patch)) {
+    return Fail(Status::kRollbackRefused,
+                "refused: " + report_.to_version + " is older than the running " +
+                    report_.from_version + " at the same anti-rollback counter " +
+                    std::to_string(floor) +
+                    ". Nothing was written; to downgrade, flash with --allow-downgrade");
   }
   return true;
 }
@@ -80,6 +109,12 @@ bool Update::VerifyAndActivate() {
   }
   Progress("verify", 1, 1, report_.write_seconds);
   r = link_.Command(pp::UpdateActivate{slot_, size_, digest});
+  if (r.status == Status::kImageInvalid && r.detail > 0 &&
+      r.detail <= static_cast<uint32_t>(pp::ImageError::kBadSignature)) {
+    return Fail(r.status, std::string("activate: the board refused the image: ") +
+                              pp::ImageErrorName(static_cast<pp::ImageError>(r.detail)) +
+                              "; nothing was activated");
+  }
   if (r.status != Status::kOk) return Fail(r.status, "activate: " + Why(r));
   Progress("activate", 1, 1, report_.write_seconds);
   return true;

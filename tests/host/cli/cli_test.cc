@@ -1,6 +1,7 @@
 // The palpa command line as a person uses it: exit codes, named errors, nothing sent on a bad
 // command line, and the commands against palpa-sim.
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -25,6 +26,7 @@
 #include "CppUTest/TestHarness.h"
 
 using palpa::testing::ExpectUsage;
+const std::string kDevelopmentKey = PALPA_DEVELOPMENT_KEY;  // DEVELOPMENT ONLY
 using palpa::testing::Has;
 using palpa::testing::OwnTempPath;
 using palpa::testing::Palpa;
@@ -470,8 +472,8 @@ TEST(CliSim, AKeptBoardLivesAcrossCommandsAndItsFlashAcrossRestarts) {
   // The firmware slots and boot state are in the same flash: an update survives a restart.
   std::ofstream(state + "/a.bin") << std::string(20000, 'a');
   std::ofstream(state + "/b.bin") << std::string(20000, 'b');
-  r = Palpa("package " + state + "/a.bin " + state + "/b.bin --version 0.3.0 --counter 3 --out " +
-                state + "/new.palpa",
+  r = Palpa("package " + state + "/a.bin " + state + "/b.bin --version 0.3.0 --counter 2 --sign " +
+                kDevelopmentKey + " --out " + state + "/new.palpa",
             env);
   LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
   r = Palpa("flash " + state + "/new.palpa", env);
@@ -480,7 +482,7 @@ TEST(CliSim, AKeptBoardLivesAcrossCommandsAndItsFlashAcrossRestarts) {
   LONGS_EQUAL(0, Palpa("sim start", env).code);
   r = Palpa("info", env);
   CHECK_TEXT(Has(r, "firmware      0.3.0"), r.output.c_str());
-  CHECK(Has(r, "image slot    1, anti-rollback counter 3"));
+  CHECK(Has(r, "image slot    1, anti-rollback counter 2"));
 
   // A flash file belongs to one configuration.
   LONGS_EQUAL(0, Palpa("sim stop", env).code);
@@ -708,12 +710,31 @@ TEST(CliFlash, PackagesAreMadeCheckedAndFlashedOverTheLink) {
   const std::string dir = mkdtemp(pattern);
   std::ofstream(dir + "/a.bin") << std::string(20000, 'a');
   std::ofstream(dir + "/b.bin") << std::string(20000, 'b');
-  Run r = Palpa("package " + dir + "/a.bin " + dir + "/b.bin --version 0.3.0 --counter 3 --out " +
-                dir + "/new.palpa");
+  const auto package = [&](const std::string& version, const std::string& counter,
+                           const std::string& key, const std::string& name) {
+    return Palpa("package " + dir + "/a.bin " + dir + "/b.bin --version " + version +
+                 " --counter " + counter + " --sign " + key + " --out " + dir + "/" + name);
+  };
+  Run r = package("0.3.0", "2", kDevelopmentKey, "new.palpa");
   LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
-  r = Palpa("package " + dir + "/a.bin " + dir + "/b.bin --version 0.0.9 --counter 0 --out " + dir +
-            "/old.palpa");
-  LONGS_EQUAL(0, r.code);
+  CHECK_TEXT(Has(r, "signed by key "), r.output.c_str());
+  LONGS_EQUAL(0, package("0.0.9", "0", kDevelopmentKey, "old.palpa").code);
+  LONGS_EQUAL(0, package("0.2.0", "2", kDevelopmentKey, "down.palpa").code);
+  // The review's attack: a package that would pin the board's counter at its maximum.
+  LONGS_EQUAL(0, package("9.9.9", "4294967295", kDevelopmentKey, "pin.palpa").code);
+  // Signed by a key of this lab's own, which the development board does not trust.
+  const std::string lab = dir + "/lab.key";
+  r = Palpa("keygen " + lab);
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  LONGS_EQUAL(0, package("0.4.0", "2", lab, "lab.palpa").code);
+  std::ofstream(dir + "/lab.key.pub2") << "# not a key\nhello\n";
+  r = ExpectUsage("package " + dir + "/a.bin " + dir + "/b.bin --version 1.0.0 --counter 1 --out " +
+                      dir + "/unsigned.palpa",
+                  "--sign KEY");
+  r = ExpectUsage("package " + dir + "/a.bin " + dir +
+                      "/b.bin --version 1.0.0 --counter 1 --sign " + dir + "/lab.key.pub2 --out " +
+                      dir + "/x.palpa",
+                  "not a private key file");
   // Bad command lines and bad packages are named before anything is sent.
   const std::string nowhere = "--device tcp:127.0.0.1:1 ";
   r = ExpectUsage(nowhere + "flash", "needs a PACKAGE");
@@ -737,14 +758,54 @@ TEST(CliFlash, PackagesAreMadeCheckedAndFlashedOverTheLink) {
   r = Palpa(device + "flash " + dir + "/new.palpa --dry-run");
   LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
   CHECK(Has(r, "would write 0.3.0"));
+  CHECK_TEXT(Has(r, "anti-rollback counter 2 (board's floor 1), signed by key "), r.output.c_str());
+  // The counter jump is flagged before anything is written (the dry run says so too).
+  r = ExpectUsage(device + "flash " + dir + "/pin.palpa --dry-run", "jumps from the board's 1");
+  r = ExpectUsage(device + "flash " + dir + "/pin.palpa", "--allow-counter-jump");
+  CHECK(Has(r, "Nothing was written"));
+  // The board itself refuses an image its keys did not sign, at activation.
+  r = Palpa(device + "flash " + dir + "/lab.palpa");
+  LONGS_EQUAL_TEXT(2, r.code, r.output.c_str());
+  CHECK_TEXT(Has(r, "signed by a key this board does not trust"), r.output.c_str());
   r = Palpa(device + "flash " + dir + "/new.palpa");
   LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
   CHECK(Has(r, "updated 0.1.0 → 0.3.0 (slot 1), confirmed"));
   r = Palpa(device + "info");
   CHECK(Has(r, "firmware      0.3.0"));
-  CHECK(Has(r, "image slot    1, anti-rollback counter 3"));
+  CHECK(Has(r, "image slot    1, anti-rollback counter 2"));
   r = ExpectUsage(device + "flash " + dir + "/old.palpa",
-                  "anti-rollback counter 0 is below the board's 3");
+                  "anti-rollback counter 0 is below the board's 2");
+  // A lower version at the same counter: only when asked for.
+  r = ExpectUsage(device + "flash " + dir + "/down.palpa",
+                  "0.2.0 is older than the running 0.3.0 at the same anti-rollback counter 2");
+  r = Palpa(device + "flash " + dir + "/down.palpa --allow-downgrade");
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  CHECK(Has(r, "updated 0.3.0 → 0.2.0 (slot 0), confirmed"));
+}
+
+TEST(CliFlash, KeygenWritesAPrivateKeyOnlyItsOwnerReadsAndNeverOverwrites) {
+  char pattern[] = "/tmp/palpa-keygen-XXXXXX";
+  const std::string dir = mkdtemp(pattern);
+  const std::string key = dir + "/release.key";
+  Run r = Palpa("keygen " + key);
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  CHECK_TEXT(Has(r, "(mode 0600: keep it secret)"), r.output.c_str());
+  struct stat st {};
+  LONGS_EQUAL(0, stat(key.c_str(), &st));
+  LONGS_EQUAL(0600, st.st_mode & 0777);
+  std::ifstream in(key);
+  const std::string before((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  r = ExpectUsage("keygen " + key, "exists; not overwritten");
+  std::ifstream again(key);
+  const std::string after((std::istreambuf_iterator<char>(again)),
+                          std::istreambuf_iterator<char>());
+  CHECK(before == after);
+  r = Palpa("--json keygen " + dir + "/second.key");
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  const auto json = nlohmann::json::parse(r.output);
+  LONGS_EQUAL(16, json["key_id"].get<std::string>().size());
+  r = ExpectUsage("keygen", "needs one FILE");
+  std::system(("rm -rf " + dir).c_str());
 }
 
 TEST_GROUP(CliDemo){};

@@ -349,7 +349,7 @@ TEST(SimSessions, AFlashStoppedBySignalLeavesTheBoardSafeAndResumable) {
   Shell("head -c 150000 /dev/urandom > " + dir + "/a.bin; cp " + dir + "/a.bin " + dir + "/b.bin");
   const std::string package = dir + "/new.palpa";
   r = Shell(std::string(PALPA_CLI_PATH) + " package " + dir + "/a.bin " + dir +
-            "/b.bin --version 0.3.0 --counter 3 --out " + package);
+            "/b.bin --version 0.3.0 --counter 2 --sign " PALPA_DEVELOPMENT_KEY " --out " + package);
   LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
   {  // Over a line that carries 5 kB/s (a 57 600 baud UART): the write takes seconds and the
      // signal lands within them, its Close queued behind up to the board's 4 KiB buffer (0.8 s).

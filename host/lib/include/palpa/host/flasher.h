@@ -1,7 +1,7 @@
 // Flashing a board over the link it is controlled with: the package checked against the board
-// (kind, anti-rollback counter), the image for the inactive slot erased and written (resumable
-// from what the board reports written, with its hash), activated for one trial boot, the board
-// rebooted and seen to answer Hello on the new image, then confirmed.
+// (signature, kind, anti-rollback counter and its jump, version), the image for the inactive slot
+// erased and written (resumable from what the board reports written, with its hash), activated for
+// one trial boot, the board rebooted and seen to answer Hello on the new image, then confirmed.
 #pragma once
 
 #include <functional>
@@ -22,6 +22,12 @@ struct FlashProgress {
 struct FlashOptions {
   bool resume = false;   ///< go on from what the board reports written (when its hash agrees)
   bool dry_run = false;  ///< check and report the version change; write nothing
+  /// A lower version than the running one at the same anti-rollback counter is refused unless
+  /// allowed (at a lower counter the board refuses it in any case).
+  bool allow_downgrade = false;
+  /// A counter more than one above the board's floor is refused unless allowed: once confirmed,
+  /// nothing below it can ever be installed again.
+  bool allow_counter_jump = false;
   int erase_timeout_ms = 60000;
   int reboot_timeout_ms = 15000;
   /// Called just before the reboot into the new image (release a held boot pin here).
@@ -32,6 +38,8 @@ struct FlashOptions {
 /// The update's Outcome (status, and what happened or why not in words) and what it did.
 struct FlashReport : Outcome {
   std::string from_version, to_version;
+  std::string signer_key_id;  ///< KeyId of the key the package's image names (and is signed by)
+  uint32_t board_floor = 0, package_counter = 0;
   uint8_t slot = 0;            ///< the slot written
   uint32_t bytes_written = 0;  ///< this run (less than the image when resumed)
   uint32_t resumed_from = 0;
