@@ -22,8 +22,7 @@ void Sha256Hasher::Reset() {
   constexpr uint32_t kInitial[8] = {0x6a09e667, 0xbb67ae85, 0x3c6ef372, 0xa54ff53a,
                                     0x510e527f, 0x9b05688c, 0x1f83d9ab, 0x5be0cd19};
   for (int i = 0; i < 8; ++i) state_[i] = kInitial[i];
-  length_ = 0;
-  buffered_ = 0;
+  blocks_.Reset();
 }
 
 void Sha256Hasher::Block(const uint8_t* p) {
@@ -63,34 +62,11 @@ void Sha256Hasher::Block(const uint8_t* p) {
 }
 
 void Sha256Hasher::Update(const uint8_t* data, size_t size) {
-  length_ += size;
-  while (size > 0) {
-    if (buffered_ == 0 && size >= 64) {  // whole blocks straight from the input
-      Block(data);
-      data += 64;
-      size -= 64;
-      continue;
-    }
-    const size_t take = size < 64 - buffered_ ? size : 64 - buffered_;
-    for (size_t i = 0; i < take; ++i) buffer_[buffered_ + i] = data[i];
-    buffered_ += take;
-    data += take;
-    size -= take;
-    if (buffered_ == 64) {
-      Block(buffer_);
-      buffered_ = 0;
-    }
-  }
+  blocks_.Update(data, size, [this](const uint8_t* block) { Block(block); });
 }
 
 Sha256Digest Sha256Hasher::Finish() {
-  const uint64_t bits = length_ * 8;
-  const uint8_t one = 0x80, zero = 0;
-  Update(&one, 1);
-  while (buffered_ != 56) Update(&zero, 1);
-  uint8_t tail[8];
-  for (int i = 0; i < 8; ++i) tail[i] = static_cast<uint8_t>(bits >> (56 - 8 * i));
-  Update(tail, 8);
+  blocks_.Pad([this](const uint8_t* data, size_t size) { Update(data, size); });
   Sha256Digest out{};
   for (int i = 0; i < 8; ++i) {
     out[4 * i] = static_cast<uint8_t>(state_[i] >> 24);

@@ -37,8 +37,7 @@ void Sha512Hasher::Reset() {
       0x6a09e667f3bcc908ull, 0xbb67ae8584caa73bull, 0x3c6ef372fe94f82bull, 0xa54ff53a5f1d36f1ull,
       0x510e527fade682d1ull, 0x9b05688c2b3e6c1full, 0x1f83d9abfb41bd6bull, 0x5be0cd19137e2179ull};
   for (int i = 0; i < 8; ++i) state_[i] = kInitial[i];
-  length_ = 0;
-  buffered_ = 0;
+  blocks_.Reset();
 }
 
 void Sha512Hasher::Block(const uint8_t* p) {
@@ -72,34 +71,11 @@ void Sha512Hasher::Block(const uint8_t* p) {
 }
 
 void Sha512Hasher::Update(const uint8_t* data, size_t size) {
-  length_ += size;
-  while (size > 0) {
-    if (buffered_ == 0 && size >= 128) {  // whole blocks straight from the input
-      Block(data);
-      data += 128;
-      size -= 128;
-      continue;
-    }
-    const size_t take = size < 128 - buffered_ ? size : 128 - buffered_;
-    for (size_t i = 0; i < take; ++i) buffer_[buffered_ + i] = data[i];
-    buffered_ += take;
-    data += take;
-    size -= take;
-    if (buffered_ == 128) {
-      Block(buffer_);
-      buffered_ = 0;
-    }
-  }
+  blocks_.Update(data, size, [this](const uint8_t* block) { Block(block); });
 }
 
 Sha512Digest Sha512Hasher::Finish() {
-  const uint64_t bits = length_ * 8;
-  const uint8_t one = 0x80, zero = 0;
-  Update(&one, 1);
-  while (buffered_ != 112) Update(&zero, 1);
-  uint8_t tail[16] = {};  // a 128-bit length: the high half is 0 below 2^61 bytes
-  for (int i = 0; i < 8; ++i) tail[8 + i] = static_cast<uint8_t>(bits >> (56 - 8 * i));
-  Update(tail, 16);
+  blocks_.Pad([this](const uint8_t* data, size_t size) { Update(data, size); });
   Sha512Digest out{};
   for (int i = 0; i < 8; ++i) {
     for (int j = 0; j < 8; ++j) out[8 * i + j] = static_cast<uint8_t>(state_[i] >> (56 - 8 * j));

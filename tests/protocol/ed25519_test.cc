@@ -1,5 +1,5 @@
-// The board's Ed25519 verifier and SHA-512 against libsodium: RFC 8032's vectors, 10 000 random
-// keys and messages, corruptions, and every malformed class (S ≥ L, small-order R and A,
+// The board's Ed25519 verifier, SHA-512 and SHA-256 against libsodium: RFC 8032's vectors, 10 000
+// random keys and messages, corruptions, and every malformed class (S ≥ L, small-order R and A,
 // non-canonical encodings, wrong lengths). Both must reach the same verdict on every input.
 #include <sodium.h>
 
@@ -9,6 +9,7 @@
 
 #include "CppUTest/TestHarness.h"
 #include "palpa/protocol/ed25519.h"
+#include "palpa/protocol/sha256.h"
 #include "palpa/protocol/sha512.h"
 #include "rfc8032_vectors.h"
 
@@ -103,21 +104,39 @@ TEST_GROUP(Sha512){void setup() override{CHECK(sodium_init() >= 0);
 }
 ;
 
-TEST(Sha512, MatchesLibsodiumAtEveryLengthAroundTheBlockAndInPieces) {
-  std::mt19937_64 rng(512);
+/// Every message length from 0 to 399 (three SHA-512 blocks, six SHA-256 ones, and every padding
+/// case), fed in random pieces: the same digest as libsodium's `reference`.
+template <class Hasher>
+void MatchesAtEveryLengthInPieces(int (*reference)(unsigned char*, const unsigned char*,
+                                                   unsigned long long),
+                                  uint64_t seed) {
+  std::mt19937_64 rng(seed);
   for (size_t n = 0; n < 400; ++n) {
     const Bytes data = RandomBytes(rng, n);
-    uint8_t want[64];
-    crypto_hash_sha512(want, data.data(), data.size());
-    pp::Sha512Hasher h;
-    for (size_t at = 0; at < n;) {  // fed in random pieces
+    decltype(Hasher().Finish()) want;
+    reference(want.data(), data.data(), data.size());
+    Hasher h;
+    for (size_t at = 0; at < n;) {
       const size_t take = std::min<size_t>(n - at, 1 + rng() % 150);
       h.Update(data.data() + at, take);
       at += take;
     }
-    const pp::Sha512Digest got = h.Finish();
-    MEMCMP_EQUAL(want, got.data(), 64);
+    const auto got = h.Finish();
+    MEMCMP_EQUAL_TEXT(want.data(), got.data(), want.size(), std::to_string(n).c_str());
   }
+}
+
+TEST(Sha512, MatchesLibsodiumAtEveryLengthAroundTheBlockAndInPieces) {
+  MatchesAtEveryLengthInPieces<pp::Sha512Hasher>(crypto_hash_sha512, 512);
+}
+
+TEST_GROUP(Sha256){void setup() override{CHECK(sodium_init() >= 0);
+}
+}
+;
+
+TEST(Sha256, MatchesLibsodiumAtEveryLengthAroundTheBlockAndInPieces) {
+  MatchesAtEveryLengthInPieces<pp::Sha256Hasher>(crypto_hash_sha256, 256);
 }
 
 TEST_GROUP(Ed25519){void setup() override{CHECK(sodium_init() >= 0);

@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "palpa/protocol/sha2_blocks.h"
+
 namespace palpa::protocol {
 
 using Sha256Digest = std::array<uint8_t, 32>;
@@ -20,10 +22,10 @@ class Sha256Hasher {
 
  private:
   void Block(const uint8_t* block);
+  // First, at the hasher's own address: the buffering then needs no second base register (the
+  // smaller code on the Cortex-M4; SHA-512's longer Block is the smaller with its state first).
+  Sha2Blocks<64, 8> blocks_;
   uint32_t state_[8];
-  uint8_t buffer_[64];
-  uint64_t length_ = 0;  ///< bytes hashed
-  size_t buffered_ = 0;
 };
 
 inline Sha256Digest Sha256Of(const uint8_t* data, size_t size) {

@@ -5,6 +5,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "palpa/protocol/sha2_blocks.h"
+
 namespace palpa::protocol {
 
 using Sha512Digest = std::array<uint8_t, 64>;
@@ -20,9 +22,7 @@ class Sha512Hasher {
  private:
   void Block(const uint8_t* block);
   uint64_t state_[8];
-  uint8_t buffer_[128];
-  uint64_t length_ = 0;  ///< bytes hashed (messages under 2^61 bytes: the high length word is 0)
-  size_t buffered_ = 0;
+  Sha2Blocks<128, 16> blocks_;
 };
 
 inline Sha512Digest Sha512Of(const uint8_t* data, size_t size) {
