@@ -12,19 +12,6 @@ void Put32(std::vector<uint8_t>& v, uint32_t x) {
   for (int i = 0; i < 4; ++i) v.push_back(static_cast<uint8_t>(x >> (8 * i)));
 }
 
-class MemorySource final : public protocol::ImageSource {
- public:
-  explicit MemorySource(const std::vector<uint8_t>& bytes) : bytes_(bytes) {}
-  bool Read(uint32_t offset, uint8_t* out, size_t size) override {
-    if (offset > bytes_.size() || size > bytes_.size() - offset) return false;
-    std::memcpy(out, bytes_.data() + offset, size);
-    return true;
-  }
-
- private:
-  const std::vector<uint8_t>& bytes_;
-};
-
 constexpr char kPackageMagic[8] = {'P', 'A', 'L', 'P', 'A', 'P', 'K', 'G'};
 
 }  // namespace
@@ -40,7 +27,7 @@ std::vector<uint8_t> BuildImage(const ImageSpec& s) {
 
 protocol::Status VerifyImageBytes(const std::vector<uint8_t>& image, protocol::ImageInfo* info,
                                   protocol::ImageError* error) {
-  MemorySource source(image);
+  protocol::MemoryImageSource source(image.data(), image.size());
   const protocol::Status s =
       protocol::VerifyImage(source, static_cast<uint32_t>(image.size()), nullptr, info, error);
   if (s == protocol::Status::kOk && info->total_size != image.size()) {

@@ -36,22 +36,9 @@ ph::UpdatePackage HostilePackage(pp::ImageSigner* signer) {
   return p;
 }
 
-class Memory final : public pp::ImageSource {
- public:
-  explicit Memory(const std::vector<uint8_t>& bytes) : bytes_(bytes) {}
-  bool Read(uint32_t offset, uint8_t* out, size_t size) override {
-    if (offset > bytes_.size() || size > bytes_.size() - offset) return false;
-    std::memcpy(out, bytes_.data() + offset, size);
-    return true;
-  }
-
- private:
-  const std::vector<uint8_t>& bytes_;
-};
-
 /// The board's verdict on an image: its compiled-in keys.
 pp::ImageError BoardVerdict(const std::vector<uint8_t>& image, pp::ImageInfo* info = nullptr) {
-  Memory source(image);
+  pp::MemoryImageSource source(image.data(), image.size());
   pp::ImageInfo ignored;
   pp::ImageError error = pp::ImageError::kNone;
   pp::VerifyImage(source, static_cast<uint32_t>(image.size()), &core::TrustedImageKeys(),

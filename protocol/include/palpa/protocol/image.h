@@ -100,6 +100,22 @@ class ImageSource {
   ~ImageSource() = default;
 };
 
+/// An image already in memory (a package on the host, an image a test built); the bytes must
+/// outlive it.
+class MemoryImageSource final : public ImageSource {
+ public:
+  MemoryImageSource(const uint8_t* data, size_t size) : data_(data), size_(size) {}
+  bool Read(uint32_t offset, uint8_t* out, size_t size) override {
+    if (offset > size_ || size > size_ - offset) return false;
+    __builtin_memcpy(out, data_ + offset, size);
+    return true;
+  }
+
+ private:
+  const uint8_t* data_;
+  size_t size_;
+};
+
 /// Bytes an image of a body this size occupies (signed: with the key and signature TLVs).
 constexpr uint32_t ImageSize(uint32_t body_size, uint16_t header_size = kImageHeaderSize,
                              bool is_signed = true) {
