@@ -7,8 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli_run.h"
-#include "mini_client.h"
+#include "cli_fixtures.h"
 
 #include "CppUTest/TestHarness.h"
 
@@ -16,27 +15,16 @@ using palpa::testing::Has;
 using palpa::testing::Palpa;
 using palpa::testing::Run;
 
-TEST_GROUP(CliCurves) {
-  palpa::testing::SimProcess sim;
-  std::string device;
-  std::string dir;
-  void setup() override {
-    CHECK(sim.Start({"--config", "thesis-5finger", "--listen", "tcp:127.0.0.1:0"}));
-    device = "--device " + sim.address() + " ";
-    char pattern[] = "/tmp/palpa-cli-curves-XXXXXX";
-    dir = mkdtemp(pattern);
-  }
-  void teardown() override {
-    sim.Stop();
-    std::filesystem::remove_all(dir);
-  }
-  /// palpa set 1=L1 with DIR/PN-1.json the test data file `name`.
-  Run SetWith(const std::string& name, const std::string& json = "") {
-    std::filesystem::copy_file(std::string(PALPA_TEST_DATA_DIR) + "/" + name, dir + "/PN-1.json",
-                               std::filesystem::copy_options::overwrite_existing);
-    return Palpa(device + json + "set 1=L1", "PALPA_CALIBRATION_DIR=" + dir, json.empty());
-  }
-};
+TEST_GROUP_BASE(CliCurves, palpa::testing::SimBoardGroup){
+    /// palpa set 1=L1 with DIR/PN-1.json the test data file `name`.
+    Run SetWith(const std::string& name, const std::string& json = ""){
+        std::filesystem::copy_file(std::string(PALPA_TEST_DATA_DIR) + "/" + name,
+                                   dir + "/PN-1.json",
+                                   std::filesystem::copy_options::overwrite_existing);
+return Palpa(device + json + "set 1=L1", "PALPA_CALIBRATION_DIR=" + dir, json.empty());
+}
+}
+;
 
 TEST(CliCurves, AFileTheBoardHoldsIsUsedWithoutAWarning) {
   const Run r = SetWith("curve_on_board.json");

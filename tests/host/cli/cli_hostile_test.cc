@@ -4,27 +4,22 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
-#include "cli_run.h"
-#include "mini_client.h"
+#include "cli_fixtures.h"
 
 #include "CppUTest/TestHarness.h"
 
 using palpa::testing::ExpectUsage;
 using palpa::testing::Has;
+using palpa::testing::kNowhere;
 using palpa::testing::OwnTempPath;
 using palpa::testing::Palpa;
 using palpa::testing::Run;
-
-namespace {
-
-const std::string kNowhere = "--device tcp:127.0.0.1:1 ";
-
-}  // namespace
 
 TEST_GROUP(CliHostileFiles){};
 
@@ -45,21 +40,7 @@ TEST(CliHostileFiles, RigFilesNameTheFieldOfANumberJsonCannotHold) {
   std::remove(rig.c_str());
 }
 
-TEST_GROUP(CliHostileBoard) {
-  palpa::testing::SimProcess sim;
-  std::string device;
-  std::string dir;
-  void setup() override {
-    CHECK(sim.Start({"--config", "thesis-5finger", "--listen", "tcp:127.0.0.1:0"}));
-    device = "--device " + sim.address() + " ";
-    char pattern[] = "/tmp/palpa-cli-hostile-XXXXXX";
-    dir = mkdtemp(pattern);
-  }
-  void teardown() override {
-    sim.Stop();
-    std::system(("rm -rf " + dir).c_str());
-  }
-};
+TEST_GROUP_BASE(CliHostileBoard, palpa::testing::SimBoardGroup){};
 
 TEST(CliHostileBoard, AnInvalidCalibrationIsNamedAndStrictModeRefusesIt) {
   const std::string file = dir + "/PN-1.json";
@@ -90,11 +71,10 @@ TEST(CliHostileBoard, AnInvalidCalibrationIsNamedAndStrictModeRefusesIt) {
 TEST_GROUP(CliHostileJournal){};
 
 TEST(CliHostileJournal, ADamagedJournalIsRefusedBeforeTheRigMoves) {
-  char pattern[] = "/tmp/palpa-cli-journal-XXXXXX";
-  const std::string dir = mkdtemp(pattern);
+  const std::string dir = palpa::testing::MakeTempDir("palpa-cli-journal");
   std::ofstream(dir + "/PN-1.journal.json") << "{\"sweep\": [[\"x\", 1]]}";
   const Run r = ExpectUsage("calibrate --rig sim --finger 1 --out " + dir + " --resume",
                             dir + "/PN-1.journal.json: sweep[0][0]: must be a number");
   CHECK_FALSE(Has(r, "zero on the vented surface"));
-  std::system(("rm -rf " + dir).c_str());
+  std::filesystem::remove_all(dir);
 }

@@ -1,0 +1,56 @@
+// What the palpa command-line tests share: a device that is never there, scratch directories, a
+// simulated board for a test group, the development signing key.
+#pragma once
+
+#include <stdlib.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <system_error>
+
+#include "cli_run.h"
+#include "mini_client.h"
+
+#include "CppUTest/TestHarness.h"
+
+namespace palpa::testing {
+
+/// A device nothing listens on: a command line refused as a usage error never tries to open it.
+inline const std::string kNowhere = "--device tcp:127.0.0.1:1 ";
+
+inline const std::string kDevelopmentKey = PALPA_DEVELOPMENT_KEY;  // DEVELOPMENT ONLY
+
+/// A new, empty directory of this test's own: /tmp/PREFIX-XXXXXX.
+inline std::string MakeTempDir(const std::string& prefix) {
+  std::string pattern = "/tmp/" + prefix + "-XXXXXX";
+  CHECK_TEXT(mkdtemp(pattern.data()) != nullptr, pattern.c_str());
+  return pattern;
+}
+
+/// Everything in the file at `path` ("" when it cannot be read).
+inline std::string FileText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+/// A test group's board (TEST_GROUP_BASE): palpa-sim with thesis-5finger on a TCP port, `device`
+/// the option that names it, and `dir`, a scratch directory; both go when each test ends.
+struct SimBoardGroup : Utest {
+  SimProcess sim;
+  std::string device;
+  std::string dir;
+  void setup() override {
+    dir = MakeTempDir("palpa-cli-board");
+    CHECK(sim.Start({"--config", "thesis-5finger", "--listen", "tcp:127.0.0.1:0"}));
+    device = "--device " + sim.address() + " ";
+  }
+  void teardown() override {
+    sim.Stop();
+    std::error_code ignored;
+    std::filesystem::remove_all(dir, ignored);
+  }
+};
+
+}  // namespace palpa::testing
