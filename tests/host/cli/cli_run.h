@@ -1,4 +1,5 @@
-// Running the palpa command line from a test: its exit code and everything it printed.
+// Running the palpa command line (or any shell command) from a test: its exit code and everything
+// it printed.
 #pragma once
 
 #include <sys/wait.h>
@@ -16,21 +17,26 @@ struct Run {
   std::string output;  ///< stdout and stderr
 };
 
-/// `palpa ARGS` through the shell, with `environment` (VAR=VALUE settings) for it. Each run has
-/// no $PALPA_DEVICE and, unless `environment` gives one, a state directory with nothing in it: no
-/// simulated board kept by another. The output is stdout and stderr, or stdout alone.
-inline Run Palpa(const std::string& args, const std::string& environment = "",
-                 bool with_stderr = true) {
-  const std::string command = "env -u PALPA_DEVICE PALPA_STATE_DIR=/nonexistent-palpa-state " +
-                              environment + " " + PALPA_CLI_PATH + " " + args +
-                              (with_stderr ? " 2>&1" : " 2>/dev/null");
-  FILE* p = popen(command.c_str(), "r");
+/// `command` through the shell: its exit code, and its stdout with its stderr (or without:
+/// stderr goes to /dev/null).
+inline Run Shell(const std::string& command, bool with_stderr = true) {
+  FILE* p = popen((command + (with_stderr ? " 2>&1" : " 2>/dev/null")).c_str(), "r");
   std::string out;
   char buffer[4096];
   size_t n;
   while ((n = fread(buffer, 1, sizeof(buffer), p)) > 0) out.append(buffer, n);
   const int status = pclose(p);
   return Run{WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+/// `palpa ARGS` through the shell, with `environment` (VAR=VALUE settings) for it. Each run has
+/// no $PALPA_DEVICE and, unless `environment` gives one, a state directory with nothing in it: no
+/// simulated board kept by another. The output is stdout and stderr, or stdout alone.
+inline Run Palpa(const std::string& args, const std::string& environment = "",
+                 bool with_stderr = true) {
+  return Shell("env -u PALPA_DEVICE PALPA_STATE_DIR=/nonexistent-palpa-state " + environment + " " +
+                   PALPA_CLI_PATH + " " + args,
+               with_stderr);
 }
 
 inline bool Has(const Run& r, const std::string& text) {

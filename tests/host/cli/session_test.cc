@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli_run.h"
 #include "mini_client.h"
 #include "palpa/protocol/faults.h"
 #include "qemu_process.h"
@@ -25,29 +26,15 @@
 #include "CppUTest/TestHarness.h"
 
 namespace pp = palpa::protocol;
+using palpa::testing::Has;
 using palpa::testing::MiniClient;
 using palpa::testing::ReceivedFrame;
+using palpa::testing::Run;
+using palpa::testing::Shell;
 
 namespace {
 
 constexpr int kPauseMs = 200;  // twice the boards' 100 ms host-silence timeout
-
-struct Run {
-  int code;
-  std::string output;  ///< stdout and stderr
-};
-
-Run Shell(const std::string& command) {
-  FILE* p = popen((command + " 2>&1").c_str(), "r");
-  std::string out;
-  char buffer[4096];
-  size_t n;
-  while ((n = fread(buffer, 1, sizeof(buffer), p)) > 0) out.append(buffer, n);
-  const int status = pclose(p);
-  return Run{WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
-
-bool Has(const Run& r, const std::string& text) { return r.output.find(text) != std::string::npos; }
 
 void Pause(int ms) { std::this_thread::sleep_for(std::chrono::milliseconds(ms)); }
 
