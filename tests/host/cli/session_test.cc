@@ -239,13 +239,7 @@ void Actuate(MiniClient& client, const std::string& address, uint32_t nonce) {
   CHECK(client.ConnectTcp("127.0.0.1", std::atoi(address.c_str() + colon + 1)));
   CHECK(client.Hello(nonce).ok());
   LONGS_EQUAL((int)pp::Status::kOk, (int)client.Reliable(pp::ClearFault{}));
-  LONGS_EQUAL((int)pp::Status::kOk,
-              (int)client.Reliable(pp::SetFingerMode{0, pp::FingerMode::kRaw}));
-  pp::SetLineSetpoints sp{};
-  sp.generation = 1;
-  sp.entry_count = 1;
-  sp.entries[0] = {0, 30000};
-  client.Send(sp);
+  LONGS_EQUAL((int)pp::Status::kOk, (int)client.RawSetpoint(0, 0, 30000));
   for (uint32_t g = 1; g <= 15; ++g) {
     client.Send(pp::Heartbeat{0, g});
     client.Read(20);

@@ -115,13 +115,7 @@ TEST(PalpaSimProcess, AtHighSpeedAStalledHostKeepsItsSessionAndAGoneOneDoesNot) 
   board.telemetry_batch = 2;
   LONGS_EQUAL((int)pp::Status::kOk, (int)client.Reliable(board));
   // A line actuated: a host that vanishes now leaves a fault (one that left it safe would not).
-  LONGS_EQUAL((int)pp::Status::kOk,
-              (int)client.Reliable(pp::SetFingerMode{0, pp::FingerMode::kRaw}));
-  pp::SetLineSetpoints sp{};
-  sp.generation = 1;
-  sp.entry_count = 1;
-  sp.entries[0] = {0, 30000};
-  client.Send(sp);
+  LONGS_EQUAL((int)pp::Status::kOk, (int)client.RawSetpoint(0, 0, 30000));
   uint32_t generation = 0;
   CHECK(HeartbeatsKeepTheSession(client, 200, generation));
   // 15 ms of real time without a frame: 150 board ms at 10x, were it not for the hold.
