@@ -53,6 +53,25 @@ bool ImagesBuilt() {
   return access(kBoot.c_str(), R_OK) == 0 && access(SlotImage(1).c_str(), R_OK) == 0;
 }
 
+/// The bootloader and slot 0's application on QEMU's instruction clock (-icount): the watchdog
+/// then measures the firmware's own work, not how the host schedules QEMU.
+void StartOnInstructionClock(QemuProcess& qemu) {
+  CHECK(qemu.Start(PALPA_QEMU, {"-icount", "shift=5,align=on", "-kernel", kBoot, "-device",
+                                "loader,file=" + SlotImage(0) + ",addr=0x8000,force-raw=on"}));
+}
+
+/// A device on that board whose session allows 10 s of host silence: the host's heartbeats are
+/// paced in real time, which the instruction clock is not.
+std::unique_ptr<ph::Device> OpenPatientDevice(const QemuProcess& qemu) {
+  auto device = ph::Device::Open(qemu.address(), {});
+  CHECK_TEXT(device.ok(), device.message.c_str());
+  auto board = device.value->ReadBoard();
+  CHECK_TEXT(board.ok(), board.message.c_str());
+  board.value.host_timeout_us = 10000000;
+  CHECK(device.value->ConfigureBoard(board.value).ok());
+  return std::move(device.value);
+}
+
 }  // namespace
 
 TEST_GROUP(QemuBootloader){};
@@ -151,15 +170,9 @@ TEST(QemuBootloader, ThroughTheApplicationAReleaseIsFlashedBootedAndConfirmed) {
   // paced in real time, would miss a 100 ms host-silence timeout now and then. The session gets
   // 10 s, as a host on such a clock would give it.
   QemuProcess qemu;
-  CHECK(qemu.Start(PALPA_QEMU, {"-icount", "shift=5,align=on", "-kernel", kBoot, "-device",
-                                "loader,file=" + SlotImage(0) + ",addr=0x8000,force-raw=on"}));
-  auto device = ph::Device::Open(qemu.address(), {});
-  CHECK_TEXT(device.ok(), device.message.c_str());
-  auto board = device.value->ReadBoard();
-  CHECK_TEXT(board.ok(), board.message.c_str());
-  board.value.host_timeout_us = 10000000;
-  CHECK(device.value->ConfigureBoard(board.value).ok());
-  ph::Link* link = &device.value->link();
+  StartOnInstructionClock(qemu);
+  const auto device = OpenPatientDevice(qemu);
+  ph::Link* link = &device->link();
   STRCMP_EQUAL("thesis-5finger", link->board().config_name.data());
   const ph::FlashReport r = ph::FlashPackage(*link, package, {});
   CHECK_TEXT(r.status == pp::Status::kOk, r.message.c_str());
@@ -179,17 +192,11 @@ TEST(QemuBootloader, ACommandLongerThanTheWatchdogPeriodLeavesAnActuatingApplica
   // The simulated plant then catches up with those 300 ms before the next tick, and that must
   // not count as the firmware's work (it once took 50 ms and the watchdog reset the board).
   QemuProcess qemu;
-  CHECK(qemu.Start(PALPA_QEMU, {"-icount", "shift=5,align=on", "-kernel", kBoot, "-device",
-                                "loader,file=" + SlotImage(0) + ",addr=0x8000,force-raw=on"}));
-  auto device = ph::Device::Open(qemu.address(), {});
-  CHECK_TEXT(device.ok(), device.message.c_str());
-  auto board = device.value->ReadBoard();
-  CHECK_TEXT(board.ok(), board.message.c_str());
-  board.value.host_timeout_us = 10000000;  // heartbeats paced in real time, as above
-  CHECK(device.value->ConfigureBoard(board.value).ok());
-  ph::Link& link = device.value->link();
+  StartOnInstructionClock(qemu);
+  const auto device = OpenPatientDevice(qemu);
+  ph::Link& link = device->link();
   const uint32_t boot = link.board().boot_nonce;
-  const ph::Outcome set = device.value->SetLines({{0, 60.0}});  // a plant at work
+  const ph::Outcome set = device->SetLines({{0, 60.0}});  // a plant at work
   CHECK_TEXT(set.ok(), set.message.c_str());
   for (int i = 0; i < 3; ++i) {
     pp::SlotsReport slots{};
@@ -198,7 +205,7 @@ TEST(QemuBootloader, ACommandLongerThanTheWatchdogPeriodLeavesAnActuatingApplica
     CHECK(r.Reply(slots));
   }
   LONGS_EQUAL(boot, link.board().boot_nonce);  // never reset
-  LONGS_EQUAL(0, device.value->info().fault_bitmap);
+  LONGS_EQUAL(0, device->info().fault_bitmap);
 }
 
 TEST(QemuBootloader, AnUpdateItsHostClosesMidwayLeavesNoFaultAndCanResume) {
@@ -207,8 +214,7 @@ TEST(QemuBootloader, AnUpdateItsHostClosesMidwayLeavesNoFaultAndCanResume) {
   const std::vector<uint8_t>& image = package.slot_image[1];
   const auto size = static_cast<uint32_t>(image.size());
   QemuProcess qemu;
-  CHECK(qemu.Start(PALPA_QEMU, {"-icount", "shift=5,align=on", "-kernel", kBoot, "-device",
-                                "loader,file=" + SlotImage(0) + ",addr=0x8000,force-raw=on"}));
+  StartOnInstructionClock(qemu);
   {  // A host starts an update, writes its first chunk and closes its session.
     auto device = ph::Device::Open(qemu.address(), {});
     CHECK_TEXT(device.ok(), device.message.c_str());
