@@ -47,15 +47,3 @@ int Exercise() {
 }  // namespace
 
 extern "C" int palpa_check_main() { return Exercise(); }
-
-// Entry point without a C runtime: align the stack as a call would, run, exit(code) (Linux x86-64).
-asm(R"(
-  .globl _start
-_start:
-  xor %ebp, %ebp
-  and $-16, %rsp
-  call palpa_check_main
-  mov %eax, %edi
-  mov $60, %eax
-  syscall
-)");

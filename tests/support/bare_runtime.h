@@ -1,6 +1,7 @@
-// The C library functions a compiler may lower loops to, for test programs linked with no runtime
-// at all (the freestanding link checks). A bare-metal image provides them the same way.
-// Define-once: include in exactly one translation unit of a program.
+// The C library functions a compiler may lower loops to, and the entry point, for test programs
+// linked with no runtime at all (the freestanding link checks). A bare-metal image provides them
+// the same way. Define-once: include in exactly one translation unit of a program, which defines
+// palpa_check_main(): the program's exit code.
 #pragma once
 
 extern "C" {
@@ -34,3 +35,17 @@ int memcmp(const void* a, const void* b, __SIZE_TYPE__ n) {
   return 0;
 }
 }
+
+extern "C" int palpa_check_main();
+
+// Entry point without a C runtime: align the stack as a call would, run, exit(code) (Linux x86-64).
+asm(R"(
+  .globl _start
+_start:
+  xor %ebp, %ebp
+  and $-16, %rsp
+  call palpa_check_main
+  mov %eax, %edi
+  mov $60, %eax
+  syscall
+)");

@@ -49,14 +49,3 @@ extern "C" int palpa_check_main() {
   for (int i = 0; i < 100; ++i) board.Step();
   return board.safe() ? 0 : 2;
 }
-
-asm(R"(
-  .globl _start
-_start:
-  xor %ebp, %ebp
-  and $-16, %rsp
-  call palpa_check_main
-  mov %eax, %edi
-  mov $60, %eax
-  syscall
-)");
