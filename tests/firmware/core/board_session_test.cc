@@ -45,6 +45,15 @@ void Follow(BoardHarness& h, uint32_t ms, bool heartbeat) {
   }
 }
 
+/// A session with line 0 at 30 kPa, heartbeats keeping it; what the board sent so far is read.
+void ActuateLine0(BoardHarness& h) {
+  h.Connect();
+  h.Send(pp::SetFingerMode{0, pp::FingerMode::kRaw});
+  h.Send(Setpoints(1, 30000));
+  Follow(h, 300, true);
+  h.Drain();
+}
+
 /// The answer the board gave to the last message of `type` sent, from what it sent since.
 pp::Status Answer(BoardHarness& h, pp::MessageType type) {
   return BoardHarness::AnswerFor(h.Drain(), type);
@@ -54,15 +63,10 @@ pp::Status Answer(BoardHarness& h, pp::MessageType type) {
 
 TEST_GROUP(BoardClose) {
   BoardHarness h;
-  /// A session with line 0 at 30 kPa, heartbeats keeping it.
   void Actuate() {
-    h.Connect();
-    h.Send(pp::SetFingerMode{0, pp::FingerMode::kRaw});
-    h.Send(Setpoints(1, 30000));
-    Follow(h, 300, true);
+    ActuateLine0(h);
     CHECK_FALSE(h.board->safe());
     CHECK_FALSE(AllLinesSafe(h));
-    h.Drain();
   }
 };
 
@@ -222,13 +226,7 @@ TEST(BoardBusy, ABusyBoardIsFreeOnceTheSilentHostsSessionEnds) {
 
 TEST_GROUP(BoardSilence) {
   BoardHarness h;
-  void Actuate() {
-    h.Connect();
-    h.Send(pp::SetFingerMode{0, pp::FingerMode::kRaw});
-    h.Send(Setpoints(1, 30000));
-    Follow(h, 300, true);
-    h.Drain();
-  }
+  void Actuate() { ActuateLine0(h); }
   /// Sends `frame_of(i)` every 10 ms for `ms`; true when the line stayed actuated throughout.
   template <class F>
   bool KeptActuatedBy(uint32_t ms, F && frame_of) {
