@@ -141,11 +141,14 @@ void Serve(Sim& s) {
   const auto start = std::chrono::steady_clock::now();
   palpa::sim::RealTimePacer pacer(s.cmd.speed);
   std::vector<pollfd> fds;
-  uint64_t host_frame_us = 0;     // the board's stamp of the host's last frame
-  double host_frame_wall_us = 0;  // the real time of the wake that brought it in
+  uint64_t host_frame_us = 0;        // the board's stamp of the host's last frame
+  double host_frame_running_us = 0;  // the running time of the wake that brought it in
+  double slept_wall_us = -1;         // the real time of the last wake, which slept...
+  double wait_us = 0;                // ...this long at most
   while (!g_stop) {
     const double wall_us =
         std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+    if (slept_wall_us >= 0) pacer.Woke(slept_wall_us, wait_us, wall_us);
     // Inputs once a wake: a host frame or rig request that arrives mid-batch wakes the next one.
     s.link.Pump();
     s.truth.Pump();
@@ -159,14 +162,15 @@ void Serve(Sim& s) {
                                                             board.last_host_frame_us(),
                                                             board.config().board.host_timeout_us),
                          wall_us, sim.now_us());
-    // The host's silence in real time: since the wake that brought its last frame in.
+    // The host's silence in running time: since the wake that brought its last frame in.
+    const double running_us = pacer.RunningUs(wall_us);
     if (board.last_host_frame_us() != host_frame_us) {
       host_frame_us = board.last_host_frame_us();
-      host_frame_wall_us = wall_us;
+      host_frame_running_us = running_us;
     }
     const uint64_t limit_us = palpa::sim::HostSilenceLimitUs(board.session_open(), host_frame_us,
                                                              board.config().board.host_timeout_us,
-                                                             wall_us - host_frame_wall_us);
+                                                             running_us - host_frame_running_us);
     const uint64_t target_us = std::min(pacer.Target(wall_us, sim.now_us()), limit_us);
     while (sim.now_us() + palpa::sim::RealTimePacer::kStepUs <= target_us && !g_stop) {
       sim.AdvanceTo(sim.now_us() + palpa::sim::RealTimePacer::kStepUs);
@@ -181,8 +185,9 @@ void Serve(Sim& s) {
     s.link.Pump();  // what the board wrote (the buffer holds far more than a batch)
 
     // Held at the deadline, the next wake is the host's frame or a step's worth of real time.
-    const double wait_us = sim.now_us() >= limit_us ? palpa::sim::RealTimePacer::kWakeUs
-                                                    : pacer.WaitUs(wall_us, sim.now_us());
+    wait_us = sim.now_us() >= limit_us ? palpa::sim::RealTimePacer::kWakeUs
+                                       : pacer.WaitUs(wall_us, sim.now_us());
+    slept_wall_us = wall_us;
     fds.clear();
     for (int fd : s.link.PollFds()) fds.push_back(pollfd{fd, POLLIN, 0});
     for (int fd : s.rig_server.PollFds()) fds.push_back(pollfd{fd, POLLIN, 0});

@@ -1,5 +1,5 @@
-// palpa-sim's real-time pacing: virtual time from real time, slips, batched wakes, the hold near
-// the host-silence deadline and the host's silence judged in real time.
+// palpa-sim's real-time pacing: virtual time from real time, slips, batched wakes, late wakes, the
+// hold near the host-silence deadline and the host's silence judged in running time.
 #include "real_time_pacer.h"
 
 namespace palpa::sim {
@@ -33,6 +33,11 @@ double RealTimePacer::WaitUs(double wall_us, uint64_t now_us) const {
   return wait > 0 ? wait : 0;
 }
 
+void RealTimePacer::Woke(double slept_wall_us, double wait_us, double wall_us) {
+  const double late = wall_us - (slept_wall_us + wait_us + kLateUs);
+  if (late > 0) late_us_ += late;
+}
+
 void RealTimePacer::HoldToRealTime(bool hold, double wall_us, uint64_t now_us) {
   const double pace = hold && speed_ > 1 ? 1.0 : speed_;
   if (pace == pace_) return;
@@ -49,8 +54,8 @@ bool HostNearSilenceTimeout(bool session_open, uint64_t now_us, uint64_t last_ho
 }
 
 uint64_t HostSilenceLimitUs(bool session_open, uint64_t last_host_frame_us,
-                            uint32_t host_timeout_us, double silent_wall_us) {
-  if (!session_open || silent_wall_us >= static_cast<double>(host_timeout_us)) return UINT64_MAX;
+                            uint32_t host_timeout_us, double silent_running_us) {
+  if (!session_open || silent_running_us >= static_cast<double>(host_timeout_us)) return UINT64_MAX;
   return last_host_frame_us + host_timeout_us;  // the board faults only once past this
 }
 

@@ -1,7 +1,8 @@
 // palpa-sim's mapping from real time to the board's virtual time: scaled by --speed, slipping
 // instead of racing when the process falls behind, waking once per batch of steps, back at real
 // time while a host that holds a session has been silent for half its timeout, and never past the
-// host-silence deadline before the host has been silent that long in real time.
+// host-silence deadline before the host has been silent that long in the simulator's running time
+// (real time less what palpa-sim waited for the processor).
 #pragma once
 
 #include <cstdint>
@@ -38,6 +39,19 @@ class RealTimePacer {
   /// due after `now_us` (0 when they already are).
   double WaitUs(double wall_us, uint64_t now_us) const;
 
+  /// Notes the wake at `wall_us` of a loop that went to sleep for `wait_us` (at most) at
+  /// `slept_wall_us`. What it woke later than that, beyond kLateUs, it spent waiting for the
+  /// processor: that time is not the simulator's running time (below).
+  void Woke(double slept_wall_us, double wait_us, double wall_us);
+  /// The simulator's running time at `wall_us`: real time less what its wakes came late. The
+  /// host's silence is judged on it, as virtual time slips over a late wake: a machine too busy
+  /// to run palpa-sim is too busy to run its host, and time in which the board could not look
+  /// is no time in which the host could have been heard.
+  double RunningUs(double wall_us) const { return wall_us - late_us_; }
+  /// A wake this much later than asked for is still on time: the wake itself and a batch's
+  /// steps take some real time.
+  static constexpr double kLateUs = 2000;
+
   /// Holds the pace to real time (when --speed is faster) from here on, or releases it. Faster
   /// than real time the host's timeout shrinks in real time with the speed (10 ms at 10x), and a
   /// host that is merely descheduled for that long would lose its session; a host that is gone
@@ -50,6 +64,7 @@ class RealTimePacer {
   double pace_;
   double anchor_wall_us_ = 0;  ///< real time at which virtual time was anchor_virtual_us_
   uint64_t anchor_virtual_us_ = 0;
+  double late_us_ = 0;  ///< real time the loop's wakes came late, summed
 };
 
 /// Whether palpa-sim should hold to real time: a session is open and the host has been silent
@@ -62,10 +77,11 @@ bool HostNearSilenceTimeout(bool session_open, uint64_t now_us, uint64_t last_ho
 /// is judged in real time as well as in board time. Faster than real time a host that is merely
 /// descheduled (a loaded machine: tens of milliseconds between its frames) would otherwise look
 /// silent to the board for the whole timeout; held here, the board's deadline (`last_host_frame_us`
-/// + the timeout) comes only once `silent_wall_us`, the real time since that frame arrived, has
-/// reached the timeout too. A host that is gone meets the timeout in real time, as on hardware.
+/// + the timeout) comes only once `silent_running_us`, the simulator's running time since that
+/// frame arrived (RealTimePacer::RunningUs), has reached the timeout too. A host that is gone
+/// meets the timeout in real time, as on hardware, while palpa-sim gets the processor.
 /// UINT64_MAX when nothing holds the board (no session, or silent in real time for the timeout).
 uint64_t HostSilenceLimitUs(bool session_open, uint64_t last_host_frame_us,
-                            uint32_t host_timeout_us, double silent_wall_us);
+                            uint32_t host_timeout_us, double silent_running_us);
 
 }  // namespace palpa::sim

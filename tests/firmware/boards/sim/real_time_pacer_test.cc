@@ -90,3 +90,16 @@ TEST(RealTimePacer, TheHostsSilenceIsJudgedInRealTimeToo) {
   CHECK_EQUAL(UINT64_MAX, HostSilenceLimitUs(true, 1000000, timeout, 100000));
   CHECK_EQUAL(UINT64_MAX, HostSilenceLimitUs(false, 1000000, timeout, 0));  // no session
 }
+
+TEST(RealTimePacer, RunningTimeLeavesOutWhatTheWakesCameLate) {
+  RealTimePacer pacer(10);
+  DOUBLES_EQUAL(5000, pacer.RunningUs(5000), 0);
+  pacer.Woke(5000, 1000, 5400);  // woken early, by a frame
+  pacer.Woke(5400, 1000, 8300);  // later than asked, but within what a wake and a batch take
+  DOUBLES_EQUAL(8300, pacer.RunningUs(8300), 0);
+  // 200 ms without the processor: the board could not look, the host could not be heard.
+  pacer.Woke(8300, 1000, 208300);
+  const double running = 8300 + 1000 + RealTimePacer::kLateUs;
+  DOUBLES_EQUAL(running, pacer.RunningUs(208300), 1e-9);
+  DOUBLES_EQUAL(running + 50000, pacer.RunningUs(258300), 1e-9);  // and on from there
+}
