@@ -1,0 +1,163 @@
+// Generated phantoms against their specification (the three-cube preset's cubes where they were
+// put, their series-column stiffness, the thesis's order of how well each was found), bad specs
+// named by field, and finger layouts sampling what lies under each finger.
+#include <cmath>
+#include <string>
+
+#include "palpa/host/scene_fingers.h"
+#include "palpa/host/scene_phantom.h"
+
+#include "CppUTest/TestHarness.h"
+
+namespace ph = palpa::host;
+
+namespace {
+
+bool StartsWith(const std::string& text, const std::string& head) {
+  return text.rfind(head, 0) == 0;
+}
+
+#define CHECK_STARTS(text, head) \
+  CHECK_TEXT(StartsWith(text, head), (std::string(head) + " <> " + (text)).c_str())
+
+ph::TissueMap Three() {
+  const auto m = ph::GeneratePhantom(ph::ThreeCubePhantom());
+  CHECK_TEXT(m.ok(), m.message.c_str());
+  return m.value;
+}
+
+double Point(const ph::TissueMap& m, double x, double y) {
+  double v = NAN;
+  CHECK(ph::InterpolateGrid(m, m.values, x, y, &v));
+  return v;
+}
+
+/// Series column: H / ((H − t)/Eb + t/Ei).
+double Column(double h, double t, double eb, double ei) { return h / ((h - t) / eb + t / ei); }
+
+std::string Refused(const ph::PhantomSpec& s) {
+  const auto m = ph::GeneratePhantom(s);
+  CHECK_TEXT(!m.ok(), "accepted");
+  return m.message;
+}
+
+}  // namespace
+
+TEST_GROUP(ScenePhantom){};
+
+TEST(ScenePhantom, TheThreeCubePresetMatchesItsSpecification) {
+  const ph::PhantomSpec spec = ph::ThreeCubePhantom();
+  const ph::TissueMap m = Three();
+  STRCMP_EQUAL("kPa", m.unit.c_str());
+  LONGS_EQUAL(241, m.nx);  // 120 mm at 0.5 mm
+  LONGS_EQUAL(61, m.ny);
+  DOUBLES_EQUAL(120, m.extent_x_mm(), 1e-9);
+  DOUBLES_EQUAL(30, m.extent_y_mm(), 1e-9);
+  LONGS_EQUAL(3, spec.inclusions.size());
+  const double sides[] = {4, 12, 8};
+  for (size_t k = 0; k < 3; ++k) {
+    const ph::Inclusion& c = spec.inclusions[k];
+    DOUBLES_EQUAL(sides[k], c.thickness_mm, 0);  // cubes: thickness is every side
+    DOUBLES_EQUAL(sides[k], c.size_x_mm, 0);
+    // Over the cube: the column with the cube in it; just outside its footprint: the block.
+    DOUBLES_EQUAL(Column(20, sides[k], 14.7, 1590), Point(m, c.x_mm, c.y_mm), 1e-9);
+    DOUBLES_EQUAL(Column(20, sides[k], 14.7, 1590), Point(m, c.x_mm + sides[k] / 2, c.y_mm), 1e-9);
+    DOUBLES_EQUAL(14.7, Point(m, c.x_mm + sides[k] / 2 + 0.5, c.y_mm), 1e-9);
+    DOUBLES_EQUAL(14.7, Point(m, c.x_mm, c.y_mm + sides[k] / 2 + 0.5), 1e-9);
+  }
+  DOUBLES_EQUAL(14.7, m.Range().first, 1e-12);
+  DOUBLES_EQUAL(Column(20, 12, 14.7, 1590), m.Range().second, 1e-9);
+  // The thesis found B (12 mm) always, C (8 mm) mostly, A (4 mm) least: the map's contrast
+  // ranks them the same way.
+  CHECK(Point(m, 60, 15) > Point(m, 90, 15));
+  CHECK(Point(m, 90, 15) > Point(m, 30, 15));
+  CHECK(Point(m, 30, 15) > 14.7);
+}
+
+TEST(ScenePhantom, DepthOnlyHasToFitAndStackedInclusionsAddTheirCompliance) {
+  ph::PhantomSpec s{"two", "", "kPa", 20, 10, 10, 10, 1, {}};
+  s.inclusions = {{"top", 10, 5, 4, 4, 2, 1, 100}, {"under", 10, 5, 4, 4, 3, 5, 50}};
+  const auto m = ph::GeneratePhantom(s);
+  CHECK_TEXT(m.ok(), m.message.c_str());
+  DOUBLES_EQUAL(10 / (5.0 / 10 + 2.0 / 100 + 3.0 / 50), Point(m.value, 10, 5), 1e-9);
+  s.inclusions[1].depth_mm = 2;  // now it shares volume with the top one
+  CHECK_STARTS(Refused(s), "phantom two: inclusions[1]: overlaps inclusions[0]");
+}
+
+TEST(ScenePhantom, EveryBadFieldIsNamed) {
+  auto with = [](auto edit) {
+    ph::PhantomSpec s = ph::ThreeCubePhantom();
+    edit(s);
+    return Refused(s);
+  };
+  const std::string p = "phantom thesis-three-cube: ";
+  CHECK_STARTS(with([](auto& s) { s.size_x_mm = 0; }), p + "size_x_mm: 0 is not in (0, 10000]");
+  CHECK_STARTS(with([](auto& s) { s.height_mm = NAN; }), p + "height_mm: nan");
+  CHECK_STARTS(with([](auto& s) { s.background = -1; }), p + "background: -1 is not above 0");
+  CHECK_STARTS(with([](auto& s) { s.pitch_mm = 0.01; }),
+               p + "pitch_mm: 0.01 mm over 120 mm makes 12001 points on a side");
+  CHECK_STARTS(with([](auto& s) { s.inclusions[1].x_mm = 115; }),
+               p + "inclusions[1].x_mm: 115 puts it outside the block (0 … 120 mm)");
+  CHECK_STARTS(with([](auto& s) { s.inclusions[2].y_mm = -1; }), p + "inclusions[2].y_mm: -1");
+  CHECK_STARTS(with([](auto& s) { s.inclusions[1].depth_mm = 9; }),
+               p + "inclusions[1].depth_mm: 9 + thickness 12 mm does not fit in the block's "
+                   "height of 20 mm");
+  CHECK_STARTS(with([](auto& s) { s.inclusions[0].stiffness = 0; }),
+               p + "inclusions[0].stiffness: 0 is not above 0");
+  CHECK_STARTS(with([](auto& s) { s.inclusions[0].thickness_mm = INFINITY; }),
+               p + "inclusions[0].thickness_mm: inf");
+  CHECK_STARTS(with([](auto& s) { s.name = ""; }), "phantom (unnamed): a phantom needs a name");
+}
+
+TEST_GROUP(SceneFingers){};
+
+TEST(SceneFingers, TheThesisTriangleFollowsTheInputWithItsRightAngle) {
+  const ph::FingerLayout t = ph::RightTriangleLayout(15, 4);
+  CHECK(ph::CheckLayout(t).ok());
+  LONGS_EQUAL(3, t.fingers.size());
+  DOUBLES_EQUAL(0, t.fingers[0].dx_mm, 0);
+  DOUBLES_EQUAL(0, t.fingers[0].dy_mm, 0);
+  // The legs meet at a right angle at finger 0 and are `spacing` long.
+  const auto& a = t.fingers[1];
+  const auto& b = t.fingers[2];
+  DOUBLES_EQUAL(0, a.dx_mm * b.dx_mm + a.dy_mm * b.dy_mm, 1e-12);
+  DOUBLES_EQUAL(15, std::hypot(a.dx_mm, a.dy_mm), 1e-12);
+  DOUBLES_EQUAL(15, std::hypot(b.dx_mm, b.dy_mm), 1e-12);
+  const ph::FingerLayout r = ph::Rotated(t, 90);
+  DOUBLES_EQUAL(0, r.fingers[1].dx_mm, 1e-12);
+  DOUBLES_EQUAL(15, r.fingers[1].dy_mm, 1e-12);
+  DOUBLES_EQUAL(-15, r.fingers[2].dx_mm, 1e-12);
+}
+
+TEST(SceneFingers, RowsAreCentredAndEachFingerFeelsWhatIsUnderIt) {
+  const ph::FingerLayout row = ph::RowLayout(4, 10, 0);
+  DOUBLES_EQUAL(-15, row.fingers[0].dx_mm, 1e-12);
+  DOUBLES_EQUAL(15, row.fingers[3].dx_mm, 1e-12);
+  const ph::FingerLayout pair = ph::JammingPairLayout(20, 6);
+  LONGS_EQUAL(2, pair.fingers.size());
+  DOUBLES_EQUAL(-10, pair.fingers[0].dx_mm, 1e-12);
+  // Over the three-cube phantom: the pair straddling cube B, each finger on the block.
+  const ph::TissueMap m = Three();
+  auto under = ph::SampleFingers(m, pair, 60, 15);
+  DOUBLES_EQUAL(14.7, under[0].value, 1e-9);
+  DOUBLES_EQUAL(14.7, under[1].value, 1e-9);
+  // Moved so finger 1 sits on B's centre: it feels B (its disc lies within B), finger 0 not.
+  under = ph::SampleFingers(m, pair, 50, 15);
+  DOUBLES_EQUAL(Column(20, 12, 14.7, 1590), under[1].value, 1e-9);
+  DOUBLES_EQUAL(14.7, under[0].value, 1e-9);
+  // Finger 0 off the tissue's left edge: nothing under it.
+  under = ph::SampleFingers(m, pair, 2, 15);
+  DOUBLES_EQUAL(0, under[0].coverage, 0);
+  DOUBLES_EQUAL(1, under[1].coverage, 1e-12);
+}
+
+TEST(SceneFingers, BadLayoutsAreNamed) {
+  ph::FingerLayout l = ph::RowLayout(9, 10, 4);
+  CHECK_STARTS(ph::CheckLayout(l).message, "fingers: 9 of them, a layout has 1 … 8");
+  l = ph::RightTriangleLayout(NAN, 4);
+  CHECK_STARTS(ph::CheckLayout(l).message, "fingers[1].dx_mm: nan is not within ±500 mm");
+  l = ph::RightTriangleLayout(15, -1);
+  CHECK_STARTS(ph::CheckLayout(l).message, "contact_diameter_mm: -1 is not within 0 … 100 mm");
+  l.fingers.clear();
+  CHECK_STARTS(ph::CheckLayout(l).message, "fingers: 0 of them");
+}
