@@ -245,6 +245,14 @@ Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& leve
   return m;
 }
 
+double DeformationAtPressure(const FingerCurves& curves, double kpa) {
+  if (!curves.calibrated.empty()) {
+    const double a = curves.calibrated.front().first, b = curves.calibrated.back().first;
+    kpa = std::clamp(kpa, std::min(a, b), std::max(a, b));
+  }
+  return DeformationAt(curves, kpa);
+}
+
 double LinePressurePa(const protocol::LineSummary& line, const protocol::LineSample& sample) {
   return line.has_sensor ? sample.measured_pa : sample.setpoint_pa;
 }

@@ -82,6 +82,11 @@ Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& leve
                   const FingerCurves& curves, Request request,
                   RangePolicy policy = RangePolicy::kRefuse);
 
+/// A pneumatic finger's deformation (mm) at a pressure (kPa) through its curve — the calibrated
+/// one when loaded, within its range — as a level's table pressure is mapped (scenes map a
+/// fingertip stress to pressure, then through this).
+double DeformationAtPressure(const FingerCurves& curves, double kpa);
+
 /// The pressure a line is at, as far as the host knows: its sensor's reading, or its setpoint
 /// where it has no sensor.
 double LinePressurePa(const protocol::LineSummary& line, const protocol::LineSample& sample);
