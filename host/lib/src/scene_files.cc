@@ -150,11 +150,9 @@ Result<std::string> SerializeTissue(const TissueMap& map) {
   return j.dump() + "\n";
 }
 
-Result<std::vector<std::vector<double>>> ParseForceMatrix(const std::string& text,
-                                                          const std::string& source) {
-  using Rows = Result<std::vector<std::vector<double>>>;
-  std::vector<std::vector<double>> rows;
-  size_t line_no = 0, first_line = 0;
+std::vector<std::pair<size_t, std::string>> CsvDataLines(const std::string& text) {
+  std::vector<std::pair<size_t, std::string>> lines;
+  size_t line_no = 0;
   for (size_t at = 0; at <= text.size();) {
     size_t end = text.find('\n', at);
     if (end == std::string::npos) end = text.size();
@@ -163,27 +161,46 @@ Result<std::vector<std::vector<double>>> ParseForceMatrix(const std::string& tex
     ++line_no;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.find_first_not_of(" \t") == std::string::npos || line[0] == '#') continue;
-    const std::string where = source + ": line " + std::to_string(line_no);
-    std::vector<double> row;
-    for (size_t from = 0;;) {
-      const size_t comma = std::min(line.find(',', from), line.size());
-      std::string cell = line.substr(from, comma - from);
-      const std::string value = where + ", value " + std::to_string(row.size() + 1);
-      cell.erase(0, cell.find_first_not_of(" \t"));
-      cell.erase(cell.find_last_not_of(" \t") + 1);
-      char* stop = nullptr;
-      errno = 0;
-      const double v = std::strtod(cell.c_str(), &stop);
-      if (cell.empty() || *stop != '\0' || errno == ERANGE || !std::isfinite(v))
-        return Rows(Status::kInvalidArgument, value + ": \"" + cell + "\" is not a number (N)");
-      if (row.size() == kMaxTissuePoints) {
-        return Rows(Status::kInvalidArgument,
-                    where + ": more than " + std::to_string(kMaxTissuePoints) + " values");
-      }
-      row.push_back(v);
-      if (comma == line.size()) break;
-      from = comma + 1;
+    lines.emplace_back(line_no, std::move(line));
+  }
+  return lines;
+}
+
+Result<std::vector<double>> ParseCsvNumbers(const std::string& line, const std::string& where,
+                                            size_t max_values) {
+  std::vector<double> row;
+  for (size_t from = 0;;) {
+    const size_t comma = std::min(line.find(',', from), line.size());
+    std::string cell = line.substr(from, comma - from);
+    cell.erase(0, cell.find_first_not_of(" \t"));
+    cell.erase(cell.find_last_not_of(" \t") + 1);
+    char* stop = nullptr;
+    errno = 0;
+    const double v = std::strtod(cell.c_str(), &stop);
+    if (cell.empty() || *stop != '\0' || errno == ERANGE || !std::isfinite(v)) {
+      return {Status::kInvalidArgument, where + ", value " + std::to_string(row.size() + 1) +
+                                            ": \"" + cell + "\" is not a number"};
     }
+    if (row.size() == max_values) {
+      return {Status::kInvalidArgument,
+              where + ": more than " + std::to_string(max_values) + " values"};
+    }
+    row.push_back(v);
+    if (comma == line.size()) return row;
+    from = comma + 1;
+  }
+}
+
+Result<std::vector<std::vector<double>>> ParseForceMatrix(const std::string& text,
+                                                          const std::string& source) {
+  using Rows = Result<std::vector<std::vector<double>>>;
+  std::vector<std::vector<double>> rows;
+  size_t first_line = 0;
+  for (const auto& [line_no, line] : CsvDataLines(text)) {
+    const std::string where = source + ": line " + std::to_string(line_no);
+    auto parsed = ParseCsvNumbers(line, where, kMaxTissuePoints);
+    if (!parsed.ok()) return parsed.outcome();
+    std::vector<double> row = std::move(parsed.value);
     if (!rows.empty() && row.size() != rows[0].size()) {
       return Rows(Status::kInvalidArgument, where + ": " + std::to_string(row.size()) +
                                                 " values where line " + std::to_string(first_line) +

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "palpa/host/file_read.h"
@@ -43,6 +44,16 @@ struct ForceMatrixScan {
   double line_pitch_mm = 0;
   std::vector<ForceMatrixFile> files;
 };
+
+/// The lines of a CSV text that hold data, with their 1-based numbers: blank lines and lines
+/// starting with '#' skipped, a CR before the LF dropped.
+std::vector<std::pair<size_t, std::string>> CsvDataLines(const std::string& text);
+
+/// One CSV line of numbers, at most `max_values` of them; `where` names it in errors ("PATH: line
+/// 4" + ", value 17: \"1.2x\" is not a number"). Spaces around a value are allowed; an empty
+/// value, one no double holds, inf and nan are not.
+Result<std::vector<double>> ParseCsvNumbers(const std::string& line, const std::string& where,
+                                            size_t max_values);
 
 /// A force matrix's text: rows of comma-separated numbers (one scan line per row), all rows the
 /// same length; blank lines and lines starting with '#' are skipped. `source` names the text in

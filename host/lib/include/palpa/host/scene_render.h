@@ -10,6 +10,7 @@
 #include "palpa/host/device.h"
 #include "palpa/host/outcome.h"
 #include "palpa/host/scene_fingers.h"
+#include "palpa/host/scene_input.h"
 #include "palpa/host/scene_tissue.h"
 #include "palpa/host/stiffness_map.h"
 
@@ -50,13 +51,6 @@ struct RenderFinger {
   uint8_t board_finger = 0;
   protocol::FingerSummary summary;
   FingerCurves curves;
-};
-
-/// One sample of the input: where the hand is on the tissue and how hard it presses.
-struct SceneInput {
-  double time_s = 0;
-  double x_mm = 0, y_mm = 0;
-  double force_n = 0;
 };
 
 /// What one finger got from one input sample.
