@@ -32,6 +32,8 @@ std::pair<double, double> SlopeRange(const TissueMap& t) {
   return {lo, hi};
 }
 
+}  // namespace
+
 Outcome CheckRule(const RenderRule& r) {
   auto fail = [](const std::string& why) { return Outcome::Fail(Status::kInvalidArgument, why); };
   if (!std::isfinite(r.value_lo) || !std::isfinite(r.value_hi) || r.value_lo > r.value_hi) {
@@ -56,8 +58,6 @@ Outcome CheckRule(const RenderRule& r) {
   }
   return {};
 }
-
-}  // namespace
 
 DepthAtForce PressDepth(const std::vector<ForceLayer>& layers, const std::vector<double>& force_n,
                         double force) {

@@ -46,6 +46,11 @@ struct RenderRule {
   double stress_hi_kpa = kStressPerKpa * 30 + kStressAtZeroKpa;
 };
 
+/// Whether a rule can be rendered: a rising value range (or none), contrast in (0, 10], a contact
+/// force of 0 … 100 N, rising deformation and stress ranges within the stress line's 0 … 100 kPa.
+/// The reason starts "rule: ".
+Outcome CheckRule(const RenderRule& rule);
+
 /// One board finger a scene's finger drives, and what the library knows of it.
 struct RenderFinger {
   uint8_t board_finger = 0;
