@@ -74,10 +74,14 @@ PhantomSpec ParsePhantom(const json& j) {
 }
 
 void ParseTissueSource(const JsonObject& doc, const std::string& base, SceneSpec* s) {
-  const JsonObject t(doc.At("tissue"), "tissue", {"preset", "file", "force_matrices", "phantom"});
-  const int given = t.Has("preset") + t.Has("file") + t.Has("force_matrices") + t.Has("phantom");
-  if (given != 1)
-    throw JsonInvalid("tissue: must hold exactly one of preset, file, force_matrices, phantom");
+  const JsonObject t(doc.At("tissue"), "tissue",
+                     {"preset", "file", "force_matrices", "image", "phantom"});
+  const int given =
+      t.Has("preset") + t.Has("file") + t.Has("force_matrices") + t.Has("image") + t.Has("phantom");
+  if (given != 1) {
+    throw JsonInvalid(
+        "tissue: must hold exactly one of preset, file, force_matrices, image, phantom");
+  }
   if (t.Has("preset")) {
     s->source = TissueSource::kPreset;
     s->preset = t.Text("preset");
@@ -86,6 +90,14 @@ void ParseTissueSource(const JsonObject& doc, const std::string& base, SceneSpec
   } else if (t.Has("file")) {
     s->source = TissueSource::kFile;
     s->tissue_file = Resolve(base, t.Text("file"));
+  } else if (t.Has("image")) {
+    s->source = TissueSource::kImage;
+    const JsonObject i(t.At("image"), "tissue.image",
+                       {"path", "mm_per_pixel", "unit", "value_at_black", "value_at_white"});
+    s->image_file = Resolve(base, i.Text("path"));
+    s->image_scale = {s->name, i.Text("unit"), i.Number("mm_per_pixel", 1e-3, 1000),
+                      i.Number("value_at_black", -1e12, 1e12),
+                      i.Number("value_at_white", -1e12, 1e12)};
   } else if (t.Has("phantom")) {
     s->source = TissueSource::kPhantom;
     s->phantom = ParsePhantom(t.At("phantom"));
@@ -234,6 +246,8 @@ Result<TissueMap> LoadSceneTissue(const SceneSpec& s) {
       return LoadTissue(s.tissue_file);
     case TissueSource::kForceMatrices:
       return LoadForceMatrices(s.scan);
+    case TissueSource::kImage:
+      return LoadTissueImage(s.image_file, s.image_scale);
     case TissueSource::kPhantom:
       return GeneratePhantom(s.phantom);
     case TissueSource::kPreset:

@@ -21,6 +21,13 @@ json TissueJson(const SceneSpec& s) {
                 {"line_pitch_mm", s.scan.line_pitch_mm},
                 {"files", files}}}};
     }
+    case TissueSource::kImage:
+      return {{"image",
+               {{"path", s.image_file},
+                {"mm_per_pixel", s.image_scale.mm_per_pixel},
+                {"unit", s.image_scale.unit},
+                {"value_at_black", s.image_scale.value_at_black},
+                {"value_at_white", s.image_scale.value_at_white}}}};
     case TissueSource::kPhantom: {
       const PhantomSpec& p = s.phantom;
       json inclusions = json::array();

@@ -92,6 +92,10 @@ TEST(SceneFile, EveryTissueSourceLayoutAndMappingRoundTrips) {
   s.rule = {};
   s.rule.pneumatic = ph::PneumaticMapping::kLevel;
   RoundTrips(s);
+  s.source = ph::TissueSource::kImage;
+  s.image_file = "maps/liver.pgm";
+  s.image_scale = {s.name, "kPa", 0.25, 3.5, 48.125};
+  RoundTrips(s);
   s.source = ph::TissueSource::kFile;
   s.tissue_file = "maps/liver.json";
   s.layout = {"jamming-pair", 20, 0, {}, 0, 8};
@@ -118,6 +122,20 @@ TEST(SceneFile, RelativeTissuePathsStartAtTheScenesDirectory) {
   const auto tissue = ph::LoadSceneTissue(s.value);
   CHECK_TEXT(tissue.ok(), tissue.message.c_str());
   DOUBLES_EQUAL(2, tissue.value.pitch_y_mm, 0);
+  j["tissue"] = {{"image",
+                  {{"path", "map.pgm"},
+                   {"mm_per_pixel", 2},
+                   {"unit", "kPa"},
+                   {"value_at_black", 10},
+                   {"value_at_white", 20}}}};
+  std::ofstream(dir + "/scene.json") << j.dump();
+  std::ofstream(dir + "/map.pgm") << "P2 2 2 1\n0 1\n1 0\n";
+  const auto image = ph::LoadScene(dir + "/scene.json");
+  CHECK_TEXT(image.ok(), image.message.c_str());
+  const auto from_image = ph::LoadSceneTissue(image.value);
+  CHECK_TEXT(from_image.ok(), from_image.message.c_str());
+  DOUBLES_EQUAL(2, from_image.value.pitch_x_mm, 0);
+  DOUBLES_EQUAL(20, from_image.value.At(1, 1), 0);
   std::ofstream(dir + "/scene.json") << "{\"schema\": 1}";
   CHECK_STARTS(ph::LoadScene(dir + "/scene.json").message, dir + "/scene.json: schema: must be");
   CHECK(std::system(("rm -rf " + dir).c_str()) == 0);

@@ -11,6 +11,7 @@
 #include "palpa/host/outcome.h"
 #include "palpa/host/scene_files.h"
 #include "palpa/host/scene_fingers.h"
+#include "palpa/host/scene_image.h"
 #include "palpa/host/scene_phantom.h"
 #include "palpa/host/scene_render.h"
 
@@ -20,7 +21,7 @@ namespace palpa::host {
 inline constexpr FileLimits kSceneFileLimits{"scene file", 256 * 1024};
 
 /// Where a scene's tissue comes from.
-enum class TissueSource { kFile, kForceMatrices, kPhantom, kPreset };
+enum class TissueSource { kFile, kForceMatrices, kImage, kPhantom, kPreset };
 
 /// A layout as a scene file states it, so that it is written back the same way.
 struct LayoutSpec {
@@ -40,8 +41,10 @@ struct SceneSpec {
   TissueSource source = TissueSource::kPreset;
   std::string tissue_file;  ///< kFile; relative paths are from the scene file's directory
   ForceMatrixScan scan;     ///< kForceMatrices (paths likewise)
-  PhantomSpec phantom;      ///< kPhantom
-  std::string preset;       ///< kPreset: a phantom preset's name (ScenePresets())
+  std::string image_file;   ///< kImage (likewise), read with image_scale
+  ImageScale image_scale;
+  PhantomSpec phantom;  ///< kPhantom
+  std::string preset;   ///< kPreset: a phantom preset's name (ScenePresets())
   LayoutSpec layout;
   std::vector<uint8_t> board_fingers;  ///< one per place of the layout, 0-based
   RenderRule rule;
@@ -56,6 +59,8 @@ std::vector<std::string> ScenePresets();
 ///    "tissue": {"preset": "thesis-three-cube"} | {"file": "map.json"}
 ///            | {"force_matrices": {"along_line_pitch_mm": 0.76, "line_pitch_mm": 2,
 ///                                  "files": [{"path": "d2.csv", "depth_mm": 2}, …]}}
+///            | {"image": {"path": "map.pgm", "mm_per_pixel": 0.5, "unit": "kPa",
+///                         "value_at_black": 10, "value_at_white": 40}}
 ///            | {"phantom": {"name", "unit", "size_mm": [x, y, height], "background",
 ///                           "pitch_mm", "inclusions": [{"name", "centre_mm": [x, y],
 ///                           "size_mm": [x, y, thickness], "depth_mm", "stiffness"}, …]}},
