@@ -142,6 +142,8 @@ class Device {
     AttachCalibrations();
     return curves_[finger];
   }
+  /// The level tables requests are mapped through (DeviceOptions::levels).
+  const LevelTables& levels() const { return options_.levels; }
   /// What opening found for each finger: which calibration it uses, or why it uses none.
   /// Looked up on first use (Set, curves, this), not on opening: an E-stop never waits for it.
   const std::vector<std::string>& calibration_notes() {

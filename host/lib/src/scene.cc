@@ -1,0 +1,40 @@
+// A scene bound to a board: fingers from the device, each sample's targets sent in one frame.
+#include "palpa/host/scene.h"
+
+namespace palpa::host {
+
+Result<std::unique_ptr<Scene>> Scene::Make(TissueMap tissue, FingerLayout layout, RenderRule rule,
+                                           const std::vector<uint8_t>& board_fingers,
+                                           Device& device) {
+  const pp::HelloReply board = device.info();
+  std::vector<RenderFinger> fingers;
+  for (size_t k = 0; k < board_fingers.size(); ++k) {
+    const uint8_t f = board_fingers[k];
+    if (f >= board.finger_count) {
+      return {Status::kNotFound, "fingers[" + std::to_string(k) + "]: " + device.FingerName(f) +
+                                     " does not exist on this board (" +
+                                     std::to_string(board.finger_count) + " fingers)"};
+    }
+    fingers.push_back({f, board.fingers[f], device.curves(f)});
+  }
+  auto renderer = SceneRenderer::Make(std::move(tissue), std::move(layout), rule,
+                                      std::move(fingers), device.levels());
+  if (!renderer.ok()) return renderer.outcome();
+  return std::unique_ptr<Scene>(new Scene(std::move(renderer.value), device));
+}
+
+Result<std::unique_ptr<Scene>> Scene::Open(const SceneSpec& spec, Device& device) {
+  auto tissue = LoadSceneTissue(spec);
+  if (!tissue.ok()) return tissue.outcome();
+  return Make(std::move(tissue.value), MakeLayout(spec.layout), spec.rule, spec.board_fingers,
+              device);
+}
+
+Result<std::vector<FingerRender>> Scene::Feed(const SceneInput& input) {
+  std::vector<FingerRender> renders = renderer_.Render(input);
+  const Outcome sent = device_.Set(renderer_.Requests(renders), /*wait=*/false);
+  if (!sent.ok()) return sent;
+  return renders;
+}
+
+}  // namespace palpa::host
