@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "c_api_device.h"
 #include "palpa/calibration/calibrate_json.h"
 #include "palpa/host/board_json.h"
 #include "palpa/host/config_json.h"
@@ -60,30 +61,12 @@ static_assert(PALPA_FAULT_OUTPUT_WRITE << 1 == pp::FaultBit(pp::Fault::kCount),
               "a fault without a PALPA_FAULT_ constant");
 static_assert(PALPA_FINGER_JAMMING == static_cast<int>(pp::FingerKind::kJamming));
 
-struct palpa_device {
-  std::unique_ptr<ph::Device> device;
-  std::string error;
-  uint32_t faults = 0;  ///< of the last failed call
-  mutable std::mutex mutex;
-  std::condition_variable arrived;
-  std::deque<palpa_sample> samples;
-  uint64_t dropped = 0;
-  int subscription = 0;
-  std::vector<ph::FingerCurves> curves;  ///< for the samples' finger outputs, taken on opening
-};
-
 namespace {
 
 thread_local std::string g_open_error;
 constexpr size_t kMaxQueuedSamples = PALPA_SAMPLE_QUEUE_LIMIT;
 
-int Report(palpa_device* d, const ph::Outcome& o) {
-  if (!o.ok()) {
-    d->error = o.message;
-    d->faults = o.faults;
-  }
-  return static_cast<int>(o.status);
-}
+using palpa::c_api::Report;
 
 /// `text` into the caller's buffer (see palpa.h): kOverflow when it does not fit with its NUL.
 int CopyText(const std::string& text, char* out, size_t capacity, size_t* length) {

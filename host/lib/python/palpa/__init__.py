@@ -62,6 +62,10 @@ class _Sample(ctypes.Structure):
     ]
 
 
+class _Request(ctypes.Structure):
+    _fields_ = [("finger", ctypes.c_uint8), ("kind", ctypes.c_int), ("value", ctypes.c_double)]
+
+
 def _library_path():
     """$PALPA_LIBRARY, else the library installed with this package, else the system's."""
     if os.environ.get("PALPA_LIBRARY"):
@@ -116,6 +120,7 @@ def _load():
                                          ctypes.POINTER(ctypes.c_size_t)]
     lib.palpa_calibrate.argtypes = [ctypes.c_void_p, ctypes.c_char_p, ctypes.c_char_p, ctypes.c_char_p,
                                     ctypes.c_size_t, ctypes.POINTER(ctypes.c_size_t)]
+    lib.palpa_set_fingers.argtypes = [ctypes.c_void_p, ctypes.POINTER(_Request), ctypes.c_int, ctypes.c_int]
     return lib
 
 
@@ -297,6 +302,25 @@ class Device:
                 "kpa": self._lib.palpa_set_pressure}[kind]
         self._check(call(self._handle, finger, value))
 
+    _KINDS = {"level": 0, "normalized": 1, "n_per_mm": 2, "mm": 3, "kpa": 4}  # PALPA_TARGET_*
+
+    def set_fingers(self, requests, wait=False):
+        """Several fingers at once, in one frame (the board applies them on one tick): requests
+        is a list of (finger, kind, value), kind one of "level", "normalized", "n_per_mm", "mm",
+        "kpa". wait=False returns once the frame is sent (latest-wins: a later call replaces one
+        the board has not applied yet); wait=True once the board applied it. Every request is
+        checked before anything is sent."""
+        if not 1 <= len(requests) <= MAX_FINGERS:
+            raise ValueError(f"set_fingers takes 1 to {MAX_FINGERS} requests, not {len(requests)}")
+        array = (_Request * len(requests))()
+        for i, (finger, kind, value) in enumerate(requests):
+            if kind not in self._KINDS:
+                raise ValueError(f"requests[{i}]: kind {kind!r} is not one of {', '.join(self._KINDS)}")
+            if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value):
+                raise ValueError(f"requests[{i}]: value must be a finite number, not {value!r}")
+            array[i] = _Request(self._finger_index(finger), self._KINDS[kind], float(value))
+        self._check(self._lib.palpa_set_fingers(self._handle, array, len(requests), 1 if wait else 0))
+
     def _finger_index(self, finger):
         """The finger as an index the C ABI takes: an int within this board's fingers."""
         if isinstance(finger, bool) or not isinstance(finger, numbers.Integral):
@@ -377,3 +401,6 @@ class Device:
         """Calibrates finger `finger` (from 0) of this board on the rig `rig_file` names, as
         `palpa calibrate --rig FILE` does; options and result as calibrate_simulated's."""
         return _calibrate(self._lib, self._handle, os.fspath(rig_file), finger, out, options, self._check)
+
+
+from .scene import Scene  # noqa: E402  (it uses what is defined above)

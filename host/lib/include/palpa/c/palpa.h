@@ -143,6 +143,23 @@ int palpa_set_stiffness(palpa_device* device, uint8_t finger,
                         double n_per_mm);                                   /* jamming fingers */
 int palpa_set_deformation(palpa_device* device, uint8_t finger, double mm); /* pneumatic fingers */
 int palpa_set_pressure(palpa_device* device, uint8_t finger, double kpa);   /* raw mode */
+/* Several fingers at once, in one frame (the board applies them on one tick). kind is one of
+   PALPA_TARGET_*; value in its unit. Every request is mapped and checked before anything is sent
+   (an error names the finger). wait = 0 returns once the frame is sent: the stream is
+   latest-wins, so a later call replaces one the board has not applied yet; wait = 1 returns once
+   the board applied it (as palpa_set_*). */
+#define PALPA_TARGET_LEVEL 0
+#define PALPA_TARGET_NORMALIZED 1
+#define PALPA_TARGET_STIFFNESS 2   /* N/mm, jamming fingers */
+#define PALPA_TARGET_DEFORMATION 3 /* mm, pneumatic fingers */
+#define PALPA_TARGET_PRESSURE 4    /* kPa, raw mode */
+typedef struct {
+  uint8_t finger;
+  int kind;
+  double value;
+} palpa_request;
+int palpa_set_fingers(palpa_device* device, const palpa_request* requests, int count, int wait);
+
 int palpa_estop(palpa_device* device);
 int palpa_clear_fault(palpa_device* device);
 /* Every output safe at once, no fault latched; the session stays open and a later set actuates. */
@@ -195,6 +212,28 @@ int palpa_curve_warnings(palpa_device* device, char* out, size_t capacity, size_
    summary JSON (palpa calibrate --json's: files, compensator, residual, checks) to `out`. */
 int palpa_calibrate(palpa_device* device, const char* rig, const char* options_json, char* out,
                     size_t capacity, size_t* length);
+
+/* Scenes (docs/scenes.md): a virtual tissue rendered to the fingers as a hand explores it.
+   palpa_scene_open reads a scene file (its tissue, layout, board fingers and rendering rule) for
+   `device`, which must stay open while the scene is; errors are palpa_last_error(device)'s.
+   palpa_scene_feed renders one input sample — where the hand is on the tissue (mm) and how hard
+   it presses (N) — and sends every finger's target in one frame without waiting (latest-wins,
+   as palpa_set_fingers with wait = 0); up to `capacity` fingers' renders go to `out` (NULL, 0:
+   none). It returns the number of fingers, or a negated status. */
+typedef struct palpa_scene palpa_scene;
+typedef struct {
+  uint8_t finger; /* the board finger, 0-based */
+  int touching;   /* 0: released (no contact, or off the tissue) */
+  double value;   /* the stiffness under it, in the tissue's unit (N/mm of slope with depth) */
+  double depth_mm;
+  double u;            /* 0 … 1: where value lies in the scene's range, after its contrast */
+  double target;       /* in the finger's unit (finger_unit); 0: released */
+  uint8_t finger_unit; /* PALPA_UNIT_MM or PALPA_UNIT_N_PER_MM */
+} palpa_finger_render;
+int palpa_scene_open(palpa_device* device, const char* scene_path, palpa_scene** out);
+int palpa_scene_feed(palpa_scene* scene, double time_s, double x_mm, double y_mm, double force_n,
+                     palpa_finger_render* out, int capacity);
+void palpa_scene_close(palpa_scene* scene);
 
 #ifdef __cplusplus
 }

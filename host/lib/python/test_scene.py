@@ -1,0 +1,52 @@
+#!/usr/bin/python3
+"""CTest for scenes and several-finger requests from Python, on palpa-sim: a scene file opened on a
+device, samples fed without waiting with each finger's render returned, a lifted hand releasing
+every finger, telemetry drained without waiting, several fingers set in one call, and clear
+errors for wrong requests."""
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import palpa  # noqa: E402
+
+EXAMPLE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "docs", "examples",
+                       "scene_three_cube.json")
+
+
+def refused(error_type, call, *words):
+    try:
+        call()
+    except error_type as e:
+        for word in words:
+            assert word in str(e), (word, str(e))
+        return
+    raise AssertionError(f"expected {error_type.__name__} with {words}")
+
+
+def main():
+    with palpa.Device("sim:thesis-pneumatic-3") as board:
+        with palpa.Scene(board, EXAMPLE) as scene:
+            renders = scene.feed(60, 12, 1.0, time_s=0)  # finger 0 on cube B
+            assert [r["finger"] for r in renders] == [0, 1, 2], renders
+            assert renders[0]["touching"] and renders[0]["u"] > 0.99, renders[0]
+            assert renders[0]["unit"] == "mm" and renders[0]["target"] > renders[1]["target"], renders
+            lifted = scene.feed(60, 12, 0.0, time_s=0.01)
+            assert all(not r["touching"] and r["target"] == 0 for r in lifted), lifted
+            assert all(not r["touching"] for r in scene.feed(float("nan"), 12, 1.0))
+            refused(TypeError, lambda: scene.feed("60", 12, 1.0), "x_mm must be a number")
+        samples = list(board.monitor(seconds=0))  # drained without waiting
+        assert isinstance(samples, list)
+        refused(palpa.PalpaError, lambda: palpa.Scene(board, "/nonexistent/scene.json"),
+                "not_found", "/nonexistent/scene.json")
+        board.set_fingers([(0, "mm", 1.0), (1, "level", 1), (2, "normalized", 0.5)], wait=True)
+        board.set_fingers([(0, "mm", 0.5), (1, "mm", 0.5), (2, "mm", 0.5)])
+        refused(palpa.PalpaError, lambda: board.set_fingers([(0, "mm", 1.0), (1, "n_per_mm", 1.0)]),
+                "bad_value", "finger 1: N/mm means nothing")
+        refused(ValueError, lambda: board.set_fingers([(0, "stiff", 1.0)]), "requests[0]: kind 'stiff'")
+        refused(ValueError, lambda: board.set_fingers([(7, "mm", 1.0)]), "finger 7 does not exist")
+        refused(ValueError, lambda: board.set_fingers([]), "1 to 8 requests")
+    print("test_scene: ok")
+
+
+if __name__ == "__main__":
+    main()
