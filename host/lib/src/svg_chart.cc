@@ -18,27 +18,6 @@ std::string Num(double v) {
   return b;
 }
 
-/// Text as SVG character data: a legend like "gap <= 30 %" must not open a tag.
-std::string Escape(const std::string& text) {
-  std::string out;
-  for (char ch : text) {
-    switch (ch) {
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '&':
-        out += "&amp;";
-        break;
-      default:
-        out += ch;
-    }
-  }
-  return out;
-}
-
 std::string Label(double v) {
   char b[32];
   std::snprintf(b, sizeof(b), "%g", std::fabs(v) < 1e-12 ? 0.0 : v);
@@ -62,6 +41,27 @@ std::vector<double> Ticks(double lo, double hi, int count) {
 }
 
 }  // namespace
+
+/// Text as SVG character data: a legend like "gap <= 30 %" must not open a tag.
+std::string SvgEscape(const std::string& text) {
+  std::string out;
+  for (char ch : text) {
+    switch (ch) {
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '&':
+        out += "&amp;";
+        break;
+      default:
+        out += ch;
+    }
+  }
+  return out;
+}
 
 namespace {
 
@@ -111,7 +111,7 @@ void DrawPanel(std::string& svg, const Chart& c, double offset_y, double x0, dou
   auto py = [&](double y) { return top + (1 - (y - y0) / (y1 - y0)) * ph; };
   if (titled) {
     svg += "<text x='" + Num(c.width / 2) + "' y='" + Num(offset_y + 22) +
-           "' text-anchor='middle' font-size='14'>" + Escape(c.title) + "</text>\n";
+           "' text-anchor='middle' font-size='14'>" + SvgEscape(c.title) + "</text>\n";
   }
   for (const Marker& m : c.markers) {  // behind the data
     const double a = std::clamp(px(m.x), left, left + pw);
@@ -124,7 +124,7 @@ void DrawPanel(std::string& svg, const Chart& c, double offset_y, double x0, dou
              Num(top + ph) + "' stroke='#888' stroke-dasharray='2,3'/>";
     }
     svg += "<text x='" + Num((a + b) / 2) + "' y='" + Num(top + 14) +
-           "' text-anchor='middle' fill='#555' font-size='11'>" + Escape(m.label) + "</text>\n";
+           "' text-anchor='middle' fill='#555' font-size='11'>" + SvgEscape(m.label) + "</text>\n";
   }
   svg += "<rect x='" + Num(left) + "' y='" + Num(top) + "' width='" + Num(pw) + "' height='" +
          Num(ph) + "' fill='none' stroke='#444'/>\n";
@@ -155,9 +155,9 @@ void DrawPanel(std::string& svg, const Chart& c, double offset_y, double x0, dou
            "</text>\n";
   }
   svg += "<text x='" + Num(left + pw / 2) + "' y='" + Num(offset_y + c.height - 10) +
-         "' text-anchor='middle'>" + Escape(c.x_label) + "</text>\n";
+         "' text-anchor='middle'>" + SvgEscape(c.x_label) + "</text>\n";
   svg += "<text transform='translate(16," + Num(top + ph / 2) +
-         ") rotate(-90)' text-anchor='middle'>" + Escape(c.y_label) + "</text>\n";
+         ") rotate(-90)' text-anchor='middle'>" + SvgEscape(c.y_label) + "</text>\n";
   size_t listed = 0;  // legend entries so far
   for (size_t i = 0; i < c.series.size(); ++i) {
     const Series& s = c.series[i];
@@ -183,8 +183,8 @@ void DrawPanel(std::string& svg, const Chart& c, double offset_y, double x0, dou
            Num(left + pw + 34) + "' y2='" + Num(ly - 4) + "' stroke='" + color +
            "' stroke-width='3'" +
            (s.dashed ? std::string(" stroke-dasharray='6,4'") : std::string()) + "/>";
-    svg +=
-        "<text x='" + Num(left + pw + 40) + "' y='" + Num(ly) + "'>" + Escape(s.name) + "</text>\n";
+    svg += "<text x='" + Num(left + pw + 40) + "' y='" + Num(ly) + "'>" + SvgEscape(s.name) +
+           "</text>\n";
   }
 }
 
@@ -209,7 +209,7 @@ std::string RenderSvgPanels(const std::vector<Chart>& panels, const std::string&
   }
   std::string svg = Header(width, height);
   svg += "<text x='" + Num(width / 2) + "' y='22' text-anchor='middle' font-size='14'>" +
-         Escape(title) + "</text>\n";
+         SvgEscape(title) + "</text>\n";
   double offset = 34;
   for (const Chart& c : panels) {
     DrawPanel(svg, c, offset, shared.x0, shared.x1, false);

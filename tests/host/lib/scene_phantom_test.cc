@@ -6,6 +6,7 @@
 
 #include "palpa/host/scene_fingers.h"
 #include "palpa/host/scene_phantom.h"
+#include "palpa/host/scene_svg.h"
 
 #include "CppUTest/TestHarness.h"
 
@@ -160,4 +161,36 @@ TEST(SceneFingers, BadLayoutsAreNamed) {
   CHECK_STARTS(ph::CheckLayout(l).message, "contact_diameter_mm: -1 is not within 0 … 100 mm");
   l.fingers.clear();
   CHECK_STARTS(ph::CheckLayout(l).message, "fingers: 0 of them");
+}
+
+TEST_GROUP(SceneSvg){};
+
+TEST(SceneSvg, TheMapIsDrawnInColourWithEachFingersDiscAndThePath) {
+  const ph::TissueMap m = Three();
+  const std::string svg =
+      ph::SceneSvg(m, ph::RightTriangleLayout(15, 4), 60, 12, {{0, 15}, {120, 15}}, "B < C & A");
+  CHECK(svg.rfind("<svg ", 0) == 0);
+  CHECK(svg.find("B &lt; C &amp; A") != std::string::npos);
+  size_t circles = 0, cells = 0;
+  for (size_t at = svg.find("<circle"); at != std::string::npos; at = svg.find("<circle", at + 1))
+    ++circles;
+  for (size_t at = svg.find("<rect"); at != std::string::npos; at = svg.find("<rect", at + 1))
+    ++cells;
+  LONGS_EQUAL(3, circles);
+  // 241 points along x are more than 240: every second one (121), all 61 along y; the outline;
+  // the scale bar.
+  LONGS_EQUAL(121 * 61 + 1 + 100, cells);
+  CHECK(svg.find("fill='#ff0000'") != std::string::npos);  // cube B, the largest value
+  CHECK(svg.find("fill='#0000ff'") != std::string::npos);  // the block, the smallest
+  CHECK(svg.find("<polyline") != std::string::npos);
+  CHECK(svg.find("14.7 … 36.2") != std::string::npos);
+  // A map finer than 240 points a side is sampled, not drawn point by point.
+  ph::PhantomSpec fine = ph::ThreeCubePhantom();
+  fine.pitch_mm = 0.125;  // 961 × 241 points
+  const std::string small =
+      ph::SceneSvg(ph::GeneratePhantom(fine).value, ph::RowLayout(1, 1, 0), 0, 0, {}, "fine");
+  cells = 0;
+  for (size_t at = small.find("<rect"); at != std::string::npos; at = small.find("<rect", at + 1))
+    ++cells;
+  CHECK(cells <= 240 * 240 + 101);
 }

@@ -31,6 +31,9 @@ struct Chart {
   bool log_x = false;
 };
 
+/// Text as SVG character data: <, > and & escaped, so a legend like "gap <= 30 %" opens no tag.
+std::string SvgEscape(const std::string& text);
+
 /// Renders the chart as a standalone SVG document.
 std::string RenderSvg(const Chart& chart);
 
