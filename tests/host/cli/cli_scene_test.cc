@@ -1,0 +1,80 @@
+// palpa scene: a phantom's tissue file written (the preset and a block of one's own) and read
+// back, a scene drawn as SVG, and every wrong argument named; no board is involved.
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "cli_run.h"
+#include "palpa/host/scene_files.h"
+
+#include "CppUTest/TestHarness.h"
+
+using palpa::testing::ExpectUsage;
+using palpa::testing::Has;
+using palpa::testing::OwnTempPath;
+using palpa::testing::Palpa;
+
+namespace {
+
+const std::string kExample = std::string(PALPA_DOCS_DIR) + "/examples/scene_three_cube.json";
+
+std::string Slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+TEST_GROUP(CliScene){};
+
+TEST(CliScene, PhantomsAreWrittenAsTissueFilesThatReadBack) {
+  const std::string out = OwnTempPath("three.json");
+  auto r = Palpa("scene phantom --preset thesis-three-cube --out " + out);
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  CHECK_TEXT(Has(r, "241 × 61 points over 120 × 30 mm, 14.7 … 36.2473 kPa"), r.output.c_str());
+  auto map = palpa::host::LoadTissue(out);
+  CHECK_TEXT(map.ok(), map.message.c_str());
+  LONGS_EQUAL(241, map.value.nx);
+  r = Palpa(
+      "--json scene phantom --size 50,20,10 --background 10 --inclusion 25,10,5,5,2,100 "
+      "--pitch 1 --name mine --out " +
+      out);
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  CHECK_TEXT(Has(r, "\"name\":\"mine\"") && Has(r, "\"points\":[51,21]"), r.output.c_str());
+  map = palpa::host::LoadTissue(out);
+  CHECK_TEXT(map.ok(), map.message.c_str());
+  DOUBLES_EQUAL(10 / (5.0 / 10 + 5.0 / 100), map.value.At(25, 10), 1e-9);
+  std::remove(out.c_str());
+}
+
+TEST(CliScene, AScenesMapAndFingersAreDrawn) {
+  const std::string out = OwnTempPath("scene.svg");
+  const auto r = Palpa("scene show " + kExample + " --at 60,12 --out " + out);
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  const std::string svg = Slurp(out);
+  CHECK(svg.rfind("<svg ", 0) == 0);
+  CHECK(svg.find("three-cube, three fingers — right triangle, 15 mm") != std::string::npos);
+  std::remove(out.c_str());
+}
+
+TEST(CliScene, WrongArgumentsAreNamed) {
+  const std::string out = OwnTempPath("x.json");
+  ExpectUsage("scene", "phantom or show");
+  ExpectUsage("scene shw", "unknown subcommand shw (did you mean show?)");
+  ExpectUsage("scene phantom --out " + out, "either --preset NAME or --size");
+  ExpectUsage("scene phantom --preset liver --out " + out, "the presets are thesis-three-cube");
+  ExpectUsage("scene phantom --preset thesis-three-cube", "--out FILE");
+  ExpectUsage("scene phantom --size 50,20 --background 10 --out " + out,
+              "--size 50,20: expected 3 numbers");
+  ExpectUsage(
+      "scene phantom --size 50,20,10 --background 10 --inclusion 25,10,5,5,6,100 --out " + out,
+      "inclusions[0].depth_mm: 6 + thickness 5 mm does not fit");
+  ExpectUsage("scene phantom --size 50,20,10 --background soft --out " + out,
+              "--background soft: expected a number");
+  ExpectUsage("scene show " + out + " --out x.svg", "cannot be read");
+  ExpectUsage("scene show --out x.svg", "a SCENE file and --out FILE.svg");
+  ExpectUsage("scene show " + kExample + " --at 1 --out x.svg", "--at 1: expected 2 numbers");
+}
