@@ -68,8 +68,8 @@ struct Command {
 
 extern const Command kListCommand, kInfoCommand, kDiagCommand, kConfigCommand, kSetCommand,
     kLineCommand, kMonitorCommand, kRecordCommand, kEStopCommand, kClearCommand, kDemoCommand,
-    kCalibrateCommand, kFlashCommand, kPackageCommand, kKeygenCommand, kSimCommand,
-    kSceneCommand;
+    kCalibrateCommand, kFlashCommand, kPackageCommand, kKeygenCommand, kSimCommand, kSceneCommand,
+    kRenderCommand;
 
 /// One finger request from "N=VALUE": L2 (level), 0.5 (0..1), 1.2mm, 0.9N/mm, -10kPa. Fingers are
 /// numbered from 1 on the command line, up to `finger_count`. Returns false with a message naming

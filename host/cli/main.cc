@@ -20,7 +20,8 @@ const std::map<std::string, const Command*>& Commands() {
     for (const Command* c :
          {&kListCommand, &kInfoCommand, &kDiagCommand, &kConfigCommand, &kSetCommand, &kLineCommand,
           &kMonitorCommand, &kRecordCommand, &kEStopCommand, &kClearCommand, &kCalibrateCommand,
-          &kFlashCommand, &kPackageCommand, &kKeygenCommand, &kSimCommand, &kDemoCommand, &kSceneCommand})
+          &kFlashCommand, &kPackageCommand, &kKeygenCommand, &kSimCommand, &kDemoCommand,
+          &kSceneCommand, &kRenderCommand})
       by_name[c->name] = c;
     return by_name;
   }();

@@ -1,5 +1,6 @@
 // palpa scene: a phantom's tissue file written (the preset and a block of one's own) and read
 // back, a scene drawn as SVG, and every wrong argument named; no board is involved.
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -77,4 +78,32 @@ TEST(CliScene, WrongArgumentsAreNamed) {
   ExpectUsage("scene show " + out + " --out x.svg", "cannot be read");
   ExpectUsage("scene show --out x.svg", "a SCENE file and --out FILE.svg");
   ExpectUsage("scene show " + kExample + " --at 1 --out x.svg", "--at 1: expected 2 numbers");
+}
+
+TEST(CliScene, ATrajectoryIsRenderedToTheBoardAndRecorded) {
+  const std::string input = OwnTempPath("pass.csv"), record = OwnTempPath("run.csv");
+  {
+    std::ofstream pass(input);
+    pass << "time_s,x_mm,y_mm,force_n\n";
+    for (int k = 0; k <= 100; ++k) pass << k * 0.004 << "," << 40 + k * 0.2 << ",12,1\n";
+  }
+  const std::string svg = record.substr(0, record.size() - 4) + ".svg";
+  const auto r = Palpa("--device sim:thesis-pneumatic-3 render " + kExample + " --input " + input +
+                           " --record " + record,
+                       std::string("PALPA_SIM=") + PALPA_SIM_PATH);
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  CHECK_TEXT(Has(r, "101 of 101 samples rendered; recorded in " + record), r.output.c_str());
+  const std::string csv = Slurp(record);
+  CHECK(csv.rfind("time_s,x_mm,y_mm,force_n,board_time_us,finger1_touching,finger1_value,"
+                  "finger1_target,",
+                  0) == 0);
+  LONGS_EQUAL(102, std::count(csv.begin(), csv.end(), '\n'));
+  // The last sample: finger 1 at x = 60 on cube B, at the top of the stress range (30 kPa →
+  // 1.164 mm on Table 5-4's line); finger 2 at x = 75 on the block.
+  CHECK_TEXT(csv.find("0.400000,60.0000,12.0000,1.0000,") != std::string::npos, csv.c_str());
+  CHECK(csv.find(",1,36.2473,1.164,1,14.7,0,") != std::string::npos);
+  CHECK(Slurp(svg).find("<polyline") != std::string::npos);
+  ExpectUsage("render " + kExample, "a SCENE file and --input TRAJECTORY.csv");
+  ExpectUsage("render " + kExample + " --input " + record, "expected the header time_s,x_mm");
+  for (const std::string& f : {input, record, svg}) std::remove(f.c_str());
 }
