@@ -5,6 +5,7 @@
 
 #include <palpa/c/palpa.h>
 #include <stdio.h>
+#include <string.h>
 #include <time.h>
 
 static void Sleep10ms(void) {
@@ -57,7 +58,29 @@ int main(void) {
          last.fault_bitmap == 0 ? "none" : "latched");
   const int reached = last.finger_count == info.finger_count && last.finger_output[0] > 0.9;
 
+  /* A scene (docs/scenes.md): fed without waiting, every finger's target in one frame. */
+  palpa_scene* scene = NULL;
+  char scene_file[1024]; /* the scene file beside this source */
+  const char* slash = strrchr(__FILE__, '/');
+  snprintf(scene_file, sizeof scene_file, "%.*s/scene_three_cube.json",
+           slash ? (int)(slash - __FILE__) : 1, slash ? __FILE__ : ".");
+  status = palpa_scene_open(board, scene_file, &scene);
+  if (status != PALPA_OK) {
+    fprintf(stderr, "scene: %s\n", palpa_last_error(board));
+    palpa_close(board);
+    return 1;
+  }
+  palpa_finger_render renders[PALPA_MAX_FINGERS];
+  int fingers = 0;
+  for (int step = 0; step <= 30; ++step) {
+    fingers = palpa_scene_feed(scene, step * 0.02, 45 + step, 12, 1.0, renders, PALPA_MAX_FINGERS);
+    Sleep10ms();
+  }
+  for (int f = 0; f < fingers; ++f)
+    printf("scene: finger %d target %.3f\n", renders[f].finger, renders[f].target);
+  palpa_scene_close(scene);
+
   palpa_estop(board);
   palpa_close(board);
-  return reached ? 0 : 2;
+  return reached && fingers == 3 ? 0 : 2;
 }

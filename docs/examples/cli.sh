@@ -28,5 +28,12 @@ palpa info | grep '^configuration'
 palpa --json config show | grep -q '"host_timeout_us":200000'
 palpa config factory-reset
 
+# Scenes: the three-cube phantom's tissue file, a scene drawn, a recorded pass played to the board.
+palpa scene phantom --preset thesis-three-cube --out "$out/three.json"
+scene=$(dirname "$0")/scene_three_cube.json
+palpa scene show "$scene" --at 60,12 --out "$out/scene.svg"
+printf 'time_s,x_mm,y_mm,force_n\n0,45,12,1\n0.2,55,12,1\n0.4,65,12,1\n' > "$out/pass.csv"
+palpa render "$scene" --input "$out/pass.csv" --record "$out/render.csv"
+
 palpa estop                               # every line safe, latched
 palpa clear

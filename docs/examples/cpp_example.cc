@@ -1,10 +1,12 @@
 // palpa from C++: open a simulated board, set fingers in people's terms and see what each became,
 // follow their outputs from telemetry, E-stop. CMake: find_package(palpa) and palpa::palpa.
 #include <palpa/host/device.h>
+#include <palpa/host/scene.h>
 
 #include <chrono>
 #include <cstdio>
 #include <mutex>
+#include <string>
 #include <thread>
 
 namespace ph = palpa::host;
@@ -49,6 +51,23 @@ int main() {
   for (size_t f = 0; f < outputs.size(); ++f)
     std::printf(" %.3f %s", outputs[f], ph::OutputUnitName(info.fingers[f].kind));
   std::printf("\n");
+
+  // A scene (docs/scenes.md): each sample rendered and sent to every finger in one frame,
+  // without waiting.
+  const std::string source = __FILE__;  // the scene file is beside this source
+  const auto spec =
+      ph::LoadScene(source.substr(0, source.rfind('/') + 1) + "scene_three_cube.json");
+  auto scene = spec.ok() ? ph::Scene::Open(spec.value, board)
+                         : ph::Result<std::unique_ptr<ph::Scene>>(spec.outcome());
+  if (!scene.ok()) {
+    std::fprintf(stderr, "scene: %s\n", scene.message.c_str());
+    return 1;
+  }
+  for (int step = 0; step <= 30; ++step) {
+    const auto fed = scene.value->Feed({step * 0.02, 45.0 + step, 12, 1.0});
+    if (!fed.ok()) return 1;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
   board.EStop();
   return outputs.size() == info.finger_count && outputs[0] > 0.9 ? 0 : 2;
 }
