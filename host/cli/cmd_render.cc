@@ -109,10 +109,11 @@ int CmdRender(Context& c, const std::vector<std::string>& args) {
   device->Unsubscribe(subscription);
   if (live) std::printf("\n");
   if (!o.record.empty()) {
-    const auto tissue = host::LoadSceneTissue(spec.value);
-    const std::string svg =
-        host::SceneSvg(tissue.value, host::MakeLayout(spec.value.layout), path.back().first,
-                       path.back().second, path, spec.value.name + " — " + o.input);
+    // The fingers where the pass ended (where it started, when interrupted before any sample).
+    const host::SceneInput& end = fed > 0 ? samples.value[fed - 1] : samples.value.front();
+    const host::SceneRenderer& r = scene.value->renderer();
+    const std::string svg = host::SceneSvg(r.tissue(), r.layout(), end.x_mm, end.y_mm, path,
+                                           spec.value.name + " — " + o.input);
     for (const auto& [file, text] : {std::pair{o.record, csv}, {SvgPath(o.record), svg}}) {
       if (const host::Outcome w = host::WriteFileWhole(file, text); !w.ok())
         return Fail(cmd, w.status, w.message);
