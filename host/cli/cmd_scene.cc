@@ -33,6 +33,29 @@ host::Result<std::vector<double>> Numbers(const std::string& option, const std::
   return out;
 }
 
+/// The library names inclusions from 0 ("inclusions[1].depth_mm: ... inclusions[0]"); the command
+/// line from 1, by the --inclusion that gave each ("--inclusion 2: depth_mm: ... --inclusion 1").
+std::string AsArguments(const std::string& message) {
+  const std::string key = "inclusions[";
+  std::string out;
+  size_t from = 0;
+  for (size_t at = message.find(key); at != std::string::npos; at = message.find(key, from)) {
+    const size_t close = message.find(']', at);
+    double n = 0;
+    if (close == std::string::npos ||
+        !ParseNumber(message.substr(at + key.size(), close - at - key.size()), n))
+      break;
+    out +=
+        message.substr(from, at - from) + "--inclusion " + std::to_string(static_cast<int>(n) + 1);
+    from = close + 1;
+    if (from < message.size() && message[from] == '.') {  // a field of it
+      out += ": ";
+      ++from;
+    }
+  }
+  return out + message.substr(from);
+}
+
 int Phantom(Context&, std::vector<std::string> args) {
   const std::string cmd = "scene phantom";
   host::PhantomSpec spec;
@@ -77,7 +100,7 @@ int Phantom(Context&, std::vector<std::string> args) {
   if (out.empty()) return Usage(cmd, "--out FILE: where the tissue file goes");
   if (spec.name.empty()) spec.name = "block";
   const auto map = host::GeneratePhantom(spec);
-  if (!map.ok()) return Fail(cmd, map.status, map.message, kExitUsage);
+  if (!map.ok()) return Fail(cmd, map.status, AsArguments(map.message), kExitUsage);
   const auto text = host::SerializeTissue(map.value);
   if (!text.ok()) return Fail(cmd, text.status, text.message);
   if (const host::Outcome w = host::WriteFileWhole(out, text.value); !w.ok())

@@ -72,7 +72,12 @@ TEST(CliScene, WrongArgumentsAreNamed) {
               "--size 50,20: expected 3 numbers");
   ExpectUsage(
       "scene phantom --size 50,20,10 --background 10 --inclusion 25,10,5,5,6,100 --out " + out,
-      "inclusions[0].depth_mm: 6 + thickness 5 mm does not fit");
+      "phantom block: --inclusion 1: depth_mm: 6 + thickness 5 mm does not fit");
+  ExpectUsage(
+      "scene phantom --size 50,20,10 --background 10 --inclusion 25,10,5,5,2,100 "
+      "--inclusion 26,10,5,5,1,100 --out " +
+          out,
+      "phantom block: --inclusion 2: overlaps --inclusion 1");
   ExpectUsage("scene phantom --size 50,20,10 --background soft --out " + out,
               "--background soft: expected a number");
   ExpectUsage("scene show " + out + " --out x.svg", "cannot be read");
