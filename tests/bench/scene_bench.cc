@@ -1,0 +1,160 @@
+// Scenes: speed against accuracy. Straight passes across the three-cube phantom with the
+// thesis's triangle (the example scene) on the simulated board, in virtual time: each input sample
+// (100 Hz, a pen tablet's rate) rendered and sent as one SetFingerTargets; every board tick, each
+// finger's true output (the plant's) against the rule's target at the finger's current position.
+// Prints, per speed, the error (RMS and 95th percentile, of the scene's target range) and the edge
+// lag at cube B's leading edge (how far finger 0 travels past the point where the rule's target
+// crosses half of its change before its true output does).
+//   palpa_scene_bench SCENE.json
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "palpa/hal/fake/fakes.h"
+#include "palpa/host/scene_file.h"
+#include "palpa/protocol/codec.h"
+#include "sim_board.h"
+
+namespace ps = palpa::sim;
+namespace pp = palpa::protocol;
+namespace ph = palpa::host;
+
+namespace {
+
+constexpr int kInputEveryMs = 10;
+constexpr double kStartX = 20, kEndX = 100, kY = 15;
+
+struct PassResult {
+  std::vector<double> errors;  ///< |true − target| / range, every tick, every finger
+  double edge_lag_mm = NAN;
+};
+
+class Bench {
+ public:
+  explicit Bench(const ph::SceneRenderer& scene) : scene_(scene) {
+    ps::SimBoardOptions o;
+    o.config = "thesis-pneumatic-3";
+    o.plant.level = 3;
+    o.plant.unit = 12;  // a held-out unit, not the nominal one
+    o.plant.seed = 7;
+    std::string error;
+    sim_ = ps::SimBoard::Create(o, link_, &error);
+    if (!sim_) std::fprintf(stderr, "scene bench: %s\n", error.c_str());
+    Send(pp::Hello{1, 0}, false);
+    sim_->Advance(5);
+  }
+  bool ok() const { return sim_ != nullptr; }
+
+  PassResult Pass(double speed_mm_s, double range_mm) {
+    PassResult r;
+    // Settle at the start (the first target re-homes the fingers), then the pass.
+    const int settle_ms = 1500;
+    const int pass_ms = static_cast<int>((kEndX - kStartX) / speed_mm_s * 1000);
+    double previous_true = 0;
+    const double edge = 54;  // cube B's near face, where finger 0 (the right angle) meets it
+    const double before = Target0(edge - 3), on = Target0(edge + 3);
+    const double half = (before + on) / 2;
+    double rule_cross = NAN;
+    for (int ms = -settle_ms; ms <= pass_ms; ++ms) {
+      const double x = kStartX + std::max(0, ms) * speed_mm_s / 1000;
+      if (ms % kInputEveryMs == 0) SendTargets(x);
+      if (ms % 20 == 0) Send(pp::Heartbeat{1, ++generation_}, false);
+      sim_->Advance(1000);
+      link_.tx.clear();
+      if (ms < 0) continue;
+      const auto truth = sim_->plant().Truth();
+      const auto now = scene_.Render({0, x, kY, 1});
+      for (size_t f = 0; f < now.size(); ++f) {
+        const double target = now[f].mapped.target / 1000.0;
+        r.errors.push_back(std::fabs(truth.fingers[f].deformation_mm - target) / range_mm);
+      }
+      if (std::isnan(rule_cross) && now[0].mapped.target / 1000.0 >= half) rule_cross = x;
+      const double true0 = truth.fingers[0].deformation_mm;
+      if (std::isnan(r.edge_lag_mm) && !std::isnan(rule_cross) && previous_true < half &&
+          true0 >= half)
+        r.edge_lag_mm = x - rule_cross;
+      previous_true = true0;
+    }
+    return r;
+  }
+
+ private:
+  double Target0(double x) const { return scene_.Render({0, x, kY, 1})[0].mapped.target / 1000.0; }
+  void SendTargets(double x) {
+    pp::SetFingerTargets t{};
+    t.session = 1;
+    t.generation = ++generation_;
+    const auto renders = scene_.Render({0, x, kY, 1});
+    const auto requests = scene_.Requests(renders);
+    for (size_t f = 0; f < renders.size(); ++f) {
+      t.entries[t.entry_count++] = {requests[f].finger, pp::OutputUnit::kDeformationMicrometre,
+                                    renders[f].mapped.target};
+    }
+    Send(t, false);
+  }
+  template <class M>
+  void Send(const M& m, bool reliable) {
+    uint8_t frame[pp::kMaxFrameSize];
+    const auto n = pp::EncodeMessageFrame(
+        m, reliable ? seq_++ : 0, reliable ? pp::flags::kReliable : 0, frame, sizeof(frame));
+    link_.Inject(frame, n.value);
+    sim_->Advance(sim_->now_us() % 1000 == 0 ? 1 : 0);  // dispatched between ticks
+  }
+
+  const ph::SceneRenderer& scene_;
+  palpa::hal::fake::FakeByteLink link_;
+  std::unique_ptr<ps::SimBoard> sim_;
+  uint8_t seq_ = 0;
+  uint32_t generation_ = 0;
+};
+
+double Percentile(std::vector<double> v, double p) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? NAN : v[static_cast<size_t>(p * static_cast<double>(v.size() - 1))];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: palpa_scene_bench SCENE.json\n");
+    return 2;
+  }
+  const auto spec = ph::LoadScene(argv[1]);
+  if (!spec.ok()) return std::fprintf(stderr, "%s\n", spec.message.c_str()), 1;
+  const auto tissue = ph::LoadSceneTissue(spec.value);
+  if (!tissue.ok()) return std::fprintf(stderr, "%s\n", tissue.message.c_str()), 1;
+  std::vector<ph::RenderFinger> fingers;
+  for (uint8_t f : spec.value.board_fingers)
+    fingers.push_back(
+        {f, {pp::FingerKind::kPneumatic, pp::FingerMode::kTarget, f, pp::kNoLine}, {}});
+  const auto scene = ph::SceneRenderer::Make(tissue.value, ph::MakeLayout(spec.value.layout),
+                                             spec.value.rule, fingers);
+  if (!scene.ok()) return std::fprintf(stderr, "%s\n", scene.message.c_str()), 1;
+  // The scene's target range: from the softest to the stiffest target the rule gives.
+  double lo = 1e9, hi = -1e9;
+  for (double x = 0; x <= 120; x += 0.25) {
+    for (const auto& r : scene.value.Render({0, x, kY, 1})) {
+      lo = std::min(lo, r.mapped.target / 1000.0);
+      hi = std::max(hi, r.mapped.target / 1000.0);
+    }
+  }
+  std::printf(
+      "scene %s on palpa-sim thesis-pneumatic-3, plant level 3, unit 12, nominal curves;\n"
+      "passes along y = %g mm from x = %g to %g mm, input at %d Hz; target range %.3f mm\n",
+      spec.value.name.c_str(), kY, kStartX, kEndX, 1000 / kInputEveryMs, hi - lo);
+  std::printf("%10s %12s %12s %16s\n", "speed", "error RMS", "error p95", "edge lag (B)");
+  for (const double speed : {5.0, 10.0, 20.0, 30.0, 60.0}) {
+    Bench bench(scene.value);
+    if (!bench.ok()) return 1;
+    const PassResult r = bench.Pass(speed, hi - lo);
+    double sum = 0;
+    for (double e : r.errors) sum += e * e;
+    std::printf("%7.0f mm/s %11.1f %% %11.1f %% %13.2f mm\n", speed,
+                100 * std::sqrt(sum / static_cast<double>(r.errors.size())),
+                100 * Percentile(r.errors, 0.95), r.edge_lag_mm);
+  }
+  return 0;
+}
