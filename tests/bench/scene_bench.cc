@@ -47,18 +47,19 @@ class Bench {
   }
   bool ok() const { return sim_ != nullptr; }
 
-  PassResult Pass(double speed_mm_s, double range_mm) {
+  /// A path: the input's x at each millisecond of the pass (after settling at the first).
+  PassResult Pass(const std::vector<double>& path, double range_mm) {
     PassResult r;
     // Settle at the start (the first target re-homes the fingers), then the pass.
     const int settle_ms = 1500;
-    const int pass_ms = static_cast<int>((kEndX - kStartX) / speed_mm_s * 1000);
+    const int pass_ms = static_cast<int>(path.size()) - 1;
     double previous_true = 0;
     const double edge = 54;  // cube B's near face, where finger 0 (the right angle) meets it
     const double before = Target0(edge - 3), on = Target0(edge + 3);
     const double half = (before + on) / 2;
     double rule_cross = NAN;
     for (int ms = -settle_ms; ms <= pass_ms; ++ms) {
-      const double x = kStartX + std::max(0, ms) * speed_mm_s / 1000;
+      const double x = path[static_cast<size_t>(std::max(0, ms))];
       if (ms % kInputEveryMs == 0) SendTargets(x);
       if (ms % 20 == 0) Send(pp::Heartbeat{1, ++generation_}, false);
       sim_->Advance(1000);
@@ -110,6 +111,47 @@ class Bench {
   uint32_t generation_ = 0;
 };
 
+double Percentile(std::vector<double> v, double p);
+
+/// A straight pass at a constant speed, a position per millisecond.
+std::vector<double> Straight(double speed_mm_s) {
+  std::vector<double> path;
+  for (double x = kStartX; x <= kEndX; x += speed_mm_s / 1000) path.push_back(x);
+  return path;
+}
+
+/// A hand-like pass: speed varying ±50 % about `speed` (a 2 s cycle), forward to 80 mm, a 0.5 s
+/// stop, back to 60 mm (over cube B again), another stop, then on to the end.
+std::vector<double> HandLike(double speed) {
+  std::vector<double> path;
+  double x = kStartX, t = 0;
+  auto go = [&](double to) {
+    const double dir = to > x ? 1 : -1;
+    while (dir * (to - x) > 0) {
+      x += dir * speed * (1 + 0.5 * std::sin(2 * M_PI * t / 2)) / 1000;
+      t += 0.001;
+      path.push_back(x);
+    }
+  };
+  auto stop = [&] {
+    for (int ms = 0; ms < 500; ++ms) path.push_back(x);
+  };
+  go(80);
+  stop();
+  go(60);
+  stop();
+  go(kEndX);
+  return path;
+}
+
+void Row(const char* name, const PassResult& r) {
+  double sum = 0;
+  for (double e : r.errors) sum += e * e;
+  std::printf("%-30s %8.1f %% %9.1f %% %10.2f mm\n", name,
+              100 * std::sqrt(sum / static_cast<double>(r.errors.size())),
+              100 * Percentile(r.errors, 0.95), r.edge_lag_mm);
+}
+
 double Percentile(std::vector<double> v, double p) {
   std::sort(v.begin(), v.end());
   return v.empty() ? NAN : v[static_cast<size_t>(p * static_cast<double>(v.size() - 1))];
@@ -145,16 +187,20 @@ int main(int argc, char** argv) {
       "scene %s on palpa-sim thesis-pneumatic-3, plant level 3, unit 12, nominal curves;\n"
       "passes along y = %g mm from x = %g to %g mm, input at %d Hz; target range %.3f mm\n",
       spec.value.name.c_str(), kY, kStartX, kEndX, 1000 / kInputEveryMs, hi - lo);
-  std::printf("%10s %12s %12s %16s\n", "speed", "error RMS", "error p95", "edge lag (B)");
+  std::printf("%-30s %10s %11s %13s\n", "pass", "error RMS", "error p95", "edge lag (B)");
   for (const double speed : {5.0, 10.0, 20.0, 30.0, 60.0}) {
     Bench bench(scene.value);
     if (!bench.ok()) return 1;
-    const PassResult r = bench.Pass(speed, hi - lo);
-    double sum = 0;
-    for (double e : r.errors) sum += e * e;
-    std::printf("%7.0f mm/s %11.1f %% %11.1f %% %13.2f mm\n", speed,
-                100 * std::sqrt(sum / static_cast<double>(r.errors.size())),
-                100 * Percentile(r.errors, 0.95), r.edge_lag_mm);
+    char name[48];
+    std::snprintf(name, sizeof(name), "straight, %g mm/s", speed);
+    Row(name, bench.Pass(Straight(speed), hi - lo));
+  }
+  for (const double speed : {10.0, 30.0}) {
+    Bench bench(scene.value);
+    if (!bench.ok()) return 1;
+    char name[48];
+    std::snprintf(name, sizeof(name), "hand-like, %g mm/s ±50 %%", speed);
+    Row(name, bench.Pass(HandLike(speed), hi - lo));
   }
   return 0;
 }
