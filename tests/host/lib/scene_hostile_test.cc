@@ -75,7 +75,7 @@ void RendersWithinLimits(const ph::TissueMap& tissue) {
   const auto r =
       ph::SceneRenderer::Make(tissue, ph::JammingPairLayout(3, 2), {}, {pneumatic, jamming});
   CHECK_TEXT(r.ok(), r.message.c_str());
-  const double odd[] = {0, 1, -1, 1e9, -1e9, NAN, INFINITY, -INFINITY, 2.5, 1e-300};
+  const double odd[] = {0, 2.5, -1e9, NAN, INFINITY};  // on the map, off it, not a number
   for (double x : odd) {
     for (double y : odd) {
       for (double force : odd) {
