@@ -20,27 +20,14 @@
 #include <thread>
 #include <vector>
 
+#include "generation_stamps.h"
 #include "mini_client.h"
 #include "palpa/host/device.h"
 
+namespace pb = palpa::bench;
 namespace pp = palpa::protocol;
 
 namespace {
-
-int64_t MonotonicNs() {
-  timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return static_cast<int64_t>(t.tv_sec) * 1000000000LL + t.tv_nsec;
-}
-
-void Print(const char* what, std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const auto at = [&](double p) {
-    return v[static_cast<size_t>(p * static_cast<double>(v.size() - 1))];
-  };
-  std::printf("  %-34s p50 %6.3f ms  p99 %6.3f ms  max %6.3f ms\n", what, at(0.5), at(0.99),
-              v.back());
-}
 
 /// Commands with a random phase against the board's tick; returns the host's stamp of each
 /// generation.
@@ -53,7 +40,7 @@ std::map<uint32_t, int64_t> Measure(palpa::host::Device& d, int commands) {
     pp::SetLineSetpoints m{};
     m.entry_count = 1;
     m.entries[0] = {0, i % 2 ? 10000 : 20000};
-    const int64_t t = MonotonicNs();
+    const int64_t t = pb::MonotonicNs();
     const uint32_t generation = d.link().StreamSetpoints(m);
     called[generation] = t;
     d.link().WaitSetpointsApplied(generation, 200);
@@ -64,30 +51,18 @@ std::map<uint32_t, int64_t> Measure(palpa::host::Device& d, int commands) {
 /// The simulator's stamps (its file, complete once it stopped) against the host's.
 int Report(const std::string& over, const std::map<uint32_t, int64_t>& called,
            const std::string& stamps, int commands) {
-  std::ifstream in(stamps);
-  std::map<uint32_t, int64_t> applied, dac;
-  uint32_t generation;
-  std::string kind;
-  long long ns;
-  while (in >> generation >> kind >> ns) (kind == "dac" ? dac : applied)[generation] = ns;
-  std::vector<double> total, link, tick;
-  for (const auto& [g, t] : called) {
-    if (!applied.count(g) || !dac.count(g)) continue;
-    total.push_back((dac[g] - t) / 1e6);
-    link.push_back((applied[g] - t) / 1e6);
-    tick.push_back((dac[g] - applied[g]) / 1e6);
-  }
-  if (total.empty()) {
+  const pb::LatencySplit l = pb::Match(called, pb::ReadGenerationStamps(stamps, "setpoints"));
+  if (l.total.empty()) {
     std::fprintf(stderr, "no stamps matched\n");
     return 1;
   }
   std::printf(
       "== command -> output latency over %s, palpa-sim --speed 1 (%zu of %d commands "
       "stamped) ==\n",
-      over.c_str(), total.size(), commands);
-  Print("API call -> DAC write", total);
-  Print("  of which link (call -> dispatch)", link);
-  Print("  of which tick quantisation", tick);
+      over.c_str(), l.total.size(), commands);
+  pb::PrintLatency("API call -> DAC write", l.total);
+  pb::PrintLatency("  of which link (call -> dispatch)", l.link);
+  pb::PrintLatency("  of which tick quantisation", l.tick);
   return 0;
 }
 

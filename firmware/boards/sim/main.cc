@@ -60,19 +60,21 @@ int OpenBoard(Sim& s) {
   return 0;
 }
 
-/// --stamp: each setpoint generation's arrival and DAC write, on CLOCK_MONOTONIC (one clock for
-/// host and simulator).
+/// --stamp: each stream generation's arrival and DAC write, on CLOCK_MONOTONIC (one clock for
+/// host and simulator): "setpoints|targets GENERATION applied|dac NS" lines.
 int OpenStamps(Sim& s) {
   if (s.cmd.stamp_file.empty()) return 0;
   std::string error;
   if (!s.stamps.Open(s.cmd.stamp_file, &error)) return Failed("--stamp " + error, 1);
-  s.board->OnSetpointGeneration([&stamps = s.stamps](uint32_t generation, bool dac) {
+  using Stream = palpa::sim::SimBoard::Stream;
+  s.board->OnGeneration([&stamps = s.stamps](Stream stream, uint32_t generation, bool dac) {
     timespec now;
     clock_gettime(CLOCK_MONOTONIC, &now);
-    char line[64];
-    const int n =
-        std::snprintf(line, sizeof(line), "%u %s %lld\n", generation, dac ? "dac" : "applied",
-                      static_cast<long long>(now.tv_sec) * 1000000000LL + now.tv_nsec);
+    char line[80];
+    const int n = std::snprintf(line, sizeof(line), "%s %u %s %lld\n",
+                                stream == Stream::kTargets ? "targets" : "setpoints", generation,
+                                dac ? "dac" : "applied",
+                                static_cast<long long>(now.tv_sec) * 1000000000LL + now.tv_nsec);
     stamps.Write(std::string_view(line, static_cast<size_t>(n)));
   });
   return 0;

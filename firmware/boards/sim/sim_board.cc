@@ -125,17 +125,22 @@ void SimBoard::StepBoard() {
     return;
   }
   if (!stamp_) return;
+  Stamp(Stream::kSetpoints, board_->applied_setpoint_generation(), ticked);
+  Stamp(Stream::kTargets, board_->applied_target_generation(), ticked);
+}
+
+void SimBoard::Stamp(Stream stream, uint32_t applied, bool ticked) {
+  Stamped& s = stamped_[static_cast<size_t>(stream)];
   // A tick writes the DAC before the link is served: a generation applied by this pass's
   // dispatch reaches the DAC on the next tick.
-  if (ticked && dac_pending_) {
-    dac_pending_ = false;
-    stamp_(stamped_generation_, true);
+  if (ticked && s.dac_pending) {
+    s.dac_pending = false;
+    stamp_(stream, s.generation, true);
   }
-  const uint32_t applied = board_->applied_setpoint_generation();
-  if (applied != stamped_generation_) {
-    stamped_generation_ = applied;
-    dac_pending_ = true;
-    stamp_(applied, false);
+  if (applied != s.generation) {
+    s.generation = applied;
+    s.dac_pending = true;
+    stamp_(stream, applied, false);
   }
 }
 

@@ -77,13 +77,16 @@ class SimBoard {
   /// Resets the board as a power cycle or a watchdog would: the bootloader chooses again.
   void Reset(protocol::ResetCause cause);
 
-  /// Called when a new setpoint generation is applied (dac=false, at the dispatch) and when the
-  /// DAC is first written with it (dac=true, at the next tick): the latency benchmark's stamps.
   /// Called after every 1 ms step (plant and board), with the virtual time: side channels sample
   /// here so that a stalled host process does not thin out their samples.
   void OnStep(std::function<void(uint64_t now_us)> callback) { on_step_ = std::move(callback); }
 
-  void OnSetpointGeneration(std::function<void(uint32_t generation, bool dac)> callback) {
+  /// The two latest-wins streams whose generations are stamped.
+  enum class Stream : uint8_t { kSetpoints, kTargets };
+  /// Called when a stream's new generation is applied (dac=false, at the dispatch) and when the
+  /// DAC is first written with it (dac=true, at the next tick): the latency benchmarks' stamps,
+  /// raw line setpoints and finger targets (what a scene sends) alike.
+  void OnGeneration(std::function<void(Stream stream, uint32_t generation, bool dac)> callback) {
     stamp_ = std::move(callback);
   }
   Plant& plant() { return *plant_; }
@@ -129,11 +132,16 @@ class SimBoard {
   uint32_t boots_ = 0;
   /// The bootloader's pass and the application's start on the chosen slot.
   void BootBoard(protocol::ResetCause cause);
-  std::function<void(uint32_t, bool)> stamp_;
+  std::function<void(Stream, uint32_t, bool)> stamp_;
   std::function<void(uint64_t)> on_step_;
-  uint32_t stamped_generation_ = 0;
-  bool dac_pending_ = false;
+  /// Per stream: the generation last stamped applied, and whether its DAC write is still due.
+  struct Stamped {
+    uint32_t generation = 0;
+    bool dac_pending = false;
+  };
+  Stamped stamped_[2];
   void StepBoard();
+  void Stamp(Stream stream, uint32_t applied, bool ticked);
 };
 
 }  // namespace palpa::sim

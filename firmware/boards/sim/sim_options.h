@@ -14,7 +14,8 @@ struct SimCommandLine {
   std::string truth;  ///< empty, file:PATH or tcp:HOST:PORT
   uint32_t truth_every_ms = 10;
   float speed = 1.0f;
-  std::string stamp_file;  ///< latency stamps: "GENERATION applied|dac MONOTONIC_NS" lines
+  /// Latency stamps: "setpoints|targets GENERATION applied|dac MONOTONIC_NS" lines.
+  std::string stamp_file;
   std::string rig_modbus;  ///< empty, tcp:HOST:PORT or rtu:PATH: the rig's stage and force sensor
   std::string rig_netft;   ///< empty or udp:HOST:PORT: the rig's force sensor as a Net F/T box
   uint8_t rig_finger = 0;  ///< the finger under the rig's indenter

@@ -93,6 +93,7 @@ class Board {
   /// The open session's identity: its Hello's nonce, which its frames carry.
   uint32_t session_nonce() const { return session_.host_nonce(); }
   uint32_t applied_setpoint_generation() const { return session_.setpoints().applied(); }
+  uint32_t applied_target_generation() const { return session_.targets().applied(); }
   /// UpdateReboot was acknowledged: the shell resets the board once the Ack is sent.
   bool reboot_requested() const { return reboot_requested_; }
   /// The live configuration's memory, for tests that corrupt it on purpose.
