@@ -306,6 +306,11 @@ uint32_t Link::StreamSetpoints(pp::SetLineSetpoints m) { return StreamLatest(set
 
 uint32_t Link::StreamTargets(pp::SetFingerTargets m) { return StreamLatest(targets_, m); }
 
+uint32_t Link::targets_generation() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return targets_.generation;
+}
+
 Status Link::WaitApplied(bool setpoints, uint32_t generation, int timeout_ms, uint32_t* detail) {
   std::unique_lock<std::mutex> lock(mutex_);
   Stream& s = setpoints ? setpoints_ : targets_;

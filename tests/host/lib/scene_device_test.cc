@@ -1,5 +1,6 @@
-// A scene on palpa-sim: fed without waiting, every finger's target arrives in one frame and the
-// board changes all of them on the same tick; a scene naming a finger the board lacks is refused.
+// A scene on palpa-sim: fed without waiting, every finger's target goes in one frame (one
+// generation of the targets stream) and the board changes all of them on the same tick; a scene
+// naming a finger the board lacks is refused.
 #include <algorithm>
 #include <chrono>
 #include <map>
@@ -88,9 +89,12 @@ TEST(SceneDevice, EveryFingerChangesOnTheSameTick) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   CHECK_TEXT(all_up(), "the fingers never rose");
   const uint64_t before = ticks.Last();
-  // Lifted: every finger released by one frame.
+  // Lifted: every finger released by one frame — one new generation of the targets stream, not
+  // one per finger.
+  const uint32_t generation = device->link().targets_generation();
   fed = scene.value->Feed({0.1, 10, 5, 0});
   CHECK_TEXT(fed.ok(), fed.message.c_str());
+  CHECK_EQUAL(generation + 1, device->link().targets_generation());
   uint64_t first[3] = {0, 0, 0};
   while (std::chrono::steady_clock::now() < deadline) {
     for (size_t f = 0; f < 3; ++f)

@@ -162,6 +162,9 @@ class Link {
   /// generation.
   uint32_t StreamSetpoints(pp::SetLineSetpoints m);
   uint32_t StreamTargets(pp::SetFingerTargets m);
+  /// The generation the targets stream last sent (0 before the first): what a caller that set
+  /// fingers without waiting (a scene's Feed) matches telemetry or latency stamps against.
+  uint32_t targets_generation() const;
   /// Waits until telemetry shows the generation applied (kOk), it is Nacked (the status, and in
   /// *detail the Nack's: the latched faults for kFaulted, the entry otherwise), or the timeout
   /// passes (kTimeout).
