@@ -4,7 +4,8 @@
 // finger's true output (the plant's) against the rule's target at the finger's current position.
 // Prints, per speed, the error (RMS and 95th percentile, of the scene's target range) and the edge
 // lag at cube B's leading edge (how far finger 0 travels past the point where the rule's target
-// crosses half of its change before its true output does).
+// crosses half of its change before its true output does) — each pass on the fingers' nominal
+// curves without step shaping, and calibrated on their rig with shaping on (scene_pass.h).
 //   palpa_scene_bench SCENE.json
 #include <algorithm>
 #include <cmath>
@@ -12,112 +13,18 @@
 #include <string>
 #include <vector>
 
-#include "palpa/hal/fake/fakes.h"
 #include "palpa/host/scene_file.h"
-#include "palpa/protocol/codec.h"
-#include "sim_board.h"
+#include "scene_pass.h"
 
-namespace ps = palpa::sim;
+namespace pb = palpa::bench;
 namespace pp = palpa::protocol;
 namespace ph = palpa::host;
 
+using pb::kEndX;
+using pb::kStartX;
+using pb::kY;
+
 namespace {
-
-constexpr int kInputEveryMs = 10;
-constexpr double kStartX = 20, kEndX = 100, kY = 15;
-
-struct PassResult {
-  std::vector<double> errors;  ///< |true − target| / range, every tick, every finger
-  double edge_lag_mm = NAN;
-};
-
-class Bench {
- public:
-  Bench(const ph::SceneRenderer& scene, bool jamming) : scene_(scene), jamming_(jamming) {
-    ps::SimBoardOptions o;
-    o.config = jamming ? "thesis-jamming-2" : "thesis-pneumatic-3";
-    o.plant.level = 3;
-    o.plant.unit = 12;  // a held-out unit, not the nominal one
-    o.plant.seed = 7;
-    std::string error;
-    sim_ = ps::SimBoard::Create(o, link_, &error);
-    if (!sim_) std::fprintf(stderr, "scene bench: %s\n", error.c_str());
-    Send(pp::Hello{1, 0}, false);
-    sim_->Advance(5);
-  }
-  bool ok() const { return sim_ != nullptr; }
-
-  /// A path: the input's x at each millisecond of the pass (after settling at the first).
-  PassResult Pass(const std::vector<double>& path, double range_mm) {
-    PassResult r;
-    // Settle at the start (the first target re-homes the fingers), then the pass.
-    const int settle_ms = 1500;
-    const int pass_ms = static_cast<int>(path.size()) - 1;
-    double previous_true = 0;
-    const double edge = 54;  // cube B's near face, where finger 0 meets it
-    const double dx0 = scene_.layout().fingers[0].dx_mm;  // finger 0 from the input
-    const double before = Target0(edge - 3 - dx0), on = Target0(edge + 3 - dx0);
-    const double half = (before + on) / 2;
-    double rule_cross = NAN;
-    for (int ms = -settle_ms; ms <= pass_ms; ++ms) {
-      const double x = path[static_cast<size_t>(std::max(0, ms))];
-      if (ms % kInputEveryMs == 0) SendTargets(x);
-      if (ms % 20 == 0) Send(pp::Heartbeat{1, ++generation_}, false);
-      sim_->Advance(1000);
-      link_.tx.clear();
-      if (ms < 0) continue;
-      const auto truth = sim_->plant().Truth();
-      const auto now = scene_.Render({0, x, kY, 1});
-      for (size_t f = 0; f < now.size(); ++f) {
-        const double target = now[f].mapped.target / 1000.0;
-        r.errors.push_back(std::fabs(True(truth, f) - target) / range_mm);
-      }
-      if (std::isnan(rule_cross) && now[0].mapped.target / 1000.0 >= half) rule_cross = x + dx0;
-      const double true0 = True(truth, 0);
-      if (std::isnan(r.edge_lag_mm) && !std::isnan(rule_cross) && previous_true < half &&
-          true0 >= half)
-        r.edge_lag_mm = x + dx0 - rule_cross;
-      previous_true = true0;
-    }
-    return r;
-  }
-
- private:
-  /// A finger's true output in its unit: deformation (mm) or stiffness (N/mm).
-  double True(const ps::PlantTruth& t, size_t f) const {
-    return jamming_ ? t.fingers[f].stiffness_n_per_mm : t.fingers[f].deformation_mm;
-  }
-  double Target0(double x) const { return scene_.Render({0, x, kY, 1})[0].mapped.target / 1000.0; }
-  void SendTargets(double x) {
-    pp::SetFingerTargets t{};
-    t.session = 1;
-    t.generation = ++generation_;
-    const auto renders = scene_.Render({0, x, kY, 1});
-    const auto requests = scene_.Requests(renders);
-    for (size_t f = 0; f < renders.size(); ++f) {
-      t.entries[t.entry_count++] = {requests[f].finger,
-                                    jamming_ ? pp::OutputUnit::kStiffnessMilliNewtonPerMm
-                                             : pp::OutputUnit::kDeformationMicrometre,
-                                    renders[f].mapped.target};
-    }
-    Send(t, false);
-  }
-  template <class M>
-  void Send(const M& m, bool reliable) {
-    uint8_t frame[pp::kMaxFrameSize];
-    const auto n = pp::EncodeMessageFrame(
-        m, reliable ? seq_++ : 0, reliable ? pp::flags::kReliable : 0, frame, sizeof(frame));
-    link_.Inject(frame, n.value);
-    sim_->Advance(sim_->now_us() % 1000 == 0 ? 1 : 0);  // dispatched between ticks
-  }
-
-  const ph::SceneRenderer& scene_;
-  bool jamming_;
-  palpa::hal::fake::FakeByteLink link_;
-  std::unique_ptr<ps::SimBoard> sim_;
-  uint8_t seq_ = 0;
-  uint32_t generation_ = 0;
-};
 
 double Percentile(std::vector<double> v, double p);
 
@@ -152,14 +59,17 @@ std::vector<double> HandLike(double speed) {
   return path;
 }
 
-void Row(const char* name, const PassResult& r) {
+/// "RMS | p95 | edge lag" of one pass, as Markdown cells.
+std::string Cells(const pb::PassResult& r) {
   double sum = 0;
   for (double e : r.errors) sum += e * e;
   char lag[32] = "never";  // the output never reached half of the change while over B
   if (!std::isnan(r.edge_lag_mm)) std::snprintf(lag, sizeof(lag), "%.2f mm", r.edge_lag_mm);
-  std::printf("%-30s %8.1f %% %9.1f %% %13s\n", name,
-              100 * std::sqrt(sum / static_cast<double>(r.errors.size())),
-              100 * Percentile(r.errors, 0.95), lag);
+  char cells[96];
+  std::snprintf(cells, sizeof(cells), " %.1f %% | %.1f %% | %s |",
+                100 * std::sqrt(sum / static_cast<double>(r.errors.size())),
+                100 * Percentile(r.errors, 0.95), lag);
+  return cells;
 }
 
 double Percentile(std::vector<double> v, double p) {
@@ -167,8 +77,24 @@ double Percentile(std::vector<double> v, double p) {
   return v.empty() ? NAN : v[static_cast<size_t>(p * static_cast<double>(v.size() - 1))];
 }
 
+/// One pass on both boards: the fingers on their nominal curves with no step shaping (as the
+/// scene was first measured), and calibrated on their rig with shaping on. One Markdown row.
+int Row(const ph::SceneRenderer& scene, bool jamming, const std::vector<uint8_t>& fingers,
+        const std::string& name, const std::vector<double>& path, double range) {
+  std::string row = "| " + name + " |";
+  for (const bool calibrated : {false, true}) {
+    pb::ScenePass pass(scene, jamming, calibrated, fingers);
+    if (!pass.ok()) return 1;
+    row += Cells(pass.Pass(path, range));
+  }
+  std::printf("%s\n", row.c_str());
+  std::fflush(stdout);
+  return 0;
+}
+
 /// The table of one scene's passes: straight at each speed, then hand-like.
-int Table(const ph::SceneRenderer& scene, bool jamming, const std::string& title) {
+int Table(const ph::SceneRenderer& scene, bool jamming, const std::vector<uint8_t>& fingers,
+          const std::string& title) {
   // The scene's target range: from the softest to the stiffest target the rule gives a finger
   // on the tissue.
   double lo = 1e9, hi = -1e9;
@@ -179,26 +105,23 @@ int Table(const ph::SceneRenderer& scene, bool jamming, const std::string& title
       hi = std::max(hi, r.mapped.target / 1000.0);
     }
   }
-  const char* unit = jamming ? "N/mm" : "mm";
   std::printf(
-      "\n%s on palpa-sim %s, plant level 3, unit 12, nominal curves;\n"
-      "passes along y = %g mm from x = %g to %g mm, input at %d Hz; target range %.3f %s\n",
-      title.c_str(), jamming ? "thesis-jamming-2" : "thesis-pneumatic-3", kY, kStartX, kEndX,
-      1000 / kInputEveryMs, hi - lo, unit);
-  std::printf("%-30s %10s %11s %13s\n", "pass", "error RMS", "error p95", "edge lag (B)");
+      "\n%s on palpa-sim %s, plant level 3, unit %u; passes along y = %g mm from x = %g to %g mm,"
+      " input at %d Hz; target range %.3f %s\n\n",
+      title.c_str(), jamming ? "thesis-jamming-2" : "thesis-pneumatic-3", pb::kUnit, kY, kStartX,
+      kEndX, 1000 / pb::kInputEveryMs, hi - lo, jamming ? "N/mm" : "mm");
+  std::printf(
+      "| pass | nominal: error RMS | p95 | edge lag at B | calibrated, shaped: error RMS | p95 | "
+      "edge lag at B |\n|---|---:|---:|---:|---:|---:|---:|\n");
   for (const double speed : {5.0, 10.0, 20.0, 30.0, 60.0}) {
-    Bench bench(scene, jamming);
-    if (!bench.ok()) return 1;
     char name[48];
     std::snprintf(name, sizeof(name), "straight, %g mm/s", speed);
-    Row(name, bench.Pass(Straight(speed), hi - lo));
+    if (Row(scene, jamming, fingers, name, Straight(speed), hi - lo) != 0) return 1;
   }
   for (const double speed : {10.0, 30.0}) {
-    Bench bench(scene, jamming);
-    if (!bench.ok()) return 1;
     char name[48];
-    std::snprintf(name, sizeof(name), "hand-like, %g mm/s ±50 %%", speed);
-    Row(name, bench.Pass(HandLike(speed), hi - lo));
+    std::snprintf(name, sizeof(name), "hand-like, %g mm/s ± 50 %%", speed);
+    if (Row(scene, jamming, fingers, name, HandLike(speed), hi - lo) != 0) return 1;
   }
   return 0;
 }
@@ -221,7 +144,8 @@ int main(int argc, char** argv) {
   const auto scene = ph::SceneRenderer::Make(tissue.value, ph::MakeLayout(spec.value.layout),
                                              spec.value.rule, fingers);
   if (!scene.ok()) return std::fprintf(stderr, "%s\n", scene.message.c_str()), 1;
-  if (Table(scene.value, false, "scene " + spec.value.name) != 0) return 1;
+  if (Table(scene.value, false, spec.value.board_fingers, "scene " + spec.value.name) != 0)
+    return 1;
   // The jamming pair on the same tissue, 20 mm apart, N/mm over each finger's nominal curve.
   std::vector<ph::RenderFinger> pair;
   for (uint8_t f = 0; f < 2; ++f) {
@@ -233,5 +157,6 @@ int main(int argc, char** argv) {
   const auto jamming =
       ph::SceneRenderer::Make(tissue.value, ph::JammingPairLayout(20, 4), {}, pair);
   if (!jamming.ok()) return std::fprintf(stderr, "%s\n", jamming.message.c_str()), 1;
-  return Table(jamming.value, true, "the jamming pair (20 mm, a 4 mm disc) on the same tissue");
+  return Table(jamming.value, true, {0, 1},
+               "the jamming pair (20 mm, a 4 mm disc) on the same tissue");
 }

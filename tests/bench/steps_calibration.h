@@ -22,14 +22,17 @@ struct UnitCalibration {
   std::array<calibration::ChamberFit, protocol::kMaxLines> chamber{};
 };
 
-/// Calibrates fingers 0 (pneumatic, line 0) and 3 (jamming, vacuum line 5) of unit `seed`, once.
-inline const UnitCalibration& CalibrationFor(uint32_t seed) {
-  static std::map<uint32_t, UnitCalibration> known;
-  const auto found = known.find(seed);
+/// Calibrates `fingers` of `config` (by default fingers 0, pneumatic on line 0, and 3, jamming on
+/// vacuum line 5, of thesis-5finger) on unit `seed`, once; each line a finger drives is indexed.
+inline const UnitCalibration& CalibrationFor(uint32_t seed,
+                                             const std::string& config = "thesis-5finger",
+                                             const std::vector<uint8_t>& fingers = {0, 3}) {
+  static std::map<std::pair<std::string, uint32_t>, UnitCalibration> known;
+  const auto found = known.find({config, seed});
   if (found != known.end()) return found->second;
-  UnitCalibration& u = known[seed];
-  for (uint8_t finger : {0, 3}) {
-    testing::SimRig sim({"thesis-5finger", finger, seed, seed});
+  UnitCalibration& u = known[{config, seed}];
+  for (uint8_t finger : fingers) {
+    testing::SimRig sim({config, finger, seed, seed});
     calibration::Rig rig = sim.rig();
     const uint8_t line = sim.driven_line(finger);
     calibration::RegulatorCorrection(rig, finger, line, 8, 3.0, &u.correction[line]);
