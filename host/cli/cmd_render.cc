@@ -74,12 +74,15 @@ int CmdRender(Context& c, const std::vector<std::string>& args) {
   csv += "\n";
   std::vector<std::pair<double, double>> path;
   const PollsInterruption polls;
+  // The trajectory's own pace on the board's clock: a simulator running X times faster than
+  // real time (palpa-sim --speed X) takes the samples X times sooner.
+  const double scale = device->info().time_scale > 0 ? device->info().time_scale : 1.0;
   const auto start = std::chrono::steady_clock::now();
   const double t0 = samples.value.front().time_s;
   size_t fed = 0;
   for (const host::SceneInput& s : samples.value) {
     if (Interrupted()) break;
-    std::this_thread::sleep_until(start + std::chrono::duration<double>(s.time_s - t0));
+    std::this_thread::sleep_until(start + std::chrono::duration<double>((s.time_s - t0) / scale));
     const auto renders = scene.value->Feed(s);
     if (!renders.ok()) {
       device->Unsubscribe(subscription);
@@ -137,7 +140,8 @@ int CmdRender(Context& c, const std::vector<std::string>& args) {
 const Command kRenderCommand{
     "render", "render SCENE --input TRAJECTORY.csv [--record OUT.csv]",
     "Plays a scene (docs/scenes.md) to the board from a recorded trajectory (CSV: time_s, x_mm,\n"
-    "y_mm, force_n), sample by sample at the trajectory's own pace: each sample's targets go to\n"
+    "y_mm, force_n), sample by sample at the trajectory's own pace on the board's clock (a\n"
+    "simulator at --speed X is fed X times faster): each sample's targets go to\n"
     "every finger in one frame. A terminal shows each sample's targets as it goes. --record OUT:\n"
     "a CSV of the input, the board's time and each finger's map value and target, and OUT.svg,\n"
     "the path over the tissue. The fingers return to safe when it ends (Ctrl-C ends it early).",

@@ -2,6 +2,7 @@
 // back, a scene drawn as SVG, and every wrong argument named; no board is involved.
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -111,4 +112,44 @@ TEST(CliScene, ATrajectoryIsRenderedToTheBoardAndRecorded) {
   ExpectUsage("render " + kExample, "a SCENE file and --input TRAJECTORY.csv");
   ExpectUsage("render " + kExample + " --input " + record, "expected the header time_s,x_mm");
   for (const std::string& f : {input, record, svg}) std::remove(f.c_str());
+}
+
+TEST(CliScene, ATrajectoryKeepsItsPaceOnTheBoardsClockWhateverTheSimulatorsSpeed) {
+  // A board ten times faster than real time (palpa sim start --speed 10) takes a 6 s trajectory
+  // in about 6 s of its own time: the record's board times span what the trajectory's do, not
+  // ten times as much (samples paced in real time would be).
+  char pattern[] = "/tmp/palpa-cli-state-XXXXXX";
+  const std::string state = mkdtemp(pattern);
+  const std::string env = "PALPA_STATE_DIR=" + state + " PALPA_SIM=" + PALPA_SIM_PATH + " ";
+  const std::string input = state + "/pass.csv", record = state + "/run.csv";
+  {
+    std::ofstream pass(input);
+    pass << "time_s,x_mm,y_mm,force_n\n";
+    for (int k = 0; k <= 150; ++k) pass << k * 0.04 << "," << 40 + k * 0.1 << ",12,1\n";
+  }
+  auto r = Palpa("sim start --config thesis-pneumatic-3 --speed 10", env);
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  r = Palpa("render " + kExample + " --input " + input + " --record " + record, env);
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  Palpa("sim stop", env);
+  // time_s and board_time_us of the first row telemetry had reached, and of the last.
+  std::istringstream rows(Slurp(record));
+  std::string row;
+  std::getline(rows, row);  // the header
+  double first_t = -1, first_us = 0, last_t = 0, last_us = 0;
+  while (std::getline(rows, row)) {
+    double t = 0, x, y, f, us = 0;
+    char comma;
+    std::istringstream(row) >> t >> comma >> x >> comma >> y >> comma >> f >> comma >> us;
+    if (us == 0) continue;
+    if (first_t < 0) first_t = t, first_us = us;
+    last_t = t, last_us = us;
+  }
+  std::system(("rm -rf " + state).c_str());
+  CHECK_TEXT(first_t >= 0 && last_t - first_t > 5, "no telemetry reached the record");
+  const double board_span_s = (last_us - first_us) / 1e6, trajectory_span_s = last_t - first_t;
+  CHECK_TEXT(board_span_s > 0.5 * trajectory_span_s && board_span_s < 3 * trajectory_span_s,
+             (std::to_string(board_span_s) + " s of board time for " +
+              std::to_string(trajectory_span_s) + " s of trajectory")
+                 .c_str());
 }
