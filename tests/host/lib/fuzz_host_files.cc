@@ -1,5 +1,6 @@
 // libFuzzer target: the files the host reads — calibration files, configuration files, rig
-// files, calibration journals, stimulus sets and update packages.
+// files, calibration journals, stimulus sets, scene kinds (fuzz_scene_files.cc) and update
+// packages.
 //
 // Whatever the bytes, a reader must return a result or an error that says what is wrong and
 // where (never throw, crash or invoke undefined behaviour, and never hand on a JSON library's own
@@ -7,8 +8,9 @@
 // accepts must survive a round trip where the kind has one: a calibration serialises, parses back
 // and serialises to the same text; a package writes and reads back to the same images; a
 // configuration prints and reads back to the same one. Input byte 0 picks the kind (calibration,
-// configuration, rig, journal, stimulus set, package) and how its valid reference is changed (a
-// calibration's reference is the one written now or a schema version 1 file of either finger kind):
+// configuration, rig, journal, stimulus set, scene kind, package) and how its valid reference is
+// changed (a calibration's reference is the one written now or a schema version 1 file of either
+// finger kind):
 //   raw bytes; one JSON value replaced by any type or magnitude, or removed; one number in the
 //   text replaced by a literal no double holds or no integer fits ("1e400", "-1e999",
 //   "99999999999999999999", ...); bytes overwritten or the text cut short.
@@ -24,6 +26,7 @@
 
 #include "development_signer.h"
 #include "example_calibration.h"
+#include "fuzz_host_files.h"
 #include "fuzz_input.h"
 #include "palpa/calibration/calibration_protocol.h"
 #include "palpa/calibration/rig_file.h"
@@ -40,16 +43,13 @@ namespace ph = palpa::host;
 namespace pp = palpa::protocol;
 using nlohmann::json;
 
-namespace {
+namespace palpa::testing::files_fuzz {
 
-using Bytes = palpa::testing::FuzzInput;
-
-[[noreturn]] void Fail(const char* what, const std::string& detail) {
+void Fail(const char* what, const std::string& detail) {
   std::fprintf(stderr, "host files fuzz: %s: %s\n", what, detail.c_str());
   std::abort();
 }
 
-/// A refusal must say what and where in words: not empty, not the JSON library's own message.
 void CheckReason(const char* kind, const std::string& error, const std::string& text) {
   if (error.empty())
     Fail((std::string("a refused ") + kind + " came without a reason").c_str(),
@@ -57,6 +57,12 @@ void CheckReason(const char* kind, const std::string& error, const std::string& 
   if (error.find("[json.exception") != std::string::npos)
     Fail((std::string("a ") + kind + " was refused with the library's message").c_str(), error);
 }
+
+}  // namespace palpa::testing::files_fuzz
+
+namespace {
+
+using namespace palpa::testing::files_fuzz;
 
 const std::string& ValidCalibrationText() {
   static const std::string text = [] {
@@ -332,11 +338,24 @@ std::string ShippedStimulusSet(Bytes& in) {
 
 }  // namespace
 
+namespace palpa::testing::files_fuzz {
+
+std::string ChangedJson(Bytes& in, int variant, const std::string& valid) {
+  return Changed(in, variant, valid);
+}
+
+std::string Damaged(Bytes& in, std::string text) {
+  Damage(in, text);
+  return text;
+}
+
+}  // namespace palpa::testing::files_fuzz
+
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   Bytes in(data, size);
   const uint8_t mode = in.Byte();
-  const int variant = mode / 6 % 4;
-  switch (mode % 6) {
+  const int variant = mode / 7 % 4;
+  switch (mode % 7) {
     case 0:
       CheckCalibration(Changed(in, variant, SomeValidCalibrationText(in.Byte())));
       break;
@@ -356,6 +375,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       CheckStimulusSet(Changed(in, variant, shipped));
       break;
     }
+    case 5:
+      CheckSceneKind(in, variant);
+      break;
     default: {
       std::vector<uint8_t> bytes;
       if (variant == 0) {

@@ -1,0 +1,161 @@
+// host_files_fuzz's scene kinds: scene files, tissues as a JSON grid, a CSV force matrix or a PGM
+// image, and trajectory CSVs. Each is refused with a reason in words, or accepted and then holds
+// its rules: a scene file and a JSON tissue round-trip, an accepted tissue passes the map's checks
+// and renders, for inputs of any value (NaN and infinities included), targets the fingers' curves
+// allow; a force matrix's rows are one length of finite numbers; an image's values lie within its
+// scale; a trajectory's times rise and its forces and positions are finite and in range.
+#include <cmath>
+#include <string>
+
+#include "fuzz_host_files.h"
+#include "palpa/host/file_read.h"
+#include "palpa/host/scene_file.h"
+#include "palpa/host/scene_image.h"
+#include "palpa/host/scene_input.h"
+#include "palpa/host/scene_render.h"
+
+namespace ph = palpa::host;
+namespace pp = palpa::protocol;
+
+namespace palpa::testing::files_fuzz {
+namespace {
+
+const std::string& ValidSceneText() {
+  static const std::string text =
+      ph::ReadFileWhole(PALPA_DOCS_DIR "/examples/scene_three_cube.json", ph::kSceneFileLimits)
+          .value;
+  return text;
+}
+
+/// A small tissue with two depth layers, as written now.
+const std::string& ValidTissueText() {
+  static const std::string text = [] {
+    ph::TissueMap m;
+    m.name = "small";
+    m.unit = "kPa";
+    m.pitch_x_mm = 2;
+    m.pitch_y_mm = 1;
+    m.nx = 3;
+    m.ny = 2;
+    m.values = {10, 12, 40, 10, 11, 12};
+    m.layers = {{2, {1, 1, 3, 1, 1, 1}}, {4, {2, 3, 9, 2, 2, 2}}};
+    const auto s = ph::SerializeTissue(m);
+    if (!s.ok()) Fail("the reference tissue does not serialise", s.message);
+    return s.value;
+  }();
+  return text;
+}
+
+/// An accepted tissue: the map's checks, and every input the fuzzer picks rendered by a
+/// pneumatic and a jamming finger (nominal curves) to a target their curves allow.
+void CheckAcceptedTissue(Bytes& in, const ph::TissueMap& tissue, const std::string& text) {
+  if (const ph::Outcome o = ph::CheckTissue(tissue); !o.ok())
+    Fail("an accepted tissue fails the map's checks", o.message + " in " + text.substr(0, 200));
+  const ph::RenderFinger pneumatic{
+      0, {pp::FingerKind::kPneumatic, pp::FingerMode::kTarget, 0, pp::kNoLine}, {}};
+  const ph::RenderFinger jamming{1, {pp::FingerKind::kJamming, pp::FingerMode::kTarget, 1, 2}, {}};
+  const auto scene =
+      ph::SceneRenderer::Make(tissue, ph::JammingPairLayout(3, 2), {}, {pneumatic, jamming});
+  if (!scene.ok()) Fail("an accepted tissue makes no scene", scene.message);
+  for (int k = 0; k < 4; ++k) {
+    const double x = in.FloatBits(), y = in.FloatBits(), force = in.FloatBits();
+    for (const ph::FingerRender& f : scene.value.Render({0, x, y, force})) {
+      if (f.mapped.status != pp::Status::kOk || f.mapped.target < 0)
+        Fail("an accepted tissue renders a target the finger cannot take", f.mapped.error);
+    }
+  }
+}
+
+void CheckScene(const std::string& text) {
+  const auto s = ph::ParseScene(text);
+  if (!s.ok()) return CheckReason("scene file", s.message, text);
+  const auto written = ph::SerializeScene(s.value);
+  if (!written.ok()) Fail("an accepted scene file does not serialise", written.message);
+  const auto again = ph::ParseScene(written.value);
+  if (!again.ok()) Fail("a serialised scene file does not parse back", again.message);
+  const auto rewritten = ph::SerializeScene(again.value);
+  if (!rewritten.ok() || rewritten.value != written.value)
+    Fail("a scene file changes in a round trip", written.value);
+}
+
+void CheckTissueText(Bytes& in, const std::string& text) {
+  const auto m = ph::ParseTissue(text);
+  if (!m.ok()) return CheckReason("tissue", m.message, text);
+  const auto written = ph::SerializeTissue(m.value);
+  if (!written.ok()) Fail("an accepted tissue does not serialise", written.message);
+  const auto again = ph::ParseTissue(written.value);
+  if (!again.ok()) Fail("a serialised tissue does not parse back", again.message);
+  const auto rewritten = ph::SerializeTissue(again.value);
+  if (!rewritten.ok() || rewritten.value != written.value)
+    Fail("a tissue changes in a round trip", written.value.substr(0, 200));
+  CheckAcceptedTissue(in, m.value, text);
+}
+
+void CheckForceMatrix(const std::string& text) {
+  const auto rows = ph::ParseForceMatrix(text, "m.csv");
+  if (!rows.ok()) return CheckReason("force matrix", rows.message, text);
+  for (const auto& row : rows.value) {
+    if (row.size() != rows.value[0].size()) Fail("an accepted force matrix is ragged", text);
+    for (double v : row) {
+      if (!std::isfinite(v)) Fail("an accepted force matrix holds a non-finite value", text);
+    }
+  }
+}
+
+void CheckImage(Bytes& in, const std::string& bytes) {
+  const ph::ImageScale scale{"img", "kPa", 0.5, 10, 30};
+  const auto m = ph::ParseTissueImage(bytes, scale, "i.pgm");
+  if (!m.ok()) return CheckReason("image", m.message, bytes);
+  for (double v : m.value.values) {
+    if (!(v >= 10 && v <= 30)) Fail("an accepted image has a value outside its scale", bytes);
+  }
+  CheckAcceptedTissue(in, m.value, bytes);
+}
+
+void CheckTrajectory(const std::string& text) {
+  const auto t = ph::ParseTrajectory(text, "t.csv");
+  if (!t.ok()) return CheckReason("trajectory", t.message, text);
+  for (size_t k = 0; k < t.value.size(); ++k) {
+    const ph::SceneInput& s = t.value[k];
+    if (!(s.force_n >= 0 && s.force_n <= ph::kMaxInputForceN) || !std::isfinite(s.x_mm) ||
+        !std::isfinite(s.y_mm) || (k > 0 && !(s.time_s > t.value[k - 1].time_s)))
+      Fail("an accepted trajectory breaks its rules", text);
+  }
+}
+
+/// A CSV or image's reference: the fuzzer's own bytes, or the reference damaged.
+std::string ChangedBytes(Bytes& in, int variant, const std::string& valid) {
+  return variant == 0 ? in.Rest() : Damaged(in, valid);
+}
+
+}  // namespace
+
+void CheckSceneKind(Bytes& in, int variant) {
+  switch (in.Byte() % 6) {
+    case 0:
+      return CheckScene(ChangedJson(in, variant, ValidSceneText()));
+    case 1: {
+      const std::string text = ChangedJson(in, variant, ValidTissueText());
+      return CheckTissueText(in, text);
+    }
+    case 2:
+      return CheckForceMatrix(ChangedBytes(in, variant, "# depth 2 mm\n1.5, 2, 3e0\n4,5,6\n"));
+    case 3: {
+      const std::string bytes =
+          ChangedBytes(in, variant, "P2\n# c\n3 2\n255\n0 128 255\n255 0 7\n");
+      return CheckImage(in, bytes);
+    }
+    case 4: {
+      const std::string bytes =
+          ChangedBytes(in, variant,
+                       std::string("P5 3 2 65535\n") +
+                           std::string("\0\0\xff\xff\x80\0\0\x01\x02\x03\xff\0", 12));
+      return CheckImage(in, bytes);
+    }
+    default:
+      return CheckTrajectory(
+          ChangedBytes(in, variant, "time_s,x_mm,y_mm,force_n\n0,1,2,0.5\n0.25,-3,4,1\n"));
+  }
+}
+
+}  // namespace palpa::testing::files_fuzz
