@@ -1,5 +1,6 @@
 /* palpa from C: open a simulated board, set two fingers, drain telemetry without blocking while
-   doing other work, read each finger's output in its unit, E-stop.
+   doing other work, read each finger's output in its unit, set several fingers at once without
+   waiting, play a scene, E-stop.
    cc c_example.c $(pkg-config --cflags --libs palpa) */
 #define _POSIX_C_SOURCE 199309L /* nanosleep */
 
@@ -57,6 +58,18 @@ int main(void) {
   printf("\nline 1 %s; faults: %s\n", (last.status[0] & PALPA_LINE_SAFE) ? "safe" : "driven",
          last.fault_bitmap == 0 ? "none" : "latched");
   const int reached = last.finger_count == info.finger_count && last.finger_output[0] > 0.9;
+
+  /* Several fingers at once without waiting (latest-wins): one frame, applied on one tick; the
+     second call replaces the first if the board has not applied it yet. */
+  const palpa_request both[] = {{0, PALPA_TARGET_LEVEL, 1}, {1, PALPA_TARGET_LEVEL, 2}};
+  const palpa_request again[] = {{0, PALPA_TARGET_LEVEL, 2}, {1, PALPA_TARGET_LEVEL, 1}};
+  status = palpa_set_fingers(board, both, 2, 0);
+  if (status == PALPA_OK) status = palpa_set_fingers(board, again, 2, 0);
+  if (status != PALPA_OK) {
+    fprintf(stderr, "set_fingers: %s\n", palpa_last_error(board));
+    palpa_close(board);
+    return 1;
+  }
 
   /* A scene (docs/scenes.md): fed without waiting, every finger's target in one frame. */
   palpa_scene* scene = NULL;

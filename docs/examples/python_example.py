@@ -42,6 +42,11 @@ def main():
             f.readline()                 # the JSON header
             print(f"recorded to {path}: {f.readline().strip()[:80]}...")
 
+        # Several fingers at once without waiting (latest-wins): one frame, applied on one tick;
+        # the second call replaces the first if the board has not applied it yet.
+        board.set_fingers([(0, "level", 1), (1, "level", 2)])
+        board.set_fingers([(0, "level", 2), (1, "level", 1)])
+
         # A scene: the thesis's three fingers on the three-cube phantom, fed a short pass across
         # cube B without waiting (every finger in one frame); each feed says what each touched.
         scene_file = os.path.join(os.path.dirname(os.path.abspath(__file__)), "scene_three_cube.json")
