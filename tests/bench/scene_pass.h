@@ -12,11 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "palpa/hal/fake/fakes.h"
+#include "in_process_board.h"
 #include "palpa/host/calibration_file.h"
 #include "palpa/host/scene_render.h"
-#include "palpa/protocol/codec.h"
-#include "sim_board.h"
 #include "steps_calibration.h"
 
 namespace palpa::bench {
@@ -40,22 +38,14 @@ class ScenePass {
   /// `board_fingers` are the scene's, calibrated when `calibrated`.
   ScenePass(const ph::SceneRenderer& scene, bool jamming, bool calibrated,
             const std::vector<uint8_t>& board_fingers)
-      : scene_(scene), jamming_(jamming) {
-    ps::SimBoardOptions o;
-    o.config = jamming ? "thesis-jamming-2" : "thesis-pneumatic-3";
-    o.plant.level = 3;
-    o.plant.unit = o.plant.seed = kUnit;
-    std::string error;
-    sim_ = ps::SimBoard::Create(o, link_, &error);
-    if (!sim_) {
-      std::fprintf(stderr, "scene bench: %s\n", error.c_str());
-      return;
-    }
-    Send(pp::Hello{1, 0}, false);
-    sim_->Advance(5);
-    if (calibrated) Calibrate(o.config, board_fingers);
+      : scene_(scene),
+        jamming_(jamming),
+        board_(testing::PlantBoardOptions(jamming ? "thesis-jamming-2" : "thesis-pneumatic-3",
+                                          kUnit, kUnit, {})) {
+    if (calibrated) ok_ = Calibrate(board_fingers);
   }
-  bool ok() const { return sim_ != nullptr; }
+  /// False when the board refused a calibrated line's configuration (said on stderr).
+  bool ok() const { return ok_; }
 
   /// A path: the input's x at each millisecond of the pass (after settling at the first).
   PassResult Pass(const std::vector<double>& path, double range_mm) {
@@ -72,11 +62,9 @@ class ScenePass {
     for (int ms = -settle_ms; ms <= pass_ms; ++ms) {
       const double x = path[static_cast<size_t>(std::max(0, ms))];
       if (ms % kInputEveryMs == 0) SendTargets(x);
-      if (ms % 20 == 0) Send(pp::Heartbeat{1, ++generation_}, false);
-      sim_->Advance(1000);
-      link_.tx.clear();
+      board_.Run(1);
       if (ms < 0) continue;
-      const auto truth = sim_->plant().Truth();
+      const auto truth = board_.sim().plant().Truth();
       const auto now = scene_.Render({0, x, kY, 1});
       for (size_t f = 0; f < now.size(); ++f) {
         const double target = now[f].mapped.target / 1000.0;
@@ -95,9 +83,10 @@ class ScenePass {
  private:
   /// Each finger's lines as the host configures them from the finger's calibration file: the
   /// static correction, and the chamber model with the overdrive bound and no slew limit.
-  void Calibrate(const std::string& config, const std::vector<uint8_t>& fingers) {
-    const UnitCalibration& u = CalibrationFor(kUnit, config, fingers);
-    const core::BoardConfig& board = sim_->board().config();
+  bool Calibrate(const std::vector<uint8_t>& fingers) {
+    const core::BoardConfig& board = board_.config();
+    const UnitCalibration& u =
+        CalibrationFor(kUnit, jamming_ ? "thesis-jamming-2" : "thesis-pneumatic-3", fingers);
     for (uint8_t line = 0; line < board.line_count; ++line) {
       if (u.correction[line].empty() && !u.chamber[line].ok) continue;
       pp::ConfigureLine c = board.lines[line];
@@ -108,9 +97,15 @@ class ScenePass {
         c.overdrive_pa = ph::kShapingOverdrivePa;
         c.slew_pa_per_s = 0;
       }
-      Send(c, true);
+      board_.SendConfig(c);
+      board_.Run(5);
+      if (board.lines[line].chamber_tau_us != c.chamber_tau_us ||
+          board.lines[line].correction_count != c.correction_count) {
+        std::fprintf(stderr, "scene bench: line %u's calibration was not applied\n", line);
+        return false;
+      }
     }
-    sim_->Advance(5);
+    return true;
   }
   /// A finger's true output in its unit: deformation (mm) or stiffness (N/mm).
   double True(const ps::PlantTruth& t, size_t f) const {
@@ -119,8 +114,8 @@ class ScenePass {
   double Target0(double x) const { return scene_.Render({0, x, kY, 1})[0].mapped.target / 1000.0; }
   void SendTargets(double x) {
     pp::SetFingerTargets t{};
-    t.session = 1;
-    t.generation = ++generation_;
+    t.session = testing::InProcessBoard::kSession;
+    t.generation = board_.next_generation();
     const auto renders = scene_.Render({0, x, kY, 1});
     const auto requests = scene_.Requests(renders);
     for (size_t f = 0; f < renders.size(); ++f) {
@@ -129,23 +124,13 @@ class ScenePass {
                                              : pp::OutputUnit::kDeformationMicrometre,
                                     renders[f].mapped.target};
     }
-    Send(t, false);
-  }
-  template <class M>
-  void Send(const M& m, bool reliable) {
-    uint8_t frame[pp::kMaxFrameSize];
-    const auto n = pp::EncodeMessageFrame(
-        m, reliable ? seq_++ : 0, reliable ? pp::flags::kReliable : 0, frame, sizeof(frame));
-    link_.Inject(frame, n.value);
-    sim_->Advance(sim_->now_us() % 1000 == 0 ? 1 : 0);  // dispatched between ticks
+    board_.Send(t, false);
   }
 
   const ph::SceneRenderer& scene_;
   bool jamming_;
-  palpa::hal::fake::FakeByteLink link_;
-  std::unique_ptr<ps::SimBoard> sim_;
-  uint8_t seq_ = 0;
-  uint32_t generation_ = 0;
+  testing::InProcessBoard board_;
+  bool ok_ = true;
 };
 
 }  // namespace palpa::bench
