@@ -1,5 +1,6 @@
 // JSON validation with the failing field named.
 #include "palpa/host/json_check.h"
+#include "number_text.h"
 
 #include <cmath>
 #include <cstdio>
@@ -8,12 +9,6 @@
 
 namespace palpa::host {
 namespace {
-
-std::string Num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof(b), "%g", v);
-  return b;
-}
 
 /// Follows the parser through the document so that a value it refuses is named by its path,
 /// and stops it at kMaxJsonDepth.

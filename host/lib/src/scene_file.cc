@@ -5,18 +5,13 @@
 #include <cstdio>
 #include <tuple>
 
+#include "number_text.h"
 #include "palpa/host/json_check.h"
 
 namespace palpa::host {
 namespace {
 
 using nlohmann::json;
-
-std::string Num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof(b), "%g", v);
-  return b;
-}
 
 /// A pair of numbers [a, b] within lo … hi (a range, or a point in the plane).
 std::pair<double, double> Pair(const JsonObject& o, const char* key, double lo, double hi) {

@@ -7,16 +7,11 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "number_text.h"
 #include "palpa/host/json_check.h"
 
 namespace palpa::host {
 namespace {
-
-std::string Num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof(b), "%g", v);
-  return b;
-}
 
 /// A grid of rows × columns numbers at `path` ("values", "depths[2].force_n"), as the map's shape
 /// says when it is known (nx, ny non-zero), else setting it.

@@ -1,5 +1,6 @@
 // Greyscale PGM images (P2, P5) read into tissue maps with a stated scale.
 #include "palpa/host/scene_image.h"
+#include "number_text.h"
 
 #include <cctype>
 #include <cmath>
@@ -7,12 +8,6 @@
 
 namespace palpa::host {
 namespace {
-
-std::string Num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof(b), "%g", v);
-  return b;
-}
 
 /// Reads the PGM header's and P2's whitespace-separated unsigned integers, skipping # comments.
 class Tokens {

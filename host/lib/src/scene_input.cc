@@ -4,16 +4,11 @@
 
 #include <cstdio>
 
+#include "number_text.h"
 #include "palpa/host/scene_files.h"
 
 namespace palpa::host {
 namespace {
-
-std::string Num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof(b), "%g", v);
-  return b;
-}
 
 /// The header's names, spaces around each allowed.
 bool IsHeader(std::string line) {

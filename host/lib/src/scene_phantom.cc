@@ -1,17 +1,12 @@
 // Generated phantoms: checks, the series-column surface stiffness, the three-cube preset.
 #include "palpa/host/scene_phantom.h"
+#include "number_text.h"
 
 #include <cmath>
 #include <cstdio>
 
 namespace palpa::host {
 namespace {
-
-std::string Num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof(b), "%g", v);
-  return b;
-}
 
 bool Positive(double v, double hi) { return std::isfinite(v) && v > 0 && v <= hi; }
 

@@ -1,6 +1,7 @@
 // The rendering rule: contact, depth under the input's force, the stiffness range and contrast,
 // and each finger kind's target through its curve, clamped to what the finger can render.
 #include "palpa/host/scene_render.h"
+#include "number_text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,12 +10,6 @@
 
 namespace palpa::host {
 namespace {
-
-std::string Num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof(b), "%g", v);
-  return b;
-}
 
 /// The smallest and largest slope of force against depth anywhere on the tissue.
 std::pair<double, double> SlopeRange(const TissueMap& t) {

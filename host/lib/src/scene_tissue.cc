@@ -1,5 +1,6 @@
 // A tissue's stiffness map: its checks, bilinear interpolation and contact-disc sampling.
 #include "palpa/host/scene_tissue.h"
+#include "number_text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,12 +9,6 @@
 
 namespace palpa::host {
 namespace {
-
-std::string Num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof(b), "%g", v);
-  return b;
-}
 
 /// The first value of `grid` that is not finite, by its point; empty when all are.
 std::string FirstNonFinite(const TissueMap& map, const std::vector<double>& grid) {

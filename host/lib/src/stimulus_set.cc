@@ -6,6 +6,7 @@
 #include <map>
 #include <set>
 
+#include "number_text.h"
 #include "palpa/host/json_check.h"
 
 namespace palpa::host {
@@ -19,12 +20,6 @@ struct Shipped {
 const Shipped kShipped[] = {
 #include "stimuli_json.inc"
 };
-
-std::string Num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof(b), "%g", v);
-  return b;
-}
 
 std::string Fingers(const std::vector<int>& zero_based) {
   std::string s = "[";
