@@ -13,6 +13,7 @@
 #include "palpa/host/scene_image.h"
 #include "palpa/host/scene_input.h"
 #include "palpa/host/scene_render.h"
+#include "small_tissue.h"
 
 namespace ph = palpa::host;
 namespace pp = palpa::protocol;
@@ -30,16 +31,7 @@ const std::string& ValidSceneText() {
 /// A small tissue with two depth layers, as written now.
 const std::string& ValidTissueText() {
   static const std::string text = [] {
-    ph::TissueMap m;
-    m.name = "small";
-    m.unit = "kPa";
-    m.pitch_x_mm = 2;
-    m.pitch_y_mm = 1;
-    m.nx = 3;
-    m.ny = 2;
-    m.values = {10, 12, 40, 10, 11, 12};
-    m.layers = {{2, {1, 1, 3, 1, 1, 1}}, {4, {2, 3, 9, 2, 2, 2}}};
-    const auto s = ph::SerializeTissue(m);
+    const auto s = ph::SerializeTissue(SmallTissue());
     if (!s.ok()) Fail("the reference tissue does not serialise", s.message);
     return s.value;
   }();

@@ -14,6 +14,7 @@
 #include "palpa/host/scene_image.h"
 #include "palpa/host/scene_input.h"
 #include "palpa/host/scene_render.h"
+#include "small_tissue.h"
 
 #include "CppUTest/TestHarness.h"
 
@@ -88,25 +89,12 @@ void RendersWithinLimits(const ph::TissueMap& tissue) {
   }
 }
 
-ph::TissueMap Small() {
-  ph::TissueMap m;
-  m.name = "small";
-  m.unit = "kPa";
-  m.pitch_x_mm = 2;
-  m.pitch_y_mm = 1;
-  m.nx = 3;
-  m.ny = 2;
-  m.values = {10, 12, 40, 10, 11, 12};
-  m.layers = {{2, {1, 1, 3, 1, 1, 1}}, {4, {2, 3, 9, 2, 2, 2}}};
-  return m;
-}
-
 }  // namespace
 
 TEST_GROUP(SceneHostileFiles){};
 
 TEST(SceneHostileFiles, TissueFilesAreRefusedWithAReasonOrRoundTrip) {
-  const std::string valid = ph::SerializeTissue(Small()).value;
+  const std::string valid = ph::SerializeTissue(palpa::testing::SmallTissue()).value;
   size_t accepted = 0;
   auto check = [&](const std::string& text) {
     const auto m = ph::ParseTissue(text);
