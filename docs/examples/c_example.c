@@ -14,7 +14,7 @@ static void Sleep10ms(void) {
   nanosleep(&ten_ms, NULL);
 }
 
-int main(void) {
+int main(int argc, char** argv) {
   palpa_device* board = NULL;
   int status = palpa_open("sim:thesis-5finger", &board);
   if (status != PALPA_OK) {
@@ -73,11 +73,12 @@ int main(void) {
 
   /* A scene (docs/scenes.md): fed without waiting, every finger's target in one frame. */
   palpa_scene* scene = NULL;
-  char scene_file[1024]; /* the scene file beside this source */
+  /* The scene file: the first argument, or the example's beside this source. */
+  char scene_file[1024];
   const char* slash = strrchr(__FILE__, '/');
   snprintf(scene_file, sizeof scene_file, "%.*s/scene_three_cube.json",
            slash ? (int)(slash - __FILE__) : 1, slash ? __FILE__ : ".");
-  status = palpa_scene_open(board, scene_file, &scene);
+  status = palpa_scene_open(board, argc > 1 ? argv[1] : scene_file, &scene);
   if (status != PALPA_OK) {
     fprintf(stderr, "scene: %s\n", palpa_last_error(board));
     palpa_close(board);

@@ -11,7 +11,7 @@
 
 namespace ph = palpa::host;
 
-int main() {
+int main(int argc, char** argv) {
   auto opened = ph::Device::Open("sim:thesis-5finger", {});
   if (!opened.ok()) {  // a Result: the value, or the status and its message
     std::fprintf(stderr, "open: %s\n", opened.message.c_str());
@@ -54,9 +54,11 @@ int main() {
 
   // A scene (docs/scenes.md): each sample rendered and sent to every finger in one frame,
   // without waiting.
-  const std::string source = __FILE__;  // the scene file is beside this source
+  // The scene file: the first argument, or the example's beside this source.
+  const std::string source = __FILE__;
   const auto spec =
-      ph::LoadScene(source.substr(0, source.rfind('/') + 1) + "scene_three_cube.json");
+      ph::LoadScene(argc > 1 ? std::string(argv[1])
+                             : source.substr(0, source.rfind('/') + 1) + "scene_three_cube.json");
   auto scene = spec.ok() ? ph::Scene::Open(spec.value, board)
                          : ph::Result<std::unique_ptr<ph::Scene>>(spec.outcome());
   if (!scene.ok()) {

@@ -35,13 +35,15 @@ if(NOT flags MATCHES "-I${prefix}" OR flags MATCHES "/usr/local")
 endif()
 separate_arguments(flags UNIX_COMMAND "${flags}")
 run("cc with pkg-config" cc -std=c11 -Wall -Werror ${EXAMPLES}/c_example.c ${flags} -o ${WORK}/c_example_pc)
-run("C example (pkg-config build)" ${clean_env} LD_LIBRARY_PATH=${lib_dir} ${WORK}/c_example_pc)
+# The scene file by its path: a build's __FILE__ may be relative to where it was compiled.
+set(scene ${EXAMPLES}/scene_three_cube.json)
+run("C example (pkg-config build)" ${clean_env} LD_LIBRARY_PATH=${lib_dir} ${WORK}/c_example_pc ${scene})
 
 # find_package(palpa): the C and C++ examples.
 run("configure the examples" ${CMAKE_COMMAND} -S ${EXAMPLES} -B ${WORK}/build -DCMAKE_PREFIX_PATH=${prefix})
 run("build the examples" ${CMAKE_COMMAND} --build ${WORK}/build)
-run("C example" ${clean_env} LD_LIBRARY_PATH=${lib_dir} ${WORK}/build/c_example)
-run("C++ example" ${clean_env} LD_LIBRARY_PATH=${lib_dir} ${WORK}/build/cpp_example)
+run("C example" ${clean_env} LD_LIBRARY_PATH=${lib_dir} ${WORK}/build/c_example ${scene})
+run("C++ example" ${clean_env} LD_LIBRARY_PATH=${lib_dir} ${WORK}/build/cpp_example ${scene})
 
 # Python: the package is where Debian's python3 imports from for the configured prefix...
 run("python3's path" /usr/bin/python3 -c "print(chr(10).join(__import__('sys').path))")
