@@ -159,6 +159,18 @@ int CmdInfo(Context& c, const std::vector<std::string>& args) {
   return kExitOk;
 }
 
+namespace {
+
+/// The lines (numbered from 1) whose shaped steps fell back to unshaped ones.
+std::vector<int> ShapingFellBack(const pp::Diagnostics& d) {
+  std::vector<int> lines;
+  for (int i = 0; i < pp::kMaxLines; ++i)
+    if (d.shaping_fallback_lines & (1u << i)) lines.push_back(i + 1);
+  return lines;
+}
+
+}  // namespace
+
 int CmdDiag(Context& c, const std::vector<std::string>& args) {
   if (!args.empty()) return Usage("diag", "takes no arguments");
   host::Device* d = c.Device();
@@ -186,6 +198,7 @@ int CmdDiag(Context& c, const std::vector<std::string>& args) {
         {"faults_latched_names", host::FaultList(diag.value.fault_bitmap)},
         {"faults_active_names", host::FaultList(diag.value.active_conditions)},
         {"uptime_us", diag.value.uptime_us},
+        {"shaping_fell_back", ShapingFellBack(diag.value)},
         {"history", history},
         {"loop",
          {{"ticks", s.ticks},
@@ -208,6 +221,13 @@ int CmdDiag(Context& c, const std::vector<std::string>& args) {
               static_cast<double>(diag.value.uptime_us) / 1e6);
   std::printf("faults latched  %s\n", host::FaultNames(diag.value.fault_bitmap).c_str());
   std::printf("faults active   %s\n", host::FaultNames(diag.value.active_conditions).c_str());
+  const std::vector<int> fell_back = ShapingFellBack(diag.value);
+  if (!fell_back.empty()) {
+    std::string lines;
+    for (int line : fell_back) lines += " " + std::to_string(line);
+    std::printf("shaped steps    fell back to unshaped on line%s%s (recalibrate the chamber)\n",
+                fell_back.size() > 1 ? "s" : "", lines.c_str());
+  }
   for (uint8_t i = 0; i < diag.value.history_count; ++i) {
     const auto& h = diag.value.history[i];
     std::printf("  %10.3f s  %-20s %s\n", static_cast<double>(h.time_us) / 1e6,

@@ -66,6 +66,10 @@ class RawLineSession {
   }
   uint8_t Status(uint8_t line) const { return sim_->board().line_output(line).status; }
   uint32_t Faults() const { return sim_->board().latched_faults(); }
+  /// The line's shaped steps fell back to unshaped ones (its outlet ran ahead of the model).
+  bool ShapingFellBack(uint8_t line) const {
+    return sim_->board().line_state(line).shaping_fell_back;
+  }
 
  private:
   template <class M>

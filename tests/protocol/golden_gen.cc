@@ -258,6 +258,7 @@ void Reports() {
   d.fault_bitmap = 0x11;
   d.active_conditions = 0x10;
   d.uptime_us = 3600000000ull;
+  d.shaping_fallback_lines = 0x21;
   d.history_count = 2;
   d.history[0] = {100, 4, 0};
   d.history[1] = {2500000, 0, 100000};

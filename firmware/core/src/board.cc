@@ -73,8 +73,9 @@ void Board::EndSession() {
 }
 
 ReportContext Board::Reports() {
-  return ReportContext{identity_,           config_,   fingers_,   session_, supervisor_, pacer_,
-                       decoder_.counters(), io_.clock, io_.update, tx_};
+  return ReportContext{identity_, config_,     fingers_, lines_,
+                       session_,  supervisor_, pacer_,   decoder_.counters(),
+                       io_.clock, io_.update,  tx_};
 }
 
 }  // namespace palpa::core

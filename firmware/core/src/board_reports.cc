@@ -91,6 +91,9 @@ void Diagnostics(const ReportContext& b, uint8_t seq) {
   d.uptime_us = b.clock.NowMicros();
   d.config_saved = b.config.saved();
   d.config_unsaved = b.config.unsaved();
+  for (uint8_t i = 0; i < b.lines.count(); ++i)
+    if (b.lines.state(i).shaping_fell_back)
+      d.shaping_fallback_lines = static_cast<uint8_t>(d.shaping_fallback_lines | 1u << i);
   d.history_count = FaultHistory(b.supervisor, d.history.data());
   QueueAnswer(b.tx, d, seq, BoardFlags(b, flags::kReliable));
 }

@@ -18,6 +18,7 @@ struct ReportContext {
   const BoardIdentity& identity;
   const LiveConfig& config;
   const BoardFingers& fingers;
+  const BoardLines& lines;
   const protocol::BoardSession& session;
   const SupervisorState& supervisor;
   const TickPacer& pacer;

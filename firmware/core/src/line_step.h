@@ -73,25 +73,42 @@ template <bool kShaping>
   s.slewed_pa = slewed;
 
   // 1b. Step shaping, while a step is under way: beyond the target while the chamber model lags
-  // it. The trim holds from then until the reference and the sensor have settled on the target
-  // again; then the models are on the target, and a steady line pays for the trim only.
+  // it (the models run while the command is beyond the target or the target moves). The trim
+  // holds from then until the reference and the sensor have settled on the target again; then the
+  // models are on the target, and a steady line pays for the trim only.
   float wanted = slewed;
   float direction_from = previous;  // where the command moved from (the correction's branch)
   bool held = false;
   if (kShaping && slewed != s.steady_pa) {
     held = true;
     direction_from = s.wanted_pa;
-    wanted = line_step::Shape(p, s, slewed, status);
+    if (!s.shaping_fell_back && s.wanted_pa != slewed)
+      wanted = line_step::Shape(p, s, slewed, status);
     s.wanted_pa = wanted;
     if (wanted != slewed) {
       s.trim_hold = p.shape_hold_ticks;
       s.steady_pa = kUnbounded;  // no setpoint: the step goes on until the hold ends
+      s.handover_reading_pa = reading.pa;
       status |= ls::kShaping;
     } else if (s.trim_hold <= 1) {
       s.trim_hold = 0;
       s.steady_pa = s.regulator_pa = s.chamber_pa = slewed;
     } else {
       --s.trim_hold;
+      // The overdrive is over, and the chamber model closes in on the target from the side the
+      // step came from (`side`: the step's direction). An outlet on the far side of the target,
+      // beyond where the regulator model and the trim put it, and further on that side than
+      // where the overdrive left it (an outlet coming back from beyond lags an earlier step:
+      // slow air, not fast) says the air is faster than the model: the step overshoots. The
+      // line's steps are unshaped from now on, until it is configured again. An outlet within
+      // kShapeFallbackPa of its target costs one compare.
+      const float past = reading.pa - slewed;
+      if (Abs(past) > kShapeFallbackPa && reading.valid) {
+        const float side = slewed - s.chamber_pa;
+        if (past * side > 0 && (reading.pa - s.handover_reading_pa) * side > 0 &&
+            (reading.pa - s.reference_pa - s.integrator_pa) * side > kShapeFallbackPa * Abs(side))
+          s.shaping_fell_back = true;
+      }
     }
   }
 

@@ -238,6 +238,43 @@ TEST(StepShaping, FastTargetStreamsStayBoundedAgainstAMisidentifiedChamber) {
   }
 }
 
+TEST(StepShaping, AnAirPathFasterThanItsModelFallsBackToUnshapedSteps) {
+  // The air path's regulator lags 20 ms; the models say 40 ms (misidentified × 2), or 20 ms.
+  for (const uint32_t model_tau_us : {40000u, 20000u}) {
+    pp::ConfigureLine c = ShapedLine(5000, 20000);
+    c.model_tau_us = model_tau_us;
+    const pc::LineParams p = pc::MakeLineParams(c, 1000);
+    pc::LineState s;
+    pc::ResetLineState(p, s, 10000);
+    pc::LineOutput out;
+    Air air(5, 0.005f);
+    air.pilot = air.outlet = air.chamber = 10000;
+    const bool wrong = model_tau_us != 20000;
+    for (int i = 0; i < 8; ++i) {
+      const float from = i % 2 == 0 ? 10000.0f : 40000.0f, to = i % 2 == 0 ? 40000.0f : 10000.0f;
+      float overshoot = 0;
+      bool shaped = false;
+      for (int k = 0; k < 600; ++k) {
+        air.Step(Run(p, s, to, air.outlet, out));
+        shaped = shaped || (out.status & ls::kShaping) != 0;
+        overshoot = std::max(overshoot, (air.chamber - to) * (to > from ? 1.0f : -1.0f));
+      }
+      // A model twice too slow: the first step overshoots and says so; from then on the steps
+      // are unshaped, without the overdrive, and land without overshoot. The right model shapes
+      // every step and never falls back.
+      CHECK_EQUAL(wrong && i > 0, !shaped);
+      CHECK_EQUAL(wrong, s.shaping_fell_back);
+      if (wrong && i == 0) CHECK_TEXT(overshoot > 2000, std::to_string(overshoot).c_str());
+      if (i > 0) CHECK_TEXT(overshoot < 500, std::to_string(overshoot).c_str());
+    }
+  }
+  // Configured again (a new chamber model): shaping gets its chance again.
+  pc::LineState s;
+  s.shaping_fell_back = true;
+  pc::ResetLineState(pc::MakeLineParams(ShapedLine(), 1000), s, 0);
+  CHECK(s.shaping_fell_back);  // a reset alone (the safe state) keeps it
+}
+
 TEST(StepShaping, TheSlowMonitorsStayQuietThroughShapedSteps) {
   const pc::LineParams p = pc::MakeLineParams(ShapedLine(20000, 30000), 1000);
   pc::LineState s;

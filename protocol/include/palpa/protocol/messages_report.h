@@ -118,7 +118,8 @@ struct Diagnostics {
   static constexpr MessageInfo kInfo{MessageType::kDiagnostics, "Diagnostics", Sender::kBoard,
                                      Delivery::kResponse,
                                      "reset cause, faults latched and active, whether the "
-                                     "configuration is saved, fault history"};
+                                     "configuration is saved, lines whose shaped steps fell "
+                                     "back, fault history"};
   uint32_t boot_nonce = 0;
   ResetCause reset_cause = ResetCause::kPowerOn;
   uint32_t boot_count = 0;
@@ -127,6 +128,9 @@ struct Diagnostics {
   uint64_t uptime_us = 0;
   bool config_saved = false;    ///< a saved configuration is what the next boot loads
   bool config_unsaved = false;  ///< the live configuration differs from what the next boot loads
+  /// Bit per line: its shaped steps fell back to unshaped ones (the outlet ran ahead of the
+  /// regulator model during a step), until the line is configured again.
+  uint8_t shaping_fallback_lines = 0;
   uint8_t history_count = 0;
   std::array<FaultRecord, kMaxFaultRecords> history{};  ///< oldest first
   template <class V, class M>
@@ -139,6 +143,7 @@ struct Diagnostics {
     v.Field("uptime_us", m.uptime_us);
     v.Flag("config_saved", m.config_saved);
     v.Flag("config_unsaved", m.config_unsaved);
+    v.Field("shaping_fallback_lines", m.shaping_fallback_lines);
     v.Array("history", m.history, m.history_count);
   }
 };

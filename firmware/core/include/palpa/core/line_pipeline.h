@@ -12,6 +12,14 @@ namespace palpa::core {
 inline constexpr uint8_t kMaxDeadTicks = 32;  ///< a power of two: the delay line is a ring
 static_assert((kMaxDeadTicks & (kMaxDeadTicks - 1)) == 0);
 
+/// After a shaped step's overdrive, how far the outlet may go beyond both the target and the
+/// regulator model's reference (the trim's part taken off), on the far side from where the step
+/// came, before the line falls back to unshaped steps. On the steps benchmark's held-out units
+/// (level 3) no model with the right lags, lags half too short, twice the dead time or the
+/// valves' flow halved or doubled falls back; lags 1.5 × or 2 × too long do, on their first
+/// steps (docs/performance.md, "Fast steps").
+inline constexpr float kShapeFallbackPa = 2000;
+
 /// Per-line constants, derived once from a ConfigureLine when it is applied.
 struct LineParams {
   bool has_sensor = false;
@@ -67,7 +75,12 @@ struct LineState {
   uint16_t trim_hold = 0;  ///< shaping: ticks left before the trim acts again
   float wanted_pa = 0;     ///< shaping: what the regulator was last asked for (slewed or shaped)
   float steady_pa = 0;     ///< shaping: the setpoint the line has settled on; none during a step
+  float handover_reading_pa = 0;  ///< shaping: the outlet's reading as the overdrive last ran
   bool rising = true;  ///< direction for the correction branch, kept while steady (lines with one)
+  /// Shaping fell back: a step's outlet went beyond its target and the model (kShapeFallbackPa),
+  /// so the line's steps are unshaped until it is configured again (ResetLineState keeps it, the
+  /// board's Diagnostics says it).
+  bool shaping_fell_back = false;
 };
 
 /// Resets the state to hold `pa` steadily (after configuration, or leaving the safe state).
