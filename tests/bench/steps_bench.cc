@@ -83,6 +83,7 @@ std::string NamedRows(const pb::Variant& v, const pb::LineUnderTest& l, const Tr
 
 struct RandomFigures {
   double p50 = 0, p95 = 0, ratio95 = 0, within = 0, over95 = 0, error95 = 0, mean_abs = 0;
+  int fell_back = 0;  ///< units whose line's shaped steps fell back to unshaped ones
 };
 
 /// Random steps (1 s dwells) for settling, then a random sequence with 0.5 s dwells for the mean
@@ -90,7 +91,7 @@ struct RandomFigures {
 RandomFigures RandomSteps(const pb::Variant& v, const pb::LineUnderTest& l) {
   std::vector<double> settle, ratio, over, error;
   double abs_sum = 0;
-  int abs_n = 0, met = 0;
+  int abs_n = 0, met = 0, fell_back = 0;
   for (int u = 0; u < kRandomUnits; ++u) {
     std::mt19937 rng(900 + u);
     std::uniform_real_distribution<double> target(0, 90000);
@@ -116,14 +117,12 @@ RandomFigures RandomSteps(const pb::Variant& v, const pb::LineUnderTest& l) {
       }
       at = to;
     }
+    fell_back += s.ShapingFellBack(l.line);
   }
-  return {pb::Quantile(settle, 0.5),
-          pb::Quantile(settle, 0.95),
-          pb::Quantile(ratio, 0.95),
-          100.0 * met / static_cast<double>(settle.size()),
-          pb::Quantile(over, 0.95),
-          pb::Quantile(error, 0.95),
-          abs_sum / abs_n};
+  return {pb::Quantile(settle, 0.5), pb::Quantile(settle, 0.95),
+          pb::Quantile(ratio, 0.95), 100.0 * met / static_cast<double>(settle.size()),
+          pb::Quantile(over, 0.95),  pb::Quantile(error, 0.95),
+          abs_sum / abs_n,           fell_back};
 }
 
 }  // namespace
@@ -137,7 +136,8 @@ int main(int argc, char** argv) {
   std::string random =
       "| line | driven by | p50 (ms) | p95 (ms) | p95 of settle ÷ goal | within goal | "
       "overshoot p95 (kPa) | steady-state \\|error\\| p95 (kPa) | mean \\|error\\|, 0.5 s dwells "
-      "(kPa) |\n|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
+      "(kPa) | units fallen back to unshaped "
+      "|\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   std::vector<pb::ChartPoint> points;
   for (const pb::LineUnderTest& l : pb::Lines()) {
     const bool vacuum = l.kind == pp::LineKind::kVacuum;
@@ -145,9 +145,11 @@ int main(int argc, char** argv) {
       if (v.named) named += NamedRows(v, l, vacuum ? kVacuum : kPneumatic, 5);
       const RandomFigures r = RandomSteps(v, l);
       char b[320];
-      std::snprintf(b, sizeof(b), "| %s | %s | %s | %s | %.2f | %.0f %% | %s | %s | %s |\n", l.name,
+      std::snprintf(b, sizeof(b),
+                    "| %s | %s | %s | %s | %.2f | %.0f %% | %s | %s | %s | %d of %d |\n", l.name,
                     v.name, Ms(r.p50).c_str(), Ms(r.p95).c_str(), r.ratio95, r.within,
-                    Kpa(r.over95).c_str(), Kpa(r.error95).c_str(), Kpa(r.mean_abs).c_str());
+                    Kpa(r.over95).c_str(), Kpa(r.error95).c_str(), Kpa(r.mean_abs).c_str(),
+                    r.fell_back, kRandomUnits);
       random += b;
       points.push_back({l.name, v.name, r.p95, r.over95 / 1000});
     }
@@ -158,8 +160,12 @@ int main(int argc, char** argv) {
                             std::to_string(kRandomSteps) + " steps:\n\n" + random;
   std::printf("%s", block.c_str());
   std::vector<uint32_t> units;
-  for (uint32_t u = 0; u < kUnits; ++u) units.push_back(101 + u);
-  const std::string fit = pb::ChamberFitTable(units);
+  std::vector<uint32_t> held_out;  // units no choice of the identification step looked at
+  for (uint32_t u = 0; u < kUnits; ++u) {
+    units.push_back(101 + u);
+    held_out.push_back(401 + u);
+  }
+  const std::string fit = pb::ChamberFitTable(units, held_out);
   std::printf("\n%s", fit.c_str());
   std::string map;
   for (const pb::LineUnderTest& l : pb::Lines())

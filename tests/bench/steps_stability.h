@@ -1,7 +1,7 @@
 // Where shaped steps fail: random steps with the chamber model misidentified, the regulators'
 // dead time longer and their valves' flow smaller or larger than the plant the model was
-// identified on; in each cell, whether the chamber overshoots, rings or never settles, and
-// whether the board said `saturated`.
+// identified on; in each cell, whether the chamber overshoots, rings or never settles, whether
+// the board said `saturated`, and whether it fell back to unshaped steps.
 #pragma once
 
 #include <cstdio>
@@ -16,7 +16,7 @@ namespace palpa::bench {
 
 struct StabilityCell {
   double p95_ms = 0, overshoot_kpa = 0;
-  int never = 0, rings = 0, steps = 0, saturated = 0;
+  int never = 0, rings = 0, steps = 0, saturated = 0, fell_back = 0;
 };
 
 /// Random steps (1 s dwells) on two held-out units for one plant and model.
@@ -42,6 +42,7 @@ inline StabilityCell RunCell(const LineUnderTest& l, float model, float dead, fl
       ++c.steps;
       at = to;
     }
+    c.fell_back += session->ShapingFellBack(l.line);
   }
   c.p95_ms = Quantile(settle, 0.95);
   c.overshoot_kpa = Quantile(over, 0.95) / 1000;
@@ -54,7 +55,8 @@ inline std::string StabilityMap(const LineUnderTest& l) {
   std::string t =
       std::string("**") + l.name +
       "** — each cell: p95 settling (ms) / p95 overshoot (kPa); steps that rang "
-      "(crossed the band twice), never settled within 1 s, said `saturated`:\n\n"
+      "(crossed the band twice), never settled within 1 s, said `saturated`; units (of 2) whose "
+      "shaped steps fell back to unshaped ones:\n\n"
       "| model × | dead time × | flow ×0.5 | flow ×1 | flow ×2 |\n|---|---|---|---|---|\n";
   for (float model : {0.5f, 1.0f, 2.0f, 4.0f}) {
     for (float dead : {1.0f, 2.0f, 4.0f}) {
@@ -63,10 +65,10 @@ inline std::string StabilityMap(const LineUnderTest& l) {
       t += row;
       for (float flow : flows) {
         const StabilityCell c = RunCell(l, model, dead, flow);
-        char cell[160];
-        std::snprintf(cell, sizeof(cell), " %s / %.1f; %d rang, %d never, %d sat. |",
+        char cell[192];
+        std::snprintf(cell, sizeof(cell), " %s / %.1f; %d rang, %d never, %d sat., %d fell back |",
                       c.p95_ms == kNever ? "never" : std::to_string(std::lround(c.p95_ms)).c_str(),
-                      c.overshoot_kpa, c.rings, c.never, c.saturated);
+                      c.overshoot_kpa, c.rings, c.never, c.saturated, c.fell_back);
         t += cell;
       }
       t += "\n";
