@@ -20,8 +20,8 @@ void BoardLines::Apply(const BoardConfig& live, uint32_t tick_us, bool has_adc, 
   const float tolerance = static_cast<float>(live.board.sensor_tolerance_pa);
   for (uint8_t i = 0; i < live.line_count; ++i) {
     const LineParams& p = params_[i] = MakeLineParams(live.lines[i], tick_us);
-    ResetLineState(p, state_[i], p.safe_pa);
     state_[i].shaping_fell_back = false;  // a new chamber model gets its chance
+    ResetLineState(p, state_[i], p.safe_pa);
     setpoint_pa_[i] = p.safe_pa;
     dac_codes_[i] = p.safe_counts;
     out_[i] =

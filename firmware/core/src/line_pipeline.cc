@@ -82,7 +82,9 @@ LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us)
   // leads it by this much per Pa it is short (two lags in series: the slow mode then vanishes).
   const float lead = (chamber_tau - tau) / (tau + dt);
   p.chamber_lead = p.shaping && lead > 0 ? lead : 0.0f;
-  p.overdrive_pa = p.shaping ? static_cast<float>(line.overdrive_pa) : 0.0f;
+  // An overdrive within the trim's dead band would only ever command the target (line_step.h).
+  const float overdrive = static_cast<float>(line.overdrive_pa);
+  p.overdrive_pa = p.shaping && overdrive > p.dead_band_pa ? overdrive : 0.0f;
   // The regulator model's dead time and three lags of it and the chamber: the reference and the
   // sensor settle on the target again before the trim compares them.
   const float settle_ticks = dt > 0 ? 3.0f * (tau + chamber_tau) / dt : 0.0f;
@@ -115,6 +117,7 @@ void ResetLineState(const LineParams& p, LineState& s, float pa) {
   s.chamber_pa = pa;
   s.trim_hold = 0;
   s.rising = true;
+  s.overdrive_pa = s.shaping_fell_back ? 0.0f : p.overdrive_pa;
 }
 
 uint32_t CountsFor(const LineParams& p, float command_pa) {

@@ -21,6 +21,26 @@ namespace line_step {
 /// read nowhere else.
 float FeedForward(const LineParams& p, LineState& s, float previous, float now, float slewed);
 
+/// In a shaped step's hold, after the overdrive: the chamber model closes in on the target from
+/// the side the step came from. An outlet on the far side of the target, beyond where the
+/// regulator model and the trim put it (by kShapeFallbackPa on both), and further on that side
+/// than where the overdrive left it (an outlet coming back from beyond lags an earlier step: slow
+/// air, not fast) says the air is faster than the model: the step overshoots. The line's steps are
+/// unshaped from then on (no overdrive), until it is configured again. Compares only: the signs
+/// are taken once, from the step's direction.
+[[gnu::always_inline]] inline void WatchShapedStep(LineState& s, float target,
+                                                   const LineReading& reading) {
+  if (!reading.valid || target == s.chamber_pa) return;  // no direction: nothing is beyond
+  const bool up = target > s.chamber_pa;
+  const float outlet = up ? reading.pa : -reading.pa;
+  const float beyond_target = (up ? target : -target) + kShapeFallbackPa;
+  const float model = s.reference_pa + s.integrator_pa;
+  const float beyond_model = (up ? model : -model) + kShapeFallbackPa;
+  const float handover = up ? s.handover_reading_pa : -s.handover_reading_pa;
+  if (outlet > beyond_target && outlet > beyond_model && outlet > handover)
+    s.shaping_fell_back = true, s.overdrive_pa = 0;
+}
+
 /// A shaped step's command: what brings the regulator model in one tick to where it should be —
 /// the target, or beyond it by the chamber's lead while a slower chamber is short of it — held
 /// within the overdrive beyond the target and the line's limits (meeting them adds `saturated` to
@@ -34,13 +54,28 @@ float FeedForward(const LineParams& p, LineState& s, float previous, float now, 
   const float regulator = s.regulator_pa, chamber = s.chamber_pa;
   const float wanted = target + p.chamber_lead * (target - chamber);
   float command = regulator + (wanted - regulator) * p.regulator_gain;
-  command = Clamp(command, target - p.overdrive_pa, target + p.overdrive_pa);
-  if (Abs(command - target) <= p.dead_band_pa) command = target;
-  // The overdrive met the line's limits: the step takes longer than the model asked for.
-  if (command < p.limit_min_pa) {
+  // Held within the overdrive, then within the line's limits (meeting them: `saturated`, the
+  // step takes longer than the model asked for). The target is within the limits, so a command
+  // held below it can only meet the lower one, above it the upper one. The overdrive is beyond
+  // the dead band (or none: MakeLineParams), so the dead band matters only within the bounds.
+  const float low = target - s.overdrive_pa, high = target + s.overdrive_pa;
+  bool below = false, above = false;
+  if (command < low) {
+    command = low;
+    below = command < p.limit_min_pa;
+  } else if (command > high) {
+    command = high;
+    above = command > p.limit_max_pa;
+  } else if (Abs(command - target) <= p.dead_band_pa) {
+    command = target;
+  } else {
+    below = command < p.limit_min_pa;
+    above = command > p.limit_max_pa;
+  }
+  if (below) {
     command = p.limit_min_pa;
     status |= protocol::line_status::kSaturated;
-  } else if (command > p.limit_max_pa) {
+  } else if (above) {
     command = p.limit_max_pa;
     status |= protocol::line_status::kSaturated;
   }
@@ -82,33 +117,25 @@ template <bool kShaping>
   if (kShaping && slewed != s.steady_pa) {
     held = true;
     direction_from = s.wanted_pa;
-    if (!s.shaping_fell_back && s.wanted_pa != slewed)
+    if (s.wanted_pa != slewed) {  // the models run (the overdrive, or the target moved)
       wanted = line_step::Shape(p, s, slewed, status);
-    s.wanted_pa = wanted;
-    if (wanted != slewed) {
-      s.trim_hold = p.shape_hold_ticks;
-      s.steady_pa = kUnbounded;  // no setpoint: the step goes on until the hold ends
-      s.handover_reading_pa = reading.pa;
-      status |= ls::kShaping;
+      s.wanted_pa = wanted;
+      if (wanted != slewed) {
+        s.steady_pa = kUnbounded;  // no setpoint: the step goes on until the hold ends
+        status |= ls::kShaping;
+      } else if (direction_from != previous) {
+        // The overdrive's end (the last tick's command was beyond its target): the hold starts,
+        // and the watch compares the outlet with where the overdrive left it. A target that
+        // moved without an overdrive leaves the hold as it was.
+        s.trim_hold = p.shape_hold_ticks;
+        s.handover_reading_pa = reading.pa;
+      }
     } else if (s.trim_hold <= 1) {
       s.trim_hold = 0;
       s.steady_pa = s.regulator_pa = s.chamber_pa = slewed;
     } else {
       --s.trim_hold;
-      // The overdrive is over, and the chamber model closes in on the target from the side the
-      // step came from (`side`: the step's direction). An outlet on the far side of the target,
-      // beyond where the regulator model and the trim put it, and further on that side than
-      // where the overdrive left it (an outlet coming back from beyond lags an earlier step:
-      // slow air, not fast) says the air is faster than the model: the step overshoots. The
-      // line's steps are unshaped from now on, until it is configured again. An outlet within
-      // kShapeFallbackPa of its target costs one compare.
-      const float past = reading.pa - slewed;
-      if (Abs(past) > kShapeFallbackPa && reading.valid) {
-        const float side = slewed - s.chamber_pa;
-        if (past * side > 0 && (reading.pa - s.handover_reading_pa) * side > 0 &&
-            (reading.pa - s.reference_pa - s.integrator_pa) * side > kShapeFallbackPa * Abs(side))
-          s.shaping_fell_back = true;
-      }
+      line_step::WatchShapedStep(s, slewed, reading);  // the overdrive is over
     }
   }
 

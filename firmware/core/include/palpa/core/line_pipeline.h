@@ -69,18 +69,21 @@ struct LineState {
   /// The commands of the last kMaxDeadTicks ticks, a ring; the next one goes to delay_index.
   std::array<float, kMaxDeadTicks> delay{};
   uint8_t delay_index = 0;
+  bool rising = true;  ///< direction for the correction branch, kept while steady (lines with one)
+  uint16_t trim_hold = 0;  ///< shaping: ticks left before the trim acts again
   /// Shaping: where the models of the regulator's output and of the chamber say they are, the
   /// dead time left out (the regulator sees the commands in the same order, only later).
   float regulator_pa = 0, chamber_pa = 0;
-  uint16_t trim_hold = 0;  ///< shaping: ticks left before the trim acts again
-  float wanted_pa = 0;     ///< shaping: what the regulator was last asked for (slewed or shaped)
-  float steady_pa = 0;     ///< shaping: the setpoint the line has settled on; none during a step
+  float wanted_pa = 0;  ///< shaping: what the regulator was last asked for (slewed or shaped)
+  float steady_pa = 0;  ///< shaping: the setpoint the line has settled on; none during a step
   float handover_reading_pa = 0;  ///< shaping: the outlet's reading as the overdrive last ran
-  bool rising = true;  ///< direction for the correction branch, kept while steady (lines with one)
   /// Shaping fell back: a step's outlet went beyond its target and the model (kShapeFallbackPa),
   /// so the line's steps are unshaped until it is configured again (ResetLineState keeps it, the
   /// board's Diagnostics says it).
   bool shaping_fell_back = false;
+  /// How far beyond the target a shaped step's command may go: the line's overdrive, none once
+  /// shaping fell back (its steps then end where they start: no extra test on the step's path).
+  float overdrive_pa = 0;
 };
 
 /// Resets the state to hold `pa` steadily (after configuration, or leaving the safe state).
