@@ -57,7 +57,7 @@ class PulsePin final : public hal::DigitalOutput {
 class NullIo final : public hal::AnalogOutput, public hal::AnalogInput {
  public:
   void Init(const core::BoardConfig&) {}
-  void Step(bool) {}
+  void Step(bool, uint32_t) {}
 
  private:
   protocol::Status DoWrite(uint8_t, uint32_t) override { return protocol::Status::kOk; }
@@ -79,6 +79,15 @@ hal_mps2::CmsdkWatchdogDriver g_watchdog;
 Io g_plant;
 PulsePin g_supply, g_dump;
 NullPin g_pump;
+// The lines' dump valve drivers, a port of one bit per line (set: released, the valve open).
+class VentPort final : public hal::DigitalPort {
+ public:
+  uint32_t bits = ~0u;
+
+ private:
+  void DoWrite(uint32_t value) override { bits = value; }
+};
+VentPort g_vents;
 alignas(core::Board) unsigned char g_board_storage[sizeof(core::Board)];
 core::Board* g_board = nullptr;
 
@@ -132,11 +141,11 @@ core::UpdateEngine* SlotUpdates(core::BoardIdentity& id) {
 
 void StartBoard(const core::BoardConfig& config, const core::BoardIdentity& id,
                 core::UpdateEngine* update) {
-  g_board =
-      new (g_board_storage) core::Board(config,
-                                        core::BoardIo{g_clock, g_plant, &g_plant, g_supply, g_dump,
-                                                      g_pump, nullptr, g_uart, nullptr, 0, update},
-                                        id);
+  g_board = new (g_board_storage)
+      core::Board(config,
+                  core::BoardIo{g_clock, g_plant, &g_plant, g_supply, g_dump, g_pump, nullptr,
+                                g_uart, nullptr, 0, update, &g_vents},
+                  id);
   g_board->Start();
 }
 
@@ -149,7 +158,7 @@ void StartBoard(const core::BoardConfig& config, const core::BoardIdentity& id,
 void CatchUpPlant(uint64_t now_us, uint64_t& plant_ms) {
   while (plant_ms * 1000 < now_us) {
     const bool held = g_supply.toggled && g_dump.toggled;
-    g_plant.Step(!held || g_board->safe());
+    g_plant.Step(!held || g_board->safe(), g_vents.bits);
     ++plant_ms;
     g_watchdog.Kick();
   }

@@ -31,10 +31,12 @@ class PlantIo final : public hal::AnalogOutput, public hal::AnalogInput {
       scan_[i] = SensorCounts(i);
     }
   }
-  /// One millisecond of plant time; `vented` while the board holds no valves. The regulators
+  /// One millisecond of plant time; `vented` while the board holds no valves, `line_vents` the
+  /// lines whose own dump valves the board opened (bit i: line i). The regulators
   /// follow the codes in the DAC's registers; the scan buffer then holds what the sensors read.
-  void Step(bool vented) {
-    for (uint8_t i = 0; i < count_; ++i) lines_[i].Step(RegulatorCommand(i), vented);
+  void Step(bool vented, uint32_t line_vents) {
+    for (uint8_t i = 0; i < count_; ++i)
+      lines_[i].Step(RegulatorCommand(i), vented, (line_vents >> i & 1u) != 0);
     for (uint8_t i = 0; i < count_; ++i) scan_[i] = SensorCounts(i);
   }
   float chamber_pa(uint8_t line) const { return lines_[line].chamber_pa(); }

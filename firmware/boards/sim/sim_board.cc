@@ -88,9 +88,10 @@ void SimBoard::BootBoard(protocol::ResetCause cause) {
   update_ = std::make_unique<core::UpdateEngine>(storage_, layout, protocol::BoardKind::kSim,
                                                  last_boot_.slot);
   if (id.recovery) id.active_slot = static_cast<uint8_t>(1 - update_->inactive_slot());
+  vents_.bits = ~0u;  // a reset releases every line's valve driver until the board writes them
   // The configuration is saved where a real board keeps it: two sectors of the same flash.
-  core::BoardIo io{clock_, *dac_,    adc_.get(),           supply_,      dump_, pump_, nullptr,
-                   *link_, storage_, layout.config_offset, update_.get()};
+  core::BoardIo io{clock_, *dac_,    adc_.get(),           supply_,       dump_,  pump_, nullptr,
+                   *link_, storage_, layout.config_offset, update_.get(), &vents_};
   board_ = std::make_unique<core::Board>(*config_, io, id);
   board_->Start();
 }
@@ -107,6 +108,7 @@ void SimBoard::AdvanceTo(uint64_t us) {
     dump_.set_now(now_us_);
     // Critical for safety, modelled: without both valves held the chambers vent.
     plant_->SetVented(!valves_held());
+    plant_->SetLineVents(vents_.bits);
     plant_->Step();
     StepBoard();
     if (on_step_) on_step_(now_us_);

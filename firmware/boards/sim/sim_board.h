@@ -109,6 +109,14 @@ class SimBoard {
    private:
     void DoSet(bool value) override { level = value; }
   };
+  /// The lines' dump valve drivers: a set bit releases the line's valve (open).
+  class VentPort final : public hal::DigitalPort {
+   public:
+    uint32_t bits = ~0u;
+
+   private:
+    void DoWrite(uint32_t value) override { bits = value; }
+  };
 
   SimBoard() = default;
 
@@ -120,6 +128,7 @@ class SimBoard {
   std::unique_ptr<SimAnalogInput> adc_;
   PulsedValve supply_, dump_;
   Pin pump_;
+  VentPort vents_;
   std::unique_ptr<core::Board> board_;
   const core::BoardConfig* config_ = nullptr;
   hal::ByteLink* link_ = nullptr;

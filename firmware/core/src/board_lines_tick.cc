@@ -44,9 +44,13 @@ void BoardLines::Step(bool safe, SupervisorInput& in) {
   const uint8_t* flags = flags_.data();
   uint32_t* code = dac_codes_.data();
   bool vacuum = false;  // a vacuum line commands more than its regulator's minimum: the pump runs
+  // Every line's valve open while safe (its default); else the lines' steps say which. Kept in
+  // memory: the rare step that vents ORs its bit in, the loop holds no register for it.
+  uint32_t& vents = vents_;
+  vents = safe ? kAllVents : 0u;
   for (; p != end; ++p, ++state, ++out, ++o, ++setpoint, ++flags, ++code) {
     *code = safe ? HoldLineSafe(*p, *state, o->reading, *out)
-                 : StepLineEither(*p, *state, *setpoint, o->reading, *out);
+                 : StepLineEither(*p, *state, *setpoint, o->reading, *out, vents);
     out->status |= *flags;
     vacuum |= out->command_pa < p->pump_below_pa;
   }

@@ -52,10 +52,19 @@ void Board::Tick(uint64_t now_us) {
 void Board::WriteOutputs() {
   // The supervisor judges a failed write on the next tick.
   supervisor_input_.failed_output = lines_.WriteDac(io_.dac);
-  // Critical for safety: valves and pump are held only while the board is not safe.
-  supply_pulse_.Tick(!safe_);
-  dump_pulse_.Tick(!safe_);
-  io_.pump_enable.Set(!safe_ && supervisor_.pump_on);
+  // Critical for safety: valves and pump are held only while the board is not safe (read once:
+  // the calls between could change it, for all the compiler knows).
+  const bool hold = !safe_;
+  supply_pulse_.Tick(hold);
+  dump_pulse_.Tick(hold);
+  // The lines' own dump valves: open where a line vents toward atmosphere, every one while safe
+  // (BoardLines::vents); written when that changes.
+  const uint32_t vents = lines_.vents();
+  if (vents != vents_written_) {
+    vents_written_ = vents;
+    if (io_.line_vents != nullptr) io_.line_vents->Write(vents);
+  }
+  io_.pump_enable.Set(hold && supervisor_.pump_on);
 }
 
 }  // namespace palpa::core

@@ -52,6 +52,7 @@ LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us)
   p.safe_pa = Clamp(static_cast<float>(line.safe_pa), p.limit_min_pa, p.limit_max_pa);
   // No slew limit is a step no setpoint change can exceed (one compare a tick instead of two).
   p.max_step_pa = line.slew_pa_per_s > 0 ? static_cast<float>(line.slew_pa_per_s) * dt : kUnbounded;
+  p.fallback_max_step_pa = line.slew_pa_per_s > 0 ? p.max_step_pa : kFallbackSlewPaPerS * dt;
   p.regulator_min_pa = static_cast<float>(line.regulator_min_pa);
   p.pump_below_pa = line.kind == protocol::LineKind::kVacuum ? -p.regulator_min_pa : -kUnbounded;
   // 0 % to 100 % of the signal spans the command range; a 4-20 mA output is a 0-20 mA DAC, so
@@ -92,6 +93,11 @@ LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us)
       p.shaping
           ? static_cast<uint16_t>(p.delay_ticks + 1 + (settle_ticks < 60000 ? settle_ticks : 60000))
           : 0;
+  // Venting toward atmosphere, where atmosphere lies within the line's limits: the dump valve
+  // cannot take the line beyond them, nor beyond its target (below the regulator's minimum the
+  // command is 0 already).
+  const bool holds_atmosphere = p.limit_min_pa <= 0 && p.limit_max_pa >= 0;
+  p.vent_bit = p.shaping && holds_atmosphere && p.regulator_min_pa > 0 ? 1u << line.line : 0u;
   p.correction_count = line.correction_count;
   for (uint8_t i = 0; i < line.correction_count; ++i) {
     p.correction_command[i] = static_cast<float>(line.correction[i].command_pa);
@@ -118,6 +124,7 @@ void ResetLineState(const LineParams& p, LineState& s, float pa) {
   s.trim_hold = 0;
   s.rising = true;
   s.overdrive_pa = s.shaping_fell_back ? 0.0f : p.overdrive_pa;
+  s.max_step_pa = s.shaping_fell_back ? p.fallback_max_step_pa : p.max_step_pa;
 }
 
 uint32_t CountsFor(const LineParams& p, float command_pa) {
@@ -135,8 +142,11 @@ uint32_t HoldLineSafe(const LineParams& p, LineState& s, const LineReading& read
 }
 
 uint32_t StepLine(const LineParams& p, LineState& s, float setpoint_pa, const LineReading& reading,
-                  LineOutput& out) {
-  return StepLineEither(p, s, setpoint_pa, reading, out);
+                  LineOutput& out, uint32_t* vents) {
+  uint32_t vented = 0;
+  const uint32_t code = StepLineEither(p, s, setpoint_pa, reading, out, vented);
+  if (vents != nullptr) *vents |= vented;
+  return code;
 }
 
 }  // namespace palpa::core

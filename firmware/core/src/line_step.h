@@ -26,9 +26,9 @@ float FeedForward(const LineParams& p, LineState& s, float previous, float now, 
 /// regulator model and the trim put it (by kShapeFallbackPa on both), and further on that side
 /// than where the overdrive left it (an outlet coming back from beyond lags an earlier step: slow
 /// air, not fast) says the air is faster than the model: the step overshoots. The line's steps are
-/// unshaped from then on (no overdrive), until it is configured again. Compares only: the signs
-/// are taken once, from the step's direction.
-[[gnu::always_inline]] inline void WatchShapedStep(LineState& s, float target,
+/// unshaped from then on (no overdrive, and a slew limit again: fallback_max_step_pa), until it
+/// is configured again. Compares only: the signs are taken once, from the step's direction.
+[[gnu::always_inline]] inline void WatchShapedStep(const LineParams& p, LineState& s, float target,
                                                    const LineReading& reading) {
   if (!reading.valid || target == s.chamber_pa) return;  // no direction: nothing is beyond
   const bool up = target > s.chamber_pa;
@@ -38,7 +38,7 @@ float FeedForward(const LineParams& p, LineState& s, float previous, float now, 
   const float beyond_model = (up ? model : -model) + kShapeFallbackPa;
   const float handover = up ? s.handover_reading_pa : -s.handover_reading_pa;
   if (outlet > beyond_target && outlet > beyond_model && outlet > handover)
-    s.shaping_fell_back = true, s.overdrive_pa = 0;
+    s.shaping_fell_back = true, s.overdrive_pa = 0, s.max_step_pa = p.fallback_max_step_pa;
 }
 
 /// A shaped step's command: what brings the regulator model in one tick to where it should be —
@@ -92,7 +92,8 @@ template <bool kShaping>
 [[gnu::always_inline]] inline uint32_t StepLineInline(const LineParams& __restrict p,
                                                       LineState& __restrict s, float setpoint_pa,
                                                       const LineReading& __restrict reading,
-                                                      LineOutput& __restrict out) {
+                                                      LineOutput& __restrict out,
+                                                      uint32_t& __restrict vents) {
   namespace ls = protocol::line_status;
 
   uint8_t status = reading.status;
@@ -100,8 +101,9 @@ template <bool kShaping>
   const float target = Clamp(setpoint_pa, p.limit_min_pa, p.limit_max_pa);
   const float previous = s.slewed_pa;
   float step = target - previous;
-  if (Abs(step) > p.max_step_pa) {
-    step = step > 0 ? p.max_step_pa : -p.max_step_pa;
+  const float max_step = s.max_step_pa;
+  if (Abs(step) > max_step) {
+    step = step > 0 ? max_step : -max_step;
     status |= ls::kSlewing;
   }
   const float slewed = previous + step;
@@ -135,7 +137,7 @@ template <bool kShaping>
       s.steady_pa = s.regulator_pa = s.chamber_pa = slewed;
     } else {
       --s.trim_hold;
-      line_step::WatchShapedStep(s, slewed, reading);  // the overdrive is over
+      line_step::WatchShapedStep(p, s, slewed, reading);  // the overdrive is over
     }
   }
 
@@ -148,8 +150,10 @@ template <bool kShaping>
   s.delay_index = static_cast<uint8_t>((index + 1) & (kMaxDeadTicks - 1));
   s.reference_pa += p.model_alpha * (delayed - s.reference_pa);
 
-  // 3. Below the regulator's minimum set pressure: command 0, integrator off.
+  // 3. Below the regulator's minimum set pressure: command 0, integrator off, and the dump valve
+  // open where the line vents (the outlet goes to atmosphere, no further).
   if (Abs(slewed) < p.regulator_min_pa) {
+    vents |= p.vent_bit;
     s.integrator_pa = 0;
     out.command_pa = 0;
     out.status = status | ls::kOpenLoop;
@@ -206,9 +210,9 @@ template <bool kShaping>
 /// StepLineInline for the line's kind of step.
 [[gnu::always_inline]] inline uint32_t StepLineEither(const LineParams& p, LineState& s,
                                                       float setpoint_pa, const LineReading& reading,
-                                                      LineOutput& out) {
-  return p.shaping ? StepLineInline<true>(p, s, setpoint_pa, reading, out)
-                   : StepLineInline<false>(p, s, setpoint_pa, reading, out);
+                                                      LineOutput& out, uint32_t& vents) {
+  return p.shaping ? StepLineInline<true>(p, s, setpoint_pa, reading, out, vents)
+                   : StepLineInline<false>(p, s, setpoint_pa, reading, out, vents);
 }
 
 }  // namespace palpa::core

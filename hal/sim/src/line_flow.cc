@@ -63,8 +63,9 @@ float LineFlow::Opening(float pilot_pa) const {
   return Clamp(setup_.sign * (pilot_pa - outlet_pa()) / setup_.band_pa, -1.0f, 1.0f);
 }
 
-void LineFlow::Step(float pilot_pa, bool vented) {
-  for (uint8_t i = 0; i < sub_steps_; ++i) Advance(vented ? 0.0f : Opening(pilot_pa), vented);
+void LineFlow::Step(float pilot_pa, bool vented, bool dump_open) {
+  for (uint8_t i = 0; i < sub_steps_; ++i)
+    Advance(vented ? 0.0f : Opening(pilot_pa), vented || dump_open);
 }
 
 void LineFlow::StepOpen(float opening) {
@@ -79,12 +80,12 @@ float LineFlow::ValveFlow(float opening) const {
   return -opening * Orifice(setup_.exhaust_conductance, setup_.atmosphere_pa, outlet_, b);
 }
 
-void LineFlow::Advance(float opening, bool vented) {
+void LineFlow::Advance(float opening, bool dump_open) {
   const float atm = setup_.atmosphere_pa;
   const float b = setup_.critical_ratio;
   regulator_flow_ = ValveFlow(opening);
   float into_outlet = regulator_flow_;
-  if (vented) into_outlet += Orifice(setup_.dump_conductance, atm, outlet_, b);
+  if (dump_open) into_outlet += Orifice(setup_.dump_conductance, atm, outlet_, b);
   const float dt = sub_step_s_;
   if (setup_.tube_conductance <= 0) {  // one volume: leak through the dump valve's conductance
     into_outlet -= leak_ * Orifice(setup_.dump_conductance, outlet_, atm, b);

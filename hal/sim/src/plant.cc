@@ -106,8 +106,9 @@ PneumaticActuator* Plant::pneumatic(uint8_t finger) {
 
 void Plant::Step() {
   time_s_ += kStepS;
-  for (Line& line : lines_) {
-    line.regulator.Step(line.command_pa, vented_);
+  for (size_t i = 0; i < lines_.size(); ++i) {
+    Line& line = lines_[i];
+    line.regulator.Step(line.command_pa, vented_, (line_vents_ >> i & 1u) != 0);
     line.counts = line.sensor->Read(line.regulator.outlet_pa(), kStepS);
   }
   for (Finger& f : fingers_) {

@@ -75,7 +75,7 @@ float RegulatorLine::StaticOutput(float magnitude) const {
   return Clamp((1.0f + e.gain) * magnitude + e.offset_pa + bow, 0.0f, fs);
 }
 
-void RegulatorLine::Step(float command_pa, bool vented) {
+void RegulatorLine::Step(float command_pa, bool vented, bool dump_open) {
   if (vented) {
     // The supply is shut and the dump valve open; the regulator's pilot decays with its command.
     pilot_ += lag_alpha_ * (0.0f - pilot_);
@@ -98,7 +98,7 @@ void RegulatorLine::Step(float command_pa, bool vented) {
   float target = magnitude < setup_.min_set_pa ? 0.0f : StaticOutput(play_ < 0 ? 0 : play_);
   target *= setup_.sign;
   if (!setup_.dynamics) {
-    pilot_ = outlet_ = chamber_ = target;
+    pilot_ = outlet_ = chamber_ = dump_open ? 0.0f : target;
     return;
   }
   float delayed = target;
@@ -108,7 +108,7 @@ void RegulatorLine::Step(float command_pa, bool vented) {
     delay_index_ = static_cast<uint8_t>((delay_index_ + 1) % delay_steps_);
   }
   pilot_ += lag_alpha_ * (delayed - pilot_);
-  flow_.Step(pilot_, false);
+  flow_.Step(pilot_, false, dump_open);
   outlet_ = flow_.outlet_pa();
   chamber_ = flow_.chamber_pa();
 }

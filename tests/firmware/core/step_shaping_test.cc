@@ -1,7 +1,8 @@
 // Shaped steps in the line pipeline: off until the chamber model is known, beyond the target only
 // as far as the bounds allow, a bumpless handover, the reference following what was commanded,
-// the trim held through the step, and fast target streams against a misidentified chamber that
-// stay bounded and stable, with the supervisor's slow monitors quiet throughout.
+// the trim held through the step, fast target streams against a misidentified chamber that stay
+// bounded and stable, and the fallback (the supervisor's monitors through shaped steps, at the
+// board's own windows: tests/firmware/boards/sim/shaped_step_monitors_test.cc).
 #include <algorithm>
 #include <cmath>
 #include <deque>
@@ -10,7 +11,6 @@
 
 #include "CppUTest/TestHarness.h"
 #include "palpa/core/line_pipeline.h"
-#include "palpa/core/supervisor.h"
 
 namespace pc = palpa::core;
 namespace pp = palpa::protocol;
@@ -276,41 +276,66 @@ TEST(StepShaping, AnAirPathFasterThanItsModelFallsBackToUnshapedSteps) {
   CHECK(s.shaping_fell_back);  // a reset alone (the safe state) keeps it
 }
 
-TEST(StepShaping, TheSlowMonitorsStayQuietThroughShapedSteps) {
-  const pc::LineParams p = pc::MakeLineParams(ShapedLine(20000, 30000), 1000);
-  pc::LineState s;
-  pc::ResetLineState(p, s, 0);
-  pc::LineOutput out;
-  pc::SupervisorSettings settings;
-  settings.host_timeout_us = 100000;
-  settings.sensor_window_us = 3000000;
-  settings.leak_timeout_us = 5000000;
-  settings.pump_max_run_us = 60000000;
-  settings.tolerance_pa = 5000;
-  pc::SupervisorState state;
-  pc::SupervisorInput in;
-  in.session_open = in.actuating = true;
-  Air air(5, 0.04f, 100.0f);  // a chamber slower than the model: the outlet leads it
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<float> target(0, 100000);
-  float t = 0;
-  for (int k = 0; k < 30000; ++k) {
-    if (k % 150 == 0) t = target(rng);
-    const float command = Run(p, s, t, air.outlet, out);
-    air.Step(command);
-    pc::LineObservation& o = in.lines[0];
-    o.configured = o.has_sensor = o.reading.valid = true;
-    o.closed_loop = (out.status & ls::kOpenLoop) == 0;
-    o.alarm_below_pa = -5000;
-    o.alarm_above_pa = 105000;
-    o.reading.pa = air.outlet;
-    o.raw_counts = static_cast<uint32_t>(air.outlet);
-    o.reference_pa = s.reference_pa;
-    o.setpoint_pa = s.slewed_pa;
-    in.now_us = static_cast<uint64_t>(k) * 1000;
-    in.last_host_frame_us = in.now_us;
-    in.readings = {};
-    pc::NoteReading(in.readings, 0, o.reading, o);
-    LONGS_EQUAL(0, pc::Supervise(settings, state, in));
+TEST(StepShaping, AShapedLineVentsBelowTheRegulatorsMinimumWhereItsLimitsHoldAtmosphere) {
+  auto vents_at = [](const pp::ConfigureLine& c, float from, float to) {
+    const pc::LineParams p = pc::MakeLineParams(c, 1000);
+    pc::LineState s;
+    pc::ResetLineState(p, s, from);
+    pc::LineOutput out;
+    uint32_t vents = 0;
+    pc::StepLine(p, s, to, pc::LineReading{true, 0, from}, out, &vents);
+    return vents;
+  };
+  pp::ConfigureLine c = ShapedLine();
+  c.line = 2;
+  LONGS_EQUAL(1u << 2, vents_at(c, 30000, 0));
+  LONGS_EQUAL(1u << 2, vents_at(c, 30000, 500));  // below the regulator's 1 kPa: commanded 0
+  LONGS_EQUAL(0, vents_at(c, 30000, 10000));
+  LONGS_EQUAL(0, vents_at(c, 0, 1000));
+  pp::ConfigureLine plain = ShapedLine(20000, 0);  // not shaped: never
+  plain.line = 2;
+  LONGS_EQUAL(0, vents_at(plain, 30000, 0));
+  pp::ConfigureLine above = c;  // limits that leave atmosphere out: never
+  above.limit_min_pa = 2000;
+  LONGS_EQUAL(0, vents_at(above, 30000, 0));
+  pp::ConfigureLine vacuum = ShapedLine();  // a vacuum line, toward atmosphere from below
+  vacuum.line = 5;
+  vacuum.kind = pp::LineKind::kVacuum;
+  vacuum.command_min_pa = 0;
+  vacuum.command_max_pa = -100000;
+  vacuum.limit_min_pa = -90000;
+  vacuum.limit_max_pa = 0;
+  LONGS_EQUAL(1u << 5, vents_at(vacuum, -30000, 0));
+  LONGS_EQUAL(0, vents_at(vacuum, 0, -30000));
+}
+
+TEST(StepShaping, AFallenBackLineSlewsAgain) {
+  // A shaped line runs without slew (the calibration sets it to 0); fallen back, its steps are
+  // unshaped and slewed again: at the default's 200 kPa/s, or at the line's own where it has one.
+  for (const uint32_t own : {0u, 100000u}) {
+    pp::ConfigureLine c = ShapedLine(5000, 20000);
+    c.slew_pa_per_s = own;
+    const pc::LineParams p = pc::MakeLineParams(c, 1000);
+    pc::LineState s;
+    pc::ResetLineState(p, s, 10000);
+    pc::LineOutput out;
+    Run(p, s, 40000, 10000, out);
+    DOUBLES_EQUAL(own == 0 ? 40000 : 10100, s.slewed_pa, 1e-3);
+    // Falling back on a step's overshoot: after the overdrive, the outlet runs beyond the target
+    // and the model.
+    pc::ResetLineState(p, s, 10000);
+    float outlet = 30000;
+    for (int k = 0; k < 400 && !s.shaping_fell_back; ++k) {
+      Run(p, s, 40000, outlet, out);
+      if ((out.status & ls::kShaping) == 0) outlet = 45000;
+    }
+    CHECK(s.shaping_fell_back);
+    const float before = s.slewed_pa;
+    Run(p, s, before - 30000, before, out);
+    DOUBLES_EQUAL(before - (own == 0 ? 200 : 100), s.slewed_pa, 1e-2);
+    CHECK(out.status & ls::kSlewing);
+    pc::ResetLineState(p, s, 10000);  // the safe state keeps the fallback, and its slew
+    Run(p, s, 40000, 10000, out);
+    DOUBLES_EQUAL(10000 + (own == 0 ? 200 : 100), s.slewed_pa, 1e-2);
   }
 }

@@ -16,6 +16,19 @@ class DigitalOutput {
   virtual void DoSet(bool level) = 0;
 };
 
+/// Outputs of one bit each, written together (a GPIO port's set/reset register): bit i drives
+/// output i.
+class DigitalPort {
+ public:
+  void Write(uint32_t bits) { DoWrite(bits); }
+
+ protected:
+  ~DigitalPort() = default;
+
+ private:
+  virtual void DoWrite(uint32_t bits) = 0;
+};
+
 class DigitalInput {
  public:
   bool Read() { return DoRead(); }

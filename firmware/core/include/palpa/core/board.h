@@ -40,6 +40,10 @@ struct BoardIo {
   hal::Flash* flash;  ///< nullptr: nothing persists
   uint32_t flash_config_base = 0;
   class UpdateEngine* update = nullptr;  ///< nullptr: the board cannot be updated over the link
+  /// Bit i opens line i's dump valve while the dump enable holds the others shut (a set bit
+  /// releases the valve's driver: open is its unpowered, safe position). nullptr: no per-line
+  /// valve drivers, the dump valves move only together.
+  hal::DigitalPort* line_vents = nullptr;
 };
 
 struct BoardIdentity {
@@ -78,6 +82,8 @@ class Board {
   uint32_t active_conditions() const { return supervisor_.active; }
   bool safe() const { return safe_; }
   const LineOutput& line_output(uint8_t line) const { return lines_.output(line); }
+  /// The lines whose dump valves are open, one bit each (BoardIo::line_vents).
+  uint32_t line_vents() const { return lines_.vents(); }
   uint32_t dac_code(uint8_t line) const { return lines_.dac_code(line); }
   const LineState& line_state(uint8_t line) const { return lines_.state(line); }
   const TickStats& tick_stats() const { return pacer_.stats(); }
@@ -195,6 +201,7 @@ class Board {
   bool reboot_requested_ = false;
   hal::PulsingEnable supply_pulse_;
   hal::PulsingEnable dump_pulse_;
+  uint32_t vents_written_ = ~0u;  ///< the line vents last written (none yet: no line mask)
 };
 
 }  // namespace palpa::core

@@ -20,6 +20,11 @@ static_assert((kMaxDeadTicks & (kMaxDeadTicks - 1)) == 0);
 /// steps (docs/performance.md, "Fast steps").
 inline constexpr float kShapeFallbackPa = 2000;
 
+/// The slew a line whose shaped steps fell back runs with where its own is none (a shaped line's
+/// calibration sets it to 0): the compiled-in configurations' default, which keeps an unshaped
+/// line's trim from learning each step's transient (docs/performance.md, "The slew default").
+inline constexpr float kFallbackSlewPaPerS = 200000;
+
 /// Per-line constants, derived once from a ConfigureLine when it is applied.
 struct LineParams {
   bool has_sensor = false;
@@ -31,6 +36,8 @@ struct LineParams {
   float limit_min_pa = 0, limit_max_pa = 0;
   float safe_pa = 0;
   float max_step_pa = 0;  ///< slew per tick; the largest float when none
+  /// Slew per tick once shaping fell back: the line's own, or kFallbackSlewPaPerS's.
+  float fallback_max_step_pa = 0;
   float regulator_min_pa = 0;
   float pump_below_pa = 0;  ///< commands below this need the vacuum pump (lowest float: never)
   /// DAC scaling as one multiply-add: code + ½ = command × counts_per_pa + counts_at_zero,
@@ -58,11 +65,20 @@ struct LineParams {
   std::array<float, protocol::kMaxCorrectionPoints> correction_command{};
   std::array<float, protocol::kMaxCorrectionPoints> correction_rising{};
   std::array<float, protocol::kMaxCorrectionPoints> correction_falling{};
+  /// Venting (last: the fields the step reads on every tick keep their offsets): this line's bit in
+  /// the board's vent outputs when it may open its dump valve (a shaped line whose limits hold
+  /// atmosphere), else 0. A target below the regulator's minimum opens it: the regulator's exhaust
+  /// closes in proportion to the pressure left (its pilot stops at 0), the dump valve takes the
+  /// outlet to atmosphere and no further.
+  uint32_t vent_bit = 0;
 };
 
 LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us);
 
 struct LineState {
+  /// The slew per tick the line runs with: the line's own, its fallback's once shaping fell back
+  /// (ResetLineState sets it).
+  float max_step_pa = 0;
   float slewed_pa = 0;  ///< setpoint after the slew limiter
   float integrator_pa = 0;
   float reference_pa = 0;  ///< regulator-model output: where the pressure should be now
@@ -104,9 +120,10 @@ struct LineOutput {
 };
 
 /// One tick of one line outside the safe state: returns the DAC code to write and fills every
-/// field of `out`. The trim closes the loop while `reading` is valid.
+/// field of `out`. The trim closes the loop while `reading` is valid. ORs the line's vent_bit
+/// into `*vents` (where given) while the line vents.
 uint32_t StepLine(const LineParams& p, LineState& s, float setpoint_pa, const LineReading& reading,
-                  LineOutput& out);
+                  LineOutput& out, uint32_t* vents = nullptr);
 
 /// One tick of one line in the safe state: the safe value at once, bypassing slew, trim and
 /// model, with the state reset to hold it. Returns the safe DAC code; fills every field of `out`.

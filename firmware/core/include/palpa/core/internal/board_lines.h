@@ -28,8 +28,8 @@ class BoardLines {
   /// The sensing stage: one scan of the configured lines' channels, converted to pressures.
   void Sense(hal::AnalogInput& adc, SupervisorInput& in);
   /// The line stage: every line one step (or held safe), DAC codes for WriteDac; notes in `in`
-  /// whether a vacuum line needs the pump. Out of line, so instruction counts can bracket the
-  /// line stage (its steps are inlined).
+  /// whether a vacuum line needs the pump, and which lines vent (vents()). Out of line, so
+  /// instruction counts can bracket the line stage (its steps are inlined).
   [[gnu::noinline]] void Step(bool safe, SupervisorInput& in);
   /// Writes this tick's codes, and the safe code of any dropped channel not parked yet; returns
   /// the first channel whose write failed, or kNoLine.
@@ -55,6 +55,11 @@ class BoardLines {
   Status Accept(const protocol::SetLineSetpoints& m, const BoardFingers& fingers, uint32_t& detail);
   /// A finger going raw: its line steps towards where it is now, until the host says otherwise.
   void HoldWhereItIs(uint8_t line) { setpoint_pa_[line] = state_[line].slewed_pa; }
+
+  /// The lines whose dump valves this tick opens, one bit each (bit i: line i): the lines that
+  /// vent toward atmosphere, or every one while the board is safe (their safe default).
+  uint32_t vents() const { return vents_; }
+  static constexpr uint32_t kAllVents = (1u << protocol::kMaxLines) - 1u;
 
   uint8_t count() const { return count_; }
   const LineParams& params(uint8_t line) const { return params_[line]; }
@@ -82,6 +87,7 @@ class BoardLines {
   /// while its compensator is clamped (written by each step; cleared when the board goes safe).
   std::array<uint8_t, protocol::kMaxLines> flags_{};
   uint32_t unparked_channels_ = 0;  ///< dropped channels whose safe code is not written yet
+  uint32_t vents_ = kAllVents;
 };
 
 }  // namespace palpa::core

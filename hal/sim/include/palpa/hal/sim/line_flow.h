@@ -30,8 +30,9 @@ class LineFlow {
 
   /// One step with the regulator's pilot (its inner loop's pressure, gauge Pa): the main valve
   /// opens in proportion to pilot − outlet, fully beyond the band. `vented`: supply shut off and
-  /// the dump valve open, whatever the pilot.
-  void Step(float pilot_pa, bool vented);
+  /// the dump valve open, whatever the pilot. `dump_open`: the dump valve open alone (the board
+  /// vents the line toward atmosphere), the regulator still working.
+  void Step(float pilot_pa, bool vented, bool dump_open = false);
   /// One step with the main valve held at `opening` (−1 … 1: exhaust/release … full flow).
   void StepOpen(float opening);
   /// Both volumes at `pa` (gauge), at rest.
@@ -49,7 +50,7 @@ class LineFlow {
 
  private:
   float Opening(float pilot_pa) const;
-  void Advance(float opening, bool vented);
+  void Advance(float opening, bool dump_open);
   float ValveFlow(float opening) const;
 
   LineFlowSetup setup_{};

@@ -66,6 +66,10 @@ class Plant {
   /// The safe state in hardware: supply shut off and dump valve open vent every line.
   void SetVented(bool vented) { vented_ = vented; }
   bool vented() const { return vented_; }
+  /// The lines' own dump valves (bit i: line i's open, the rest held shut), as the board's line
+  /// vent outputs drive them; every one opens with the safe state's vent above.
+  void SetLineVents(uint32_t open) { line_vents_ = open; }
+  uint32_t line_vents() const { return line_vents_; }
 
   PlantTruth Truth() const;
   const PlantOptions& options() const { return options_; }
@@ -96,7 +100,8 @@ class Plant {
   std::vector<Line> lines_;
   std::vector<Finger> fingers_;
   double time_s_ = 0;
-  bool vented_ = true;  // valves unpowered until the board holds them
+  bool vented_ = true;       // valves unpowered until the board holds them
+  uint32_t line_vents_ = 0;  // none released until a board drives them
 };
 
 }  // namespace palpa::sim

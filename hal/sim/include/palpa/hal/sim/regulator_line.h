@@ -51,8 +51,9 @@ class RegulatorLine {
 
   /// Advances one step with the nominal command pressure (what the DAC code asks for). With
   /// `vented` (supply shut off, dump valve open: the safe state in hardware) the line empties
-  /// through the dump valve whatever the command.
-  void Step(float command_pa, bool vented = false);
+  /// through the dump valve whatever the command; with `dump_open` alone (the board venting the
+  /// line) the regulator follows its command and the dump valve passes air toward atmosphere too.
+  void Step(float command_pa, bool vented = false, bool dump_open = false);
 
   float outlet_pa() const { return outlet_; }    ///< at the regulator outlet (sensor location)
   float chamber_pa() const { return chamber_; }  ///< in the actuator: the true pressure

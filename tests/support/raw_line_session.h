@@ -66,6 +66,11 @@ class RawLineSession {
   }
   uint8_t Status(uint8_t line) const { return sim_->board().line_output(line).status; }
   uint32_t Faults() const { return sim_->board().latched_faults(); }
+  /// The lines whose own dump valves the board opens (bit i: line i), and the plant's valves.
+  uint32_t Vents() const { return sim_->board().line_vents(); }
+  uint32_t PlantVents() const { return sim_->plant().line_vents(); }
+  bool Safe() const { return sim_->board().safe(); }
+  sim::Plant& plant() { return sim_->plant(); }
   /// The line's shaped steps fell back to unshaped ones (its outlet ran ahead of the model).
   bool ShapingFellBack(uint8_t line) const {
     return sim_->board().line_state(line).shaping_fell_back;
