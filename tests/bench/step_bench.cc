@@ -4,16 +4,15 @@
 //   palpa_step_bench [CHART.svg]
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "palpa/core/board_configs.h"
-#include "palpa/hal/fake/fakes.h"
 #include "palpa/hal/sim/fastest_step.h"
 #include "palpa/host/file_write.h"
 #include "palpa/host/svg_chart.h"
-#include "palpa/protocol/codec.h"
-#include "sim_board.h"
+#include "raw_line_session.h"
 
 namespace ps = palpa::sim;
 namespace pp = palpa::protocol;
@@ -39,87 +38,45 @@ struct StepResult {
   std::vector<std::pair<double, double>> trace_true, trace_sensor;
 };
 
-class Session {
- public:
-  Session(int level, bool trim) {
-    ps::SimBoardOptions o;
-    o.plant.level = level;
-    o.plant.seed = 7;
-    std::string error;
-    sim_ = ps::SimBoard::Create(o, link_, &error);
-    Send(pp::Hello{1, 0}, false);
-    sim_->Advance(5);
-    config_ = &sim_->board().config();
-    if (!trim) {
-      for (uint8_t line : {0, 5}) {
-        pp::ConfigureLine c = config_->lines[line];
-        c.trim_kp = 0;
-        c.trim_ki_per_s = 0;
-        Send(c, true);
-      }
+/// The board on unit 7 at plant level `level`, its stepped lines (0 and 5) with or without the
+/// trim.
+std::unique_ptr<palpa::bench::RawLineSession> Open(int level, bool trim) {
+  ps::PlantOptions plant;
+  plant.level = level;
+  plant.seed = 7;
+  return std::make_unique<palpa::bench::RawLineSession>(plant, [trim](pp::ConfigureLine& c) {
+    if (trim || c.line == 3) return;
+    c.trim_kp = 0;
+    c.trim_ki_per_s = 0;
+  });
+}
+
+StepResult Run(palpa::bench::RawLineSession& session, const Step& s) {
+  session.Set({{s.line, static_cast<int32_t>(s.to_pa)}});
+  StepResult r;
+  const double band = 0.02 * std::fabs(s.to_pa - s.from_pa);
+  double last_outside = 0, sum_sensor = 0, sum_true = 0;
+  int n = 0;
+  for (int ms = 1; ms <= s.hold_ms; ++ms) {
+    session.Tick();
+    const double truth = session.Chamber(s.line);
+    const double sensor = session.Measured(s.line);
+    if (std::fabs(truth - s.to_pa) > band) last_outside = ms;
+    if (ms % 10 == 0 && ms <= 1500) {  // the step itself; the hold after it is flat
+      r.trace_true.push_back({ms / 1000.0, truth / 1000.0});
+      r.trace_sensor.push_back({ms / 1000.0, sensor / 1000.0});
     }
-    Send(pp::SetFingerMode{0, pp::FingerMode::kRaw}, true);
-    Send(pp::SetFingerMode{3, pp::FingerMode::kRaw}, true);
-    sim_->Advance(5);
-  }
-
-  StepResult Run(const Step& s) {
-    pp::SetLineSetpoints sp{};
-    sp.session = 1;  // the Hello's nonce
-    sp.generation = ++generation_;
-    sp.entry_count = 1;
-    sp.entries[0] = {s.line, static_cast<int32_t>(s.to_pa)};
-    Send(sp, false);
-    StepResult r;
-    const double band = 0.02 * std::fabs(s.to_pa - s.from_pa);
-    double last_outside = 0, sum_sensor = 0, sum_true = 0;
-    int n = 0;
-    for (int ms = 1; ms <= s.hold_ms; ++ms) {
-      if (ms % 20 == 0) Send(pp::Heartbeat{1, ++generation_}, false);
-      sim_->Advance(1000);
-      link_.tx.clear();
-      const double truth = sim_->plant().Truth().lines[s.line].chamber_pa;
-      const double sensor = Measured(s.line);
-      if (std::fabs(truth - s.to_pa) > band) last_outside = ms;
-      if (ms % 10 == 0 && ms <= 1500) {  // the step itself; the hold after it is flat
-        r.trace_true.push_back({ms / 1000.0, truth / 1000.0});
-        r.trace_sensor.push_back({ms / 1000.0, sensor / 1000.0});
-      }
-      if (ms > s.hold_ms - 1000) {
-        sum_sensor += sensor - s.to_pa;
-        sum_true += truth - s.to_pa;
-        ++n;
-      }
+    if (ms > s.hold_ms - 1000) {
+      sum_sensor += sensor - s.to_pa;
+      sum_true += truth - s.to_pa;
+      ++n;
     }
-    r.settle_ms = last_outside >= s.hold_ms - 1000 ? -1 : last_outside;
-    r.error_sensor_pa = std::fabs(sum_sensor / n);
-    r.error_true_pa = std::fabs(sum_true / n);
-    return r;
   }
-
- private:
-  template <class M>
-  void Send(const M& m, bool reliable) {
-    uint8_t frame[pp::kMaxFrameSize];
-    const auto n = pp::EncodeMessageFrame(
-        m, reliable ? seq_++ : 0, reliable ? pp::flags::kReliable : 0, frame, sizeof(frame));
-    link_.Inject(frame, n.value);
-    sim_->Advance(sim_->now_us() % 1000 == 0 ? 1 : 0);  // dispatched between ticks
-  }
-  /// What the board's sensor reads, through the line's configured transfer function.
-  double Measured(uint8_t line) const {
-    const pp::ConfigureLine& c = config_->lines[line];
-    const double counts = sim_->plant().SensorCounts(line);
-    return c.sensor_min_pa + (counts - c.sensor_counts_min) * (c.sensor_max_pa - c.sensor_min_pa) /
-                                 static_cast<double>(c.sensor_counts_max - c.sensor_counts_min);
-  }
-
-  palpa::hal::fake::FakeByteLink link_;
-  std::unique_ptr<ps::SimBoard> sim_;
-  const palpa::core::BoardConfig* config_ = nullptr;
-  uint8_t seq_ = 0;
-  uint32_t generation_ = 0;
-};
+  r.settle_ms = last_outside >= s.hold_ms - 1000 ? -1 : last_outside;
+  r.error_sensor_pa = std::fabs(sum_sensor / n);
+  r.error_true_pa = std::fabs(sum_true / n);
+  return r;
+}
 
 /// The plant's own fastest step on the line (full flow until the target, then held): what no
 /// controller can beat. Its settling, from the command, in ms.
@@ -152,10 +109,10 @@ int main(int argc, char** argv) {
   chart.x_label = "time after the step (s)";
   chart.y_label = "pressure (kPa)";
   for (int level : {1, 3}) {
-    Session ff(level, false), pi(level, true);
+    const auto ff = Open(level, false), pi = Open(level, true);
     for (const Step& s : kSteps) {
-      const StepResult a = ff.Run(s);
-      const StepResult b = pi.Run(s);
+      const StepResult a = Run(*ff, s);
+      const StepResult b = Run(*pi, s);
       std::printf("%-5d %-14s %8.0f ms %11s %11s | %9.2f %9.2f | %9.2f %9.2f\n", level, s.name,
                   FastestSettleMs(s), Settle(a.settle_ms).c_str(), Settle(b.settle_ms).c_str(),
                   a.error_true_pa / 1000, a.error_sensor_pa / 1000, b.error_true_pa / 1000,
