@@ -56,6 +56,17 @@ struct Air {
   }
 };
 
+/// A line under test: its parameters from a configuration (1 ms ticks) and its state holding
+/// `from_pa`; a test binds its parts, auto& [p, s, out] = line.
+struct LineUnderTest {
+  const pc::LineParams p;
+  pc::LineState s;
+  pc::LineOutput out;
+  LineUnderTest(const pp::ConfigureLine& c, float from_pa) : p(pc::MakeLineParams(c, 1000)) {
+    pc::ResetLineState(p, s, from_pa);
+  }
+};
+
 float Run(const pc::LineParams& p, pc::LineState& s, float setpoint, float measured,
           pc::LineOutput& out) {
   pc::StepLine(p, s, setpoint, pc::LineReading{true, 0, measured}, out);
@@ -68,11 +79,9 @@ TEST_GROUP(StepShaping){};
 
 TEST(StepShaping, OffUntilTheChamberModelIsKnownAndAnOverdriveAllowed) {
   for (const auto& c : {ShapedLine(0, 30000), ShapedLine(20000, 0)}) {
-    const pc::LineParams p = pc::MakeLineParams(c, 1000);
+    LineUnderTest line(c, 10000);
+    auto& [p, s, out] = line;
     CHECK_FALSE(p.shaping);
-    pc::LineState s;
-    pc::ResetLineState(p, s, 10000);
-    pc::LineOutput out;
     DOUBLES_EQUAL(30000, Run(p, s, 30000, 10000, out), 1e-3);
     CHECK_FALSE(out.status & ls::kShaping);
   }
@@ -83,12 +92,9 @@ TEST(StepShaping, DrivesBeyondTheTargetThenHandsOverWithoutABump) {
   // (a pneumatic cavity: the regulator is led straight to the target) or 80 ms more (granules'
   // air: the regulator is led beyond it while the chamber is short).
   for (const float chamber_s : {0.005f, 0.08f}) {
-    const pc::LineParams p =
-        pc::MakeLineParams(ShapedLine(static_cast<uint32_t>(chamber_s * 1e6f)), 1000);
+    LineUnderTest line(ShapedLine(static_cast<uint32_t>(chamber_s * 1e6f)), 10000);
+    auto& [p, s, out] = line;
     CHECK(p.shaping);
-    pc::LineState s;
-    pc::ResetLineState(p, s, 10000);
-    pc::LineOutput out;
     Air shaped(0, chamber_s), plain(0, chamber_s);
     for (Air* a : {&shaped, &plain}) a->pilot = a->outlet = a->chamber = 10000;
     // The first tick goes to the bound: the target plus the overdrive.
@@ -129,10 +135,8 @@ TEST(StepShaping, AStepThatComesBackFromBeyondUsesTheCorrectionsOtherBranch) {
   c.correction[1] = {100000, 99000, 100000};
   for (const bool shaped : {false, true}) {
     c.overdrive_pa = shaped ? 30000 : 0;
-    const pc::LineParams p = pc::MakeLineParams(c, 1000);
-    pc::LineState s;
-    pc::ResetLineState(p, s, 10000);
-    pc::LineOutput out;
+    LineUnderTest line(c, 10000);
+    auto& [p, s, out] = line;
     for (int k = 0; k < 500; ++k) pc::StepLine(p, s, 30000, pc::LineReading{}, out);
     DOUBLES_EQUAL(shaped ? 30000 : 31000, out.command_pa, 1);
   }
@@ -141,10 +145,8 @@ TEST(StepShaping, AStepThatComesBackFromBeyondUsesTheCorrectionsOtherBranch) {
 TEST(StepShaping, NeverBeyondTheOverdriveBoundOrTheLineLimitsAndSaysSo) {
   pp::ConfigureLine c = ShapedLine(40000, 20000);
   c.limit_max_pa = 45000;
-  const pc::LineParams p = pc::MakeLineParams(c, 1000);
-  pc::LineState s;
-  pc::ResetLineState(p, s, 0);
-  pc::LineOutput out;
+  LineUnderTest line(c, 0);
+  auto& [p, s, out] = line;
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> target(0, 60000);
   bool saturated = false;
@@ -179,11 +181,9 @@ TEST(StepShaping, TheReferenceFollowsWhatWasCommanded) {
 TEST(StepShaping, TheTrimHoldsThroughTheStepAndResumesAfter) {
   pp::ConfigureLine c = ShapedLine();
   c.limit_max_pa = 45000;  // the overdrive meets the limit, and the final clamp with it
-  const pc::LineParams p = pc::MakeLineParams(c, 1000);
-  pc::LineState s;
-  pc::ResetLineState(p, s, 10000);
+  LineUnderTest line(c, 10000);
+  auto& [p, s, out] = line;
   s.integrator_pa = 1200;  // what the trim had learnt of the regulator's static error
-  pc::LineOutput out;
   // The outlet lags far behind an overdriven reference, then the step is held. Until the hold
   // ends the integrator keeps what it learnt; the final clamp does not unwind it either.
   // The step is under way until the line has a setpoint again (the overdrive, then the hold).
@@ -199,10 +199,8 @@ TEST(StepShaping, TheTrimHoldsThroughTheStepAndResumesAfter) {
 
 TEST(StepShaping, FastTargetStreamsStayBoundedAgainstAMisidentifiedChamber) {
   for (float truth : {0.5f, 2.0f}) {  // the real chamber's lag × the model's
-    const pc::LineParams p = pc::MakeLineParams(ShapedLine(20000, 30000), 1000);
-    pc::LineState s;
-    pc::ResetLineState(p, s, 0);
-    pc::LineOutput out;
+    LineUnderTest line(ShapedLine(20000, 30000), 0);
+    auto& [p, s, out] = line;
     Air air(10, 0.02f * truth, 150.0f);  // twice the modelled dead time, a flow limit
     // A square wave faster than the chamber follows, then one it can follow: the overshoot of
     // each period of the slow wave does not grow, and every command stays within its bounds.
@@ -244,10 +242,8 @@ TEST(StepShaping, AnAirPathFasterThanItsModelFallsBackToUnshapedSteps) {
   for (const uint32_t model_tau_us : {40000u, 20000u}) {
     pp::ConfigureLine c = ShapedLine(5000, 20000);
     c.model_tau_us = model_tau_us;
-    const pc::LineParams p = pc::MakeLineParams(c, 1000);
-    pc::LineState s;
-    pc::ResetLineState(p, s, 10000);
-    pc::LineOutput out;
+    LineUnderTest line(c, 10000);
+    auto& [p, s, out] = line;
     Air air(5, 0.005f);
     air.pilot = air.outlet = air.chamber = 10000;
     const bool wrong = model_tau_us != 20000;
@@ -278,10 +274,8 @@ TEST(StepShaping, AnAirPathFasterThanItsModelFallsBackToUnshapedSteps) {
 
 TEST(StepShaping, AShapedLineVentsBelowTheRegulatorsMinimumWhereItsLimitsHoldAtmosphere) {
   auto vents_at = [](const pp::ConfigureLine& c, float from, float to) {
-    const pc::LineParams p = pc::MakeLineParams(c, 1000);
-    pc::LineState s;
-    pc::ResetLineState(p, s, from);
-    pc::LineOutput out;
+    LineUnderTest line(c, from);
+    auto& [p, s, out] = line;
     uint32_t vents = 0;
     pc::StepLine(p, s, to, pc::LineReading{true, 0, from}, out, &vents);
     return vents;
@@ -315,10 +309,8 @@ TEST(StepShaping, AFallenBackLineSlewsAgain) {
   for (const uint32_t own : {0u, 100000u}) {
     pp::ConfigureLine c = ShapedLine(5000, 20000);
     c.slew_pa_per_s = own;
-    const pc::LineParams p = pc::MakeLineParams(c, 1000);
-    pc::LineState s;
-    pc::ResetLineState(p, s, 10000);
-    pc::LineOutput out;
+    LineUnderTest line(c, 10000);
+    auto& [p, s, out] = line;
     Run(p, s, 40000, 10000, out);
     DOUBLES_EQUAL(own == 0 ? 40000 : 10100, s.slewed_pa, 1e-3);
     // Falling back on a step's overshoot: after the overdrive, the outlet runs beyond the target
