@@ -2,10 +2,11 @@
 // thesis's triangle (the example scene) on the simulated board, in virtual time: each input sample
 // (100 Hz, a pen tablet's rate) rendered and sent as one SetFingerTargets; every board tick, each
 // finger's true output (the plant's) against the rule's target at the finger's current position.
-// Prints, per speed, the error (RMS and 95th percentile, of the scene's target range) and the edge
-// lag at cube B's leading edge (how far finger 0 travels past the point where the rule's target
-// crosses half of its change before its true output does) — each pass on the fingers' nominal
-// curves without step shaping, and calibrated on their rig with shaping on (scene_pass.h).
+// Prints, per speed and per finger, the error (RMS and 95th percentile, of the scene's target
+// range) and the edge lag at cube B's leading edge (how far the finger travels past the point where
+// the rule's target crosses half of its change before its true output does) — each pass on the
+// fingers' nominal curves without step shaping, and with every finger calibrated on its rig as
+// palpa calibrate does and the calibration applied (scene_pass.h).
 //   palpa_scene_bench SCENE.json
 #include <algorithm>
 #include <cmath>
@@ -60,10 +61,11 @@ std::vector<double> HandLike(double speed) {
 }
 
 /// "RMS | p95 | edge lag" of one pass, as Markdown cells.
-std::string Cells(const pb::PassResult& r) {
+std::string Cells(const pb::FingerScore& r) {
   double sum = 0;
   for (double e : r.errors) sum += e * e;
   char lag[32] = "never";  // the output never reached half of the change while over B
+  if (!r.meets_edge) std::snprintf(lag, sizeof(lag), "—");  // its path misses B's face
   if (!std::isnan(r.edge_lag_mm)) std::snprintf(lag, sizeof(lag), "%.2f mm", r.edge_lag_mm);
   char cells[96];
   std::snprintf(cells, sizeof(cells), " %.1f %% | %.1f %% | %s |",
@@ -78,16 +80,19 @@ double Percentile(std::vector<double> v, double p) {
 }
 
 /// One pass on both boards: the fingers on their nominal curves with no step shaping (as the
-/// scene was first measured), and calibrated on their rig with shaping on. One Markdown row.
+/// scene was first measured), and each finger calibrated on its rig and applied. A Markdown row
+/// per finger.
 int Row(const ph::SceneRenderer& scene, bool jamming, const std::vector<uint8_t>& fingers,
         const std::string& name, const std::vector<double>& path, double range) {
-  std::string row = "| " + name + " |";
+  std::vector<std::string> rows;
+  for (uint8_t f : fingers) rows.push_back("| " + name + " | " + std::to_string(f) + " |");
   for (const bool calibrated : {false, true}) {
     pb::ScenePass pass(scene, jamming, calibrated, fingers);
     if (!pass.ok()) return 1;
-    row += Cells(pass.Pass(path, range));
+    const pb::PassResult r = pass.Pass(path, range);
+    for (size_t f = 0; f < rows.size(); ++f) rows[f] += Cells(r[f]);
   }
-  std::printf("%s\n", row.c_str());
+  for (const std::string& row : rows) std::printf("%s\n", row.c_str());
   std::fflush(stdout);
   return 0;
 }
@@ -111,8 +116,9 @@ int Table(const ph::SceneRenderer& scene, bool jamming, const std::vector<uint8_
       title.c_str(), jamming ? "thesis-jamming-2" : "thesis-pneumatic-3", pb::kUnit, kY, kStartX,
       kEndX, 1000 / pb::kInputEveryMs, hi - lo, jamming ? "N/mm" : "mm");
   std::printf(
-      "| pass | nominal: error RMS | p95 | edge lag at B | calibrated, shaped: error RMS | p95 | "
-      "edge lag at B |\n|---|---:|---:|---:|---:|---:|---:|\n");
+      "| pass | finger | nominal: error RMS | p95 | edge lag at B | fingers calibrated: error RMS "
+      "| "
+      "p95 | edge lag at B |\n|---|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const double speed : {5.0, 10.0, 20.0, 30.0, 60.0}) {
     char name[48];
     std::snprintf(name, sizeof(name), "straight, %g mm/s", speed);

@@ -1,21 +1,24 @@
 // One pass of a scene over the simulated board in virtual time (plant level 3, a held-out unit):
 // each input sample rendered and sent as one SetFingerTargets, every board tick each finger's true
 // output scored against the rule's target at its current position, and the edge lag at cube B.
-// The board's fingers on their nominal curves, or calibrated on their rig first as palpa calibrate
-// would (each line's static correction, and its chamber model uploaded: steps shaped).
+// The board's fingers on their nominal curves, or each calibrated on its rig first by palpa
+// calibrate's protocol and the file applied as the host applies it (curve, compensator, each
+// line's static correction and chamber model: steps shaped).
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "in_process_board.h"
+#include "palpa/calibration/calibration_protocol.h"
 #include "palpa/host/calibration_file.h"
 #include "palpa/host/scene_render.h"
-#include "steps_calibration.h"
+#include "sim_rig.h"
 
 namespace palpa::bench {
 
@@ -26,10 +29,13 @@ namespace ph = palpa::host;
 constexpr int kInputEveryMs = 10;
 constexpr double kStartX = 20, kEndX = 100, kY = 15;
 
-struct PassResult {
-  std::vector<double> errors;  ///< |true − target| / range, every tick, every finger
-  double edge_lag_mm = NAN;
+/// One finger's score over a pass.
+struct FingerScore {
+  std::vector<double> errors;  ///< |true − target| / range, every tick
+  double edge_lag_mm = NAN;    ///< NAN: the output never crossed half of the change over B
+  bool meets_edge = false;     ///< the finger's path crosses cube B's near face at all
 };
+using PassResult = std::vector<FingerScore>;
 
 constexpr uint32_t kUnit = 12;  // a held-out unit (actuators, regulators, sensors): not nominal
 
@@ -40,6 +46,7 @@ class ScenePass {
             const std::vector<uint8_t>& board_fingers)
       : scene_(scene),
         jamming_(jamming),
+        config_(jamming ? "thesis-jamming-2" : "thesis-pneumatic-3"),
         board_(testing::PlantBoardOptions(jamming ? "thesis-jamming-2" : "thesis-pneumatic-3",
                                           kUnit, kUnit, {})) {
     if (calibrated) ok_ = Calibrate(board_fingers);
@@ -49,16 +56,21 @@ class ScenePass {
 
   /// A path: the input's x at each millisecond of the pass (after settling at the first).
   PassResult Pass(const std::vector<double>& path, double range_mm) {
-    PassResult r;
+    const size_t n = scene_.layout().fingers.size();
+    PassResult r(n);
     // Settle at the start (the first target re-homes the fingers), then the pass.
     const int settle_ms = 1500;
     const int pass_ms = static_cast<int>(path.size()) - 1;
-    double previous_true = 0;
-    const double edge = 54;  // cube B's near face, where finger 0 meets it
-    const double dx0 = scene_.layout().fingers[0].dx_mm;  // finger 0 from the input
-    const double before = Target0(edge - 3 - dx0), on = Target0(edge + 3 - dx0);
-    const double half = (before + on) / 2;
-    double rule_cross = NAN;
+    const double edge = 54;  // cube B's near face
+    // Each finger's half-change at B's face: the rule's targets 3 mm either side of it where the
+    // finger itself is (its offset from the input), and where each of them crossed it.
+    std::vector<double> half(n), rule_cross(n, NAN), previous_true(n, 0);
+    for (size_t f = 0; f < n; ++f) {
+      const double dx = scene_.layout().fingers[f].dx_mm;
+      const double before = Target(f, edge - 3 - dx), on = Target(f, edge + 3 - dx);
+      half[f] = (before + on) / 2;
+      r[f].meets_edge = on - before > 0.05 * range_mm;  // a change worth timing
+    }
     for (int ms = -settle_ms; ms <= pass_ms; ++ms) {
       const double x = path[static_cast<size_t>(std::max(0, ms))];
       if (ms % kInputEveryMs == 0) SendTargets(x);
@@ -66,52 +78,85 @@ class ScenePass {
       if (ms < 0) continue;
       const auto truth = board_.sim().plant().Truth();
       const auto now = scene_.Render({0, x, kY, 1});
-      for (size_t f = 0; f < now.size(); ++f) {
+      for (size_t f = 0; f < n; ++f) {
         const double target = now[f].mapped.target / 1000.0;
-        r.errors.push_back(std::fabs(True(truth, f) - target) / range_mm);
+        const double true_f = True(truth, f);
+        FingerScore& s = r[f];
+        s.errors.push_back(std::fabs(true_f - target) / range_mm);
+        const double at = x + scene_.layout().fingers[f].dx_mm;
+        if (!s.meets_edge) continue;
+        if (std::isnan(rule_cross[f]) && target >= half[f]) rule_cross[f] = at;
+        if (std::isnan(s.edge_lag_mm) && !std::isnan(rule_cross[f]) && previous_true[f] < half[f] &&
+            true_f >= half[f])
+          s.edge_lag_mm = at - rule_cross[f];
+        previous_true[f] = true_f;
       }
-      if (std::isnan(rule_cross) && now[0].mapped.target / 1000.0 >= half) rule_cross = x + dx0;
-      const double true0 = True(truth, 0);
-      if (std::isnan(r.edge_lag_mm) && !std::isnan(rule_cross) && previous_true < half &&
-          true0 >= half)
-        r.edge_lag_mm = x + dx0 - rule_cross;
-      previous_true = true0;
     }
     return r;
   }
 
  private:
-  /// Each finger's lines as the host configures them from the finger's calibration file: the
-  /// static correction, and the chamber model with the overdrive bound and no slew limit.
+  /// Each finger calibrated on its rig as palpa calibrate does (the whole protocol: zero, the
+  /// regulator's correction, the chamber's step, the deformation or stiffness curve and its
+  /// compensator), then applied as the host applies the file: the finger's record and its lines'.
   bool Calibrate(const std::vector<uint8_t>& fingers) {
     const core::BoardConfig& board = board_.config();
-    const UnitCalibration& u =
-        CalibrationFor(kUnit, jamming_ ? "thesis-jamming-2" : "thesis-pneumatic-3", fingers);
-    for (uint8_t line = 0; line < board.line_count; ++line) {
-      if (u.correction[line].empty() && !u.chamber[line].ok) continue;
-      pp::ConfigureLine c = board.lines[line];
-      c.correction_count = static_cast<uint8_t>(u.correction[line].size());
-      std::copy(u.correction[line].begin(), u.correction[line].end(), c.correction.begin());
-      if (u.chamber[line].ok) {
-        c.chamber_tau_us = static_cast<uint32_t>(std::max(1.0, u.chamber[line].tau_s * 1e6));
-        c.overdrive_pa = ph::kShapingOverdrivePa;
-        c.slew_pa_per_s = 0;
-      }
-      board_.SendConfig(c);
+    for (uint8_t finger : fingers) {
+      const ph::CalibrationFile* file = FingerCalibrationFor(config_, finger);
+      if (file == nullptr) return false;
+      const pp::ConfigureFinger f = ph::CalibratedFinger(board.fingers[finger], *file);
+      board_.SendConfig(f);
       board_.Run(5);
-      if (board.lines[line].chamber_tau_us != c.chamber_tau_us ||
-          board.lines[line].correction_count != c.correction_count) {
-        std::fprintf(stderr, "scene bench: line %u's calibration was not applied\n", line);
+      if (board.fingers[finger].inverse_count != f.inverse_count ||
+          board.fingers[finger].param_count != f.param_count) {
+        std::fprintf(stderr, "scene bench: finger %u's calibration was not applied\n", finger);
         return false;
+      }
+      for (const uint8_t line : {f.line_a, f.line_b}) {
+        if (line == pp::kNoLine) continue;
+        pp::ConfigureLine c = board.lines[line];
+        if (!ph::CalibratedLine(*file, line, c)) continue;
+        board_.SendConfig(c);
+        board_.Run(5);
+        if (board.lines[line].chamber_tau_us != c.chamber_tau_us ||
+            board.lines[line].correction_count != c.correction_count) {
+          std::fprintf(stderr, "scene bench: line %u's calibration was not applied\n", line);
+          return false;
+        }
       }
     }
     return true;
+  }
+  /// The calibration file of `finger` of unit kUnit behind `config`, run once per finger.
+  static const ph::CalibrationFile* FingerCalibrationFor(const std::string& config,
+                                                         uint8_t finger) {
+    static std::map<std::pair<std::string, uint8_t>, ph::CalibrationFile> known;
+    const auto found = known.find({config, finger});
+    if (found != known.end()) return &found->second;
+    testing::SimRig sim({config, finger, kUnit, kUnit});
+    calibration::Rig rig = sim.rig();
+    calibration::Journal journal;
+    calibration::CalibrationRun run;
+    const std::string serial = "U" + std::to_string(kUnit) + "-F" + std::to_string(finger);
+    const calibration::RunInfo info{serial, kUnit, "2026-11-26T00:00:00Z", "sim", serial + ".csv"};
+    const calibration::RigStatus status = calibration::RunCalibration(
+        rig, finger, calibration::ProtocolOptions{}, info, journal, nullptr, &run);
+    if (!status.ok()) {
+      std::fprintf(stderr, "scene bench: calibrating finger %u failed: %s\n", finger,
+                   status.message.c_str());
+      return nullptr;
+    }
+    std::fprintf(stderr, "scene bench: %s finger %u calibrated in %.0f s of rig time (%s)\n",
+                 config.c_str(), finger, sim.Now(), ph::CompensatorLabel(run.file).c_str());
+    return &(known[{config, finger}] = run.file);
   }
   /// A finger's true output in its unit: deformation (mm) or stiffness (N/mm).
   double True(const ps::PlantTruth& t, size_t f) const {
     return jamming_ ? t.fingers[f].stiffness_n_per_mm : t.fingers[f].deformation_mm;
   }
-  double Target0(double x) const { return scene_.Render({0, x, kY, 1})[0].mapped.target / 1000.0; }
+  double Target(size_t f, double x) const {
+    return scene_.Render({0, x, kY, 1})[f].mapped.target / 1000.0;
+  }
   void SendTargets(double x) {
     pp::SetFingerTargets t{};
     t.session = testing::InProcessBoard::kSession;
@@ -129,6 +174,7 @@ class ScenePass {
 
   const ph::SceneRenderer& scene_;
   bool jamming_;
+  std::string config_;
   testing::InProcessBoard board_;
   bool ok_ = true;
 };

@@ -1,5 +1,5 @@
 // The calibration file's chamber models: read with their checks, written, noted when absent, and
-// what applying one does to its line (step shaping on).
+// what applying a calibration does to its finger's and lines' records (step shaping on).
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -58,6 +58,31 @@ void ShapeLine(const ChamberModel& m, pp::ConfigureLine& line) {
   line.overdrive_pa = kShapingOverdrivePa;
   // The overdrive bounds a shaped step; a slew limit would only slow it (docs/firmware.md).
   line.slew_pa_per_s = 0;
+}
+
+pp::ConfigureFinger CalibratedFinger(pp::ConfigureFinger f, const CalibrationFile& c) {
+  f.inverse_count = static_cast<uint8_t>(c.static_inverse.size());
+  std::copy(c.static_inverse.begin(), c.static_inverse.end(), f.inverse.begin());
+  f.compensator = c.compensator;
+  f.param_count = static_cast<uint8_t>(c.compensator_params.size());
+  std::copy(c.compensator_params.begin(), c.compensator_params.end(), f.params.begin());
+  if (c.recommended_bias_pa && f.kind == pp::FingerKind::kJamming)
+    f.bias_pa = static_cast<int32_t>(std::lround(*c.recommended_bias_pa));
+  return f;
+}
+
+bool CalibratedLine(const CalibrationFile& c, uint8_t index, pp::ConfigureLine& line) {
+  const auto rc = std::find_if(c.regulator_corrections.begin(), c.regulator_corrections.end(),
+                               [index](const RegulatorCorrection& r) { return r.line == index; });
+  const auto chamber = std::find_if(c.chamber_models.begin(), c.chamber_models.end(),
+                                    [index](const ChamberModel& m) { return m.line == index; });
+  if (rc == c.regulator_corrections.end() && chamber == c.chamber_models.end()) return false;
+  if (rc != c.regulator_corrections.end()) {
+    line.correction_count = static_cast<uint8_t>(rc->points.size());
+    std::copy(rc->points.begin(), rc->points.end(), line.correction.begin());
+  }
+  if (chamber != c.chamber_models.end()) ShapeLine(*chamber, line);
+  return true;
 }
 
 }  // namespace palpa::host

@@ -116,14 +116,7 @@ Outcome Device::ApplyCalibration(uint8_t finger, const CalibrationFile& c) {
     return Outcome{Status::kBadValue,
                    "apply calibration: the finger's kind differs from the calibration's",
                    {}};
-  f.inverse_count = static_cast<uint8_t>(c.static_inverse.size());
-  std::copy(c.static_inverse.begin(), c.static_inverse.end(), f.inverse.begin());
-  f.compensator = c.compensator;
-  f.param_count = static_cast<uint8_t>(c.compensator_params.size());
-  std::copy(c.compensator_params.begin(), c.compensator_params.end(), f.params.begin());
-  if (c.recommended_bias_pa && f.kind == pp::FingerKind::kJamming) {
-    f.bias_pa = static_cast<int32_t>(std::lround(*c.recommended_bias_pa));
-  }
+  f = CalibratedFinger(f, c);
   // One staged blob: the board validates every record and applies all of them or none.
   std::vector<uint8_t> records;
   auto append = [&records](const auto& message) {
@@ -138,19 +131,15 @@ Outcome Device::ApplyCalibration(uint8_t finger, const CalibrationFile& c) {
   // Each of the finger's lines once, with its correction and its chamber model (step shaping).
   for (const uint8_t index : {f.line_a, f.line_b}) {
     if (index == pp::kNoLine) continue;
-    const auto rc = std::find_if(c.regulator_corrections.begin(), c.regulator_corrections.end(),
-                                 [index](const RegulatorCorrection& r) { return r.line == index; });
-    const auto chamber = std::find_if(c.chamber_models.begin(), c.chamber_models.end(),
-                                      [index](const ChamberModel& m) { return m.line == index; });
-    if (rc == c.regulator_corrections.end() && chamber == c.chamber_models.end()) continue;
+    if (!std::any_of(c.regulator_corrections.begin(), c.regulator_corrections.end(),
+                     [index](const RegulatorCorrection& r) { return r.line == index; }) &&
+        !std::any_of(c.chamber_models.begin(), c.chamber_models.end(),
+                     [index](const ChamberModel& m) { return m.line == index; }))
+      continue;
     const auto line = ReadLine(index);
     if (!line.ok()) return Outcome{line.status, "apply calibration: " + line.message, {}};
     pp::ConfigureLine l = line.value;
-    if (rc != c.regulator_corrections.end()) {
-      l.correction_count = static_cast<uint8_t>(rc->points.size());
-      std::copy(rc->points.begin(), rc->points.end(), l.correction.begin());
-    }
-    if (chamber != c.chamber_models.end()) ShapeLine(*chamber, l);
+    CalibratedLine(c, index, l);
     if (!append(l))
       return Outcome{Status::kBadValue, "apply calibration: the line record cannot be encoded", {}};
   }

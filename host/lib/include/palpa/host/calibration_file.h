@@ -166,6 +166,15 @@ Result<CalibrationFile> FindCalibration(const std::string& dir, const std::strin
 /// The curves a calibration gives the stiffness map: its measured curve and its range.
 FingerCurves CurvesFromCalibration(const CalibrationFile& c);
 
+/// What applying `c` makes of its finger's record: the static inverse, the compensator and its
+/// parameters, and (jamming) the recommended bias. The board's other fields stay as they are.
+protocol::ConfigureFinger CalibratedFinger(protocol::ConfigureFinger finger,
+                                           const CalibrationFile& c);
+
+/// What applying `c` makes of line `index`'s record: its regulator correction and its chamber
+/// model (step shaping), where the file has them. False when it has neither for this line.
+bool CalibratedLine(const CalibrationFile& c, uint8_t index, protocol::ConfigureLine& line);
+
 /// What a calibration without a chamber model means for the finger's steps (empty when it has one):
 /// e.g. "schema version 2 has no chamber model: steps are not shaped until the finger is
 /// calibrated again".
