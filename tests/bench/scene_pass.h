@@ -16,6 +16,7 @@
 
 #include "in_process_board.h"
 #include "palpa/calibration/calibration_protocol.h"
+#include "palpa/host/board_curves.h"
 #include "palpa/host/calibration_file.h"
 #include "palpa/host/scene_render.h"
 #include "sim_rig.h"
@@ -44,19 +45,19 @@ class ScenePass {
   /// `board_fingers` are the scene's, calibrated when `calibrated`.
   ScenePass(const ph::SceneRenderer& scene, bool jamming, bool calibrated,
             const std::vector<uint8_t>& board_fingers)
-      : scene_(scene),
+      : scene_(&scene),
         jamming_(jamming),
         config_(jamming ? "thesis-jamming-2" : "thesis-pneumatic-3"),
         board_(testing::PlantBoardOptions(jamming ? "thesis-jamming-2" : "thesis-pneumatic-3",
                                           kUnit, kUnit, {})) {
-    if (calibrated) ok_ = Calibrate(board_fingers);
+    if (calibrated) ok_ = Calibrate(board_fingers) && RenderThroughCalibrations(board_fingers);
   }
   /// False when the board refused a calibrated line's configuration (said on stderr).
   bool ok() const { return ok_; }
 
   /// A path: the input's x at each millisecond of the pass (after settling at the first).
   PassResult Pass(const std::vector<double>& path, double range_mm) {
-    const size_t n = scene_.layout().fingers.size();
+    const size_t n = scene_->layout().fingers.size();
     PassResult r(n);
     // Settle at the start (the first target re-homes the fingers), then the pass.
     const int settle_ms = 1500;
@@ -66,7 +67,7 @@ class ScenePass {
     // finger itself is (its offset from the input), and where each of them crossed it.
     std::vector<double> half(n), rule_cross(n, NAN), previous_true(n, 0);
     for (size_t f = 0; f < n; ++f) {
-      const double dx = scene_.layout().fingers[f].dx_mm;
+      const double dx = scene_->layout().fingers[f].dx_mm;
       const double before = Target(f, edge - 3 - dx), on = Target(f, edge + 3 - dx);
       half[f] = (before + on) / 2;
       r[f].meets_edge = on - before > 0.05 * range_mm;  // a change worth timing
@@ -77,13 +78,13 @@ class ScenePass {
       board_.Run(1);
       if (ms < 0) continue;
       const auto truth = board_.sim().plant().Truth();
-      const auto now = scene_.Render({0, x, kY, 1});
+      const auto now = scene_->Render({0, x, kY, 1});
       for (size_t f = 0; f < n; ++f) {
         const double target = now[f].mapped.target / 1000.0;
         const double true_f = True(truth, f);
         FingerScore& s = r[f];
         s.errors.push_back(std::fabs(true_f - target) / range_mm);
-        const double at = x + scene_.layout().fingers[f].dx_mm;
+        const double at = x + scene_->layout().fingers[f].dx_mm;
         if (!s.meets_edge) continue;
         if (std::isnan(rule_cross[f]) && target >= half[f]) rule_cross[f] = at;
         if (std::isnan(s.edge_lag_mm) && !std::isnan(rule_cross[f]) && previous_true[f] < half[f] &&
@@ -127,6 +128,27 @@ class ScenePass {
     }
     return true;
   }
+  /// As a Scene on a Device renders: through the curves each finger's calibration gave it (the
+  /// board's calibrated inverse), so the rule's targets are this unit's, not the nominal curve's.
+  bool RenderThroughCalibrations(const std::vector<uint8_t>& fingers) {
+    const core::BoardConfig& board = board_.config();
+    std::vector<ph::RenderFinger> calibrated;
+    for (uint8_t f : fingers) {
+      const pp::ConfigureFinger& c = board.fingers[f];
+      calibrated.push_back({f,
+                            {c.kind, pp::FingerMode::kTarget, c.line_a, c.line_b},
+                            ph::CurvesFromBoard(c, "calibration applied")});
+    }
+    auto made =
+        ph::SceneRenderer::Make(scene_->tissue(), scene_->layout(), scene_->rule(), calibrated);
+    if (!made.ok()) {
+      std::fprintf(stderr, "scene bench: %s\n", made.message.c_str());
+      return false;
+    }
+    calibrated_scene_ = std::make_unique<ph::SceneRenderer>(std::move(made.value));
+    scene_ = calibrated_scene_.get();
+    return true;
+  }
   /// The calibration file of `finger` of unit kUnit behind `config`, run once per finger.
   static const ph::CalibrationFile* FingerCalibrationFor(const std::string& config,
                                                          uint8_t finger) {
@@ -155,14 +177,14 @@ class ScenePass {
     return jamming_ ? t.fingers[f].stiffness_n_per_mm : t.fingers[f].deformation_mm;
   }
   double Target(size_t f, double x) const {
-    return scene_.Render({0, x, kY, 1})[f].mapped.target / 1000.0;
+    return scene_->Render({0, x, kY, 1})[f].mapped.target / 1000.0;
   }
   void SendTargets(double x) {
     pp::SetFingerTargets t{};
     t.session = testing::InProcessBoard::kSession;
     t.generation = board_.next_generation();
-    const auto renders = scene_.Render({0, x, kY, 1});
-    const auto requests = scene_.Requests(renders);
+    const auto renders = scene_->Render({0, x, kY, 1});
+    const auto requests = scene_->Requests(renders);
     for (size_t f = 0; f < renders.size(); ++f) {
       t.entries[t.entry_count++] = {requests[f].finger,
                                     jamming_ ? pp::OutputUnit::kStiffnessMilliNewtonPerMm
@@ -172,7 +194,8 @@ class ScenePass {
     board_.Send(t, false);
   }
 
-  const ph::SceneRenderer& scene_;
+  const ph::SceneRenderer* scene_;  ///< the scene's own, or rendering through the calibrations
+  std::unique_ptr<ph::SceneRenderer> calibrated_scene_;
   bool jamming_;
   std::string config_;
   testing::InProcessBoard board_;
