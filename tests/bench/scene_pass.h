@@ -105,7 +105,12 @@ class ScenePass {
     for (uint8_t finger : fingers) {
       const ph::CalibrationFile* file = FingerCalibrationFor(config_, finger);
       if (file == nullptr) return false;
-      const pp::ConfigureFinger f = ph::CalibratedFinger(board.fingers[finger], *file);
+      const auto calibrated = ph::CalibratedFinger(board.fingers[finger], *file);
+      if (!calibrated.ok()) {
+        std::fprintf(stderr, "scene bench: finger %u: %s\n", finger, calibrated.message.c_str());
+        return false;
+      }
+      const pp::ConfigureFinger& f = calibrated.value;
       board_.SendConfig(f);
       board_.Run(5);
       if (board.fingers[finger].inverse_count != f.inverse_count ||
@@ -116,7 +121,12 @@ class ScenePass {
       for (const uint8_t line : {f.line_a, f.line_b}) {
         if (line == pp::kNoLine) continue;
         pp::ConfigureLine c = board.lines[line];
-        if (!ph::CalibratedLine(*file, line, c)) continue;
+        const auto changed = ph::CalibratedLine(*file, line, c);
+        if (!changed.ok()) {
+          std::fprintf(stderr, "scene bench: %s\n", changed.message.c_str());
+          return false;
+        }
+        if (!changed.value) continue;
         board_.SendConfig(c);
         board_.Run(5);
         if (board.lines[line].chamber_tau_us != c.chamber_tau_us ||

@@ -60,7 +60,20 @@ void ShapeLine(const ChamberModel& m, pp::ConfigureLine& line) {
   line.slew_pa_per_s = 0;
 }
 
-pp::ConfigureFinger CalibratedFinger(pp::ConfigureFinger f, const CalibrationFile& c) {
+Result<pp::ConfigureFinger> CalibratedFinger(pp::ConfigureFinger f, const CalibrationFile& c) {
+  if (f.kind != c.kind)
+    return Outcome::Fail(Status::kBadValue, "the finger's kind differs from the calibration's");
+  // A file read from disk is checked against these bounds; one built in memory may not be.
+  if (c.static_inverse.size() > f.inverse.size())
+    return Outcome::Fail(Status::kBadValue, "the calibration's static inverse has " +
+                                                std::to_string(c.static_inverse.size()) +
+                                                " points, a finger holds " +
+                                                std::to_string(f.inverse.size()));
+  if (c.compensator_params.size() > f.params.size())
+    return Outcome::Fail(Status::kBadValue, "the calibration's compensator has " +
+                                                std::to_string(c.compensator_params.size()) +
+                                                " parameters, a finger holds " +
+                                                std::to_string(f.params.size()));
   f.inverse_count = static_cast<uint8_t>(c.static_inverse.size());
   std::copy(c.static_inverse.begin(), c.static_inverse.end(), f.inverse.begin());
   f.compensator = c.compensator;
@@ -71,12 +84,17 @@ pp::ConfigureFinger CalibratedFinger(pp::ConfigureFinger f, const CalibrationFil
   return f;
 }
 
-bool CalibratedLine(const CalibrationFile& c, uint8_t index, pp::ConfigureLine& line) {
+Result<bool> CalibratedLine(const CalibrationFile& c, uint8_t index, pp::ConfigureLine& line) {
   const auto rc = std::find_if(c.regulator_corrections.begin(), c.regulator_corrections.end(),
                                [index](const RegulatorCorrection& r) { return r.line == index; });
   const auto chamber = std::find_if(c.chamber_models.begin(), c.chamber_models.end(),
                                     [index](const ChamberModel& m) { return m.line == index; });
   if (rc == c.regulator_corrections.end() && chamber == c.chamber_models.end()) return false;
+  if (rc != c.regulator_corrections.end() && rc->points.size() > line.correction.size())
+    return Outcome::Fail(Status::kBadValue, "line " + std::to_string(index) + "'s correction has " +
+                                                std::to_string(rc->points.size()) +
+                                                " points, a line holds " +
+                                                std::to_string(line.correction.size()));
   if (rc != c.regulator_corrections.end()) {
     line.correction_count = static_cast<uint8_t>(rc->points.size());
     std::copy(rc->points.begin(), rc->points.end(), line.correction.begin());

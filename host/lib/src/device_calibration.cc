@@ -112,11 +112,10 @@ Outcome Device::ApplyCalibration(uint8_t finger, const CalibrationFile& c) {
                        "', the calibration is for '" + c.actuator_serial + "'",
                    {}};
   }
-  if (f.kind != c.kind)
-    return Outcome{Status::kBadValue,
-                   "apply calibration: the finger's kind differs from the calibration's",
-                   {}};
-  f = CalibratedFinger(f, c);
+  const auto calibrated = CalibratedFinger(f, c);
+  if (!calibrated.ok())
+    return Outcome::Fail(calibrated.status, "apply calibration: " + calibrated.message);
+  f = calibrated.value;
   // One staged blob: the board validates every record and applies all of them or none.
   std::vector<uint8_t> records;
   auto append = [&records](const auto& message) {
@@ -131,15 +130,13 @@ Outcome Device::ApplyCalibration(uint8_t finger, const CalibrationFile& c) {
   // Each of the finger's lines once, with its correction and its chamber model (step shaping).
   for (const uint8_t index : {f.line_a, f.line_b}) {
     if (index == pp::kNoLine) continue;
-    if (!std::any_of(c.regulator_corrections.begin(), c.regulator_corrections.end(),
-                     [index](const RegulatorCorrection& r) { return r.line == index; }) &&
-        !std::any_of(c.chamber_models.begin(), c.chamber_models.end(),
-                     [index](const ChamberModel& m) { return m.line == index; }))
-      continue;
     const auto line = ReadLine(index);
     if (!line.ok()) return Outcome{line.status, "apply calibration: " + line.message, {}};
     pp::ConfigureLine l = line.value;
-    CalibratedLine(c, index, l);
+    const auto changed = CalibratedLine(c, index, l);
+    if (!changed.ok())
+      return Outcome::Fail(changed.status, "apply calibration: " + changed.message);
+    if (!changed.value) continue;
     if (!append(l))
       return Outcome{Status::kBadValue, "apply calibration: the line record cannot be encoded", {}};
   }

@@ -168,12 +168,16 @@ FingerCurves CurvesFromCalibration(const CalibrationFile& c);
 
 /// What applying `c` makes of its finger's record: the static inverse, the compensator and its
 /// parameters, and (jamming) the recommended bias. The board's other fields stay as they are.
-protocol::ConfigureFinger CalibratedFinger(protocol::ConfigureFinger finger,
-                                           const CalibrationFile& c);
+/// Refused (kBadValue, saying why) when the finger's kind differs from the calibration's or the
+/// file holds more inverse points or compensator parameters than a finger record does.
+Result<protocol::ConfigureFinger> CalibratedFinger(protocol::ConfigureFinger finger,
+                                                   const CalibrationFile& c);
 
 /// What applying `c` makes of line `index`'s record: its regulator correction and its chamber
-/// model (step shaping), where the file has them. False when it has neither for this line.
-bool CalibratedLine(const CalibrationFile& c, uint8_t index, protocol::ConfigureLine& line);
+/// model (step shaping), where the file has them. False (the record untouched) when it has
+/// neither for this line; refused (kBadValue) when the correction holds more points than a line
+/// record does.
+Result<bool> CalibratedLine(const CalibrationFile& c, uint8_t index, protocol::ConfigureLine& line);
 
 /// What a calibration without a chamber model means for the finger's steps (empty when it has one):
 /// e.g. "schema version 2 has no chamber model: steps are not shaped until the finger is
