@@ -219,13 +219,7 @@ FingerLayout MakeLayout(const LayoutSpec& l) {
 }
 
 Result<SceneSpec> ParseScene(const std::string& text, const std::string& base_dir) {
-  const Result<json> j = ParseJson(text);
-  if (!j.ok()) return j.outcome();
-  try {
-    return Parse(j.value, base_dir);
-  } catch (const JsonInvalid& e) {
-    return {Status::kInvalidArgument, e.what()};
-  }
+  return ParseJsonWith<SceneSpec>(text, [&](const json& j) { return Parse(j, base_dir); });
 }
 
 Result<SceneSpec> LoadScene(const std::string& path) {

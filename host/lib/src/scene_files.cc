@@ -111,13 +111,7 @@ TissueMap Parse(const nlohmann::json& j) {
 }  // namespace
 
 Result<TissueMap> ParseTissue(const std::string& text) {
-  const Result<nlohmann::json> j = ParseJson(text);
-  if (!j.ok()) return j.outcome();
-  try {
-    return Parse(j.value);
-  } catch (const JsonInvalid& e) {
-    return {Status::kInvalidArgument, e.what()};
-  }
+  return ParseJsonWith<TissueMap>(text, Parse);
 }
 
 Result<TissueMap> LoadTissue(const std::string& path) {

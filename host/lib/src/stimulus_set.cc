@@ -174,13 +174,7 @@ std::vector<std::vector<int>> TumourCombinations(size_t fingers, int levels) {
 }
 
 Result<StimulusSet> ParseStimulusSet(const std::string& text) {
-  const Result<nlohmann::json> j = ParseJson(text);
-  if (!j.ok()) return j.outcome();
-  try {
-    return Parse(j.value);
-  } catch (const JsonInvalid& e) {
-    return {Status::kInvalidArgument, e.what()};
-  }
+  return ParseJsonWith<StimulusSet>(text, Parse);
 }
 
 std::vector<std::string> ShippedStimulusSets() {

@@ -31,6 +31,19 @@ struct JsonInvalid : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// ParseJson, then `parse` (which throws JsonInvalid naming the field) on the document: either
+/// failure an invalid-argument Result that names the field. What every JSON file reader does.
+template <typename T, typename Parse>
+Result<T> ParseJsonWith(const std::string& text, Parse parse) {
+  const Result<nlohmann::json> j = ParseJson(text);
+  if (!j.ok()) return j.outcome();
+  try {
+    return parse(j.value);
+  } catch (const JsonInvalid& e) {
+    return Result<T>{Status::kInvalidArgument, e.what()};
+  }
+}
+
 /// An object being validated: every key must be one the schema knows; getters check type and
 /// range and throw JsonInvalid naming the field.
 class JsonObject {
