@@ -12,22 +12,9 @@ import sys
 import tempfile
 import time
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import palpa  # noqa: E402
+from palpa_checks import palpa, refused, REPO
 
-
-def refused(error_type, call, *words):
-    """call() raises error_type with every word in its message."""
-    try:
-        call()
-    except error_type as e:
-        for word in words:
-            assert word in str(e), (word, str(e))
-        return
-    raise AssertionError(f"expected {error_type.__name__} with {words}")
-
-
-DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "tests", "host", "lib", "data")
+DATA = os.path.join(REPO, "tests", "host", "lib", "data")
 
 
 def curve_warnings(name):

@@ -4,23 +4,10 @@ device, samples fed without waiting with each finger's render returned, a lifted
 every finger, telemetry drained without waiting, several fingers set in one call, and clear
 errors for wrong requests."""
 import os
-import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import palpa  # noqa: E402
+from palpa_checks import palpa, refused, REPO
 
-EXAMPLE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "docs", "examples",
-                       "scene_three_cube.json")
-
-
-def refused(error_type, call, *words):
-    try:
-        call()
-    except error_type as e:
-        for word in words:
-            assert word in str(e), (word, str(e))
-        return
-    raise AssertionError(f"expected {error_type.__name__} with {words}")
+EXAMPLE = os.path.join(REPO, "docs", "examples", "scene_three_cube.json")
 
 
 def main():

@@ -213,8 +213,36 @@ def calibrate_simulated(finger, out, **options):
     return _calibrate(lib, None, "sim", finger, out, options, check)
 
 
-class Device:
-    """One palpa board."""
+class _Closable:
+    """Something the library opened and must be given back once: close() does it, so does
+    leaving a `with` block (exceptions included) and garbage collection of a forgotten one.
+    Subclasses set self._handle and say in _release(handle) how it is given back."""
+    _handle = None
+
+    def _release(self, handle):
+        raise NotImplementedError
+
+    def close(self):
+        if self._handle:
+            self._release(self._handle)
+            self._handle = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:  # interpreter shutdown: the board's timeout ends a session instead
+            pass
+
+
+class Device(_Closable):
+    """One palpa board. close() (or `with`) ends the session: every output safe at once, no fault
+    latched, the board free for the next host."""
 
     def __init__(self, uri):
         lib = _library()
@@ -232,25 +260,10 @@ class Device:
                              self._lib.palpa_last_error(self._handle).decode(),
                              _fault_names(self._lib, self._lib.palpa_last_faults(self._handle)))
 
-    def close(self):
+    def _release(self, handle):
         """Ends the session: every output safe at once, no fault latched, the board free for the
-        next host. `with` does it on the way out, exceptions included; so does garbage collection
-        of a forgotten device."""
-        if self._handle:
-            self._lib.palpa_close(self._handle)
-            self._handle = None
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-
-    def __del__(self):
-        try:
-            self.close()
-        except Exception:  # interpreter shutdown: the board's timeout ends the session instead
-            pass
+        next host."""
+        self._lib.palpa_close(handle)
 
     def info(self):
         info = _Info()

@@ -12,7 +12,7 @@ frame.
 import ctypes
 import numbers
 
-from . import _library, MAX_FINGERS, _UNITS
+from . import _library, _Closable, MAX_FINGERS, _UNITS
 
 
 class _Render(ctypes.Structure):
@@ -43,8 +43,9 @@ def _number(name, value):
     return float(value)
 
 
-class Scene:
-    """A scene file's scene on an open Device (which must stay open while the scene is used)."""
+class Scene(_Closable):
+    """A scene file's scene on an open Device (which must stay open while the scene is used);
+    close() or `with` gives it back."""
 
     def __init__(self, device, path):
         lib = _library()
@@ -71,22 +72,8 @@ class Scene:
                  "depth_mm": r.depth_mm, "u": r.u, "target": r.target, "unit": _UNITS[r.finger_unit]}
                 for r in self._renders[:n]]
 
-    def close(self):
-        if self._handle:
-            self._lib.palpa_scene_close(self._handle)
-            self._handle = None
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-
-    def __del__(self):
-        try:
-            self.close()
-        except Exception:
-            pass
+    def _release(self, handle):
+        self._lib.palpa_scene_close(handle)
 
 
 __all__ = ["Scene"]
