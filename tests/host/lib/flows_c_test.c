@@ -10,19 +10,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "c_abi_check.h"
 #include "palpa/c/palpa.h"
-
-static int failures = 0;
-
-#define EXPECT(cond, ...)                                        \
-  do {                                                           \
-    if (!(cond)) {                                               \
-      fprintf(stderr, "%s:%d: %s: ", __FILE__, __LINE__, #cond); \
-      fprintf(stderr, __VA_ARGS__);                              \
-      fprintf(stderr, "\n");                                     \
-      ++failures;                                                \
-    }                                                            \
-  } while (0)
 
 static int exists(const char* path) {
   struct stat st;
@@ -134,15 +123,11 @@ static void calibration(void) {
 }
 
 int main(void) {
-  palpa_device* d = NULL;
-  if (palpa_open("sim:thesis-5finger", &d) != PALPA_OK) {
-    fprintf(stderr, "open: %s\n", palpa_last_error(NULL));
-    return 1;
-  }
+  palpa_device* d = open_board("sim:thesis-5finger");
+  if (d == NULL) return 1;
   configuration(d);
   palpa_close(d);
   curves();
   calibration();
-  printf("%s\n", failures ? "FAILED" : "passed");
-  return failures ? 1 : 0;
+  return verdict("flows_c");
 }

@@ -5,19 +5,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "c_abi_check.h"
 #include "palpa/c/palpa.h"
-
-static int failures = 0;
-
-#define EXPECT(cond, ...)                                        \
-  do {                                                           \
-    if (!(cond)) {                                               \
-      fprintf(stderr, "%s:%d: %s: ", __FILE__, __LINE__, #cond); \
-      fprintf(stderr, __VA_ARGS__);                              \
-      fprintf(stderr, "\n");                                     \
-      ++failures;                                                \
-    }                                                            \
-  } while (0)
 
 static void scene(palpa_device* d) {
   palpa_scene* s = NULL;
@@ -66,15 +55,10 @@ static void several(palpa_device* d) {
 }
 
 int main(void) {
-  palpa_device* d = NULL;
-  int status = palpa_open("sim:thesis-pneumatic-3", &d);
-  if (status != PALPA_OK) {
-    fprintf(stderr, "open: %s\n", palpa_last_error(NULL));
-    return 1;
-  }
+  palpa_device* d = open_board("sim:thesis-pneumatic-3");
+  if (d == NULL) return 1;
   scene(d);
   several(d);
   palpa_close(d);
-  if (failures == 0) printf("scene_c: ok\n");
-  return failures == 0 ? 0 : 1;
+  return verdict("scene_c");
 }
