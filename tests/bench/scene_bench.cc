@@ -2,9 +2,11 @@
 // thesis's triangle (the example scene) on the simulated board, in virtual time: each input sample
 // (100 Hz, a pen tablet's rate) rendered and sent as one SetFingerTargets; every board tick, each
 // finger's true output (the plant's) against the rule's target at the finger's current position.
-// Prints, per speed and per finger, the error (RMS and 95th percentile, of the scene's target
-// range) and the edge lag at cube B's leading edge (how far the finger travels past the point where
-// the rule's target crosses half of its change before its true output does) — each pass on the
+// Passes run along the cubes' mid-line and along a second line 15 mm below it, where the
+// triangle's third finger crosses the cubes. Prints, per speed and per finger, the error (RMS and
+// 95th percentile, of the scene's target range), the finger's speed where it meets cube B's near
+// face, and the edge lag there (how far the finger travels past the point where the rule's
+// target crosses half of its change before its true output does) — each pass on the
 // fingers' nominal curves without step shaping, and with every finger calibrated on its rig as
 // palpa calibrate does and the calibration applied (scene_pass.h).
 //   palpa_scene_bench SCENE.json
@@ -23,7 +25,6 @@ namespace ph = palpa::host;
 
 using pb::kEndX;
 using pb::kStartX;
-using pb::kY;
 
 namespace {
 
@@ -79,32 +80,39 @@ double Percentile(std::vector<double> v, double p) {
   return v.empty() ? NAN : v[static_cast<size_t>(p * static_cast<double>(v.size() - 1))];
 }
 
-/// One pass on both boards: the fingers on their nominal curves with no step shaping (as the
-/// scene was first measured), and each finger calibrated on its rig and applied. A Markdown row
-/// per finger.
+/// One pass along y = `y` on both boards: the fingers on their nominal curves with no step
+/// shaping (as the scene was first measured), and each finger calibrated on its rig and applied.
+/// A Markdown row per finger, with the finger's speed where it met B's face.
 int Row(const ph::SceneRenderer& scene, bool jamming, const std::vector<uint8_t>& fingers,
-        const std::string& name, const std::vector<double>& path, double range) {
+        const std::string& name, const std::vector<double>& path, double y, double range) {
   std::vector<std::string> rows;
-  for (uint8_t f : fingers) rows.push_back("| " + name + " | " + std::to_string(f) + " |");
   for (const bool calibrated : {false, true}) {
     pb::ScenePass pass(scene, jamming, calibrated, fingers);
     if (!pass.ok()) return 1;
-    const pb::PassResult r = pass.Pass(path, range);
-    for (size_t f = 0; f < rows.size(); ++f) rows[f] += Cells(r[f]);
+    const pb::PassResult r = pass.Pass(path, y, range);
+    for (size_t f = 0; f < fingers.size(); ++f) {
+      if (!calibrated) {
+        char speed[32] = "—";
+        if (!std::isnan(r[f].edge_speed_mm_s))
+          std::snprintf(speed, sizeof(speed), "%.1f mm/s", r[f].edge_speed_mm_s);
+        rows.push_back("| " + name + " | " + std::to_string(fingers[f]) + " | " + speed + " |");
+      }
+      rows[f] += Cells(r[f]);
+    }
   }
   for (const std::string& row : rows) std::printf("%s\n", row.c_str());
   std::fflush(stdout);
   return 0;
 }
 
-/// The table of one scene's passes: straight at each speed, then hand-like.
+/// The table of one scene's passes along y = `y`: straight at each speed, then hand-like.
 int Table(const ph::SceneRenderer& scene, bool jamming, const std::vector<uint8_t>& fingers,
-          const std::string& title) {
+          const std::string& title, double y) {
   // The scene's target range: from the softest to the stiffest target the rule gives a finger
-  // on the tissue.
+  // on the tissue along the cubes' mid-line (every table the same denominator).
   double lo = 1e9, hi = -1e9;
   for (double x = 0; x <= 120; x += 0.25) {
-    for (const auto& r : scene.Render({0, x, kY, 1})) {
+    for (const auto& r : scene.Render({0, x, pb::kMidLineY, 1})) {
       if (!r.touching) continue;  // off the tissue: released, not part of the range
       lo = std::min(lo, r.mapped.target / 1000.0);
       hi = std::max(hi, r.mapped.target / 1000.0);
@@ -113,21 +121,21 @@ int Table(const ph::SceneRenderer& scene, bool jamming, const std::vector<uint8_
   std::printf(
       "\n%s on palpa-sim %s, plant level 3, unit %u; passes along y = %g mm from x = %g to %g mm,"
       " input at %d Hz; target range %.3f %s\n\n",
-      title.c_str(), jamming ? "thesis-jamming-2" : "thesis-pneumatic-3", pb::kUnit, kY, kStartX,
+      title.c_str(), jamming ? "thesis-jamming-2" : "thesis-pneumatic-3", pb::kUnit, y, kStartX,
       kEndX, 1000 / pb::kInputEveryMs, hi - lo, jamming ? "N/mm" : "mm");
   std::printf(
-      "| pass | finger | nominal: error RMS | p95 | edge lag at B | fingers calibrated: error RMS "
-      "| "
-      "p95 | edge lag at B |\n|---|---:|---:|---:|---:|---:|---:|---:|\n");
+      "| pass | finger | speed at B | nominal: error RMS | p95 | edge lag at B | fingers "
+      "calibrated: "
+      "error RMS | p95 | edge lag at B |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const double speed : {5.0, 10.0, 20.0, 30.0, 60.0}) {
     char name[48];
     std::snprintf(name, sizeof(name), "straight, %g mm/s", speed);
-    if (Row(scene, jamming, fingers, name, Straight(speed), hi - lo) != 0) return 1;
+    if (Row(scene, jamming, fingers, name, Straight(speed), y, hi - lo) != 0) return 1;
   }
   for (const double speed : {10.0, 30.0}) {
     char name[48];
     std::snprintf(name, sizeof(name), "hand-like, %g mm/s ± 50 %%", speed);
-    if (Row(scene, jamming, fingers, name, HandLike(speed), hi - lo) != 0) return 1;
+    if (Row(scene, jamming, fingers, name, HandLike(speed), y, hi - lo) != 0) return 1;
   }
   return 0;
 }
@@ -150,8 +158,11 @@ int main(int argc, char** argv) {
   const auto scene = ph::SceneRenderer::Make(tissue.value, ph::MakeLayout(spec.value.layout),
                                              spec.value.rule, fingers);
   if (!scene.ok()) return std::fprintf(stderr, "%s\n", scene.message.c_str()), 1;
-  if (Table(scene.value, false, spec.value.board_fingers, "scene " + spec.value.name) != 0)
-    return 1;
+  // Along the mid-line fingers 0 and 1 cross the cubes; along the second line finger 2 does.
+  for (const double y : {pb::kMidLineY, pb::kSecondLineY}) {
+    if (Table(scene.value, false, spec.value.board_fingers, "scene " + spec.value.name, y) != 0)
+      return 1;
+  }
   // The jamming pair on the same tissue, 20 mm apart, N/mm over each finger's nominal curve.
   std::vector<ph::RenderFinger> pair;
   for (uint8_t f = 0; f < 2; ++f) {
@@ -164,5 +175,5 @@ int main(int argc, char** argv) {
       ph::SceneRenderer::Make(tissue.value, ph::JammingPairLayout(20, 4), {}, pair);
   if (!jamming.ok()) return std::fprintf(stderr, "%s\n", jamming.message.c_str()), 1;
   return Table(jamming.value, true, {0, 1},
-               "the jamming pair (20 mm, a 4 mm disc) on the same tissue");
+               "the jamming pair (20 mm, a 4 mm disc) on the same tissue", pb::kMidLineY);
 }

@@ -28,13 +28,17 @@ namespace pp = palpa::protocol;
 namespace ph = palpa::host;
 
 constexpr int kInputEveryMs = 10;
-constexpr double kStartX = 20, kEndX = 100, kY = 15;
+constexpr double kStartX = 20, kEndX = 100;
+/// The passes' lines: the cubes' mid-line, and 15 mm below it, where the triangle's third finger
+/// (15 mm above the input) runs along the mid-line and crosses the cubes.
+constexpr double kMidLineY = 15, kSecondLineY = 0;
 
 /// One finger's score over a pass.
 struct FingerScore {
-  std::vector<double> errors;  ///< |true − target| / range, every tick
-  double edge_lag_mm = NAN;    ///< NAN: the output never crossed half of the change over B
-  bool meets_edge = false;     ///< the finger's path crosses cube B's near face at all
+  std::vector<double> errors;    ///< |true − target| / range, every tick
+  double edge_lag_mm = NAN;      ///< NAN: the output never crossed half of the change over B
+  bool meets_edge = false;       ///< the finger's path crosses cube B's near face at all
+  double edge_speed_mm_s = NAN;  ///< the finger's speed where the rule's target crossed at B
 };
 using PassResult = std::vector<FingerScore>;
 
@@ -55,8 +59,10 @@ class ScenePass {
   /// False when the board refused a calibrated line's configuration (said on stderr).
   bool ok() const { return ok_; }
 
-  /// A path: the input's x at each millisecond of the pass (after settling at the first).
-  PassResult Pass(const std::vector<double>& path, double range_mm) {
+  /// A path along y = `y`: the input's x at each millisecond of the pass (after settling at the
+  /// first).
+  PassResult Pass(const std::vector<double>& path, double y, double range_mm) {
+    y_ = y;
     const size_t n = scene_->layout().fingers.size();
     PassResult r(n);
     // Settle at the start (the first target re-homes the fingers), then the pass.
@@ -78,7 +84,7 @@ class ScenePass {
       board_.Run(1);
       if (ms < 0) continue;
       const auto truth = board_.sim().plant().Truth();
-      const auto now = scene_->Render({0, x, kY, 1});
+      const auto now = scene_->Render({0, x, y_, 1});
       for (size_t f = 0; f < n; ++f) {
         const double target = now[f].mapped.target / 1000.0;
         const double true_f = True(truth, f);
@@ -86,7 +92,11 @@ class ScenePass {
         s.errors.push_back(std::fabs(true_f - target) / range_mm);
         const double at = x + scene_->layout().fingers[f].dx_mm;
         if (!s.meets_edge) continue;
-        if (std::isnan(rule_cross[f]) && target >= half[f]) rule_cross[f] = at;
+        if (std::isnan(rule_cross[f]) && target >= half[f]) {
+          rule_cross[f] = at;
+          // The hand-like passes vary their speed: this is the speed the lag is made at.
+          s.edge_speed_mm_s = 1000 * std::fabs(x - path[static_cast<size_t>(std::max(0, ms - 1))]);
+        }
         if (std::isnan(s.edge_lag_mm) && !std::isnan(rule_cross[f]) && previous_true[f] < half[f] &&
             true_f >= half[f])
           s.edge_lag_mm = at - rule_cross[f];
@@ -187,13 +197,13 @@ class ScenePass {
     return jamming_ ? t.fingers[f].stiffness_n_per_mm : t.fingers[f].deformation_mm;
   }
   double Target(size_t f, double x) const {
-    return scene_->Render({0, x, kY, 1})[f].mapped.target / 1000.0;
+    return scene_->Render({0, x, y_, 1})[f].mapped.target / 1000.0;
   }
   void SendTargets(double x) {
     pp::SetFingerTargets t{};
     t.session = testing::InProcessBoard::kSession;
     t.generation = board_.next_generation();
-    const auto renders = scene_->Render({0, x, kY, 1});
+    const auto renders = scene_->Render({0, x, y_, 1});
     const auto requests = scene_->Requests(renders);
     for (size_t f = 0; f < renders.size(); ++f) {
       t.entries[t.entry_count++] = {requests[f].finger,
@@ -210,6 +220,7 @@ class ScenePass {
   std::string config_;
   testing::InProcessBoard board_;
   bool ok_ = true;
+  double y_ = kMidLineY;  ///< the pass's line
 };
 
 }  // namespace palpa::bench
