@@ -1,5 +1,6 @@
-// palpa scene: a phantom's tissue file written (the preset and a block of one's own) and read
-// back, a scene drawn as SVG, and every wrong argument named; no board is involved.
+// palpa scene and palpa render: a phantom's tissue file written (the preset and a block of one's
+// own) and read back, a scene drawn as SVG, every wrong argument named; a trajectory rendered on
+// palpa-sim and recorded, at its own pace on the board's clock, and shown live on a terminal.
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -152,4 +153,32 @@ TEST(CliScene, ATrajectoryKeepsItsPaceOnTheBoardsClockWhateverTheSimulatorsSpeed
              (std::to_string(board_span_s) + " s of board time for " +
               std::to_string(trajectory_span_s) + " s of trajectory")
                  .c_str());
+}
+
+TEST(CliScene, OnATerminalEachSampleIsShownAsItGoes) {
+  // On a terminal (script(1) gives the command one) each sample's input and every finger's target
+  // take one line that the next sample overwrites; through a pipe only the summary is printed.
+  const std::string input = OwnTempPath("live.csv");
+  {
+    std::ofstream pass(input);
+    pass << "time_s,x_mm,y_mm,force_n\n0,40,12,1\n0.01,41,12,1\n0.02,42,12,1\n";
+  }
+  const std::string command = "env -u PALPA_DEVICE PALPA_STATE_DIR=/nonexistent-palpa-state " +
+                              std::string("PALPA_SIM=") + PALPA_SIM_PATH + " " + PALPA_CLI_PATH +
+                              " --device sim:thesis-pneumatic-3 render " + kExample + " --input " +
+                              input;
+  const auto live = palpa::testing::Shell("script -qec '" + command + "' /dev/null");
+  LONGS_EQUAL_TEXT(0, live.code, live.output.c_str());
+  // Finger 2 (x + 15 mm) on cube B's face and then over it; fingers 1 and 3 on the block.
+  CHECK_TEXT(
+      Has(live, "\r  0.000 s  x   40.0  y   12.0 mm  1.00 N  targets  0.000  0.984  0.000\r"),
+      live.output.c_str());
+  CHECK_TEXT(Has(live, "\r  0.020 s  x   42.0  y   12.0 mm  1.00 N  targets  0.000  1.164  0.000"),
+             live.output.c_str());
+  CHECK_TEXT(Has(live, "3 of 3 samples rendered"), live.output.c_str());
+  const auto piped = palpa::testing::Shell(command);
+  LONGS_EQUAL_TEXT(0, piped.code, piped.output.c_str());
+  CHECK_TEXT(Has(piped, "3 of 3 samples rendered"), piped.output.c_str());
+  CHECK_FALSE(Has(piped, "targets"));
+  std::remove(input.c_str());
 }
