@@ -6,6 +6,7 @@
 #include <map>
 
 #include "cli.h"
+#include "palpa/host/request_text.h"
 
 namespace palpa::cli {
 namespace {
@@ -17,28 +18,7 @@ host::Outcome Invalid(std::string why) {
 
 }  // namespace
 
-bool ParseNumber(const std::string& text, double& out) {
-  // Decimal only: strtod alone would also take "0x1", "inf", "nan" and leading blanks.
-  size_t i = 0;
-  if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
-  size_t digits = 0;
-  while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) ++i, ++digits;
-  if (i < text.size() && text[i] == '.') {
-    ++i;
-    while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) ++i, ++digits;
-  }
-  if (digits == 0) return false;
-  if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
-    ++i;
-    if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
-    size_t exponent = 0;
-    while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) ++i, ++exponent;
-    if (exponent == 0) return false;
-  }
-  if (i != text.size()) return false;
-  out = std::strtod(text.c_str(), nullptr);
-  return std::isfinite(out);
-}
+bool ParseNumber(const std::string& text, double& out) { return host::ParseDecimal(text, out); }
 
 host::Result<std::string> OptionValue(const std::vector<std::string>& args, size_t i) {
   if (i + 1 >= args.size() || (args[i + 1].rfind("--", 0) == 0 && args[i + 1].size() > 2))
@@ -121,45 +101,9 @@ host::Result<host::FingerRequest> ParseFingerArgument(const std::string& arg,
   host::FingerRequest out;
   const host::Result<std::string> split = SplitIndex(arg, "finger", finger_count, out.finger);
   if (!split.ok()) return split.outcome();
-  const std::string& value = split.value;
-  struct Suffix {
-    const char* text;
-    host::TargetKind kind;
-  };
-  const Suffix suffixes[] = {{"N/mm", host::TargetKind::kStiffnessNPerMm},
-                             {"kPa", host::TargetKind::kPressureKpa},
-                             {"mm", host::TargetKind::kDeformationMm}};
-  double n = 0;
-  if (value[0] == 'L' || value[0] == 'l') {
-    if (!ParseNumber(value.substr(1), n) || n != std::floor(n) || n < 0) {
-      return Invalid("'" + arg + "': a level is L followed by 0, 1, 2 ...");
-    }
-    out.request = host::Request{host::TargetKind::kLevel, n};
-    return out;
-  }
-  for (const Suffix& s : suffixes) {
-    if (!EndsWithIgnoringCase(value, s.text)) continue;
-    const std::string number = value.substr(0, value.size() - std::string(s.text).size());
-    if (!EndsWith(value, s.text)) {  // "10kpa", "1.2MM": units are spelled one way only
-      return Invalid("'" + arg + "': unknown unit '" + value.substr(number.size()) +
-                     "' (did you mean " + number + s.text + "?)");
-    }
-    if (!ParseNumber(number, n)) {
-      return Invalid("'" + arg + "': '" + value + "' is not a number followed by " + s.text);
-    }
-    out.request = host::Request{s.kind, n};
-    return out;
-  }
-  if (!ParseNumber(value, n)) {
-    return Invalid("'" + arg +
-                   "': expected L<level>, a number 0..1, <mm>mm, <N/mm>N/mm or <kPa>kPa");
-  }
-  if (n < 0 || n > 1) {
-    return Invalid(
-        "'" + arg +
-        "': a plain number is a normalised stiffness from 0 to 1 (add a unit for anything else)");
-  }
-  out.request = host::Request{host::TargetKind::kNormalized, n};
+  const host::Result<host::Request> request = host::ParseRequestText(split.value);
+  if (!request.ok()) return Invalid("'" + arg + "': " + request.message);
+  out.request = request.value;
   return out;
 }
 
