@@ -78,16 +78,7 @@ int CmdList(Context& c, const std::vector<std::string>& args) {
   return kExitOk;
 }
 
-namespace {
-
-/// What `info` says of the configuration: whether a reset keeps it.
-std::string ConfigState(const pp::Diagnostics& d) {
-  if (!d.config_unsaved) return d.config_saved ? "saved" : "factory default";
-  return d.config_saved ? "changed, not saved: a reset returns to the saved one"
-                        : "changed, not saved: a reset returns to the factory default";
-}
-
-}  // namespace
+namespace {}  // namespace
 
 int CmdInfo(Context& c, const std::vector<std::string>& args) {
   if (!args.empty()) return Usage("info", "takes no arguments");
@@ -96,7 +87,7 @@ int CmdInfo(Context& c, const std::vector<std::string>& args) {
   const pp::HelloReply b = d->info();
   const auto diag = d->Diagnostics();  // the configuration's state now, not at Hello
   if (!diag.ok()) return Fail("info", diag.status, diag.message);
-  const std::string state = ConfigState(diag.value);
+  const std::string state = host::ConfigStateText(diag.value);
   const std::string firmware = std::to_string(b.firmware_major) + "." +
                                std::to_string(b.firmware_minor) + "." +
                                std::to_string(b.firmware_patch);
@@ -105,25 +96,7 @@ int CmdInfo(Context& c, const std::vector<std::string>& args) {
     ordered_json j;
     j["device"] = d->link().Describe();
     j["simulator"] = c.throwaway ? "throwaway" : (b.plant_simulated ? "kept" : "none");
-    j["board"] = {{"kind", pp::kBoardKindNames[static_cast<int>(b.board_kind)]},
-                  {"id", b.board_id},
-                  {"firmware", firmware},
-                  {"protocol", b.protocol_version},
-                  {"catalog_hash", b.catalog_hash},
-                  {"catalog_matches", d->link().catalog_matches()},
-                  {"plant_simulated", b.plant_simulated},
-                  {"time_scale", b.time_scale},
-                  {"reset_cause", pp::kResetCauseNames[static_cast<int>(b.reset_cause)]},
-                  {"configuration", name},
-                  {"config_state", state},
-                  {"config_is_default", b.config_is_default},
-                  {"config_saved", diag.value.config_saved},
-                  {"config_unsaved", diag.value.config_unsaved},
-                  {"active_slot", b.active_slot},
-                  {"rollback_counter", b.rollback_counter},
-                  {"host_timeout_us", b.host_timeout_us},
-                  {"faults", host::FaultList(diag.value.fault_bitmap)},
-                  {"fault_bitmap", diag.value.fault_bitmap}};
+    j["board"] = host::BoardIdentityJson(b, diag.value, d->link().catalog_matches());
     j["lines"] = host::LinesJson(b);
     j["fingers"] = host::FingersJson(b);
     j["numbering"] = "lines and fingers from 1";
@@ -159,18 +132,6 @@ int CmdInfo(Context& c, const std::vector<std::string>& args) {
   return kExitOk;
 }
 
-namespace {
-
-/// The lines (numbered from 1) whose shaped steps fell back to unshaped ones.
-std::vector<int> ShapingFellBack(const pp::Diagnostics& d) {
-  std::vector<int> lines;
-  for (int i = 0; i < pp::kMaxLines; ++i)
-    if (d.shaping_fallback_lines & (1u << i)) lines.push_back(i + 1);
-  return lines;
-}
-
-}  // namespace
-
 int CmdDiag(Context& c, const std::vector<std::string>& args) {
   if (!args.empty()) return Usage("diag", "takes no arguments");
   host::Device* d = c.Device();
@@ -181,39 +142,7 @@ int CmdDiag(Context& c, const std::vector<std::string>& args) {
   if (!stats.ok()) return Fail("diag", stats.status, stats.message);
   const host::LinkCounters link = d->link().counters();
   if (c.json) {
-    ordered_json history = ordered_json::array();
-    for (uint8_t i = 0; i < diag.value.history_count; ++i) {
-      const auto& h = diag.value.history[i];
-      history.push_back({{"time_us", h.time_us},
-                         {"fault", host::FaultName(h.fault)},
-                         {"detail", h.detail},
-                         {"meaning", host::FaultDetail(h.fault, h.detail, 1)}});
-    }
-    const auto& s = stats.value;
-    PrintJson(ordered_json{
-        {"reset_cause", pp::kResetCauseNames[static_cast<int>(diag.value.reset_cause)]},
-        {"boot_count", diag.value.boot_count},
-        {"faults_latched", diag.value.fault_bitmap},
-        {"faults_active", diag.value.active_conditions},
-        {"faults_latched_names", host::FaultList(diag.value.fault_bitmap)},
-        {"faults_active_names", host::FaultList(diag.value.active_conditions)},
-        {"uptime_us", diag.value.uptime_us},
-        {"shaping_fell_back", ShapingFellBack(diag.value)},
-        {"history", history},
-        {"loop",
-         {{"ticks", s.ticks},
-          {"period_us", s.period_us},
-          {"jitter_max_us", s.jitter_max_us},
-          {"worst_tick_us", s.worst_tick_us},
-          {"mean_tick_us", s.mean_tick_us},
-          {"overruns", s.overruns},
-          {"telemetry_dropped", s.telemetry_dropped},
-          {"rx_frames", s.rx_frames},
-          {"rx_errors", s.rx_errors}}},
-        {"link",
-         {{"retransmissions", link.retransmissions},
-          {"telemetry_lost", link.telemetry_lost},
-          {"board_resets", link.board_resets}}}});
+    PrintJson(host::DiagnosticsJson(diag.value, stats.value, link, 1));
     return kExitOk;
   }
   std::printf("reset cause     %s (boot %u), up %.1f s\n",
@@ -221,7 +150,7 @@ int CmdDiag(Context& c, const std::vector<std::string>& args) {
               static_cast<double>(diag.value.uptime_us) / 1e6);
   std::printf("faults latched  %s\n", host::FaultNames(diag.value.fault_bitmap).c_str());
   std::printf("faults active   %s\n", host::FaultNames(diag.value.active_conditions).c_str());
-  const std::vector<int> fell_back = ShapingFellBack(diag.value);
+  const std::vector<int> fell_back = host::ShapingFellBackLines(diag.value, 1);
   if (!fell_back.empty()) {
     std::string lines;
     for (int line : fell_back) lines += " " + std::to_string(line);
