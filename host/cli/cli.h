@@ -29,6 +29,9 @@ struct Context {
   bool throwaway = false;
   bool json = false;
   host::DeviceOptions options;  ///< how Device() opens it
+  /// How the device's messages number fingers and lines: from 1, as the command line does, or
+  /// from 0 for a command whose clients number as the library's APIs do (serve).
+  uint8_t number_from = 1;
   /// Opens the device on first use; prints the error and returns nullptr when it cannot.
   host::Device* Device();
   std::unique_ptr<host::Device> device;
@@ -69,7 +72,7 @@ struct Command {
 extern const Command kListCommand, kInfoCommand, kDiagCommand, kConfigCommand, kSetCommand,
     kLineCommand, kMonitorCommand, kRecordCommand, kEStopCommand, kClearCommand, kDemoCommand,
     kCalibrateCommand, kFlashCommand, kPackageCommand, kKeygenCommand, kSimCommand, kSceneCommand,
-    kRenderCommand;
+    kRenderCommand, kServeCommand;
 
 /// One finger request from "N=VALUE": L2 (level), 0.5 (0..1), 1.2mm, 0.9N/mm, -10kPa. Fingers are
 /// numbered from 1 on the command line, up to `finger_count`. Returns false with a message naming

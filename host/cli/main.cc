@@ -21,7 +21,7 @@ const std::map<std::string, const Command*>& Commands() {
          {&kListCommand, &kInfoCommand, &kDiagCommand, &kConfigCommand, &kSetCommand, &kLineCommand,
           &kMonitorCommand, &kRecordCommand, &kEStopCommand, &kClearCommand, &kCalibrateCommand,
           &kFlashCommand, &kPackageCommand, &kKeygenCommand, &kSimCommand, &kDemoCommand,
-          &kSceneCommand, &kRenderCommand})
+          &kSceneCommand, &kRenderCommand, &kServeCommand})
       by_name[c->name] = c;
     return by_name;
   }();
@@ -63,7 +63,7 @@ bool UsesKeptSim(const std::string& command) {
 
 host::Device* Context::Device() {
   if (device) return device.get();
-  options.number_from = 1;  // as the command line numbers fingers and lines
+  options.number_from = number_from;  // from 1, as the command line numbers fingers and lines
   auto opened = host::Device::Open(device_uri, options);
   if (!opened.ok()) {
     const std::string& error = opened.message;

@@ -1,0 +1,65 @@
+// palpa serve: the board's session held by one process, its API and page served to browsers and
+// scripts (docs/serve.md).
+#include <chrono>
+#include <cstdio>
+#include <thread>
+
+#include "cli.h"
+#include "palpa/serve/server.h"
+
+namespace palpa::cli {
+
+int CmdServe(Context& c, const std::vector<std::string>& args) {
+  serve::ServeOptions options;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a != "--listen" && a != "--device" && a != "--allow-host" && a != "--web") {
+      const std::string near = Suggest(a, {"--listen", "--device", "--allow-host", "--web"});
+      return Usage("serve", "unexpected argument '" + a + "'" +
+                                (near.empty() ? "" : " (did you mean " + near + "?)"));
+    }
+    const host::Result<std::string> value = OptionValue(args, i);
+    if (!value.ok()) return Usage("serve", value.message);
+    ++i;
+    if (a == "--listen") {
+      const host::Result<serve::Endpoint> listen = serve::ParseListen(value.value);
+      if (!listen.ok()) return Usage("serve", listen.message);
+      options.listen = listen.value;
+    } else if (a == "--device") {
+      c.device_uri = value.value;
+      c.throwaway = false;
+    } else if (a == "--allow-host") {
+      options.allowed_hosts.push_back(value.value);
+    } else {
+      options.web_root = value.value;
+    }
+  }
+  if (options.web_root.empty()) options.web_root = serve::DefaultWebRoot();
+  c.number_from = 0;  // the API numbers fingers and lines as the library's APIs do
+  host::Device* d = c.Device();
+  if (d == nullptr) return kExitConnect;
+  auto server = serve::Server::Bind(*d, options);
+  if (!server.ok()) return Fail("serve", server.status, server.message, kExitConnect);
+  std::printf("palpa serve: %s on %s\n", d->link().Describe().c_str(), server.value->Url().c_str());
+  if (!options.listen.loopback) {
+    std::printf(
+        "palpa serve: listening beyond loopback: every request needs the token in the URL above\n");
+  }
+  std::fflush(stdout);
+  PollsInterruption polls;
+  server.value->Run([] { return Interrupted(); });
+  server.value.reset();  // every client gone, the board released if one controlled it
+  std::printf("palpa serve: stopped\n");
+  return kExitOk;
+}
+
+const Command kServeCommand{
+    "serve", "serve [--device URI] [--listen ADDRESS:PORT] [--allow-host NAME]... [--web DIR]",
+    "Holds the board's session and serves its JSON-RPC 2.0 API over a WebSocket (/websocket)\n"
+    "and the page (/), for browsers and scripts (docs/serve.md). One client controls the board,\n"
+    "the others watch; a controlling client that goes away (three unanswered pings, 100 ms\n"
+    "apart) leaves the board released. Loopback only by default (127.0.0.1:7180); another\n"
+    "--listen address needs the token printed at start. Ctrl-C stops it and closes the session.",
+    CmdServe};
+
+}  // namespace palpa::cli

@@ -1,0 +1,218 @@
+// Clients, their calls, control and telemetry: the API on the server's thread.
+#include "palpa/serve/api.h"
+
+#include <cstdio>
+
+#include "palpa/serve/board_methods.h"
+
+namespace palpa::serve {
+
+using Json = rpc::Json;
+
+/// The answers of one message: sent together once every call has one (a batch as an array).
+struct BatchAnswer {
+  bool batch = false;
+  size_t pending = 0;
+  std::vector<Json> answers;
+};
+
+namespace {
+
+/// Methods any client may call; every other board method moves the board and needs control.
+bool WatcherMayCall(const std::string& method) {
+  return method == "board.info" || method == "board.diagnostics" || method == "board.config.read" ||
+         method == "board.estop";  // stopping the board is everyone's right
+}
+
+}  // namespace
+
+Api::Api(host::Device& device, const ServeOptions& options, PostToServer post)
+    : device_(device),
+      options_(options),
+      post_(std::move(post)),
+      board_(device.info()),
+      hub_(board_,
+           [&device] {
+             std::vector<host::FingerCurves> curves;
+             for (uint8_t f = 0; f < device.info().finger_count; ++f)
+               curves.push_back(device.curves(f));
+             return curves;
+           }()),
+      control_epoch_(std::make_shared<std::atomic<uint64_t>>(0)) {
+  telemetry_subscription_ =
+      device_.Subscribe([this](const host::TelemetryFrame& f) { hub_.OnFrame(f); });
+}
+
+Api::~Api() { device_.Unsubscribe(telemetry_subscription_); }
+
+ClientId Api::Connect(std::shared_ptr<Peer> peer, const std::string& description) {
+  const ClientId id = next_id_++;
+  clients_[id] = Client{std::move(peer), description, {}, 0};
+  return id;
+}
+
+std::string Api::Name(ClientId id) const {
+  const auto at = clients_.find(id);
+  return "client " + std::to_string(id) +
+         (at == clients_.end() ? "" : " (" + at->second.name + ")");
+}
+
+void Api::Disconnect(ClientId id, const std::string& why) {
+  if (clients_.find(id) == clients_.end()) return;
+  const std::string name = Name(id);
+  clients_.erase(id);
+  const Control::Change change = control_.Leave(id);
+  if (change.release_board) {
+    std::fprintf(stderr, "palpa serve: %s, the controller, %s: board released\n", name.c_str(),
+                 why.c_str());
+    ControlChanged(change, name + " " + why);
+  }
+}
+
+void Api::OnTooLarge(ClientId id, size_t bytes) {
+  ++errors_;
+  const auto at = clients_.find(id);
+  if (at == clients_.end()) return;
+  at->second.peer->Send(rpc::Text(rpc::ErrorAnswer(
+      nullptr, rpc::Error{rpc::kTooLarge,
+                          "a message of " + std::to_string(bytes) + " bytes or more (at most " +
+                              std::to_string(options_.max_message_bytes) + "): dropped unread",
+                          nullptr})));
+}
+
+void Api::OnMessage(ClientId id, std::string_view text) {
+  const auto at = clients_.find(id);
+  if (at == clients_.end()) return;
+  rpc::Parsed parsed = rpc::ParseMessage(text, options_.max_batch);
+  auto batch = std::make_shared<BatchAnswer>();
+  batch->batch = parsed.batch;
+  batch->answers = std::move(parsed.answers);
+  errors_ += batch->answers.size();
+  for (const rpc::Call& call : parsed.calls) batch->pending += call.notification ? 0 : 1;
+  if (batch->pending == 0 && !batch->answers.empty()) {
+    const Json out = batch->batch ? Json(batch->answers) : batch->answers.front();
+    at->second.peer->Send(rpc::Text(out));
+  }
+  for (const rpc::Call& call : parsed.calls) Dispatch(id, call, batch);
+}
+
+void Api::Answer(ClientId id, const rpc::Call& call, const std::shared_ptr<BatchAnswer>& batch,
+                 Json answer) {
+  if (answer.contains("error")) ++errors_;
+  if (call.notification) return;
+  batch->answers.push_back(std::move(answer));
+  if (--batch->pending > 0) return;
+  const auto at = clients_.find(id);
+  if (at == clients_.end()) return;  // gone meanwhile
+  at->second.peer->Send(rpc::Text(batch->batch ? Json(batch->answers) : batch->answers.front()));
+}
+
+void Api::Dispatch(ClientId id, const rpc::Call& call, const std::shared_ptr<BatchAnswer>& batch) {
+  ++calls_;
+  if (call.method.rfind("board.", 0) == 0) return BoardMethod(id, call, batch);
+  std::optional<Json> answer = ServerMethod(id, call);
+  if (!answer) {
+    answer = rpc::ErrorAnswer(
+        call.id,
+        rpc::Error{rpc::kMethodNotFound, "method not found: '" + call.method + "'", nullptr});
+  }
+  Answer(id, call, batch, std::move(*answer));
+}
+
+void Api::BoardMethod(ClientId id, const rpc::Call& call,
+                      const std::shared_ptr<BatchAnswer>& batch) {
+  PreparedCall prepared = PrepareBoardCall(call.method, call.params, board_);
+  if (!prepared.error && !WatcherMayCall(call.method) && !control_.Controls(id)) {
+    prepared.error =
+        rpc::Error{rpc::kNotController,
+                   call.method + " moves the board, and " +
+                       (control_.controller() ? Name(*control_.controller()) + " controls it"
+                                              : std::string("nobody controls it")) +
+                       ": take control first (control.take)",
+                   nullptr};
+  }
+  if (prepared.error) return Answer(id, call, batch, rpc::ErrorAnswer(call.id, *prepared.error));
+  const bool urgent = call.method == "board.estop" || call.method == "board.release";
+  const bool needs_control = !WatcherMayCall(call.method);
+  const uint64_t epoch = control_epoch_->load();
+  auto job = [this, id, call, batch, epoch, needs_control, job = std::move(prepared.job),
+              current = control_epoch_]() {
+    BoardAnswer answer;
+    if (needs_control && current->load() != epoch) {
+      answer.error = rpc::Error{rpc::kNotController,
+                                "control passed before this call ran: nothing was sent", nullptr};
+    } else {
+      answer = job(device_);
+    }
+    Json out = answer.error ? rpc::ErrorAnswer(call.id, *answer.error)
+                            : rpc::Result(call.id, std::move(answer.result));
+    post_([this, id, call, batch, out = std::move(out)]() mutable {
+      Answer(id, call, batch, std::move(out));
+    });
+  };
+  if (urgent) {
+    worker_.PostUrgent(std::move(job));
+  } else {
+    worker_.Post(std::move(job));
+  }
+}
+
+void Api::ControlChanged(const Control::Change& change, const std::string& reason) {
+  control_epoch_->fetch_add(1);
+  if (change.release_board) {
+    // At once, and again behind whatever the old controller had queued, so nothing it sent
+    // before losing control re-actuates the board afterwards.
+    worker_.PostUrgent([this] { device_.Release(); });
+    worker_.Post([this] { device_.Release(); });
+  }
+  const std::optional<ClientId> now = control_.controller();
+  Broadcast(rpc::Notification(
+      "notify_control", {{"controller", now ? Json(*now) : Json(nullptr)},
+                         {"controller_name", now ? clients_[*now].name : ""},
+                         {"previous", change.previous ? Json(*change.previous) : Json(nullptr)},
+                         {"board_released", change.release_board},
+                         {"reason", reason}}));
+}
+
+void Api::Broadcast(const Json& notification) {
+  const std::string text = rpc::Text(notification);
+  for (auto& [id, client] : clients_) client.peer->Send(text);
+}
+
+void Api::Tick(double now_s) {
+  for (auto& [id, client] : clients_) {
+    for (Subscription& s : client.subscriptions) {
+      if (now_s < s.next_due_s) continue;
+      s.next_due_s = std::max(s.next_due_s + 1.0 / s.updates_per_s, now_s);
+      Json params = hub_.Take(s);
+      if (params.is_null()) continue;
+      if (!client.peer->SendDroppable(
+              rpc::Text(rpc::Notification("notify_telemetry", std::move(params)))))
+        ++client.telemetry_dropped;
+    }
+  }
+  if (now_s >= next_events_s_) {  // what happened to the link, told to everyone
+    next_events_s_ = now_s + 0.1;
+    for (const std::string& event : device_.link().TakeEvents()) {
+      std::fprintf(stderr, "palpa serve: %s\n", event.c_str());
+      Broadcast(rpc::Notification("notify_board_event", {{"message", event}}));
+    }
+  }
+}
+
+Json Api::Stats() const {
+  uint64_t dropped = 0;
+  for (const auto& [id, client] : clients_) dropped += client.telemetry_dropped;
+  const host::LinkCounters link = device_.link().counters();
+  return {{"clients", clients_.size()},
+          {"controller", control_.controller() ? Json(*control_.controller()) : Json(nullptr)},
+          {"calls", calls_},
+          {"errors", errors_},
+          {"telemetry_samples", hub_.received()},
+          {"telemetry_lost_on_link", link.telemetry_lost},
+          {"telemetry_dropped_by_link_subscriber", link.subscriber_dropped},
+          {"telemetry_overtaken_in_server", hub_.overtaken()},
+          {"telemetry_notifications_dropped", dropped}};
+}
+
+}  // namespace palpa::serve
