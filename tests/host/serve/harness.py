@@ -1,0 +1,273 @@
+"""What the serve tests share: palpa-sim with its truth channel, `palpa serve` in front of it, raw
+HTTP and WebSocket requests (for headers a WebSocket library will not send wrong), and a JSON-RPC
+client over python3-websockets."""
+import base64
+import json
+import os
+import re
+import socket
+import struct
+import subprocess
+import threading
+import time
+
+import websockets
+
+
+def fail(message):
+    raise AssertionError(message)
+
+
+class Sim:
+    """palpa-sim on a free port, its truth channel read on a thread of its own."""
+
+    def __init__(self, palpa_sim, config="thesis-5finger"):
+        self.proc = subprocess.Popen(
+            [palpa_sim, "--config", config, "--listen", "tcp:127.0.0.1:0",
+             "--truth", "tcp:127.0.0.1:0", "--truth-every-ms", "5"],
+            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        self.address = self.truth_address = None
+        while self.address is None or self.truth_address is None:
+            line = self.proc.stdout.readline()
+            if not line:
+                fail("palpa-sim ended before it listened")
+            if m := re.search(r"listening on (tcp:\S+)", line):
+                self.address = m.group(1)
+            if m := re.search(r"truth on tcp:([\d.]+):(\d+)", line):
+                self.truth_address = (m.group(1), int(m.group(2)))
+        self.samples = []
+        self.lock = threading.Lock()
+        self.sock = socket.create_connection(self.truth_address)
+        threading.Thread(target=self._read, daemon=True).start()
+
+    def _read(self):
+        buffer = b""
+        while True:
+            data = self.sock.recv(65536)
+            if not data:
+                return
+            buffer += data
+            *lines, buffer = buffer.split(b"\n")
+            with self.lock:
+                self.samples.extend(json.loads(line) for line in lines if line)
+
+    def latest(self):
+        """The newest truth sample (board time, board facts, lines, fingers)."""
+        deadline = time.monotonic() + 5
+        while time.monotonic() < deadline:
+            with self.lock:
+                if self.samples:
+                    return self.samples[-1]
+            time.sleep(0.01)
+        fail("no truth from palpa-sim")
+
+    def since(self, board_time_us):
+        with self.lock:
+            return [s for s in self.samples if s["board_time_us"] >= board_time_us]
+
+    def close(self):
+        self.proc.terminate()
+        self.proc.wait(10)
+
+
+class Serve:
+    """`palpa serve` on a free port in front of `device`."""
+
+    def __init__(self, palpa, device, listen="127.0.0.1:0"):
+        self.stderr = open(f"/tmp/palpa-serve-test-{os.getpid()}-{time.monotonic_ns()}.log", "w+")
+        self.proc = subprocess.Popen([palpa, "serve", "--device", device, "--listen", listen],
+                                     stdout=subprocess.PIPE, stderr=self.stderr, text=True)
+        line = self.proc.stdout.readline()
+        m = re.search(r"on http://([^/]+):(\d+)/(\?token=(\w+))?", line)
+        if not m:
+            fail(f"palpa serve did not say where it listens: {line!r}")
+        self.port = int(m.group(2))
+        self.token = m.group(4)
+        self.authority = f"127.0.0.1:{self.port}"
+        self.url = f"ws://{self.authority}/websocket"
+
+    def alive(self):
+        return self.proc.poll() is None
+
+    def log(self):
+        self.stderr.seek(0)
+        return self.stderr.read()
+
+    def close(self):
+        self.proc.terminate()
+        rc = self.proc.wait(10)
+        if rc != 0:
+            fail(f"palpa serve exited with {rc}: {self.log()}")
+
+
+def http(port, request_lines, body=b""):
+    """One raw HTTP request; (status, headers, body)."""
+    with socket.create_connection(("127.0.0.1", port), timeout=5) as s:
+        s.sendall(("\r\n".join(request_lines) + "\r\n\r\n").encode() + body)
+        data = b""
+        while b"\r\n\r\n" not in data:
+            chunk = s.recv(65536)
+            if not chunk:
+                break
+            data += chunk
+        head, _, rest = data.partition(b"\r\n\r\n")
+        lines = head.decode("latin-1").split("\r\n")
+        status = int(lines[0].split()[1]) if lines and len(lines[0].split()) > 1 else 0
+        headers = {}
+        for line in lines[1:]:
+            key, _, value = line.partition(":")
+            headers[key.strip().lower()] = value.strip()
+        return status, headers, rest
+
+
+def upgrade_lines(host, origin=None, target="/websocket", extra=()):
+    lines = [f"GET {target} HTTP/1.1", f"Host: {host}", "Upgrade: websocket",
+             "Connection: Upgrade", "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==",
+             "Sec-WebSocket-Version: 13"]
+    if origin is not None:
+        lines.append(f"Origin: {origin}")
+    return lines + list(extra)
+
+
+class RawClient:
+    """A WebSocket client by hand: it answers the server's pings until silence() — then it neither
+    reads nor answers, as a closed laptop lid or a frozen tab would."""
+
+    def __init__(self, port):
+        self.sock = socket.create_connection(("127.0.0.1", port), timeout=10)
+        self.sock.sendall(("\r\n".join(upgrade_lines(f"127.0.0.1:{port}")) + "\r\n\r\n").encode())
+        data = b""
+        while b"\r\n\r\n" not in data:
+            data += self.sock.recv(1)
+        if b" 101 " not in data.split(b"\r\n")[0]:
+            fail(f"upgrade refused: {data!r}")
+        self.messages = []
+        self.pongs = 0
+        self.silent = threading.Event()
+        self.lock = threading.Lock()
+        threading.Thread(target=self._read, daemon=True).start()
+
+    def _recv(self, n):
+        data = b""
+        while len(data) < n:
+            chunk = self.sock.recv(n - len(data))
+            if not chunk:
+                raise EOFError
+            data += chunk
+        return data
+
+    def _send(self, opcode, payload):
+        mask = os.urandom(4)
+        header = bytes([0x80 | opcode])
+        if len(payload) < 126:
+            header += bytes([0x80 | len(payload)])
+        else:
+            header += bytes([0x80 | 126]) + struct.pack(">H", len(payload))
+        masked = bytes(b ^ mask[i % 4] for i, b in enumerate(payload))
+        with self.lock:
+            self.sock.sendall(header + mask + masked)
+
+    def _read(self):
+        try:
+            while not self.silent.is_set():
+                b0, b1 = self._recv(2)
+                n = b1 & 0x7F
+                if n == 126:
+                    n = struct.unpack(">H", self._recv(2))[0]
+                elif n == 127:
+                    n = struct.unpack(">Q", self._recv(8))[0]
+                payload = self._recv(n)
+                if self.silent.is_set():
+                    return
+                if b0 & 0x0F == 0x9:
+                    self._send(0xA, payload)
+                    self.pongs += 1
+                elif b0 & 0x0F == 0x1:
+                    self.messages.append(json.loads(payload))
+        except (EOFError, OSError):
+            return
+
+    def call(self, method, **params):
+        n = len(self.messages)
+        self._send(0x1, json.dumps({"jsonrpc": "2.0", "id": 7, "method": method,
+                                    "params": params}).encode())
+        deadline = time.monotonic() + 10
+        while time.monotonic() < deadline:
+            for m in self.messages[n:]:
+                if m.get("id") == 7:
+                    return m
+            time.sleep(0.01)
+        fail(f"no answer to {method}")
+
+    def silence(self):
+        self.silent.set()
+
+
+class Client:
+    """A JSON-RPC client over python3-websockets: calls answered by id, notifications kept."""
+
+    def __init__(self, ws):
+        self.ws = ws
+        self.next_id = 1
+        self.notifications = []
+
+    @classmethod
+    async def connect(cls, url, **kwargs):
+        return cls(await websockets.connect(url, max_size=None, **kwargs))
+
+    async def answer(self, id_, timeout=10):
+        while True:
+            message = json.loads(await asyncio_wait(self.ws.recv(), timeout))
+            if isinstance(message, dict) and "method" in message and "id" not in message:
+                self.notifications.append(message)
+                continue
+            if id_ is None or (isinstance(message, dict) and message.get("id") == id_):
+                return message
+
+    async def call(self, method, **params):
+        id_ = self.next_id
+        self.next_id += 1
+        await self.ws.send(json.dumps({"jsonrpc": "2.0", "id": id_, "method": method,
+                                       "params": params}))
+        return await self.answer(id_)
+
+    async def result(self, method, **params):
+        answer = await self.call(method, **params)
+        if "result" not in answer:
+            fail(f"{method} {params}: {answer}")
+        return answer["result"]
+
+    async def notification(self, method, timeout=10):
+        deadline = time.monotonic() + timeout
+        while True:
+            for i, n in enumerate(self.notifications):
+                if n["method"] == method:
+                    return self.notifications.pop(i)
+            left = deadline - time.monotonic()
+            if left <= 0:
+                fail(f"no {method} notification")
+            try:
+                message = json.loads(await asyncio_wait(self.ws.recv(), left))
+            except TimeoutError:
+                continue
+            if "method" in message:
+                self.notifications.append(message)
+
+    async def close(self):
+        await self.ws.close()
+
+
+async def asyncio_wait(awaitable, timeout):
+    import asyncio
+    try:
+        return await asyncio.wait_for(awaitable, timeout)
+    except asyncio.TimeoutError:
+        raise TimeoutError from None
+
+
+def settle(sim, seconds=1.0):
+    """The truth after `seconds` of board time with nothing sent."""
+    start = sim.latest()["board_time_us"]
+    while sim.latest()["board_time_us"] < start + seconds * 1e6:
+        time.sleep(0.02)
+    return sim.latest()
