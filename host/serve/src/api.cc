@@ -125,7 +125,7 @@ void Api::BoardMethod(ClientId id, const rpc::Call& call,
   if (!prepared.error && !WatcherMayCall(call.method) && !control_.Controls(id)) {
     prepared.error =
         rpc::Error{rpc::kNotController,
-                   call.method + " moves the board, and " +
+                   call.method + " acts on the board, and " +
                        (control_.controller() ? Name(*control_.controller()) + " controls it"
                                               : std::string("nobody controls it")) +
                        ": take control first (control.take)",
