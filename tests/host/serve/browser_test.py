@@ -1,0 +1,123 @@
+#!/usr/bin/python3
+"""The page in a real browser (Debian's chromium, headless, through chromium-driver and
+python3-selenium) against `palpa serve` and palpa-sim: it sees the board, takes control, moves a
+finger from its control, stops every line with the E-stop key, and when the browser freezes (no
+pongs) or the tab closes the board is released — each checked on palpa-sim's truth channel.
+Screenshots go to OUT_DIR. Usage: browser_test.py PALPA PALPA_SIM OUT_DIR"""
+import os
+import signal
+import sys
+import time
+
+from selenium import webdriver
+from selenium.webdriver.common.by import By
+from selenium.webdriver.common.keys import Keys
+from selenium.webdriver.chrome.service import Service
+from selenium.webdriver.support.ui import WebDriverWait
+
+from harness import Serve, Sim, fail
+
+
+def wait_truth(sim, predicate, what, seconds=10):
+    start = sim.latest()["board_time_us"]
+    while True:
+        sample = sim.latest()
+        if predicate(sample):
+            return sample
+        if sample["board_time_us"] > start + seconds * 1e6:
+            fail(f"{what}: not within {seconds} s of board time ({sample['board']})")
+        time.sleep(0.02)
+
+
+def browser():
+    options = webdriver.ChromeOptions()
+    options.binary_location = "/usr/bin/chromium"
+    for arg in ["--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
+                "--window-size=1280,1000"]:
+        options.add_argument(arg)
+    return webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)
+
+
+def descendants(pid):
+    found, queue = [], [pid]
+    while queue:
+        for child in os.popen(f"pgrep -P {queue.pop()}").read().split():
+            found.append(int(child))
+            queue.append(int(child))
+    return found
+
+
+def text(driver, element_id):
+    return driver.find_element(By.ID, element_id).text
+
+
+def main():
+    palpa, palpa_sim, out = sys.argv[1], sys.argv[2], sys.argv[3]
+    os.makedirs(out, exist_ok=True)
+    sim = Sim(palpa_sim)
+    serve = Serve(palpa, sim.address)
+    driver = browser()
+    try:
+        driver.get(f"http://{serve.authority}/")
+        wait = WebDriverWait(driver, 20)
+        wait.until(lambda d: "thesis-5finger" in text(d, "board"))
+        wait.until(lambda d: text(d, "out0").endswith("mm"))  # telemetry arrives
+        print(f"ok  the page sees the board: {text(driver, 'board')}")
+        driver.find_element(By.ID, "take").click()
+        wait.until(lambda d: text(d, "control") == "you control the board")
+        driver.find_element(By.CSS_SELECTOR, "#fingers .card:first-child [data-level='2']").click()
+        moved = wait_truth(sim, lambda s: s["fingers"][0]["deformation_mm"] > 0.5,
+                           "finger 1 to level 2 from the page")
+        print(f"ok  finger 1 moved from the page: {moved['fingers'][0]['deformation_mm']} mm")
+        time.sleep(1.5)  # a plot's worth of telemetry
+        driver.save_screenshot(os.path.join(out, "serve_page.png"))
+        # The E-stop on its key, from wherever the focus is.
+        driver.find_element(By.TAG_NAME, "body").send_keys(Keys.SPACE)
+        stopped = wait_truth(sim, lambda s: s["board"]["safe"] and s["board"]["faults"] != 0,
+                             "the E-stop key")
+        wait.until(lambda d: "estop_command" in text(d, "faults"))
+        print(f"ok  Space stopped every line: faults {stopped['board']['faults']}")
+        driver.save_screenshot(os.path.join(out, "serve_estop.png"))
+        driver.find_element(By.ID, "clear").click()
+        wait_truth(sim, lambda s: s["board"]["faults"] == 0, "clear")
+        driver.find_element(By.CSS_SELECTOR, "#fingers .card:first-child [data-level='1']").click()
+        wait_truth(sim, lambda s: not s["board"]["safe"], "level 1 after clear")
+        # A frozen browser answers no pings: the server releases the board after three.
+        children = descendants(driver.service.process.pid)  # the browser, its network service
+        for p in children:
+            os.kill(p, signal.SIGSTOP)
+        frozen_at = sim.latest()["board_time_us"]
+        released = wait_truth(sim, lambda s: s["board"]["safe"], "the release of a frozen page")
+        for p in children:
+            os.kill(p, signal.SIGCONT)
+        waited_ms = (released["board_time_us"] - frozen_at) / 1000
+        if released["board"]["faults"] != 0:
+            fail(f"the release latched a fault: {released['board']}")
+        if waited_ms < 200:
+            fail(f"released {waited_ms} ms after freezing: before three pings could be missed")
+        print(f"ok  a frozen browser released after {waited_ms:.0f} ms of board time, no fault")
+        wait.until(lambda d: text(d, "link") == "connected" and "Finger 1" in text(d, "fingers")
+                   and text(d, "control") == "nobody controls the board")
+        print("ok  the page came back as a watcher: reconnecting restored nothing")
+        driver.save_screenshot(os.path.join(out, "serve_released.png"))
+        # Closing the tab while in control releases at once.
+        driver.find_element(By.ID, "take").click()
+        wait.until(lambda d: text(d, "control") == "you control the board")
+        driver.find_element(By.CSS_SELECTOR, "#fingers .card:nth-child(2) [data-level='2']").click()
+        wait_truth(sim, lambda s: not s["board"]["safe"], "finger 2 from the page")
+        driver.quit()
+        driver = None
+        closed = wait_truth(sim, lambda s: s["board"]["safe"], "the release when the tab closed")
+        print(f"ok  closing the tab released the board (faults {closed['board']['faults']})")
+        if not serve.alive():
+            fail("the server died")
+    finally:
+        if driver is not None:
+            driver.quit()
+        serve.close()
+        sim.close()
+    print("browser_test: the page saw, moved, stopped and released the board")
+
+
+if __name__ == "__main__":
+    main()
