@@ -3,6 +3,8 @@
 
 #include <cstdio>
 
+#include <boost/asio/post.hpp>
+
 namespace palpa::serve {
 namespace {
 
@@ -83,7 +85,14 @@ void WsSession::Send(std::string text) {
   queued_bytes_ += text.size();
   out_.push_back(std::move(text));
   if (queued_bytes_ > 8 * kQueueSoftBytes) {
-    return Close(websocket::close_code::policy_error, "does not read what it is sent");
+    // Closed from the server's loop, not from inside the API call that is sending (which may be
+    // going through every client): the API never sees a client vanish under its feet.
+    closing_ = true;
+    boost::asio::post(ws_.get_executor(), [self = shared_from_this()] {
+      self->closing_ = false;
+      self->Close(websocket::close_code::policy_error, "does not read what it is sent");
+    });
+    return;
   }
   Write();
 }
