@@ -16,17 +16,8 @@ struct BatchAnswer {
   std::vector<Json> answers;
 };
 
-namespace {
-
-/// Methods any client may call; every other board method moves the board and needs control.
-bool WatcherMayCall(const std::string& method) {
-  return method == "board.info" || method == "board.diagnostics" || method == "board.config.read" ||
-         method == "board.estop";  // stopping the board is everyone's right
-}
-
-}  // namespace
-
-Api::Api(host::Device& device, const ServeOptions& options, PostToServer post)
+Api::Api(host::Device& device, const ServeOptions& options, PostToServer post,
+         std::vector<MethodGroup> groups)
     : device_(device),
       options_(options),
       post_(std::move(post)),
@@ -38,7 +29,9 @@ Api::Api(host::Device& device, const ServeOptions& options, PostToServer post)
                curves.push_back(device.curves(f));
              return curves;
            }()),
+      groups_(std::move(groups)),
       control_epoch_(std::make_shared<std::atomic<uint64_t>>(0)) {
+  groups_.insert(groups_.begin(), BoardMethods(board_));
   telemetry_subscription_ =
       device_.Subscribe([this](const host::TelemetryFrame& f) { hub_.OnFrame(f); });
 }
@@ -109,7 +102,9 @@ void Api::Answer(ClientId id, const rpc::Call& call, const std::shared_ptr<Batch
 
 void Api::Dispatch(ClientId id, const rpc::Call& call, const std::shared_ptr<BatchAnswer>& batch) {
   ++calls_;
-  if (call.method.rfind("board.", 0) == 0) return BoardMethod(id, call, batch);
+  for (const MethodGroup& group : groups_) {
+    if (call.method.rfind(group.prefix, 0) == 0) return GroupMethod(group, id, call, batch);
+  }
   std::optional<Json> answer = ServerMethod(id, call);
   if (!answer) {
     answer = rpc::ErrorAnswer(
@@ -119,10 +114,10 @@ void Api::Dispatch(ClientId id, const rpc::Call& call, const std::shared_ptr<Bat
   Answer(id, call, batch, std::move(*answer));
 }
 
-void Api::BoardMethod(ClientId id, const rpc::Call& call,
+void Api::GroupMethod(const MethodGroup& group, ClientId id, const rpc::Call& call,
                       const std::shared_ptr<BatchAnswer>& batch) {
-  PreparedCall prepared = PrepareBoardCall(call.method, call.params, board_);
-  if (!prepared.error && !WatcherMayCall(call.method) && !control_.Controls(id)) {
+  PreparedCall prepared = group.prepare(call.method, call.params);
+  if (!prepared.error && prepared.needs_control && !control_.Controls(id)) {
     prepared.error =
         rpc::Error{rpc::kNotController,
                    call.method + " acts on the board, and " +
@@ -132,8 +127,7 @@ void Api::BoardMethod(ClientId id, const rpc::Call& call,
                    nullptr};
   }
   if (prepared.error) return Answer(id, call, batch, rpc::ErrorAnswer(call.id, *prepared.error));
-  const bool urgent = call.method == "board.estop" || call.method == "board.release";
-  const bool needs_control = !WatcherMayCall(call.method);
+  const bool urgent = prepared.urgent, needs_control = prepared.needs_control;
   const uint64_t epoch = control_epoch_->load();
   auto job = [this, id, call, batch, epoch, needs_control, job = std::move(prepared.job),
               current = control_epoch_]() {

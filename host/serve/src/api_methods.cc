@@ -8,15 +8,10 @@ using Json = rpc::Json;
 
 namespace {
 
-/// Every method, for server.info: what a client may call.
-const char* const kMethods[] = {"server.info",         "server.connection.identify",
-                                "control.take",        "control.release",
-                                "telemetry.subscribe", "telemetry.unsubscribe",
-                                "board.info",          "board.diagnostics",
-                                "board.config.read",   "board.config.apply",
-                                "board.set",           "board.lines.set",
-                                "board.estop",         "board.clear",
-                                "board.release"};
+/// The server's own methods; the groups' follow them in server.info.
+const char* const kServerMethods[] = {"server.info",         "server.connection.identify",
+                                      "control.take",        "control.release",
+                                      "telemetry.subscribe", "telemetry.unsubscribe"};
 
 }  // namespace
 
@@ -28,13 +23,17 @@ std::optional<Json> Api::ServerMethod(ClientId id, const rpc::Call& call) {
   if (call.method == "server.info") {
     if (auto e = OnlyKnown(p, {})) return error(*e);
     const std::optional<ClientId> c = control_.controller();
+    Json methods(kServerMethods);
+    for (const MethodGroup& g : groups_) {
+      for (const std::string& name : g.names) methods.push_back(name);
+    }
     return result({{"server", "palpa serve"},
                    {"api_version", 1},
                    {"you", id},
                    {"controls", control_.Controls(id)},
                    {"controller", c ? Json(*c) : Json(nullptr)},
                    {"controller_name", c ? clients_[*c].name : ""},
-                   {"methods", kMethods},
+                   {"methods", methods},
                    {"ping_interval_ms", options_.ping_interval_ms},
                    {"missed_pings_gone", options_.missed_pings_gone},
                    {"max_message_bytes", options_.max_message_bytes},

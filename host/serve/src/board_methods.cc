@@ -85,25 +85,40 @@ rpc::Error Refused(const host::Outcome& o) {
   return rpc::Error{rpc::kBoardRefused, o.message, std::move(data)};
 }
 
-PreparedCall PrepareBoardCall(const std::string& method, const Json& params,
-                              const protocol::HelloReply& board) {
-  const auto no_params = [&](BoardJob job) {
+namespace {
+
+PreparedCall Prepare(const std::string& method, const Json& params,
+                     const protocol::HelloReply& board) {
+  const auto no_params = [&](BoardJob job, bool needs_control, bool urgent = false) {
     if (auto e = OnlyKnown(params, {})) return PreparedCall{e, nullptr};
-    return PreparedCall{std::nullopt, std::move(job)};
+    return PreparedCall{std::nullopt, std::move(job), needs_control, urgent};
   };
-  if (method == "board.info") return no_params(Info);
-  if (method == "board.diagnostics") return no_params(Diagnostics);
-  if (method == "board.config.read") return no_params(ConfigRead);
-  if (method == "board.estop")
-    return no_params([](host::Device& d) { return Answer(d.EStop(), Json{{"estop", true}}); });
-  if (method == "board.release")
-    return no_params([](host::Device& d) { return Answer(d.Release(), Json{{"released", true}}); });
+  if (method == "board.info") return no_params(Info, false);
+  if (method == "board.diagnostics") return no_params(Diagnostics, false);
+  if (method == "board.config.read") return no_params(ConfigRead, false);
+  if (method == "board.estop") {  // stopping the board is everyone's right
+    return no_params(
+        [](host::Device& d) {
+          return Answer(d.EStop(), Json{{"estop", true}});
+        },
+        false, true);
+  }
+  if (method == "board.release") {
+    return no_params(
+        [](host::Device& d) {
+          return Answer(d.Release(), Json{{"released", true}});
+        },
+        true, true);
+  }
   if (method == "board.clear") {
-    return no_params([](host::Device& d) {
-      const auto before = d.Diagnostics();
-      if (!before.ok()) return Answer(before.outcome(), nullptr);
-      return Answer(d.ClearFault(), Json{{"cleared", host::FaultList(before.value.fault_bitmap)}});
-    });
+    return no_params(
+        [](host::Device& d) {
+          const auto before = d.Diagnostics();
+          if (!before.ok()) return Answer(before.outcome(), nullptr);
+          return Answer(d.ClearFault(),
+                        Json{{"cleared", host::FaultList(before.value.fault_bitmap)}});
+        },
+        true);
   }
   if (method == "board.config.apply") {
     if (auto e = OnlyKnown(params, {"config", "save"})) return {e, nullptr};
@@ -132,7 +147,19 @@ PreparedCall PrepareBoardCall(const std::string& method, const Json& params,
               return Answer(d.SetLines(setpoints, true), Json{{"applied", true}});
             }};
   }
-  return {rpc::Error{rpc::kMethodNotFound, "method not found: " + method, nullptr}, nullptr};
+  return {rpc::Error{rpc::kMethodNotFound, "method not found: '" + method + "'", nullptr}, nullptr};
+}
+
+}  // namespace
+
+MethodGroup BoardMethods(const protocol::HelloReply& board) {
+  return MethodGroup{
+      "board.",
+      {"board.info", "board.diagnostics", "board.config.read", "board.config.apply", "board.set",
+       "board.lines.set", "board.estop", "board.clear", "board.release"},
+      [board](const std::string& method, const Json& params) {
+        return Prepare(method, params, board);
+      }};
 }
 
 }  // namespace palpa::serve

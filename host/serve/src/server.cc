@@ -16,10 +16,12 @@ namespace asio = boost::asio;
 using tcp = asio::ip::tcp;
 
 struct Server::Impl {
-  Impl(host::Device& device, ServeOptions o)
+  Impl(host::Device& device, ServeOptions o, std::vector<MethodGroup> groups)
       : options(std::move(o)),
         acceptor(io),
-        api(device, options, [this](std::function<void()> f) { asio::post(io, std::move(f)); }) {}
+        api(
+            device, options, [this](std::function<void()> f) { asio::post(io, std::move(f)); },
+            std::move(groups)) {}
 
   void Accept() {
     acceptor.async_accept([this](boost::beast::error_code ec, tcp::socket socket) {
@@ -51,13 +53,14 @@ struct Server::Impl {
   Api api;
 };
 
-Result<std::unique_ptr<Server>> Server::Bind(host::Device& device, ServeOptions options) {
+Result<std::unique_ptr<Server>> Server::Bind(host::Device& device, ServeOptions options,
+                                             std::vector<MethodGroup> groups) {
   if (!options.listen.loopback && options.token.empty()) {
     auto token = NewToken();
     if (!token.ok()) return token.outcome();
     options.token = token.value;
   }
-  auto impl = std::make_unique<Impl>(device, options);
+  auto impl = std::make_unique<Impl>(device, options, std::move(groups));
   boost::beast::error_code ec;
   const tcp::endpoint at(asio::ip::make_address(options.listen.address, ec), options.listen.port);
   if (!ec) impl->acceptor.open(at.protocol(), ec);

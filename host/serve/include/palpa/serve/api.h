@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "palpa/host/device.h"
+#include "palpa/serve/board_methods.h"
 #include "palpa/serve/board_worker.h"
 #include "palpa/serve/control.h"
 #include "palpa/serve/json_rpc.h"
@@ -35,7 +36,9 @@ class Api {
   /// Runs a function on the server's thread (posted from the board worker's).
   using PostToServer = std::function<void(std::function<void()>)>;
 
-  Api(host::Device& device, const ServeOptions& options, PostToServer post);
+  /// The board's methods are there from the start; `groups` adds others (a scene's).
+  Api(host::Device& device, const ServeOptions& options, PostToServer post,
+      std::vector<MethodGroup> groups = {});
   ~Api();
 
   ClientId Connect(std::shared_ptr<Peer> peer, const std::string& description);
@@ -62,7 +65,8 @@ class Api {
   void Dispatch(ClientId id, const rpc::Call& call,
                 const std::shared_ptr<struct BatchAnswer>& batch);
   std::optional<rpc::Json> ServerMethod(ClientId id, const rpc::Call& call);
-  void BoardMethod(ClientId id, const rpc::Call& call,
+  /// A call to a group's method: checked, control required where it acts, then a board job.
+  void GroupMethod(const MethodGroup& group, ClientId id, const rpc::Call& call,
                    const std::shared_ptr<struct BatchAnswer>& batch);
   void Answer(ClientId id, const rpc::Call& call, const std::shared_ptr<struct BatchAnswer>& batch,
               rpc::Json answer);
@@ -78,6 +82,7 @@ class Api {
   protocol::HelloReply board_;
   TelemetryHub hub_;
   int telemetry_subscription_ = 0;
+  std::vector<MethodGroup> groups_;
   Control control_;
   /// Bumped whenever control changes: a controller's job queued before the change is not sent.
   std::shared_ptr<std::atomic<uint64_t>> control_epoch_;

@@ -1,11 +1,13 @@
-// The board's methods as the API offers them: info, diagnostics, configuration, targets in every
-// unit, raw lines, E-stop, clear and release. Each reads and checks its parameters first (nothing
-// is sent on a bad one), then becomes a job the board worker runs against the device.
+// Methods that act through the device, in groups by prefix — the board's own here (info,
+// diagnostics, configuration, targets in every unit, raw lines, E-stop, clear, release), a scene's
+// later — each call reading and checking its parameters first (nothing is sent on a bad one), then
+// becoming a job the board worker runs against the device.
 #pragma once
 
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "palpa/host/device.h"
 #include "palpa/serve/json_rpc.h"
@@ -19,13 +21,26 @@ struct BoardAnswer {
 };
 using BoardJob = std::function<BoardAnswer(host::Device&)>;
 
-/// A checked call ready to run, or why it was refused. `board`: what the device said at Hello.
+/// A checked call ready to run, or why it was refused.
 struct PreparedCall {
   std::optional<rpc::Error> error;
   BoardJob job;
+  /// Acts on the board: only the controlling client may make it (reading, and stopping, need not).
+  bool needs_control = true;
+  /// Runs on the urgent lane, never behind a set waiting for the board (E-stop, Release).
+  bool urgent = false;
 };
-PreparedCall PrepareBoardCall(const std::string& method, const rpc::Json& params,
-                              const protocol::HelloReply& board);
+
+/// A group of methods sharing a prefix ("board.", "scene."): its names (for server.info, and to
+/// tell an unknown method from a known one) and how a call to one of them is prepared.
+struct MethodGroup {
+  std::string prefix;
+  std::vector<std::string> names;
+  std::function<PreparedCall(const std::string& method, const rpc::Json& params)> prepare;
+};
+
+/// The board's methods; `board`: what the device said at Hello.
+MethodGroup BoardMethods(const protocol::HelloReply& board);
 
 /// A refusal by the library or the board as an error: data {"status", "faults", "notes"}.
 rpc::Error Refused(const host::Outcome& outcome);

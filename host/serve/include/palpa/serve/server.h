@@ -5,8 +5,10 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "palpa/host/device.h"
+#include "palpa/serve/board_methods.h"
 #include "palpa/serve/serve_options.h"
 
 namespace palpa::serve {
@@ -14,7 +16,9 @@ namespace palpa::serve {
 class Server {
  public:
   /// Binds the listener (a token is made for a non-loopback one). `device` outlives the server.
-  static Result<std::unique_ptr<Server>> Bind(host::Device& device, ServeOptions options);
+  /// `groups`: methods beyond the board's own (a scene's), served the same way.
+  static Result<std::unique_ptr<Server>> Bind(host::Device& device, ServeOptions options,
+                                              std::vector<MethodGroup> groups = {});
   ~Server();
 
   uint16_t port() const;
