@@ -48,7 +48,7 @@ int CmdServe(Context& c, const std::vector<std::string>& args) {
   std::fflush(stdout);
   PollsInterruption polls;
   server.value->Run([] { return Interrupted(); });
-  server.value.reset();  // every client gone, the board released if one controlled it
+  server.value.reset();  // every client gone; the session closes with the device (outputs safe)
   std::printf("palpa serve: stopped\n");
   return kExitOk;
 }

@@ -24,8 +24,8 @@ class Server {
   uint16_t port() const;
   /// Where a person opens the page: http://ADDRESS:PORT/, with ?token=... when one is needed.
   std::string Url() const;
-  /// Serves until `stop` returns true (asked every few milliseconds). On return every client is
-  /// disconnected and, if one controlled, the board released.
+  /// Serves until `stop` returns true (asked every few milliseconds). Destroying the server then
+  /// drops every client; the caller closes the device's session (every output safe, no fault).
   void Run(const std::function<bool()>& stop);
 
  private:
