@@ -8,6 +8,7 @@ import re
 import socket
 import struct
 import subprocess
+import tempfile
 import threading
 import time
 
@@ -74,7 +75,7 @@ class Serve:
     """`palpa serve` on a free port in front of `device`."""
 
     def __init__(self, palpa, device, listen="127.0.0.1:0"):
-        self.stderr = open(f"/tmp/palpa-serve-test-{os.getpid()}-{time.monotonic_ns()}.log", "w+")
+        self.stderr = tempfile.TemporaryFile("w+")  # what the server logs, read by log()
         self.proc = subprocess.Popen([palpa, "serve", "--device", device, "--listen", listen],
                                      stdout=subprocess.PIPE, stderr=self.stderr, text=True)
         line = self.proc.stdout.readline()
