@@ -12,8 +12,8 @@
 #include "demo_calibration.h"
 #include "demo_chart.h"
 #include "demo_pass.h"
-#include "demo_truth.h"
 #include "palpa/host/file_write.h"
+#include "palpa/host/sim_truth.h"
 #include "palpa/host/stimulus_set.h"
 
 namespace palpa::cli {
@@ -124,7 +124,7 @@ int ParseDemoArgs(const std::vector<std::string>& args, DemoArgs& a,
 struct DemoBoard {
   std::unique_ptr<host::Device> device;
   std::optional<ClosedOnSignal> closed_on_signal;
-  TruthReader truth;
+  host::TruthReader truth;
 };
 
 int StartBoard(const DemoArgs& a, const host::LevelTables& levels, DemoBoard& board) {

@@ -15,7 +15,7 @@ namespace pp = palpa::protocol;
 
 }  // namespace
 
-bool PlaySteps(host::Device& d, TruthReader& truth, const host::LevelTables& levels,
+bool PlaySteps(host::Device& d, host::TruthReader& truth, const host::LevelTables& levels,
                const std::vector<Step>& steps, std::vector<host::Series>& targets,
                PassFigures& figures) {
   const pp::HelloReply board = d.info();

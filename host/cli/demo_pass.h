@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "demo_truth.h"
 #include "palpa/host/device.h"
+#include "palpa/host/sim_truth.h"
 #include "palpa/host/svg_chart.h"
 
 namespace palpa::cli {
@@ -32,7 +32,7 @@ struct PassFigures {
 
 /// Plays `steps` (levels through `levels`, the device's tables), printing a row each and adding
 /// each finger's target to `targets`; false (printed) when the board refuses one.
-bool PlaySteps(host::Device& d, TruthReader& truth, const host::LevelTables& levels,
+bool PlaySteps(host::Device& d, host::TruthReader& truth, const host::LevelTables& levels,
                const std::vector<Step>& steps, std::vector<host::Series>& targets,
                PassFigures& figures);
 

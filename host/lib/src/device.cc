@@ -64,8 +64,9 @@ Result<std::unique_ptr<Device>> Device::Attach(std::unique_ptr<Transport> transp
   return std::unique_ptr<Device>(new Device(std::move(link.value), std::move(options)));
 }
 
-Result<std::unique_ptr<Device>> Device::Open(const std::string& uri, DeviceOptions options) {
-  auto transport = OpenTransport(uri);
+Result<std::unique_ptr<Device>> Device::Open(const std::string& uri, DeviceOptions options,
+                                             std::string* sim_truth_address) {
+  auto transport = OpenTransport(uri, sim_truth_address);
   if (!transport.ok()) return transport.outcome();
   // A board on USB can be unplugged and plugged back in: the link opens it again by its URI.
   // A simulator child or a TCP server that went away is another board when it comes back.

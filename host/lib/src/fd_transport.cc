@@ -218,7 +218,7 @@ std::string FindPalpaSim() {
   return "palpa-sim";
 }
 
-Result<std::unique_ptr<Transport>> OpenSim(const DeviceUri& uri) {
+Result<std::unique_ptr<Transport>> OpenSim(const DeviceUri& uri, std::string* truth_address) {
   std::vector<std::string> options;
   if (const char* args_env = getenv("PALPA_SIM_ARGS");
       args_env != nullptr) {  // e.g. "--plant 1 --speed 10"
@@ -232,7 +232,7 @@ Result<std::unique_ptr<Transport>> OpenSim(const DeviceUri& uri) {
       at = sp + 1;
     }
   }
-  return LaunchSim(uri.config, options, nullptr);
+  return LaunchSim(uri.config, options, truth_address);
 }
 
 Result<std::unique_ptr<Transport>> LaunchSim(const std::string& config,
@@ -320,13 +320,14 @@ Result<std::unique_ptr<Transport>> LaunchSim(const std::string& config,
       fd.value, child, "sim:" + uri.config + " (palpa-sim on tcp:" + address + ")"));
 }
 
-Result<std::unique_ptr<Transport>> OpenTransport(const std::string& uri) {
+Result<std::unique_ptr<Transport>> OpenTransport(const std::string& uri,
+                                                 std::string* sim_truth_address) {
   const Result<DeviceUri> uri_parsed = ParseDeviceUri(uri);
   if (!uri_parsed.ok()) return uri_parsed.outcome();
   const DeviceUri& parsed = uri_parsed.value;
   switch (parsed.kind) {
     case DeviceUri::Kind::kSim:
-      return OpenSim(parsed);
+      return OpenSim(parsed, sim_truth_address);
     case DeviceUri::Kind::kSerial:
       return OpenSerial(parsed);
     case DeviceUri::Kind::kTcp:

@@ -52,7 +52,8 @@ class SimTransport final : public FdTransport {
 
 Result<std::unique_ptr<Transport>> OpenSerial(const DeviceUri& uri);
 Result<std::unique_ptr<Transport>> OpenTcp(const DeviceUri& uri);
-Result<std::unique_ptr<Transport>> OpenSim(const DeviceUri& uri);
+Result<std::unique_ptr<Transport>> OpenSim(const DeviceUri& uri,
+                                           std::string* truth_address = nullptr);
 Result<std::unique_ptr<Transport>> OpenHid(const DeviceUri& uri);
 Result<std::unique_ptr<Transport>> OpenUsb(const DeviceUri& uri);
 

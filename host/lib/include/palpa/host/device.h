@@ -68,8 +68,10 @@ struct Applied {
 
 class Device {
  public:
-  /// Opens a device URI (see OpenTransport) and a session with it.
-  static Result<std::unique_ptr<Device>> Open(const std::string& uri, DeviceOptions options);
+  /// Opens a device URI (see OpenTransport) and a session with it; a sim: device with
+  /// `sim_truth_address` non-null streams its truth side channel too, and says where there.
+  static Result<std::unique_ptr<Device>> Open(const std::string& uri, DeviceOptions options,
+                                              std::string* sim_truth_address = nullptr);
   /// Opens a session over a transport the caller made (tests, fault injection).
   static Result<std::unique_ptr<Device>> Attach(std::unique_ptr<Transport> transport,
                                                 DeviceOptions options);

@@ -29,8 +29,11 @@ class Transport {
 ///   tcp:HOST:PORT
 ///   hid:VID:PID[:SERIAL]      hidapi, 64-byte reports (hex ids)
 ///   usb:VID:PID[:SERIAL]      libusb vendor interface, one bulk IN and one bulk OUT endpoint
-/// On failure the status and a message naming the part at fault.
-Result<std::unique_ptr<Transport>> OpenTransport(const std::string& uri);
+/// On failure the status and a message naming the part at fault. For a sim: URI with
+/// `sim_truth_address` non-null the simulator also streams its truth side channel, and
+/// *sim_truth_address receives where ("tcp:127.0.0.1:PORT"); other URIs leave it as it was.
+Result<std::unique_ptr<Transport>> OpenTransport(const std::string& uri,
+                                                 std::string* sim_truth_address = nullptr);
 
 /// Starts palpa-sim with CONFIG and extra options (e.g. {"--plant", "3", "--speed", "4"}) and
 /// connects to it. With `truth_address` non-null the simulator also streams its truth side channel

@@ -1,5 +1,5 @@
 // The simulator's truth channel, read on a thread of its own.
-#include "demo_truth.h"
+#include "palpa/host/sim_truth.h"
 
 #include <arpa/inet.h>
 #include <netinet/in.h>
@@ -9,16 +9,22 @@
 
 #include <nlohmann/json.hpp>
 
-namespace palpa::cli {
+namespace palpa::host {
 
 bool TruthReader::Connect(const std::string& address) {
+  // "tcp:IPV4:PORT", as palpa-sim prints it; anything else is refused, never guessed at.
   const size_t colon = address.rfind(':');
-  fd_ = socket(AF_INET, SOCK_STREAM, 0);
+  if (address.compare(0, 4, "tcp:") != 0 || colon == std::string::npos || colon <= 4) return false;
+  const std::string port = address.substr(colon + 1);
+  if (port.empty() || port.size() > 5 ||
+      port.find_first_not_of("0123456789") != std::string::npos || std::stoul(port) > 65535)
+    return false;
   sockaddr_in a{};
   a.sin_family = AF_INET;
-  a.sin_port = htons(static_cast<uint16_t>(std::stoi(address.substr(colon + 1))));
-  inet_pton(AF_INET, address.substr(4, colon - 4).c_str(), &a.sin_addr);
-  if (connect(fd_, reinterpret_cast<sockaddr*>(&a), sizeof(a)) != 0) return false;
+  a.sin_port = htons(static_cast<uint16_t>(std::stoul(port)));
+  if (inet_pton(AF_INET, address.substr(4, colon - 4).c_str(), &a.sin_addr) != 1) return false;
+  fd_ = socket(AF_INET, SOCK_STREAM, 0);
+  if (fd_ < 0 || connect(fd_, reinterpret_cast<sockaddr*>(&a), sizeof(a)) != 0) return false;
   thread_ = std::thread([this] { Run(); });
   return true;
 }
@@ -36,6 +42,13 @@ std::vector<TruthReader::Sample> TruthReader::Since(double t_s) {
     if (s.t_s >= t_s) out.push_back(s);
   }
   return out;
+}
+
+bool TruthReader::Latest(Sample& out) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (samples_.empty()) return false;
+  out = samples_.back();
+  return true;
 }
 
 double TruthReader::now_s() {
@@ -64,8 +77,9 @@ void TruthReader::Run() {
       }
       std::lock_guard<std::mutex> lock(mutex_);
       samples_.push_back(s);
+      if (keep_ > 0 && samples_.size() > keep_) samples_.pop_front();
     }
   }
 }
 
-}  // namespace palpa::cli
+}  // namespace palpa::host
