@@ -32,6 +32,10 @@ struct Context {
   /// How the device's messages number fingers and lines: from 1, as the command line does, or
   /// from 0 for a command whose clients number as the library's APIs do (serve).
   uint8_t number_from = 1;
+  /// A simulated device (sim:) is started with its truth side channel, and Device() says where
+  /// in truth_address (serve plots the true output beside the estimate).
+  bool truth_wanted = false;
+  std::string truth_address;
   /// Opens the device on first use; prints the error and returns nullptr when it cannot.
   host::Device* Device();
   std::unique_ptr<host::Device> device;

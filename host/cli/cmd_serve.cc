@@ -13,8 +13,10 @@ int CmdServe(Context& c, const std::vector<std::string>& args) {
   serve::ServeOptions options;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
-    if (a != "--listen" && a != "--device" && a != "--allow-host" && a != "--web") {
-      const std::string near = Suggest(a, {"--listen", "--device", "--allow-host", "--web"});
+    if (a != "--listen" && a != "--device" && a != "--allow-host" && a != "--web" &&
+        a != "--truth") {
+      const std::string near =
+          Suggest(a, {"--listen", "--device", "--allow-host", "--web", "--truth"});
       return Usage("serve", "unexpected argument '" + a + "'" +
                                 (near.empty() ? "" : " (did you mean " + near + "?)"));
     }
@@ -28,6 +30,8 @@ int CmdServe(Context& c, const std::vector<std::string>& args) {
     } else if (a == "--device") {
       c.device_uri = value.value;
       c.throwaway = false;
+    } else if (a == "--truth") {
+      options.truth_address = value.value;
     } else if (a == "--allow-host") {
       options.allowed_hosts.push_back(value.value);
     } else {
@@ -36,8 +40,10 @@ int CmdServe(Context& c, const std::vector<std::string>& args) {
   }
   if (options.web_root.empty()) options.web_root = serve::DefaultWebRoot();
   c.number_from = 0;  // the API numbers fingers and lines as the library's APIs do
+  c.truth_wanted = options.truth_address.empty();  // a sim: board started here tells its truth
   host::Device* d = c.Device();
   if (d == nullptr) return kExitConnect;
+  if (options.truth_address.empty()) options.truth_address = c.truth_address;
   auto server = serve::Server::Bind(*d, options);
   if (!server.ok()) return Fail("serve", server.status, server.message, kExitConnect);
   std::printf("palpa serve: %s on %s\n", d->link().Describe().c_str(), server.value->Url().c_str());
@@ -54,12 +60,16 @@ int CmdServe(Context& c, const std::vector<std::string>& args) {
 }
 
 const Command kServeCommand{
-    "serve", "serve [--device URI] [--listen ADDRESS:PORT] [--allow-host NAME]... [--web DIR]",
+    "serve",
+    "serve [--device URI] [--listen ADDRESS:PORT] [--allow-host NAME]... [--web DIR] [--truth "
+    "tcp:HOST:PORT]",
     "Holds the board's session and serves its JSON-RPC 2.0 API over a WebSocket (/websocket)\n"
     "and the page (/), for browsers and scripts (docs/serve.md). One client controls the board,\n"
     "the others watch; a controlling client that goes away (three unanswered pings, 100 ms\n"
     "apart) leaves the board released. Loopback only by default (127.0.0.1:7180); another\n"
-    "--listen address needs the token printed at start. Ctrl-C stops it and closes the session.",
+    "--listen address needs the token printed at start. A simulated board (sim:) started here\n"
+    "tells each finger's true output too; --truth reads it from a palpa-sim started with --truth.\n"
+    "Ctrl-C stops it and closes the session.",
     CmdServe};
 
 }  // namespace palpa::cli

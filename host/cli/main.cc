@@ -64,7 +64,7 @@ bool UsesKeptSim(const std::string& command) {
 host::Device* Context::Device() {
   if (device) return device.get();
   options.number_from = number_from;  // from 1, as the command line numbers fingers and lines
-  auto opened = host::Device::Open(device_uri, options);
+  auto opened = host::Device::Open(device_uri, options, truth_wanted ? &truth_address : nullptr);
   if (!opened.ok()) {
     const std::string& error = opened.message;
     // The transports' messages name the device already, most of them; a busy board's says

@@ -1,6 +1,7 @@
 // Clients, their calls, control and telemetry: the API on the server's thread.
 #include "palpa/serve/api.h"
 
+#include <cmath>
 #include <cstdio>
 
 #include "palpa/serve/board_methods.h"
@@ -180,6 +181,11 @@ void Api::Tick(double now_s) {
       s.next_due_s = std::max(s.next_due_s + 1.0 / s.updates_per_s, now_s);
       Json params = hub_.Take(s);
       if (params.is_null()) continue;
+      host::TruthReader::Sample truth;
+      if (truth_ && truth_->Latest(truth)) {
+        params["finger_truth"] = truth.outputs;
+        params["truth_board_time_us"] = static_cast<uint64_t>(std::llround(truth.t_s * 1e6));
+      }
       if (!client.peer->SendDroppable(
               rpc::Text(rpc::Notification("notify_telemetry", std::move(params)))))
         ++client.telemetry_dropped;

@@ -73,6 +73,14 @@ Result<std::unique_ptr<Server>> Server::Bind(host::Device& device, ServeOptions 
                                                          ": " + ec.message());
   }
   impl->port = impl->acceptor.local_endpoint().port();
+  if (!options.truth_address.empty()) {
+    auto truth = std::make_unique<host::TruthReader>(1000);  // the newest second at 1 ms
+    if (!truth->Connect(options.truth_address)) {
+      return Outcome::Fail(host::Status::kUnavailable,
+                           "cannot read the simulator's truth channel at " + options.truth_address);
+    }
+    impl->api.SetTruth(std::move(truth));
+  }
   impl->guard = std::make_unique<RequestGuard>(impl->options, impl->port);
   return std::unique_ptr<Server>(new Server(std::move(impl)));
 }

@@ -46,7 +46,8 @@ function fingerCard(f, i) {
   card.className = "card";
   card.innerHTML = `<h3><span>Finger ${i + 1} <small>(${f.kind}, ${unit})</small></span>
     <span id="out${i}">—</span></h3><canvas id="fplot${i}"></canvas>
-    <div class="legend"><span class="me">— output (estimated)</span> <span class="tg">- - target</span></div>
+    <div class="legend"><span class="me">— output (estimated)</span> <span class="tg">- - target</span>
+      <span class="tr" hidden>— true output (simulator)</span></div>
     <div class="controls">
       <button class="needs-control" data-level="0">L0</button>
       <button class="needs-control" data-level="1">L1</button>
@@ -100,7 +101,7 @@ function build(info) {
   fingerPlots.length = linePlots.length = targets.length = 0;
   info.fingers.forEach((f, i) => {
     fingers.appendChild(fingerCard(f, i));
-    fingerPlots.push(new Plot($(`fplot${i}`), [{ color: "#1565c0" }, { color: "#888", dashed: true }], PLOT_SECONDS,
+    fingerPlots.push(new Plot($(`fplot${i}`), [{ color: "#1565c0" }, { color: "#888", dashed: true }, { color: "#2e7d32" }], PLOT_SECONDS,
       f.unit === "mm" ? 0.5 : 0.1));
     targets.push(NaN);
   });
@@ -122,6 +123,10 @@ function onTelemetry(p) {
     s.setpoint_pa[k].forEach((v, l) => linePlots[l]?.add(0, t, v / 1000));
     s.measured_pa[k].forEach((v, l) => linePlots[l]?.add(1, t, v / 1000));
   });
+  if (p.finger_truth) {  // a simulated board: what the finger really did, beside the estimate
+    p.finger_truth.forEach((v, f) => fingerPlots[f]?.add(2, p.truth_board_time_us, v));
+    document.querySelectorAll(".legend .tr").forEach((e) => (e.hidden = false));
+  }
   const last = s.board_time_us.length - 1;
   if (last < 0) return;
   s.finger_output[last].forEach((v, f) => { const e = $(`out${f}`); if (e) e.textContent = `${v.toFixed(3)} ${board.fingers[f].unit}`; });

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "palpa/host/device.h"
+#include "palpa/host/sim_truth.h"
 #include "palpa/serve/board_methods.h"
 #include "palpa/serve/board_worker.h"
 #include "palpa/serve/control.h"
@@ -50,6 +51,10 @@ class Api {
   /// Telemetry notifications that are due, and the link's events; called every few ms.
   void Tick(double now_s);
 
+  /// A simulator's truth channel, read from now on: each notify_telemetry carries the newest
+  /// true output of every finger ("finger_truth") and its board time.
+  void SetTruth(std::unique_ptr<host::TruthReader> truth) { truth_ = std::move(truth); }
+
   /// Counters for the log and the benchmark.
   rpc::Json Stats() const;
 
@@ -83,6 +88,7 @@ class Api {
   TelemetryHub hub_;
   int telemetry_subscription_ = 0;
   std::vector<MethodGroup> groups_;
+  std::unique_ptr<host::TruthReader> truth_;
   Control control_;
   /// Bumped whenever control changes: a controller's job queued before the change is not sent.
   std::shared_ptr<std::atomic<uint64_t>> control_epoch_;

@@ -41,6 +41,9 @@ struct ServeOptions {
   std::vector<std::string> allowed_hosts;
   /// Required on every request when the listener is not loopback; empty on loopback.
   std::string token;
+  /// A simulator's truth side channel ("tcp:127.0.0.1:PORT"): each finger's true output goes out
+  /// with the telemetry beside the estimate. Empty: none (a real board has no truth to tell).
+  std::string truth_address;
   /// The page's directory; empty: the API only (GET / says so).
   std::string web_root;
   size_t max_message_bytes = 64 * 1024;  ///< larger messages get a JSON-RPC error, read and dropped
