@@ -64,14 +64,21 @@ void Api::Disconnect(ClientId id, const std::string& why) {
 }
 
 void Api::OnTooLarge(ClientId id, size_t bytes) {
+  Refuse(id, rpc::Error{rpc::kTooLarge,
+                        "a message of " + std::to_string(bytes) + " bytes or more (at most " +
+                            std::to_string(options_.max_message_bytes) + "): dropped unread",
+                        nullptr});
+}
+
+void Api::OnBinary(ClientId id) {
+  Refuse(id, rpc::Error{rpc::kParseError, "parse error: a binary message (JSON-RPC here is text)",
+                        nullptr});
+}
+
+void Api::Refuse(ClientId id, const rpc::Error& error) {
   ++errors_;
   const auto at = clients_.find(id);
-  if (at == clients_.end()) return;
-  at->second.peer->Send(rpc::Text(rpc::ErrorAnswer(
-      nullptr, rpc::Error{rpc::kTooLarge,
-                          "a message of " + std::to_string(bytes) + " bytes or more (at most " +
-                              std::to_string(options_.max_message_bytes) + "): dropped unread",
-                          nullptr})));
+  if (at != clients_.end()) at->second.peer->Send(rpc::Text(rpc::ErrorAnswer(nullptr, error)));
 }
 
 void Api::OnMessage(ClientId id, std::string_view text) {

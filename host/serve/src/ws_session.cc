@@ -69,7 +69,7 @@ void WsSession::OnRead(beast::error_code ec, size_t bytes) {
   if (too_large_) {
     api_.OnTooLarge(id_, message_bytes_);
   } else if (!ws_.got_text()) {
-    api_.OnMessage(id_, "binary");  // a parse error: only text frames carry JSON-RPC
+    api_.OnBinary(id_);
   } else {
     const auto data = in_.data();
     api_.OnMessage(id_, std::string_view(static_cast<const char*>(data.data()), data.size()));

@@ -48,6 +48,8 @@ class Api {
   void OnMessage(ClientId id, std::string_view text);
   /// A message over the size limit, read and dropped: answered with an error.
   void OnTooLarge(ClientId id, size_t bytes);
+  /// A binary message: JSON-RPC here is text, so it is answered with a parse error.
+  void OnBinary(ClientId id);
   /// Telemetry notifications that are due, and the link's events; called every few ms.
   void Tick(double now_s);
 
@@ -79,6 +81,8 @@ class Api {
   /// old controller still queued), and tell every client.
   void ControlChanged(const Control::Change& change, const std::string& reason);
   void Broadcast(const rpc::Json& notification);
+  /// An error for a message that held no call, to its sender.
+  void Refuse(ClientId id, const rpc::Error& error);
   std::string Name(ClientId id) const;
 
   host::Device& device_;
