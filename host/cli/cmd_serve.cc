@@ -5,18 +5,20 @@
 #include <thread>
 
 #include "cli.h"
+#include "palpa/serve/scene_methods.h"
 #include "palpa/serve/server.h"
 
 namespace palpa::cli {
 
 int CmdServe(Context& c, const std::vector<std::string>& args) {
   serve::ServeOptions options;
+  std::vector<serve::ServerScene> scenes;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if (a != "--listen" && a != "--device" && a != "--allow-host" && a != "--web" &&
-        a != "--truth") {
+        a != "--truth" && a != "--scene") {
       const std::string near =
-          Suggest(a, {"--listen", "--device", "--allow-host", "--web", "--truth"});
+          Suggest(a, {"--listen", "--device", "--allow-host", "--web", "--truth", "--scene"});
       return Usage("serve", "unexpected argument '" + a + "'" +
                                 (near.empty() ? "" : " (did you mean " + near + "?)"));
     }
@@ -32,6 +34,14 @@ int CmdServe(Context& c, const std::vector<std::string>& args) {
       c.throwaway = false;
     } else if (a == "--truth") {
       options.truth_address = value.value;
+    } else if (a == "--scene") {  // the operator's file, read now; pages load it by name
+      const auto spec = host::LoadScene(value.value);
+      if (!spec.ok()) return Fail("serve", spec.status, spec.message, kExitUsage);
+      const std::string name = spec.value.name.empty() ? value.value : spec.value.name;
+      for (const serve::ServerScene& s : scenes) {
+        if (s.name == name) return Usage("serve", "two --scene files named '" + name + "'");
+      }
+      scenes.push_back({name, spec.value});
     } else if (a == "--allow-host") {
       options.allowed_hosts.push_back(value.value);
     } else {
@@ -44,7 +54,7 @@ int CmdServe(Context& c, const std::vector<std::string>& args) {
   host::Device* d = c.Device();
   if (d == nullptr) return kExitConnect;
   if (options.truth_address.empty()) options.truth_address = c.truth_address;
-  auto server = serve::Server::Bind(*d, options);
+  auto server = serve::Server::Bind(*d, options, {serve::SceneMethods(d->info(), scenes)});
   if (!server.ok()) return Fail("serve", server.status, server.message, kExitConnect);
   std::printf("palpa serve: %s on %s\n", d->link().Describe().c_str(), server.value->Url().c_str());
   if (!options.listen.loopback) {
@@ -61,14 +71,16 @@ int CmdServe(Context& c, const std::vector<std::string>& args) {
 
 const Command kServeCommand{
     "serve",
-    "serve [--device URI] [--listen ADDRESS:PORT] [--allow-host NAME]... [--web DIR] [--truth "
-    "tcp:HOST:PORT]",
+    "serve [--device URI] [--listen ADDRESS:PORT] [--allow-host NAME]... [--scene FILE]... [--web "
+    "DIR] [--truth tcp:HOST:PORT]",
     "Holds the board's session and serves its JSON-RPC 2.0 API over a WebSocket (/websocket)\n"
     "and the page (/), for browsers and scripts (docs/serve.md). One client controls the board,\n"
     "the others watch; a controlling client that goes away (three unanswered pings, 100 ms\n"
     "apart) leaves the board released. Loopback only by default (127.0.0.1:7180); another\n"
     "--listen address needs the token printed at start. A simulated board (sim:) started here\n"
     "tells each finger's true output too; --truth reads it from a palpa-sim started with --truth.\n"
+    "Pages load scenes whose tissue is a preset or a phantom; --scene FILE offers a scene file\n"
+    "(its tissue from files beside it) by its name.\n"
     "Ctrl-C stops it and closes the session.",
     CmdServe};
 

@@ -135,6 +135,8 @@ void Api::GroupMethod(const MethodGroup& group, ClientId id, const rpc::Call& ca
                    nullptr};
   }
   if (prepared.error) return Answer(id, call, batch, rpc::ErrorAnswer(call.id, *prepared.error));
+  if (prepared.admit && !prepared.admit())  // carried by a job already queued
+    return Answer(id, call, batch, rpc::Result(call.id, nullptr));
   const bool urgent = prepared.urgent, needs_control = prepared.needs_control;
   const uint64_t epoch = control_epoch_->load();
   auto job = [this, id, call, batch, epoch, needs_control, job = std::move(prepared.job),
@@ -161,6 +163,9 @@ void Api::GroupMethod(const MethodGroup& group, ClientId id, const rpc::Call& ca
 
 void Api::ControlChanged(const Control::Change& change, const std::string& reason) {
   control_epoch_->fetch_add(1);
+  for (const MethodGroup& g : groups_) {  // first, so nothing feeds the board past the release
+    if (g.on_control_change) g.on_control_change();
+  }
   if (change.release_board) {
     // At once, and again behind whatever the old controller had queued, so nothing it sent
     // before losing control re-actuates the board afterwards.
@@ -181,6 +186,14 @@ void Api::Broadcast(const Json& notification) {
   for (auto& [id, client] : clients_) client.peer->Send(text);
 }
 
+void Api::AddTruth(Json& params) {
+  host::TruthReader::Sample truth;
+  if (truth_ && truth_->Latest(truth)) {  // a simulated board: what the fingers really did
+    params["finger_truth"] = truth.outputs;
+    params["truth_board_time_us"] = static_cast<uint64_t>(std::llround(truth.t_s * 1e6));
+  }
+}
+
 void Api::Tick(double now_s) {
   for (auto& [id, client] : clients_) {
     for (Subscription& s : client.subscriptions) {
@@ -188,14 +201,20 @@ void Api::Tick(double now_s) {
       s.next_due_s = std::max(s.next_due_s + 1.0 / s.updates_per_s, now_s);
       Json params = hub_.Take(s);
       if (params.is_null()) continue;
-      host::TruthReader::Sample truth;
-      if (truth_ && truth_->Latest(truth)) {
-        params["finger_truth"] = truth.outputs;
-        params["truth_board_time_us"] = static_cast<uint64_t>(std::llround(truth.t_s * 1e6));
-      }
+      AddTruth(params);
       if (!client.peer->SendDroppable(
               rpc::Text(rpc::Notification("notify_telemetry", std::move(params)))))
         ++client.telemetry_dropped;
+    }
+  }
+  for (const MethodGroup& g : groups_) {
+    if (!g.notification) continue;
+    Json n = g.notification(now_s);
+    if (n.is_null()) continue;
+    AddTruth(n["params"]);
+    const std::string text = rpc::Text(rpc::Notification(n["method"], std::move(n["params"])));
+    for (auto& [id, client] : clients_) {
+      if (!client.peer->SendDroppable(text)) ++client.telemetry_dropped;
     }
   }
   if (now_s >= next_events_s_) {  // what happened to the link, told to everyone

@@ -159,7 +159,9 @@ MethodGroup BoardMethods(const protocol::HelloReply& board) {
        "board.lines.set", "board.estop", "board.clear", "board.release"},
       [board](const std::string& method, const Json& params) {
         return Prepare(method, params, board);
-      }};
+      },
+      nullptr,
+      nullptr};
 }
 
 }  // namespace palpa::serve

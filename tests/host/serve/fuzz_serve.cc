@@ -12,6 +12,7 @@
 #include "palpa/serve/board_methods.h"
 #include "palpa/serve/params.h"
 #include "palpa/serve/request_guard.h"
+#include "palpa/serve/scene_methods.h"
 
 namespace {
 
@@ -28,10 +29,12 @@ palpa::protocol::HelloReply Board() {
 
 void Message(const std::string& text) {
   static const MethodGroup board = BoardMethods(Board());
+  static const MethodGroup scene = SceneMethods(Board(), {});  // scene documents read too
   const rpc::Parsed parsed = rpc::ParseMessage(text, 64);
   for (const rpc::Call& call : parsed.calls) {
     if (!call.params.is_object()) __builtin_trap();
-    const PreparedCall prepared = board.prepare(call.method, call.params);
+    const MethodGroup& group = call.method.rfind("scene.", 0) == 0 ? scene : board;
+    const PreparedCall prepared = group.prepare(call.method, call.params);
     if (!prepared.error && !prepared.job) __builtin_trap();  // nothing prepared, nothing refused
     std::vector<palpa::host::FingerRequest> targets;
     if (!ReadTargets(call.params, Board(), targets)) {

@@ -74,9 +74,10 @@ class Sim:
 class Serve:
     """`palpa serve` on a free port in front of `device`."""
 
-    def __init__(self, palpa, device, listen="127.0.0.1:0"):
+    def __init__(self, palpa, device, listen="127.0.0.1:0", extra=()):
         self.stderr = tempfile.TemporaryFile("w+")  # what the server logs, read by log()
-        self.proc = subprocess.Popen([palpa, "serve", "--device", device, "--listen", listen],
+        self.proc = subprocess.Popen([palpa, "serve", "--device", device, "--listen", listen,
+                                      *extra],
                                      stdout=subprocess.PIPE, stderr=self.stderr, text=True)
         line = self.proc.stdout.readline()
         m = re.search(r"on http://([^/]+):(\d+)/(\?token=(\w+))?", line)

@@ -81,6 +81,8 @@ class Api {
   /// old controller still queued), and tell every client.
   void ControlChanged(const Control::Change& change, const std::string& reason);
   void Broadcast(const rpc::Json& notification);
+  /// On a simulated board, each finger's true output and its board time into a notification.
+  void AddTruth(rpc::Json& params);
   /// An error for a message that held no call, to its sender.
   void Refuse(ClientId id, const rpc::Error& error);
   std::string Name(ClientId id) const;

@@ -29,6 +29,9 @@ struct PreparedCall {
   bool needs_control = true;
   /// Runs on the urgent lane, never behind a set waiting for the board (E-stop, Release).
   bool urgent = false;
+  /// Optional, on the server's thread once the call is allowed: false when a job already queued
+  /// will carry this call's effect (a newer sample replacing an older one), so none is queued.
+  std::function<bool()> admit = nullptr;
 };
 
 /// A group of methods sharing a prefix ("board.", "scene."): its names (for server.info, and to
@@ -37,6 +40,12 @@ struct MethodGroup {
   std::string prefix;
   std::vector<std::string> names;
   std::function<PreparedCall(const std::string& method, const rpc::Json& params)> prepare;
+  /// Optional, on the server's thread: control changed hands (and the board, if anyone controlled
+  /// it, is about to be released) — stop whatever would act on the board again (a scene's feed).
+  std::function<void()> on_control_change;
+  /// Optional, on the server's thread every few milliseconds: a notification for every client
+  /// ({"method", "params"}), or null. Sent as telemetry is: dropped for a client not keeping up.
+  std::function<rpc::Json(double now_s)> notification;
 };
 
 /// The board's methods; `board`: what the device said at Hello.
