@@ -8,7 +8,15 @@ let ws = null, nextId = 1, me = null, controls = false, board = null, controller
 const pending = new Map();
 const fingerPlots = [], linePlots = [], targets = [];
 
-function say(text) { $("message").textContent = text || ""; }
+/// The API and its messages number fingers and lines from 0, as programs index them; this page,
+/// like the command line, shows them from 1: "finger 0 does not exist (this board has fingers 0
+/// to 4)" is shown as "finger 1 does not exist (this board has fingers 1 to 5)".
+function fromOne(text) {
+  return text.replace(/\b(fingers?|lines?) (\d+)(?: to (\d+))?/g, (_, what, a, b) =>
+    `${what} ${Number(a) + 1}${b === undefined ? "" : ` to ${Number(b) + 1}`}`);
+}
+
+function say(text) { $("message").textContent = fromOne(text || ""); }
 
 function call(method, params = {}) {
   return new Promise((resolve, reject) => {
@@ -90,7 +98,7 @@ async function setFinger(i, target) {
   if (!result) return;
   const a = result.applied[0];
   targets[i] = a.raw ? NaN : a.target;
-  say(`finger ${i + 1}: ${a.raw ? "raw setpoints" : `target ${a.target} ${a.unit}`}`);
+  say(`Finger ${i + 1}: ${a.raw ? "raw setpoints" : `target ${a.target} ${a.unit}`}`);
 }
 
 function build(info) {
@@ -129,6 +137,7 @@ function onTelemetry(p) {
   }
   const last = s.board_time_us.length - 1;
   if (last < 0) return;
+  s.finger_output[last].forEach((v, f) => (fingerNow.output[f] = v));
   s.finger_output[last].forEach((v, f) => { const e = $(`out${f}`); if (e) e.textContent = `${v.toFixed(3)} ${board.fingers[f].unit}`; });
   s.measured_pa[last].forEach((v, l) => { const e = $(`meas${l}`); if (e) e.textContent = `${(v / 1000).toFixed(2)} kPa`; });
 }
@@ -141,6 +150,7 @@ function onMessage(event) {
     return m.error ? reject(new Error(m.error.message)) : resolve(m.result);
   }
   if (m.method === "notify_telemetry") onTelemetry(m.params);
+  else if (m.method === "notify_scene") onSceneState(m.params);
   else if (m.method === "notify_control") {
     showControl(m.params.controller, m.params.controller_name);
     if (m.params.board_released) say(`board released: ${m.params.reason}`);
@@ -158,6 +168,7 @@ function connect() {
       const info = await call("server.info");
       showControl(info.controller, info.controller_name);
       await call("telemetry.subscribe", { updates_per_s: 30, sample_rate_hz: 100 });
+      showScene(await call("scene.info"));
     } catch (e) { say(e.message); }
   };
   ws.onclose = () => {
@@ -187,6 +198,8 @@ $("clear").addEventListener("click", () => act("board.clear"));
 $("release").addEventListener("click", () => act("board.release"));
 (function frame() {
   for (const p of fingerPlots.concat(linePlots)) p.draw();
+  drawScene();
   requestAnimationFrame(frame);
 })();
+setupScene();
 connect();

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """The page in a real browser (Debian's chromium, headless, through chromium-driver and
 python3-selenium) against `palpa serve` and palpa-sim: it sees the board, takes control, moves a
-finger from its control, stops every line with the E-stop key, and when the browser freezes (no
+finger from its control, drags the pointer across a scene's map (the finger over an inclusion
+stiffens), stops every line with the E-stop key, and when the browser freezes (no
 pongs) or the tab closes the board is released — each checked on palpa-sim's truth channel.
 Screenshots go to OUT_DIR. Usage: browser_test.py PALPA PALPA_SIM OUT_DIR"""
 import os
@@ -11,9 +12,10 @@ import time
 
 from selenium import webdriver
 from selenium.webdriver.common.by import By
+from selenium.webdriver.common.actions.action_builder import ActionBuilder
 from selenium.webdriver.common.keys import Keys
 from selenium.webdriver.chrome.service import Service
-from selenium.webdriver.support.ui import WebDriverWait
+from selenium.webdriver.support.ui import Select, WebDriverWait
 
 from harness import Serve, Sim, fail
 
@@ -25,7 +27,9 @@ def wait_truth(sim, predicate, what, seconds=10):
         if predicate(sample):
             return sample
         if sample["board_time_us"] > start + seconds * 1e6:
-            fail(f"{what}: not within {seconds} s of board time ({sample['board']})")
+            fingers = [f.get("deformation_mm", f.get("stiffness_n_per_mm")) for f in sample["fingers"]]
+            fail(f"{what}: not within {seconds} s of board time ({sample['board']}, "
+                 f"fingers {fingers} mm)")
         time.sleep(0.02)
 
 
@@ -51,6 +55,66 @@ def text(driver, element_id):
     return driver.find_element(By.ID, element_id).text
 
 
+def scene_point(driver, x_mm, y_mm):
+    """Where a point of the tissue is in the viewport."""
+    return driver.execute_script(
+        "const r = document.getElementById('scene-map').getBoundingClientRect();"
+        "const [x, y] = scenePixel(arguments[0], arguments[1]);"
+        "return [Math.round(r.left + x), Math.round(r.top + y)];", x_mm, y_mm)
+
+
+def drag_scene(driver, sim, wait, out):
+    """Loads the three-cube preset, starts it and drags the mouse along the phantom's mid-line
+    (y = 15 mm): with the hand at x = 45 mm finger 2 (15 mm to its right) lies over cube B and
+    finger 1 over the soft matrix; at x = 60 mm the two change places. The finger over the cube is
+    the stiffer on the simulator's truth channel, both times."""
+    Select(driver.find_element(By.ID, "scene-choice")).select_by_value("preset:thesis-three-cube")
+    driver.find_element(By.ID, "scene-load").click()
+    wait.until(lambda d: "thesis-three-cube" in text(d, "scene-name"))
+    driver.execute_script("window.scrollTo(0, 0)")
+    driver.find_element(By.ID, "scene-start").click()
+    wait.until(lambda d: text(d, "scene-running") == "running")
+    actions = ActionBuilder(driver)
+    pointer = actions.pointer_action
+    pointer.move_to_location(*scene_point(driver, 10, 15))
+    pointer.pointer_down()
+    for x in range(12, 46, 2):
+        pointer.move_to_location(*scene_point(driver, x, 15))
+        pointer.pause(0.02)
+    actions.perform()
+
+    def stiffer(first, second):  # deformation grows with the rendered stiffness
+        return lambda s: (s["fingers"][first]["deformation_mm"]
+                          > s["fingers"][second]["deformation_mm"] + 0.3)
+    at45 = wait_truth(sim, stiffer(1, 0), "finger 2 over cube B, finger 1 on the matrix")
+    wait.until(lambda d: "touches" in text(d, "scene-fingers"))
+    driver.save_screenshot(os.path.join(out, "serve_scene.png"))
+    actions = ActionBuilder(driver)
+    for x in range(46, 61, 1):
+        actions.pointer_action.move_to_location(*scene_point(driver, x, 15))
+        actions.pointer_action.pause(0.02)
+    actions.perform()
+    at60 = wait_truth(sim, stiffer(0, 1), "finger 1 over cube B, finger 2 on the matrix")
+    print("ok  dragged across the scene: over cube B finger 2 "
+          f"{at45['fingers'][1]['deformation_mm']:.2f} mm against finger 1's "
+          f"{at45['fingers'][0]['deformation_mm']:.2f}; then finger 1 "
+          f"{at60['fingers'][0]['deformation_mm']:.2f} mm against finger 2's "
+          f"{at60['fingers'][1]['deformation_mm']:.2f}")
+    actions = ActionBuilder(driver)
+    actions.pointer_action.pointer_up()
+    actions.perform()
+    driver.find_element(By.ID, "scene-stop").click()
+    wait.until(lambda d: text(d, "scene-running") == "stopped")
+    wait_truth(sim, lambda s: all(f["deformation_mm"] < 0.5 for f in s["fingers"][:3]),
+               "every finger soft after the scene stopped")
+    print("ok  the scene stopped: every finger soft")
+    # The page broke no rule of its own Content-Security-Policy and threw nothing.
+    errors = [e for e in driver.get_log("browser")
+              if e["level"] == "SEVERE" and "favicon.ico" not in e["message"]]
+    if errors:
+        fail(f"the page logged errors: {errors[:3]}")
+
+
 def main():
     palpa, palpa_sim, out = sys.argv[1], sys.argv[2], sys.argv[3]
     os.makedirs(out, exist_ok=True)
@@ -63,6 +127,10 @@ def main():
         wait.until(lambda d: "thesis-5finger" in text(d, "board"))
         wait.until(lambda d: text(d, "out0").endswith("mm"))  # telemetry arrives
         print(f"ok  the page sees the board: {text(driver, 'board')}")
+        shown = driver.execute_script(
+            "return fromOne('finger 0 does not exist (this board has fingers 0 to 4); line 6: x')")
+        if shown != "finger 1 does not exist (this board has fingers 1 to 5); line 7: x":
+            fail(f"the page numbers the server's messages wrongly: {shown}")
         driver.find_element(By.ID, "take").click()
         wait.until(lambda d: text(d, "control") == "you control the board")
         driver.find_element(By.CSS_SELECTOR, "#fingers .card:first-child [data-level='2']").click()
@@ -71,6 +139,7 @@ def main():
         print(f"ok  finger 1 moved from the page: {moved['fingers'][0]['deformation_mm']} mm")
         time.sleep(1.5)  # a plot's worth of telemetry
         driver.save_screenshot(os.path.join(out, "serve_page.png"))
+        drag_scene(driver, sim, wait, out)
         # The E-stop on its key, from wherever the focus is.
         driver.find_element(By.TAG_NAME, "body").send_keys(Keys.SPACE)
         stopped = wait_truth(sim, lambda s: s["board"]["safe"] and s["board"]["faults"] != 0,
