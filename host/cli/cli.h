@@ -93,6 +93,14 @@ host::Outcome CheckDistinct(const std::vector<uint8_t>& indices,
 /// ("finger 9: this thesis-5finger board has fingers 1 to 5").
 host::Outcome CheckOnBoard(const std::vector<uint8_t>& indices, uint8_t count, const char* what,
                            const std::string& board_name);
+/// Splits off "--hold S": the seconds (0 without it), or why the value is refused.
+host::Result<double> TakeHold(std::vector<std::string>& args);
+/// Keeps the session (and so the actuation) for `hold_s`, or says that it is not kept; palpa's
+/// exit then closes the session (or gives control of a served board up), every output safe.
+void Hold(const Context& c, double hold_s);
+/// --device serve:HOST:PORT: the commands that go through a running palpa serve, and running one.
+bool RunsThroughServe(const std::string& command);
+int RunThroughServe(Context& c, const std::string& command, const std::vector<std::string>& args);
 /// A decimal number ("5", "-10.5", "1e3"), finite: no hex, no "inf", no spaces.
 bool ParseNumber(const std::string& text, double& out);
 /// "--rate 5": the value after option `i`, or a usage message that it is missing.

@@ -9,12 +9,7 @@
 #include "palpa/host/field_text.h"
 
 namespace palpa::cli {
-namespace {
 
-/// Any finger or line number that fits the wire; each board's own range is checked once open.
-constexpr uint8_t kAnyNumber = 255;
-
-/// Splits off "--hold S": the seconds (0 without it), or why the value is refused.
 host::Result<double> TakeHold(std::vector<std::string>& args) {
   for (size_t i = 0; i < args.size(); ++i) {
     if (args[i] != "--hold") continue;
@@ -31,8 +26,6 @@ host::Result<double> TakeHold(std::vector<std::string>& args) {
   return 0.0;
 }
 
-/// Keeps the session (and so the actuation) for `hold_s`; palpa's exit then closes the session,
-/// which returns every output to its safe state at once.
 void Hold(const Context& c, double hold_s) {
   if (hold_s <= 0) {
     if (!c.json) {
@@ -51,6 +44,11 @@ void Hold(const Context& c, double hold_s) {
   for (double t = 0; t < hold_s && !Interrupted(); t += 0.05)
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
 }
+
+namespace {
+
+/// Any finger or line number that fits the wire; each board's own range is checked once open.
+constexpr uint8_t kAnyNumber = 255;
 
 const char* KindName(host::TargetKind kind) {
   switch (kind) {

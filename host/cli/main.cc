@@ -33,8 +33,10 @@ void PrintUsage(FILE* out) {
       out,
       "usage: palpa [--device URI] [--json] COMMAND [ARGS]\n\n"
       "  --device URI   sim[:CONFIG], serial:PATH[?baud=N], tcp:HOST:PORT, hid:VID:PID[:SERIAL],\n"
-      "                 usb:VID:PID[:SERIAL] (default: $PALPA_DEVICE, else the board 'palpa sim\n"
-      "                 start' keeps running, else a throwaway sim:thesis-5finger)\n"
+      "                 usb:VID:PID[:SERIAL], serve:HOST:PORT (a board behind palpa serve: info,\n"
+      "                 diag, set, line, monitor, estop, clear) (default: $PALPA_DEVICE, else the\n"
+      "                 board 'palpa sim start' keeps running, else a throwaway "
+      "sim:thesis-5finger)\n"
       "  --json         every command's output as JSON, errors too: {\"error\": {\"status\", "
       "...}}\n\n"
       "commands:\n");
@@ -150,6 +152,8 @@ int main(int argc, char** argv) {
   }
   if (context.device_uri.empty()) context.device_uri = "sim:thesis-5finger";
   context.throwaway = context.device_uri.rfind("sim", 0) == 0 && !OwnsItsBoards(name);
+  if (context.device_uri.rfind("serve:", 0) == 0 && !OwnsItsBoards(name))
+    return RunThroughServe(context, name, args);
   const int rc = it->second->run(context, args);
   if (context.device && context.throwaway) {
     if (!gone.empty()) std::fprintf(stderr, "palpa: %s.\n", gone.c_str());

@@ -9,6 +9,9 @@
             print(sample["measured_pa"], sample["finger_output"])
     # leaving the block closes the session: every output safe at once, no fault latched
 
+palpa.Device("serve:127.0.0.1:7180") reaches a board behind a running `palpa serve` instead, with
+the same methods: several programs watch one board while one controls it (palpa/serve.py).
+
 A refusal raises PalpaError: .status names it ("faulted", "busy", ...); for latched faults
 .faults lists them ("host_silence", ...) and the message says when each latched and what to do.
 
@@ -242,7 +245,15 @@ class _Closable:
 
 class Device(_Closable):
     """One palpa board. close() (or `with`) ends the session: every output safe at once, no fault
-    latched, the board free for the next host."""
+    latched, the board free for the next host. "serve:HOST:PORT" reaches one behind a running
+    `palpa serve` instead (a ServeDevice, palpa/serve.py: the same methods, control taken by the
+    first call that acts, given up by close())."""
+
+    def __new__(cls, uri):
+        if isinstance(uri, str) and uri.startswith("serve:"):
+            from .serve import ServeDevice
+            return ServeDevice(uri)
+        return super().__new__(cls)
 
     def __init__(self, uri):
         lib = _library()
