@@ -13,7 +13,9 @@ void BoardLines::Sense(hal::AnalogInput& adc, SupervisorInput& in) {
   LineObservation* o = in.lines.data();
   const LineParams* p = params_.data();
   ReadingSummary summary;
-  for (uint8_t i = 0; i < count; ++i, ++o, ++p) {
+  // A word-sized index: a uint8_t one is zero-extended again on every pass (NoteReading keeps
+  // the line's number in a byte; it is below kMaxLines).
+  for (uint32_t i = 0; i < count; ++i, ++o, ++p) {
     if (!o->has_sensor) continue;
     const uint32_t counts = scan[i];
     // Readings outside the sensor's output span (open or shorted wire) are not pressures; nor is
@@ -27,7 +29,7 @@ void BoardLines::Sense(hal::AnalogInput& adc, SupervisorInput& in) {
                      : o->reading.pa;  // an invalid reading keeps the last pressure
     o->reading = reading;
     o->raw_counts = counts;
-    NoteReading(summary, i, reading, *o);
+    NoteReading(summary, static_cast<uint8_t>(i), reading, *o);
   }
   in.readings = summary;
 }
