@@ -49,12 +49,21 @@ void BoardLines::Step(bool safe, SupervisorInput& in) {
   // Every line's valve open while safe (its default); else the lines' steps say which. Kept in
   // memory: the rare step that vents ORs its bit in, the loop holds no register for it.
   uint32_t& vents = vents_;
-  vents = safe ? kAllVents : 0u;
-  for (; p != end; ++p, ++state, ++out, ++o, ++setpoint, ++flags, ++code) {
-    *code = safe ? HoldLineSafe(*p, *state, o->reading, *out)
-                 : StepLineEither(*p, *state, *setpoint, o->reading, *out, vents);
-    out->status |= *flags;
-    vacuum |= out->command_pa < p->pump_below_pa;
+  // Two loops rather than a test of `safe` on every line (it did not stay in a register).
+  if (safe) {
+    vents = kAllVents;
+    for (; p != end; ++p, ++state, ++out, ++o, ++flags, ++code) {
+      *code = HoldLineSafe(*p, *state, o->reading, *out);
+      out->status |= *flags;
+      vacuum |= out->command_pa < p->pump_below_pa;
+    }
+  } else {
+    vents = 0u;
+    for (; p != end; ++p, ++state, ++out, ++o, ++setpoint, ++flags, ++code) {
+      *code = StepLineEither(*p, *state, *setpoint, o->reading, *out, vents);
+      out->status |= *flags;
+      vacuum |= out->command_pa < p->pump_below_pa;
+    }
   }
   in.vacuum_demand = vacuum;  // the pump follows on the next tick's supervision
 }
