@@ -60,8 +60,7 @@ void BoardLines::Step(bool safe, SupervisorInput& in) {
   } else {
     vents = 0u;
     for (; p != end; ++p, ++state, ++out, ++o, ++setpoint, ++flags, ++code) {
-      *code = StepLineEither(*p, *state, *setpoint, o->reading, *out, vents);
-      out->status |= *flags;
+      *code = StepLineEither(*p, *state, *setpoint, o->reading, *out, vents, *flags);
       vacuum |= out->command_pa < p->pump_below_pa;
     }
   }

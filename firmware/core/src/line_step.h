@@ -93,10 +93,10 @@ template <bool kShaping>
                                                       LineState& __restrict s, float setpoint_pa,
                                                       const LineReading& __restrict reading,
                                                       LineOutput& __restrict out,
-                                                      uint32_t& __restrict vents) {
+                                                      uint32_t& __restrict vents, uint8_t flags) {
   namespace ls = protocol::line_status;
 
-  uint8_t status = reading.status;
+  uint8_t status = reading.status | flags;
   // 1. Slew limit.
   const float target = Clamp(setpoint_pa, p.limit_min_pa, p.limit_max_pa);
   const float previous = s.slewed_pa;
@@ -207,12 +207,14 @@ template <bool kShaping>
   return static_cast<uint32_t>(line_step::Code(p, command));
 }
 
-/// StepLineInline for the line's kind of step.
+/// StepLineInline for the line's kind of step; `flags` are status bits the caller adds (ORed in
+/// with the step's own, so the status is stored once).
 [[gnu::always_inline]] inline uint32_t StepLineEither(const LineParams& p, LineState& s,
                                                       float setpoint_pa, const LineReading& reading,
-                                                      LineOutput& out, uint32_t& vents) {
-  return p.shaping ? StepLineInline<true>(p, s, setpoint_pa, reading, out, vents)
-                   : StepLineInline<false>(p, s, setpoint_pa, reading, out, vents);
+                                                      LineOutput& out, uint32_t& vents,
+                                                      uint8_t flags = 0) {
+  return p.shaping ? StepLineInline<true>(p, s, setpoint_pa, reading, out, vents, flags)
+                   : StepLineInline<false>(p, s, setpoint_pa, reading, out, vents, flags);
 }
 
 }  // namespace palpa::core
