@@ -1,10 +1,13 @@
 // Where a deep jamming step spends its time: 0 → −80 kPa of vacuum on held-out units (plant level
 // 3, 20 kPa bias), shaped with the chamber lag the calibration identified (at 5 → 20 kPa of
-// vacuum) and with that lag scaled, against the plant's own fastest step. Prints Markdown.
+// vacuum) and with that lag scaled, against the plant's own fastest step; then the lag the same
+// step measurement fits at increasing depth (what a chamber model that follows the pressure would
+// be identified from). Prints Markdown.
 //   palpa_deep_step_bench
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "steps_calibration.h"
 #include "steps_measure.h"
@@ -58,6 +61,51 @@ DeepStep Run(uint32_t seed, float scale) {
   return d;
 }
 
+/// The chamber lag the calibration's step measurement fits on `seed`'s jamming finger for a step
+/// of `from_kpa` → `to_kpa` of vacuum (the identification's procedure, a longer window).
+palpa::calibration::ChamberFit LagAt(uint32_t seed, double from_kpa, double to_kpa) {
+  constexpr uint8_t kJamming = 3;
+  palpa::testing::SimRig sim({"thesis-5finger", kJamming, seed, seed});
+  palpa::calibration::Rig rig = sim.rig();
+  palpa::calibration::ContactOptions o;
+  double zero = 0;
+  palpa::calibration::ZeroOnVentedSurface(rig, kJamming, o, &zero);
+  palpa::calibration::ChamberStepOptions step = palpa::calibration::ChamberStepFor(true);
+  step.from_kpa = from_kpa;
+  step.to_kpa = to_kpa;
+  step.after_s = 1.2;
+  palpa::calibration::ChamberStep measured;
+  palpa::calibration::MeasureChamberStep(rig, kJamming, zero, o, step, &measured);
+  return measured.fit;
+}
+
+/// Lags fitted at increasing depth against the tube's mean absolute pressure over the step: a
+/// laminar tube's conductance is proportional to it, so lag × pressure stays put if the tube is
+/// what slows the chamber.
+void LagsByDepth() {
+  std::printf(
+      "\nThe chamber lag fitted at depth (the calibration's step measurement, 1.2 s window):\n\n"
+      "| unit | step (kPa of vacuum) | mean absolute pressure (kPa) | lag (ms) | × the 5 → 20 "
+      "lag | lag × pressure (ms·kPa) | fit RMS |\n|---|---|---:|---:|---:|---:|---:|\n");
+  constexpr double kAtmKpa = 101.325;
+  for (uint32_t seed : {101u, 102u, 103u}) {
+    double shallow = 0;
+    for (const auto& [from, to] : {std::pair{5.0, 20.0}, std::pair{20.0, 40.0},
+                                   std::pair{40.0, 60.0}, std::pair{60.0, 80.0}}) {
+      const palpa::calibration::ChamberFit fit = LagAt(seed, from, to);
+      if (!fit.ok) {
+        std::printf("| %u | %.0f → %.0f | no fit | | | | |\n", seed, from, to);
+        continue;
+      }
+      const double mean_abs = kAtmKpa - (from + to) / 2;
+      if (shallow == 0) shallow = fit.tau_s;
+      std::printf("| %u | %.0f → %.0f | %.1f | %.1f | %.2f | %.0f | %.1f %% |\n", seed, from, to,
+                  mean_abs, 1e3 * fit.tau_s, fit.tau_s / shallow, 1e3 * fit.tau_s * mean_abs,
+                  100 * fit.rms);
+    }
+  }
+}
+
 }  // namespace
 
 int main() {
@@ -85,5 +133,6 @@ int main() {
                   d.overshoot_pa / 1000);
     }
   }
+  LagsByDepth();
   return 0;
 }
