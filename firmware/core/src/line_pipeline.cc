@@ -121,6 +121,7 @@ void ResetLineState(const LineParams& p, LineState& s, float pa) {
   s.steady_pa = pa;
   s.regulator_pa = pa;
   s.chamber_pa = pa;
+  s.hold_reading_pa = pa;  // held there: where a first overdrive starts from
   s.trim_hold = 0;
   s.rising = true;
   s.overdrive_pa = s.shaping_fell_back ? 0.0f : p.overdrive_pa;

@@ -23,21 +23,24 @@ float FeedForward(const LineParams& p, LineState& s, float previous, float now, 
 
 /// In a shaped step's hold, after the overdrive: the chamber model closes in on the target from
 /// the side the step came from. An outlet on the far side of the target, beyond where the
-/// regulator model and the trim put it (by kShapeFallbackPa on both), and further on that side
-/// than where the overdrive left it (an outlet coming back from beyond lags an earlier step: slow
-/// air, not fast) says the air is faster than the model: the step overshoots. The line's steps are
-/// unshaped from then on (no overdrive, and a slew limit again: fallback_max_step_pa), until it
-/// is configured again. Compares only: the signs are taken once, from the step's direction.
+/// regulator model and the trim put it (by kShapeFallbackPa on both), that was not beyond the
+/// target yet as the overdrive began, says the air is faster than the model: the step overshoots.
+/// An outlet already beyond as the overdrive began lags an earlier step (slow air, not fast: a
+/// vacuum line's outlet creeping toward the pump's pressure is kilopascals short of a deep target
+/// after a second), and the overdrive's own push carries it on a little further. The line's steps
+/// are unshaped from then on (no overdrive, and a slew limit again: fallback_max_step_pa), until
+/// it is configured again. Compares only: the signs are taken once, from the step's direction.
 [[gnu::always_inline]] inline void WatchShapedStep(const LineParams& p, LineState& s, float target,
                                                    const LineReading& reading) {
   if (!reading.valid || target == s.chamber_pa) return;  // no direction: nothing is beyond
+  s.hold_reading_pa = reading.pa;  // where the next overdrive starts from, if one starts now
   const bool up = target > s.chamber_pa;
   const float outlet = up ? reading.pa : -reading.pa;
   const float beyond_target = (up ? target : -target) + kShapeFallbackPa;
   const float model = s.reference_pa + s.integrator_pa;
   const float beyond_model = (up ? model : -model) + kShapeFallbackPa;
-  const float handover = up ? s.handover_reading_pa : -s.handover_reading_pa;
-  if (outlet > beyond_target && outlet > beyond_model && outlet > handover)
+  const float started = up ? s.start_reading_pa : -s.start_reading_pa;
+  if (outlet > beyond_target && outlet > beyond_model && started <= beyond_target)
     s.shaping_fell_back = true, s.overdrive_pa = 0, s.max_step_pa = p.fallback_max_step_pa;
 }
 
@@ -127,14 +130,15 @@ template <bool kShaping>
         status |= ls::kShaping;
       } else if (direction_from != previous) {
         // The overdrive's end (the last tick's command was beyond its target): the hold starts,
-        // and the watch compares the outlet with where the overdrive left it. A target that
-        // moved without an overdrive leaves the hold as it was.
+        // and the watch compares with where the outlet was as the overdrive began (the overdrive's
+        // ticks read nothing). A target that moved without an overdrive leaves the hold as it was.
         s.trim_hold = p.shape_hold_ticks;
-        s.handover_reading_pa = reading.pa;
+        s.start_reading_pa = s.hold_reading_pa;
       }
     } else if (s.trim_hold <= 1) {
       s.trim_hold = 0;
       s.steady_pa = s.regulator_pa = s.chamber_pa = slewed;
+      s.hold_reading_pa = reading.pa;  // settled: where the next overdrive starts from
     } else {
       --s.trim_hold;
       line_step::WatchShapedStep(p, s, slewed, reading);  // the overdrive is over

@@ -272,6 +272,36 @@ TEST(StepShaping, AnAirPathFasterThanItsModelFallsBackToUnshapedSteps) {
   CHECK(s.shaping_fell_back);  // a reset alone (the safe state) keeps it
 }
 
+TEST(StepShaping, AnOutletStillShortOfAnEarlierTargetIsNoOvershoot) {
+  // A vacuum line near the pump's pressure: the flow into the pump falls with the outlet's
+  // absolute pressure, so a second after a step to −99 kPa the outlet has crept only to −94.
+  // A small step back toward atmosphere (−98.5 kPa) then finds it on the step's far side of the
+  // new target, beyond the target and the reference by more than kShapeFallbackPa, and the
+  // overdrive's push carries it 0.3 kPa further. It was beyond before the overdrive began: it
+  // lags the earlier step, slow air, and the line keeps shaping. An outlet that crosses the
+  // target during the step still falls back (AnAirPathFasterThanItsModelFallsBackToUnshapedSteps).
+  pp::ConfigureLine c = ShapedLine(200000, 20000);
+  c.kind = pp::LineKind::kVacuum;
+  c.command_max_pa = c.limit_min_pa = -100000;
+  c.limit_max_pa = 0;
+  LineUnderTest line(c, -60000);
+  auto& [p, s, out] = line;
+  float outlet = -60000;
+  for (int k = 0; k < 2000; ++k) {
+    Run(p, s, -99000, outlet, out);
+    outlet = std::max(outlet - 25.0f, -94000.0f);
+  }
+  bool shaped = false;
+  for (int k = 0; k < 1000; ++k) {
+    Run(p, s, -98500, outlet, out);
+    const bool shaping = (out.status & ls::kShaping) != 0;
+    shaped = shaped || shaping;
+    if (shaped && !shaping) outlet = -93700;  // the overdrive's push, after it
+  }
+  CHECK(shaped);
+  CHECK_FALSE(s.shaping_fell_back);
+}
+
 TEST(StepShaping, AShapedLineVentsBelowTheRegulatorsMinimumWhereItsLimitsHoldAtmosphere) {
   auto vents_at = [](const pp::ConfigureLine& c, float from, float to) {
     LineUnderTest line(c, from);

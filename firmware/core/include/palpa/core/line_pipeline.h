@@ -92,7 +92,10 @@ struct LineState {
   float regulator_pa = 0, chamber_pa = 0;
   float wanted_pa = 0;  ///< shaping: what the regulator was last asked for (slewed or shaped)
   float steady_pa = 0;  ///< shaping: the setpoint the line has settled on; none during a step
-  float handover_reading_pa = 0;  ///< shaping: the outlet's reading as the overdrive last ran
+  /// Shaping: the outlet's last reading in a hold, or as one ended (where it was as the next
+  /// overdrive began: the overdrive's ticks read nothing), and that reading kept as the overdrive
+  /// ends, for the watch through the hold after it.
+  float hold_reading_pa = 0, start_reading_pa = 0;
   /// Shaping fell back: a step's outlet went beyond its target and the model (kShapeFallbackPa),
   /// so the line's steps are unshaped until it is configured again (ResetLineState keeps it, the
   /// board's Diagnostics says it).
