@@ -30,11 +30,47 @@ Result<std::unique_ptr<Scene>> Scene::Open(const SceneSpec& spec, Device& device
               device);
 }
 
-Result<std::vector<FingerRender>> Scene::Feed(const SceneInput& input) {
-  std::vector<FingerRender> renders = renderer_.Render(input);
+Result<std::vector<FingerRender>> Scene::Send(std::vector<FingerRender> renders) {
   const Outcome sent = device_.Set(renderer_.Requests(renders), /*wait=*/false);
   if (!sent.ok()) return sent;
   return renders;
+}
+
+Result<std::vector<FingerRender>> Scene::Feed(const SceneInput& input) {
+  return Send(renderer_.Render(predictor_ ? predictor_->Next(input) : input));
+}
+
+Result<std::vector<FingerRender>> Scene::FeedValues(const std::vector<double>* values, double lo,
+                                                    double hi) {
+  return Send(renderer_.RenderValues(values, lo, hi));
+}
+
+Result<double> Scene::DisplayDelay() {
+  double sum = 0;
+  for (const RenderFinger& f : renderer_.fingers()) {
+    const bool jamming = f.summary.kind == protocol::FingerKind::kJamming;
+    const uint8_t line = jamming ? f.summary.line_b : f.summary.line_a;
+    const auto config = device_.ReadLine(line);
+    if (!config.ok()) return config.outcome();
+    const auto delay = host::DisplayDelay(config.value);
+    if (!delay.ok()) {
+      return {delay.status, device_.FingerName(f.board_finger) + ": " + delay.message};
+    }
+    sum += delay.value;
+  }
+  return sum / static_cast<double>(renderer_.fingers().size());
+}
+
+Outcome Scene::Predict(std::optional<PredictorOptions> options) {
+  if (!options) {
+    predictor_.reset();
+    return {};
+  }
+  if (Outcome ok = CheckPredictor(*options); !ok.ok()) return ok;
+  predictor_.emplace(*options);
+  const TissueMap& t = renderer_.tissue();
+  predictor_->SetExtent(t.extent_x_mm(), t.extent_y_mm());
+  return {};
 }
 
 }  // namespace palpa::host

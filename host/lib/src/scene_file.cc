@@ -167,10 +167,57 @@ RenderRule ParseRule(const JsonObject& doc) {
   return r;
 }
 
+void ParseInput(const JsonObject& doc, SceneSpec* s) {
+  const JsonObject in(doc.At("input"), "input", {"tablet", "tactile"});
+  if (in.Has("tablet")) {
+    const JsonObject t(in.At("tablet"), "input.tablet", {"pressure_force", "touch_force_n"});
+    TabletSpec tablet;
+    if (t.Has("pressure_force")) {
+      const JsonObject p(t.At("pressure_force"), "input.tablet.pressure_force",
+                         {"a_n", "b_per_level"});
+      tablet.pressure_force = {p.Number("a_n", 1e-6, 100), p.Number("b_per_level", -0.1, 0.1)};
+      if (const Outcome ok = CheckPressureForce(tablet.pressure_force); !ok.ok())
+        throw JsonInvalid("input.tablet." + ok.message);
+    }
+    if (t.Has("touch_force_n"))
+      tablet.touch_force_n = t.Number("touch_force_n", 0, kMaxInputForceN);
+    s->tablet = tablet;
+  }
+  if (in.Has("tactile")) {
+    const JsonObject t(in.At("tactile"), "input.tactile",
+                       {"elements", "groups", "unit", "value_range", "hold_s"});
+    TactileSpec tactile;
+    tactile.elements = static_cast<size_t>(t.Integer("elements", 1, kMaxTactileElements));
+    const json& groups = t.List("groups", 1, kMaxLayoutFingers);
+    for (size_t g = 0; g < groups.size(); ++g) {
+      const std::string at = t.Item("groups", g);
+      if (!groups[g].is_array() || groups[g].empty() || groups[g].size() > kMaxTactileElements)
+        throw JsonInvalid(at + ": must be a list of 1 … " + std::to_string(kMaxTactileElements) +
+                          " element indices");
+      std::vector<size_t> group;
+      for (size_t k = 0; k < groups[g].size(); ++k) {
+        const json& e = groups[g][k];
+        if (!e.is_number_integer() || e.get<long>() < 0)
+          throw JsonInvalid(at + "[" + std::to_string(k) +
+                            "]: must be an element index, 0 or more");
+        group.push_back(static_cast<size_t>(e.get<long>()));
+      }
+      tactile.groups.push_back(std::move(group));
+    }
+    tactile.unit = t.Text("unit");
+    std::tie(tactile.value_lo, tactile.value_hi) = Pair(t, "value_range", -1e12, 1e12);
+    if (t.Has("hold_s")) tactile.hold_s = t.Number("hold_s", 0, kMaxTactileHoldS);
+    const size_t fingers = MakeLayout(s->layout).fingers.size();
+    if (const Outcome ok = CheckTactile(tactile, fingers); !ok.ok())
+      throw JsonInvalid("input." + ok.message);
+    s->tactile = tactile;
+  }
+}
+
 SceneSpec Parse(const json& j, const std::string& base) {
-  const JsonObject doc(
-      j, "",
-      {"schema", "schema_version", "name", "description", "tissue", "layout", "fingers", "rule"});
+  const JsonObject doc(j, "",
+                       {"schema", "schema_version", "name", "description", "tissue", "layout",
+                        "fingers", "rule", "input"});
   if (doc.Text("schema") != "palpa-scene") throw JsonInvalid("schema: must be \"palpa-scene\"");
   doc.Integer("schema_version", 1, 1);
   SceneSpec s;
@@ -197,6 +244,7 @@ SceneSpec Parse(const json& j, const std::string& base) {
   }
   s.rule = ParseRule(doc);
   if (const Outcome ok = CheckRule(s.rule); !ok.ok()) throw JsonInvalid(ok.message);
+  if (doc.Has("input")) ParseInput(doc, &s);
   return s;
 }
 

@@ -87,6 +87,25 @@ json RuleJson(const RenderRule& r) {
   return j;
 }
 
+json InputJson(const SceneSpec& s) {
+  json j = json::object();
+  if (s.tablet) {
+    j["tablet"] = {{"pressure_force",
+                    {{"a_n", s.tablet->pressure_force.a_n},
+                     {"b_per_level", s.tablet->pressure_force.b_per_level}}},
+                   {"touch_force_n", s.tablet->touch_force_n}};
+  }
+  if (s.tactile) {
+    const TactileSpec& t = *s.tactile;
+    j["tactile"] = {{"elements", t.elements},
+                    {"groups", t.groups},
+                    {"unit", t.unit},
+                    {"value_range", {t.value_lo, t.value_hi}},
+                    {"hold_s", t.hold_s}};
+  }
+  return j;
+}
+
 }  // namespace
 
 Result<std::string> SerializeScene(const SceneSpec& s) {
@@ -96,6 +115,7 @@ Result<std::string> SerializeScene(const SceneSpec& s) {
   j["layout"] = LayoutJson(s.layout);
   j["fingers"] = s.board_fingers;
   j["rule"] = RuleJson(s.rule);
+  if (s.tablet || s.tactile) j["input"] = InputJson(s);
   std::string text = j.dump(2) + "\n";
   // What is written must read back: a spec that would not is refused here, not on reading.
   const auto back = ParseScene(text);

@@ -145,7 +145,6 @@ std::vector<FingerRender> SceneRenderer::Render(const SceneInput& in) const {
     r.contact = contacts[k];
     // A force that is not a number touches nothing: released is the safe default.
     r.touching = in.force_n >= rule_.contact_force_n && r.contact.coverage > 0;
-    r.request = {TargetKind::kNormalized, 0};  // released: 0 mm, or the vacuum off
     if (r.touching) {
       if (tissue_.has_depth()) {
         const DepthAtForce d = PressDepth(tissue_.layers, r.contact.force_n, in.force_n);
@@ -154,13 +153,33 @@ std::vector<FingerRender> SceneRenderer::Render(const SceneInput& in) const {
       } else {
         r.value = r.contact.value;
       }
-      const double span = hi_ - lo_;
-      const double linear = span > 0 ? std::clamp((r.value - lo_) / span, 0.0, 1.0) : 0.0;
-      r.u = std::pow(linear, rule_.contrast);
-      r.request = Target(f, r.u);
     }
-    // Clamped, never refused: the rule's range may ask past what a finger's curve covers.
-    r.mapped = MapRequest(f.summary, levels_, f.curves, r.request, RangePolicy::kClamp);
+    Map(r, f, lo_, hi_);
+  }
+  return out;
+}
+
+void SceneRenderer::Map(FingerRender& r, const RenderFinger& f, double lo, double hi) const {
+  r.request = {TargetKind::kNormalized, 0};  // released: 0 mm, or the vacuum off
+  if (r.touching) {
+    const double span = hi - lo;
+    const double linear = span > 0 ? std::clamp((r.value - lo) / span, 0.0, 1.0) : 0.0;
+    r.u = std::pow(linear, rule_.contrast);
+    r.request = Target(f, r.u);
+  }
+  // Clamped, never refused: the rule's range may ask past what a finger's curve covers.
+  r.mapped = MapRequest(f.summary, levels_, f.curves, r.request, RangePolicy::kClamp);
+}
+
+std::vector<FingerRender> SceneRenderer::RenderValues(const std::vector<double>* values, double lo,
+                                                      double hi) const {
+  std::vector<FingerRender> out(fingers_.size());
+  for (size_t k = 0; k < out.size(); ++k) {
+    FingerRender& r = out[k];
+    // A value that is not a number touches nothing, as an input's force that is not one.
+    r.touching = values != nullptr && k < values->size() && std::isfinite((*values)[k]);
+    if (r.touching) r.value = (*values)[k];
+    Map(r, fingers_[k], lo, hi);
   }
   return out;
 }

@@ -4,11 +4,13 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "palpa/host/device.h"
 #include "palpa/host/outcome.h"
 #include "palpa/host/scene_file.h"
+#include "palpa/host/scene_predict.h"
 #include "palpa/host/scene_render.h"
 
 namespace palpa::host {
@@ -31,12 +33,30 @@ class Scene {
   /// say what each finger touched and was asked.
   Result<std::vector<FingerRender>> Feed(const SceneInput& input);
 
+  /// Values per finger already known (a tactile array's group means), rendered over lo … hi
+  /// (SceneRenderer::RenderValues) and sent as Feed sends; nullptr releases every finger.
+  Result<std::vector<FingerRender>> FeedValues(const std::vector<double>* values, double lo,
+                                               double hi);
+
+  /// The display's delay for this scene's fingers (scene_predict.h DisplayDelay): each finger's
+  /// driving line — a pneumatic finger's pressure line, a jamming finger's vacuum line — read
+  /// from the board, as its calibration configured it; the mean over the fingers. Unavailable,
+  /// naming the line, when one has no chamber model.
+  Result<double> DisplayDelay();
+  /// From now on each Feed renders where the input is predicted to be (MotionPredictor, held on
+  /// the tissue); nullopt renders the input as it is. Refused for bad options.
+  Outcome Predict(std::optional<PredictorOptions> options);
+  /// The predictor in use (nullptr: none): what the last Feed predicted, and why not.
+  const MotionPredictor* predictor() const { return predictor_ ? &*predictor_ : nullptr; }
+
   const SceneRenderer& renderer() const { return renderer_; }
 
  private:
   Scene(SceneRenderer renderer, Device& device) : renderer_(std::move(renderer)), device_(device) {}
+  Result<std::vector<FingerRender>> Send(std::vector<FingerRender> renders);
   SceneRenderer renderer_;
   Device& device_;
+  std::optional<MotionPredictor> predictor_;
 };
 
 }  // namespace palpa::host

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,8 @@
 #include "palpa/host/scene_image.h"
 #include "palpa/host/scene_phantom.h"
 #include "palpa/host/scene_render.h"
+#include "palpa/host/scene_tablet.h"
+#include "palpa/host/scene_tactile.h"
 
 namespace palpa::host {
 
@@ -33,6 +36,12 @@ struct LayoutSpec {
   double contact_diameter_mm = 0;
 };
 
+/// A pen tablet or touchpad driving the scene ("input": {"tablet": {…}}).
+struct TabletSpec {
+  PressureForce pressure_force;  ///< the thesis's by default; palpa scene calibrate-input fits one
+  double touch_force_n = 1.0;    ///< what a pad without a pressure axis presses with
+};
+
 /// The layout a spec makes (RightTriangleLayout, RowLayout, … then Rotated).
 FingerLayout MakeLayout(const LayoutSpec& spec);
 
@@ -48,6 +57,8 @@ struct SceneSpec {
   LayoutSpec layout;
   std::vector<uint8_t> board_fingers;  ///< one per place of the layout, 0-based
   RenderRule rule;
+  std::optional<TabletSpec> tablet;    ///< "input.tablet": absent, the thesis's pressure form
+  std::optional<TactileSpec> tactile;  ///< "input.tactile": needed to render a tactile array
 };
 
 /// The phantom presets a scene may name: "thesis-three-cube".
@@ -71,7 +82,10 @@ std::vector<std::string> ScenePresets();
 ///    "rule": {"value_range": [lo, hi] (optional), "contrast", "contact_force_n",
 ///             "pneumatic": {"mapping": "deformation", "range_mm": [lo, hi]}
 ///                        | {"mapping": "level"}
-///                        | {"mapping": "fingertip-stress", "range_kpa": [lo, hi]}}}
+///                        | {"mapping": "fingertip-stress", "range_kpa": [lo, hi]}},
+///    "input" (optional): {"tablet": {"pressure_force": {"a_n", "b_per_level"}, "touch_force_n"},
+///                         "tactile": {"elements", "groups": [[element, …] per finger], "unit",
+///                                     "value_range": [lo, hi], "hold_s"}}}
 Result<SceneSpec> ParseScene(const std::string& text, const std::string& base_dir = "");
 /// ParseScene of a file (within kSceneFileLimits), relative paths from its directory.
 Result<SceneSpec> LoadScene(const std::string& path);

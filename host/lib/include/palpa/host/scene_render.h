@@ -79,12 +79,18 @@ class SceneRenderer {
 
   /// Each finger's render for one input sample, in the layout's order. Deterministic.
   std::vector<FingerRender> Render(const SceneInput& input) const;
+  /// Each finger's render from a value per finger already known (a tactile array's group means,
+  /// in the layout's order), mapped over lo … hi with the rule's contrast and target mapping;
+  /// no values (nullptr: the stream stopped) releases every finger — they go soft.
+  std::vector<FingerRender> RenderValues(const std::vector<double>* values, double lo,
+                                         double hi) const;
   /// The requests for Device::Set (one per finger, all in one call: one stream frame).
   std::vector<FingerRequest> Requests(const std::vector<FingerRender>& renders) const;
 
   const TissueMap& tissue() const { return tissue_; }
   const FingerLayout& layout() const { return layout_; }
   const RenderRule& rule() const { return rule_; }
+  const std::vector<RenderFinger>& fingers() const { return fingers_; }
   /// The stiffness range mapped to u = 0 … 1 (the rule's, or the tissue's own).
   double value_lo() const { return lo_; }
   double value_hi() const { return hi_; }
@@ -93,6 +99,8 @@ class SceneRenderer {
 
  private:
   Request Target(const RenderFinger& f, double u) const;
+  /// r.value over lo … hi to u, then the finger's target (r.touching), or released.
+  void Map(FingerRender& r, const RenderFinger& f, double lo, double hi) const;
 
   TissueMap tissue_;
   FingerLayout layout_;

@@ -1,0 +1,75 @@
+// Prediction: a finger's stiffness arrives a display delay after its target is sent (dead time,
+// the regulator's lag, the chamber's), so the scene renders where the hand will be then,
+// extrapolated from its recent motion — bounded, and not at all when the motion is erratic.
+#pragma once
+
+#include <cstddef>
+#include <deque>
+#include <string>
+
+#include "palpa/host/outcome.h"
+#include "palpa/host/scene_input.h"
+#include "palpa/protocol/messages_config.h"
+
+namespace palpa::host {
+
+/// The time a line's model takes to cross half of a step: its dead time, then its regulator's
+/// lag and (unless the board shapes the line's steps, which drives the chamber through its lag)
+/// its chamber's. Half, because an edge is felt when the stiffness is half-way across it. From
+/// the line's configuration as a calibration set it (chamber_tau_us, model_tau_us,
+/// model_dead_time_us, overdrive_pa): the calibrated model, never a measurement of the output.
+/// A line without a chamber model (chamber_tau_us 0: never calibrated) is unavailable.
+Result<double> DisplayDelay(const protocol::ConfigureLine& line);
+/// Half-step time of a dead time then one or two first-order lags (tau2 0: one), in seconds.
+double HalfStepTime(double dead_time_s, double tau1_s, double tau2_s);
+
+struct PredictorOptions {
+  /// How far ahead to predict: the display's delay (DisplayDelay). Half of the input's own
+  /// sample interval is added (a sample is held until the next arrives).
+  double horizon_s = 0;
+  /// The motion is fitted over this much of the latest input (at least 3 samples).
+  double window_s = 0.05;
+  /// Never lead the hand by more than this (mm), whatever the speed.
+  double max_lead_mm = 2.0;
+  /// Erratic: the samples stray from a straight, even motion by more than this (RMS, mm) —
+  /// noise, a sharp turn. No prediction then.
+  double erratic_rms_mm = 0.15;
+  /// Below this speed the hand is stopping or stopped: no prediction (mm/s).
+  double stop_speed_mm_s = 3.0;
+  /// Samples further apart than this are not one motion (a lifted pen, a stalled stream).
+  double max_gap_s = 0.1;
+};
+
+/// Outcome problems with options: horizon 0 … 1 s, window 0.005 … 1 s, lead 0 … 50 mm,
+/// thresholds ≥ 0, gap > 0.
+Outcome CheckPredictor(const PredictorOptions& o);
+
+/// Why a sample was or was not predicted.
+enum class Prediction { kPredicted, kTooFewSamples, kErratic, kReversing, kStopped, kLifted };
+const char* PredictionName(Prediction p);
+
+class MotionPredictor {
+ public:
+  explicit MotionPredictor(PredictorOptions options) : o_(options) {}
+  /// Takes the latest sample and returns the input to render: its position moved by its
+  /// velocity × the horizon (capped at max_lead_mm, held within `extent` where the sample is
+  /// within it), or the sample unchanged when there is no safe prediction. Force and time are
+  /// the sample's.
+  SceneInput Next(const SceneInput& sample);
+  /// The tissue's extent: a prediction never leaves it from a sample on it (an edge is not
+  /// crossed early into nothing). 0: unbounded.
+  void SetExtent(double x_mm, double y_mm) { extent_x_ = x_mm, extent_y_ = y_mm; }
+  Prediction last() const { return last_; }
+  /// The lead of the last prediction (mm; 0 when none).
+  double last_lead_mm() const { return last_lead_; }
+  const PredictorOptions& options() const { return o_; }
+
+ private:
+  PredictorOptions o_;
+  std::deque<SceneInput> history_;
+  double extent_x_ = 0, extent_y_ = 0;
+  Prediction last_ = Prediction::kTooFewSamples;
+  double last_lead_ = 0;
+};
+
+}  // namespace palpa::host

@@ -1,0 +1,165 @@
+// Prediction: the display's half-step delay from the line's calibrated model, and a bounded
+// straight-line extrapolation of the hand that falls back to none when the motion is erratic.
+#include "palpa/host/scene_predict.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "number_text.h"
+
+namespace palpa::host {
+
+double HalfStepTime(double dead, double t1, double t2) {
+  const auto response = [&](double t) {
+    if (t2 <= 0) return 1 - std::exp(-t / t1);
+    if (std::fabs(t1 - t2) < 1e-9 * (t1 + t2)) return 1 - (1 + t / t1) * std::exp(-t / t1);
+    return 1 - (t1 * std::exp(-t / t1) - t2 * std::exp(-t / t2)) / (t1 - t2);
+  };
+  if (t1 <= 0 && t2 <= 0) return dead;
+  if (t1 <= 0) t1 = t2, t2 = 0;
+  double lo = 0, hi = 10 * (t1 + t2);
+  for (int k = 0; k < 60; ++k) {
+    const double mid = (lo + hi) / 2;
+    (response(mid) < 0.5 ? lo : hi) = mid;
+  }
+  return dead + (lo + hi) / 2;
+}
+
+Result<double> DisplayDelay(const protocol::ConfigureLine& line) {
+  if (line.chamber_tau_us == 0) {
+    return {Status::kUnavailable,
+            "line " + std::to_string(line.line + 1) +
+                " has no chamber model: its delay is unknown until it is calibrated "
+                "(palpa calibrate), so nothing can be predicted for it"};
+  }
+  const double dead = line.model_dead_time_us * 1e-6;
+  const double regulator = line.model_tau_us * 1e-6;
+  const double chamber = line.overdrive_pa > 0 ? 0.0 : line.chamber_tau_us * 1e-6;
+  return HalfStepTime(dead, regulator, chamber);
+}
+
+Outcome CheckPredictor(const PredictorOptions& o) {
+  const auto within = [](double v, double lo, double hi) { return v >= lo && v <= hi; };
+  if (!within(o.horizon_s, 0, 1))
+    return Outcome::Fail(Status::kInvalidArgument,
+                         "prediction horizon " + Num(o.horizon_s) + " s is outside 0 … 1 s");
+  if (!within(o.window_s, 0.005, 1))
+    return Outcome::Fail(Status::kInvalidArgument,
+                         "prediction window " + Num(o.window_s) + " s is outside 0.005 … 1 s");
+  if (!within(o.max_lead_mm, 0, 50))
+    return Outcome::Fail(Status::kInvalidArgument,
+                         "prediction lead " + Num(o.max_lead_mm) + " mm is outside 0 … 50 mm");
+  if (!within(o.erratic_rms_mm, 0, 1e3) || !within(o.stop_speed_mm_s, 0, 1e4) ||
+      !(o.max_gap_s > 0 && o.max_gap_s <= 10))
+    return Outcome::Fail(Status::kInvalidArgument, "prediction thresholds out of range");
+  return {};
+}
+
+const char* PredictionName(Prediction p) {
+  switch (p) {
+    case Prediction::kPredicted:
+      return "predicted";
+    case Prediction::kTooFewSamples:
+      return "too few samples";
+    case Prediction::kErratic:
+      return "erratic";
+    case Prediction::kReversing:
+      return "reversing";
+    case Prediction::kStopped:
+      return "stopped";
+    case Prediction::kLifted:
+      return "lifted";
+  }
+  return "?";
+}
+
+namespace {
+
+/// Least-squares velocity of x and y over samples [begin, end), and the RMS of the residuals.
+struct LineFit {
+  double vx = 0, vy = 0, rms = 0;
+};
+LineFit Fit(const std::deque<SceneInput>& h, size_t begin, size_t end) {
+  const double n = static_cast<double>(end - begin);
+  double st = 0, sx = 0, sy = 0;
+  for (size_t k = begin; k < end; ++k) st += h[k].time_s, sx += h[k].x_mm, sy += h[k].y_mm;
+  const double mt = st / n, mx = sx / n, my = sy / n;
+  double stt = 0, stx = 0, sty = 0;
+  for (size_t k = begin; k < end; ++k) {
+    const double dt = h[k].time_s - mt;
+    stt += dt * dt, stx += dt * (h[k].x_mm - mx), sty += dt * (h[k].y_mm - my);
+  }
+  LineFit f;
+  if (stt <= 0) return f;
+  f.vx = stx / stt, f.vy = sty / stt;
+  double ss = 0;
+  for (size_t k = begin; k < end; ++k) {
+    const double dt = h[k].time_s - mt;
+    const double ex = h[k].x_mm - (mx + f.vx * dt), ey = h[k].y_mm - (my + f.vy * dt);
+    ss += ex * ex + ey * ey;
+  }
+  f.rms = std::sqrt(ss / n);
+  return f;
+}
+
+}  // namespace
+
+SceneInput MotionPredictor::Next(const SceneInput& s) {
+  last_lead_ = 0;
+  // A new motion after a gap (or time going back): what came before says nothing of it.
+  if (!history_.empty() &&
+      !(s.time_s > history_.back().time_s && s.time_s - history_.back().time_s <= o_.max_gap_s))
+    history_.clear();
+  history_.push_back(s);
+  while (history_.size() > 3 && s.time_s - history_.front().time_s > o_.window_s)
+    history_.pop_front();
+  while (history_.size() > 256) history_.pop_front();
+  const size_t n = history_.size();
+  if (!(s.force_n > 0) || !std::isfinite(s.x_mm) || !std::isfinite(s.y_mm)) {
+    last_ = Prediction::kLifted;
+    return s;
+  }
+  if (n < 3) {
+    last_ = Prediction::kTooFewSamples;
+    return s;
+  }
+  const LineFit all = Fit(history_, 0, n);
+  const LineFit recent = Fit(history_, n / 2, n);
+  const double speed = std::hypot(all.vx, all.vy);
+  const double recent_speed = n >= 4 ? std::hypot(recent.vx, recent.vy) : speed;
+  // The latest half moving against the whole window: a reversal under way (a stop is not one).
+  if (n >= 4 && recent_speed >= o_.stop_speed_mm_s &&
+      recent.vx * all.vx + recent.vy * all.vy <= 0) {
+    last_ = Prediction::kReversing;
+    return s;
+  }
+  if (all.rms > o_.erratic_rms_mm || !std::isfinite(speed)) {
+    last_ = Prediction::kErratic;
+    return s;
+  }
+  // Slowing down: the slower of the two, so a stop is not overshot by the whole window's speed.
+  const double vx = recent_speed < speed ? recent.vx : all.vx;
+  const double vy = recent_speed < speed ? recent.vy : all.vy;
+  const double v = std::min(speed, recent_speed);
+  if (v < o_.stop_speed_mm_s) {
+    last_ = Prediction::kStopped;
+    return s;
+  }
+  const double interval = (s.time_s - history_.front().time_s) / static_cast<double>(n - 1);
+  const double horizon = o_.horizon_s + interval / 2;
+  double lead = v * horizon;
+  const double scale = lead > o_.max_lead_mm ? o_.max_lead_mm / lead : 1.0;
+  SceneInput out = s;
+  out.x_mm += vx * horizon * scale;
+  out.y_mm += vy * horizon * scale;
+  // A sample on the tissue is not predicted off it.
+  if (extent_x_ > 0 && s.x_mm >= 0 && s.x_mm <= extent_x_)
+    out.x_mm = std::clamp(out.x_mm, 0.0, extent_x_);
+  if (extent_y_ > 0 && s.y_mm >= 0 && s.y_mm <= extent_y_)
+    out.y_mm = std::clamp(out.y_mm, 0.0, extent_y_);
+  last_lead_ = std::hypot(out.x_mm - s.x_mm, out.y_mm - s.y_mm);
+  last_ = Prediction::kPredicted;
+  return out;
+}
+
+}  // namespace palpa::host
