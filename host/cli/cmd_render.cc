@@ -1,9 +1,11 @@
-// palpa render: a scene played to the board from a recorded trajectory, live status on the
-// terminal, and a record of what each finger touched and was asked, with an SVG of the path.
+// palpa render: a scene played to the board from a recorded trajectory, a pen tablet or a
+// tactile array, optionally rendered ahead of the display's delay; live status on the terminal,
+// and a record of what each finger touched and was asked, with an SVG of the path.
 #include <unistd.h>
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <thread>
@@ -11,23 +13,35 @@
 #include "cli.h"
 #include "palpa/host/file_write.h"
 #include "palpa/host/scene.h"
+#include "palpa/host/scene_evdev.h"
 #include "palpa/host/scene_svg.h"
+#include "render_inputs.h"
 
 namespace palpa::cli {
 namespace {
 
 struct RenderOptions {
   std::string scene, input, record;
+  bool predict = false;
+  double duration_s = 0;  ///< live inputs: 0 runs until interrupted
 };
 
 host::Result<RenderOptions> Options(const std::vector<std::string>& args) {
   RenderOptions o;
   for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--input" || args[i] == "--record") {
+    if (args[i] == "--input" || args[i] == "--record" || args[i] == "--duration") {
       const auto value = OptionValue(args, i);
       if (!value.ok()) return value.outcome();
-      (args[i] == "--input" ? o.input : o.record) = value.value;
+      if (args[i] == "--duration") {
+        if (!ParseNumber(value.value, o.duration_s) || !(o.duration_s > 0))
+          return {protocol::Status::kInvalidArgument,
+                  "--duration " + value.value + ": a number of seconds above 0"};
+      } else {
+        (args[i] == "--input" ? o.input : o.record) = value.value;
+      }
       ++i;
+    } else if (args[i] == "--predict") {
+      o.predict = true;
     } else if (args[i].rfind("--", 0) == 0 || !o.scene.empty()) {
       return {protocol::Status::kInvalidArgument, "unexpected argument " + args[i]};
     } else {
@@ -35,7 +49,8 @@ host::Result<RenderOptions> Options(const std::vector<std::string>& args) {
     }
   }
   if (o.scene.empty() || o.input.empty())
-    return {protocol::Status::kInvalidArgument, "a SCENE file and --input TRAJECTORY.csv"};
+    return {protocol::Status::kInvalidArgument,
+            std::string("a SCENE file and --input ") + kInputSyntax};
   return o;
 }
 
@@ -46,56 +61,43 @@ std::string SvgPath(const std::string& record) {
          ".svg";
 }
 
-int CmdRender(Context& c, const std::vector<std::string>& args) {
-  const std::string cmd = "render";
-  const auto options = Options(args);
-  if (!options.ok()) return Usage(cmd, options.message);
-  const RenderOptions& o = options.value;
-  const auto spec = host::LoadScene(o.scene);
-  if (!spec.ok()) return Fail(cmd, spec.status, spec.message, kExitUsage);
-  const auto samples = host::LoadTrajectory(o.input);
-  if (!samples.ok()) return Fail(cmd, samples.status, samples.message, kExitUsage);
-  host::Device* device = c.Device();
-  if (device == nullptr) return kExitConnect;
-  auto scene = host::Scene::Open(spec.value, *device);
-  if (!scene.ok()) return Fail(cmd, scene.status, scene.message, kExitUsage);
-  // The board's time of the latest telemetry, for the record (one clock for every row).
-  std::atomic<uint64_t> board_us{0};
-  const int subscription = device->Subscribe([&](const host::TelemetryFrame& f) {
-    const auto& t = f.telemetry;
-    board_us = t.first_sample_us + uint64_t{t.tick_count - 1u} * t.sample_interval_us;
-  });
-  const bool live = !JsonOutput() && isatty(fileno(stdout));
-  std::string csv = "time_s,x_mm,y_mm,force_n,board_time_us";
-  for (size_t f = 0; f < spec.value.board_fingers.size(); ++f) {
-    const std::string n = std::to_string(spec.value.board_fingers[f] + 1);
-    csv += ",finger" + n + "_touching,finger" + n + "_value,finger" + n + "_target";
-  }
-  csv += "\n";
+/// The record's rows and the terminal's status line, one per rendered sample.
+struct Record {
+  std::string csv;
   std::vector<std::pair<double, double>> path;
-  const PollsInterruption polls;
-  // The trajectory's own pace on the board's clock: a simulator running X times faster than
-  // real time (palpa-sim --speed X) takes the samples X times sooner.
-  const double scale = device->info().time_scale > 0 ? device->info().time_scale : 1.0;
-  const auto start = std::chrono::steady_clock::now();
-  const double t0 = samples.value.front().time_s;
+  std::atomic<uint64_t> board_us{0};
+  bool live = false, hand = true, predicted = false;
   size_t fed = 0;
-  for (const host::SceneInput& s : samples.value) {
-    if (Interrupted()) break;
-    std::this_thread::sleep_until(start + std::chrono::duration<double>((s.time_s - t0) / scale));
-    const auto renders = scene.value->Feed(s);
-    if (!renders.ok()) {
-      device->Unsubscribe(subscription);
-      return Fail(cmd, renders.status, renders.message);
+
+  void Header(const host::SceneSpec& spec) {
+    csv = hand ? "time_s,x_mm,y_mm,force_n" : "time_s";
+    if (predicted) csv += ",rendered_x_mm,rendered_y_mm";
+    csv += ",board_time_us";
+    for (uint8_t f : spec.board_fingers) {
+      const std::string n = std::to_string(f + 1);
+      csv += ",finger" + n + "_touching,finger" + n + "_value,finger" + n + "_target";
     }
+    csv += "\n";
+  }
+  void Row(const host::SceneInput& s, const host::SceneInput* rendered,
+           const std::vector<host::FingerRender>& renders) {
     ++fed;
-    path.emplace_back(s.x_mm, s.y_mm);
-    char row[160];
-    std::snprintf(row, sizeof(row), "%.6f,%.4f,%.4f,%.4f,%llu", s.time_s, s.x_mm, s.y_mm, s.force_n,
-                  static_cast<unsigned long long>(board_us.load()));
+    char row[200];
+    if (hand) {
+      path.emplace_back(s.x_mm, s.y_mm);
+      std::snprintf(row, sizeof(row), "%.6f,%.4f,%.4f,%.4f", s.time_s, s.x_mm, s.y_mm, s.force_n);
+    } else {
+      std::snprintf(row, sizeof(row), "%.6f", s.time_s);
+    }
+    csv += row;
+    if (predicted && rendered != nullptr) {
+      std::snprintf(row, sizeof(row), ",%.4f,%.4f", rendered->x_mm, rendered->y_mm);
+      csv += row;
+    }
+    std::snprintf(row, sizeof(row), ",%llu", static_cast<unsigned long long>(board_us.load()));
     csv += row;
     std::string status;
-    for (const host::FingerRender& r : renders.value) {
+    for (const host::FingerRender& r : renders) {
       std::snprintf(row, sizeof(row), ",%d,%.6g,%.6g", r.touching ? 1 : 0, r.value,
                     r.mapped.target / 1000.0);
       csv += row;
@@ -104,47 +106,252 @@ int CmdRender(Context& c, const std::vector<std::string>& args) {
     }
     csv += "\n";
     if (live) {
-      std::printf("\r%7.3f s  x %6.1f  y %6.1f mm  %4.2f N  targets%s", s.time_s, s.x_mm, s.y_mm,
-                  s.force_n, status.c_str());
+      if (hand)
+        std::printf("\r%7.3f s  x %6.1f  y %6.1f mm  %4.2f N  targets%s", s.time_s, s.x_mm, s.y_mm,
+                    s.force_n, status.c_str());
+      else
+        std::printf("\r%7.3f s  targets%s", s.time_s, status.c_str());
       std::fflush(stdout);
     }
   }
-  device->Unsubscribe(subscription);
-  if (live) std::printf("\n");
-  if (!o.record.empty()) {
-    // The fingers where the pass ended (where it started, when interrupted before any sample).
-    const host::SceneInput& end = fed > 0 ? samples.value[fed - 1] : samples.value.front();
-    const host::SceneRenderer& r = scene.value->renderer();
-    const std::string svg = host::SceneSvg(r.tissue(), r.layout(), end.x_mm, end.y_mm, path,
-                                           spec.value.name + " — " + o.input);
-    for (const auto& [file, text] : {std::pair{o.record, csv}, {SvgPath(o.record), svg}}) {
-      if (const host::Outcome w = host::WriteFileWhole(file, text); !w.ok())
-        return Fail(cmd, w.status, w.message);
-    }
-  }
-  if (JsonOutput()) {
-    PrintJson({{"scene", spec.value.name},
-               {"samples", fed},
-               {"of", samples.value.size()},
-               {"record", o.record.empty() ? nullptr : nlohmann::ordered_json(o.record)}});
-  } else {
-    std::fprintf(TextOut(), "%s: %zu of %zu samples rendered%s%s\n", spec.value.name.c_str(), fed,
-                 samples.value.size(), o.record.empty() ? "" : "; recorded in ",
-                 o.record.empty() ? "" : (o.record + " and " + SvgPath(o.record)).c_str());
-  }
-  return fed == samples.value.size() ? kExitOk : kExitFailed;
+};
+
+/// Sleeps until `at` seconds of input time have passed since `start` on the board's clock.
+void PaceTo(std::chrono::steady_clock::time_point start, double at, double scale) {
+  std::this_thread::sleep_until(start + std::chrono::duration<double>(at / scale));
 }
 
 }  // namespace
 
+int CmdRender(Context& c, const std::vector<std::string>& args) {
+  const std::string cmd = "render";
+  const auto options = Options(args);
+  if (!options.ok()) return Usage(cmd, options.message);
+  const RenderOptions& o = options.value;
+  const auto source = ParseInputSource(o.input);
+  if (!source.ok()) return Usage(cmd, source.message);
+  const InputSource& in = source.value;
+  const auto spec = host::LoadScene(o.scene);
+  if (!spec.ok()) return Fail(cmd, spec.status, spec.message, kExitUsage);
+  const bool tactile = in.kind == InputSource::kTactileUdp || in.kind == InputSource::kTactileFile;
+  if (tactile && !spec.value.tactile)
+    return Usage(cmd, o.scene +
+                          ": a tactile input needs the scene's input.tactile section "
+                          "(its elements, a group per finger, the value range)");
+  if (tactile && o.predict)
+    return Usage(cmd,
+                 "--predict follows a moving hand; a tactile array has no position to predict");
+  const bool live = in.kind == InputSource::kEvdev || in.kind == InputSource::kTactileUdp;
+  if (!live && o.duration_s > 0)
+    return Usage(cmd, "--duration is for live inputs (evdev, tactile-udp)");
+  std::vector<host::SceneInput> samples;
+  std::vector<host::TactileFrame> frames;
+  if (in.kind == InputSource::kTrajectory) {
+    auto loaded = host::LoadTrajectory(in.path);
+    if (!loaded.ok()) return Fail(cmd, loaded.status, loaded.message, kExitUsage);
+    samples = std::move(loaded.value);
+  } else if (in.kind == InputSource::kTactileFile) {
+    auto loaded = host::LoadTactileStream(in.path, spec.value.tactile->elements);
+    if (!loaded.ok()) return Fail(cmd, loaded.status, loaded.message, kExitUsage);
+    frames = std::move(loaded.value);
+  }
+  host::Device* device = c.Device();
+  if (device == nullptr) return kExitConnect;
+  auto scene = host::Scene::Open(spec.value, *device);
+  if (!scene.ok()) return Fail(cmd, scene.status, scene.message, kExitUsage);
+  double horizon_s = 0;
+  if (o.predict) {
+    const auto delay = scene.value->DisplayDelay();
+    if (!delay.ok()) return Fail(cmd, delay.status, "--predict: " + delay.message);
+    horizon_s = delay.value;
+    host::PredictorOptions p;
+    p.horizon_s = horizon_s;
+    if (const auto ok = scene.value->Predict(p); !ok.ok()) return Fail(cmd, ok.status, ok.message);
+  }
+  const host::TissueMap& tissue = scene.value->renderer().tissue();
+  std::unique_ptr<host::PenTablet> tablet;
+  std::unique_ptr<host::TactileUdp> udp;
+  if (in.kind == InputSource::kEvdev) {
+    const host::TabletSpec t = spec.value.tablet.value_or(host::TabletSpec{});
+    auto opened = host::PenTablet::Open(in.path, tissue.extent_x_mm(), tissue.extent_y_mm(),
+                                        t.pressure_force, t.touch_force_n);
+    if (!opened.ok()) return Fail(cmd, opened.status, opened.message, kExitConnect);
+    tablet = std::move(opened.value);
+    std::fprintf(stderr, "palpa render: %s, mapped onto %s (%.0f × %.0f mm)\n",
+                 host::DescribePad(tablet->mapping().pad).c_str(), tissue.name.c_str(),
+                 tissue.extent_x_mm(), tissue.extent_y_mm());
+  } else if (in.kind == InputSource::kTactileUdp) {
+    auto opened = host::TactileUdp::Open(in.host, in.port, spec.value.tactile->elements);
+    if (!opened.ok()) return Fail(cmd, opened.status, opened.message, kExitConnect);
+    udp = std::move(opened.value);
+  }
+
+  Record rec;
+  rec.live = !JsonOutput() && isatty(fileno(stdout));
+  rec.hand = !tactile;
+  rec.predicted = o.predict;
+  rec.Header(spec.value);
+  const int subscription = device->Subscribe([&](const host::TelemetryFrame& f) {
+    const auto& t = f.telemetry;
+    rec.board_us = t.first_sample_us + uint64_t{t.tick_count - 1u} * t.sample_interval_us;
+  });
+  const PollsInterruption polls;
+  // Recorded inputs play at their own pace on the board's clock: a simulator running X times
+  // faster than real time (palpa-sim --speed X) takes the samples X times sooner.
+  const double scale = device->info().time_scale > 0 ? device->info().time_scale : 1.0;
+  const auto start = std::chrono::steady_clock::now();
+  const auto over = [&] {
+    return Interrupted() || (o.duration_s > 0 && std::chrono::steady_clock::now() - start >
+                                                     std::chrono::duration<double>(o.duration_s));
+  };
+  host::Outcome failed;
+  size_t total = 0, taken = 0;  // tactile: frames in the input, frames rendered
+  const auto feed = [&](const host::SceneInput& s) {
+    const auto renders = scene.value->Feed(s);
+    if (!renders.ok()) return failed = renders, false;
+    const auto* p = scene.value->predictor();
+    rec.Row(s, p != nullptr ? &p->last_output() : nullptr, renders.value);
+    return true;
+  };
+  const host::TactileSpec* ts = tactile ? &*spec.value.tactile : nullptr;
+  std::optional<host::TactileHold> hold;
+  if (ts != nullptr) hold.emplace(ts->hold_s);
+  bool soft = true;
+  // A tactile array's state at `now`: rendered when a frame was taken or the hold ran out.
+  const auto feed_tactile = [&](double now, bool fresh) {
+    const std::vector<double>* values = hold->At(now);
+    if (!fresh && (values == nullptr) == soft) return true;
+    soft = values == nullptr;
+    std::vector<double> means;
+    if (values != nullptr) means = host::GroupMeans(*ts, *values);
+    const auto renders =
+        scene.value->FeedValues(values != nullptr ? &means : nullptr, ts->value_lo, ts->value_hi);
+    if (!renders.ok()) return failed = renders, false;
+    rec.Row({now, 0, 0, 0}, nullptr, renders.value);
+    return true;
+  };
+  switch (in.kind) {
+    case InputSource::kTrajectory:
+      total = samples.size();
+      for (const host::SceneInput& s : samples) {
+        if (over()) break;
+        PaceTo(start, s.time_s - samples.front().time_s, scale);
+        if (!feed(s)) break;
+      }
+      break;
+    case InputSource::kEvdev:
+      while (!over()) {
+        const auto s = tablet->Next(50);
+        if (!s.ok()) {
+          failed = s;
+          break;
+        }
+        if (s.value && !feed(*s.value)) break;
+      }
+      total = rec.fed;
+      break;
+    case InputSource::kTactileFile: {
+      total = frames.size();
+      // Stepped every 5 ms of stream time, so a stall longer than the hold goes soft on time.
+      const double t0 = frames.front().time_s;
+      size_t next = 0;
+      for (double now = t0; next < frames.size() || !soft; now += 0.005) {
+        if (over()) break;
+        PaceTo(start, now - t0, scale);
+        bool fresh = false;
+        while (next < frames.size() && frames[next].time_s <= now + 1e-9)
+          fresh |= hold->Receive(frames[next], frames[next].time_s) && ++taken, ++next;
+        if (!feed_tactile(now, fresh)) break;
+        if (next == frames.size() && now > frames.back().time_s + ts->hold_s) break;
+      }
+      break;
+    }
+    case InputSource::kTactileUdp:
+      while (!over()) {
+        const auto frame = udp->Receive(5);
+        if (!frame.ok()) {
+          failed = frame;
+          break;
+        }
+        const bool fresh = frame.value && hold->Receive(*frame.value, frame.value->time_s);
+        taken += fresh ? 1 : 0;
+        if (!feed_tactile(host::MonotonicSeconds(), fresh)) break;
+      }
+      total = rec.fed;
+      break;
+  }
+  device->Unsubscribe(subscription);
+  if (rec.live) std::printf("\n");
+  if (!failed.ok()) return Fail(cmd, failed.status, failed.message);
+  if (!o.record.empty()) {
+    const host::SceneRenderer& r = scene.value->renderer();
+    const auto end = rec.path.empty() ? std::pair{0.0, 0.0} : rec.path.back();
+    const std::string svg = host::SceneSvg(r.tissue(), r.layout(), end.first, end.second, rec.path,
+                                           spec.value.name + " — " + o.input);
+    for (const auto& [file, text] : {std::pair{o.record, rec.csv}, {SvgPath(o.record), svg}}) {
+      if (const host::Outcome w = host::WriteFileWhole(file, text); !w.ok())
+        return Fail(cmd, w.status, w.message);
+    }
+  }
+  const host::MotionPredictor* p = scene.value->predictor();
+  if (JsonOutput()) {
+    nlohmann::ordered_json j = {
+        {"scene", spec.value.name},
+        {"input", o.input},
+        {"samples", rec.fed},
+        {"of", total},
+        {"record", o.record.empty() ? nullptr : nlohmann::ordered_json(o.record)}};
+    if (p != nullptr) {
+      nlohmann::ordered_json not_predicted;
+      for (auto k :
+           {host::Prediction::kTooFewSamples, host::Prediction::kErratic,
+            host::Prediction::kReversing, host::Prediction::kStopped, host::Prediction::kLifted})
+        not_predicted[host::PredictionName(k)] = p->count(k);
+      j["prediction"] = {{"horizon_s", horizon_s},
+                         {"predicted", p->count(host::Prediction::kPredicted)},
+                         {"not_predicted", not_predicted}};
+    }
+    if (hold) j["tactile"] = {{"late", hold->late()}, {"missing", hold->missing()}};
+    if (udp) j["tactile"]["malformed"] = udp->malformed();
+    if (tablet)
+      j["tablet"] = {{"device", host::DescribePad(tablet->mapping().pad)},
+                     {"resyncs", tablet->resyncs()}};
+    PrintJson(j);
+  } else {
+    std::fprintf(TextOut(), "%s: %zu of %zu %s rendered%s%s\n", spec.value.name.c_str(),
+                 tactile ? taken : rec.fed, in.kind == InputSource::kTactileUdp ? taken : total,
+                 tactile ? "frames" : "samples", o.record.empty() ? "" : "; recorded in ",
+                 o.record.empty() ? "" : (o.record + " and " + SvgPath(o.record)).c_str());
+    if (p != nullptr)
+      std::fprintf(TextOut(),
+                   "prediction: %.1f ms ahead (the fingers' calibrated delay); %zu of %zu "
+                   "samples predicted\n",
+                   horizon_s * 1e3, p->count(host::Prediction::kPredicted), rec.fed);
+    if (hold && (hold->late() > 0 || hold->missing() > 0))
+      std::fprintf(TextOut(), "tactile: %zu frames missing, %zu late (dropped)\n", hold->missing(),
+                   hold->late());
+    if (udp && udp->malformed() > 0)
+      std::fprintf(TextOut(), "tactile: %zu malformed datagrams ignored (last: %s)\n",
+                   udp->malformed(), udp->last_problem().c_str());
+  }
+  if (live) return kExitOk;
+  return (tactile ? taken : rec.fed) == total ? kExitOk : kExitFailed;
+}
+
 const Command kRenderCommand{
-    "render", "render SCENE --input TRAJECTORY.csv [--record OUT.csv]",
-    "Plays a scene (docs/scenes.md) to the board from a recorded trajectory (CSV: time_s, x_mm,\n"
-    "y_mm, force_n), sample by sample at the trajectory's own pace on the board's clock (a\n"
-    "simulator at --speed X is fed X times faster): each sample's targets go to\n"
-    "every finger in one frame. A terminal shows each sample's targets as it goes. --record OUT:\n"
-    "a CSV of the input, the board's time and each finger's map value and target, and OUT.svg,\n"
-    "the path over the tissue. The fingers return to safe when it ends (Ctrl-C ends it early).",
+    "render", "render SCENE --input SOURCE [--predict] [--duration S] [--record OUT.csv]",
+    "Plays a scene (docs/scenes.md) to the board, every finger's target in one frame per sample.\n"
+    "SOURCE is a recorded trajectory (TRAJECTORY.csv or file:PATH; time_s, x_mm, y_mm, force_n),\n"
+    "played at its own pace on the board's clock (a simulator at --speed X is fed X times "
+    "faster);\n"
+    "evdev:/dev/input/eventN, a pen tablet or touchpad mapped onto the tissue (pressure through\n"
+    "the scene's input.tablet form); tactile-udp:[HOST:]PORT, a tactile array's frames over UDP;\n"
+    "or tactile-file:STREAM.csv, a recorded array stream (both grouped per finger by the scene's\n"
+    "input.tactile; a stalled stream holds for hold_s, then the fingers go soft). Live inputs run\n"
+    "until Ctrl-C or --duration. --predict renders where the hand will be after the fingers'\n"
+    "calibrated delay (their lines' chamber models). --record OUT: a CSV of the input, the\n"
+    "board's time and each finger's map value and target, and OUT.svg, the path over the tissue.\n"
+    "The fingers return to safe when it ends.",
     CmdRender};
 
 }  // namespace palpa::cli

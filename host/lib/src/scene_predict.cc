@@ -116,12 +116,10 @@ SceneInput MotionPredictor::Next(const SceneInput& s) {
   while (history_.size() > 256) history_.pop_front();
   const size_t n = history_.size();
   if (!(s.force_n > 0) || !std::isfinite(s.x_mm) || !std::isfinite(s.y_mm)) {
-    last_ = Prediction::kLifted;
-    return s;
+    return Done(Prediction::kLifted, s);
   }
   if (n < 3) {
-    last_ = Prediction::kTooFewSamples;
-    return s;
+    return Done(Prediction::kTooFewSamples, s);
   }
   const LineFit all = Fit(history_, 0, n);
   const LineFit recent = Fit(history_, n / 2, n);
@@ -130,20 +128,17 @@ SceneInput MotionPredictor::Next(const SceneInput& s) {
   // The latest half moving against the whole window: a reversal under way (a stop is not one).
   if (n >= 4 && recent_speed >= o_.stop_speed_mm_s &&
       recent.vx * all.vx + recent.vy * all.vy <= 0) {
-    last_ = Prediction::kReversing;
-    return s;
+    return Done(Prediction::kReversing, s);
   }
   if (all.rms > o_.erratic_rms_mm || !std::isfinite(speed)) {
-    last_ = Prediction::kErratic;
-    return s;
+    return Done(Prediction::kErratic, s);
   }
   // Slowing down: the slower of the two, so a stop is not overshot by the whole window's speed.
   const double vx = recent_speed < speed ? recent.vx : all.vx;
   const double vy = recent_speed < speed ? recent.vy : all.vy;
   const double v = std::min(speed, recent_speed);
   if (v < o_.stop_speed_mm_s) {
-    last_ = Prediction::kStopped;
-    return s;
+    return Done(Prediction::kStopped, s);
   }
   const double interval = (s.time_s - history_.front().time_s) / static_cast<double>(n - 1);
   const double horizon = o_.horizon_s + interval / 2;
@@ -158,7 +153,13 @@ SceneInput MotionPredictor::Next(const SceneInput& s) {
   if (extent_y_ > 0 && s.y_mm >= 0 && s.y_mm <= extent_y_)
     out.y_mm = std::clamp(out.y_mm, 0.0, extent_y_);
   last_lead_ = std::hypot(out.x_mm - s.x_mm, out.y_mm - s.y_mm);
-  last_ = Prediction::kPredicted;
+  return Done(Prediction::kPredicted, out);
+}
+
+SceneInput MotionPredictor::Done(Prediction p, const SceneInput& out) {
+  last_ = p;
+  ++counts_[static_cast<size_t>(p)];
+  last_out_ = out;
   return out;
 }
 

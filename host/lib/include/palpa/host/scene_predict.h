@@ -60,6 +60,10 @@ class MotionPredictor {
   /// crossed early into nothing). 0: unbounded.
   void SetExtent(double x_mm, double y_mm) { extent_x_ = x_mm, extent_y_ = y_mm; }
   Prediction last() const { return last_; }
+  /// The input the last Next returned (what was rendered).
+  const SceneInput& last_output() const { return last_out_; }
+  /// How many samples were predicted, and how many were not for each reason (by Prediction).
+  size_t count(Prediction p) const { return counts_[static_cast<size_t>(p)]; }
   /// The lead of the last prediction (mm; 0 when none).
   double last_lead_mm() const { return last_lead_; }
   const PredictorOptions& options() const { return o_; }
@@ -70,6 +74,9 @@ class MotionPredictor {
   double extent_x_ = 0, extent_y_ = 0;
   Prediction last_ = Prediction::kTooFewSamples;
   double last_lead_ = 0;
+  SceneInput last_out_;
+  size_t counts_[6] = {};
+  SceneInput Done(Prediction p, const SceneInput& out);
 };
 
 }  // namespace palpa::host
