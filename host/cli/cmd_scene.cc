@@ -10,6 +10,9 @@
 #include "palpa/host/scene_svg.h"
 
 namespace palpa::cli {
+
+int CalibrateInput(Context& c, const std::vector<std::string>& args);  // cmd_scene_input.cc
+
 namespace {
 
 using protocol::Status;
@@ -164,11 +167,12 @@ int Show(Context&, std::vector<std::string> args) {
 }
 
 int CmdScene(Context& c, const std::vector<std::string>& args) {
-  if (args.empty()) return Usage("scene", "phantom or show");
+  if (args.empty()) return Usage("scene", "phantom, show or calibrate-input");
   const std::vector<std::string> rest(args.begin() + 1, args.end());
   if (args[0] == "phantom") return Phantom(c, rest);
   if (args[0] == "show") return Show(c, rest);
-  const std::string near = Suggest(args[0], {"phantom", "show"});
+  if (args[0] == "calibrate-input") return CalibrateInput(c, rest);
+  const std::string near = Suggest(args[0], {"phantom", "show", "calibrate-input"});
   return Usage("scene", "unknown subcommand " + args[0] +
                             (near.empty() ? "" : " (did you mean " + near + "?)"));
 }
@@ -179,14 +183,21 @@ const Command kSceneCommand{
     "scene",
     "scene phantom (--preset NAME | --size X,Y,H --background E [--inclusion "
     "X,Y,SIDE,THICK,DEPTH,E]"
-    "...) [--unit U] [--pitch MM] [--name N] --out FILE | show SCENE [--at X,Y] --out FILE.svg",
+    "...) [--unit U] [--pitch MM] [--name N] --out FILE | show SCENE [--at X,Y] --out FILE.svg | "
+    "calibrate-input SCENE (--a A --b B | --presses PRESSES.csv | --pen evdev:PATH --rig RIG.json "
+    "[--count N]) [--out FILE]",
     "Scenes: a virtual tissue rendered to the fingers (docs/scenes.md). No board is needed.\n"
     "phantom: writes the tissue file of a generated phantom — the preset thesis-three-cube, or\n"
     "a block of X × Y × H mm at stiffness E (in --unit, kPa by default) with square inclusions\n"
     "centred at X,Y of SIDE mm, THICK mm thick, their top DEPTH mm below the surface, stiffness\n"
     "E; the map's --pitch is 0.5 mm by default.\n"
     "show: draws a scene file as SVG — its tissue in colour, the fingers' contact discs about\n"
-    "--at X,Y (the tissue's centre by default).",
+    "--at X,Y (the tissue's centre by default).\n"
+    "calibrate-input: sets the scene's pen pressure form f = a·e^(b·level) (input.tablet;\n"
+    "levels 0 … 1023 whatever the pad's range): from --a and --b, fitted to recorded presses\n"
+    "(CSV: level,force_n), or fitted to --count presses (5) made now with the pen on the rig's\n"
+    "force sensor, each held still until level and force are steady. Written to the scene file,\n"
+    "or --out, the rest of the file as it was.",
     CmdScene};
 
 }  // namespace palpa::cli

@@ -74,7 +74,7 @@ PenTablet::~PenTablet() {
   if (fd_ >= 0) ::close(fd_);
 }
 
-SceneInput PenTablet::Current(double time_s) const {
+SceneInput PenTablet::Current(double time_s) {
   const int x = libevdev_get_event_value(dev_, EV_ABS, ABS_X);
   const int y = libevdev_get_event_value(dev_, EV_ABS, ABS_Y);
   std::optional<int> pressure;
@@ -83,6 +83,8 @@ SceneInput PenTablet::Current(double time_s) const {
   const bool touching = mapping_.pad.has_touch
                             ? libevdev_get_event_value(dev_, EV_KEY, BTN_TOUCH) != 0
                             : pressure && *pressure > mapping_.pad.pressure->minimum;
+  last_level_ = pressure ? PressureLevel(*mapping_.pad.pressure, *pressure) : 0.0;
+  last_touching_ = touching;
   return MapPad(mapping_, time_s, x, y, pressure, touching);
 }
 

@@ -14,8 +14,10 @@
 #include <string>
 #include <thread>
 
-#include "cli_run.h"
+#include "palpa/host/scene_file.h"
 #include "palpa/host/scene_tactile.h"
+// After the library headers: CppUTest's allocation macros break the standard library ones.
+#include "cli_run.h"
 
 #include "CppUTest/TestHarness.h"
 
@@ -150,4 +152,49 @@ TEST(CliSceneInput, WrongInputsAreNamed) {
       Palpa("--device sim:thesis-pneumatic-3 render " + kInputs + " --input evdev:/dev/null", kSim);
   LONGS_EQUAL_TEXT(3, r.code, r.output.c_str());
   CHECK_TEXT(Has(r, "/dev/null: not an input event device"), r.output.c_str());
+}
+
+TEST(CliSceneInput, PenPressureFormSetOrFittedIntoTheSceneFile) {
+  const std::string scene = OwnTempPath("pen.json"), presses = OwnTempPath("presses.csv");
+  {
+    std::ofstream out(scene);
+    out << Slurp(kDocs + "/examples/scene_three_cube.json");
+    std::ofstream p(presses);
+    p << "level,force_n\n# level, what the sensor read\n100,0.1477\n400,0.4759\n700,1.5333\n"
+         "1000,4.9402\n";
+  }
+  auto r = Palpa("scene calibrate-input " + scene + " --a 0.09 --b 0.0035");
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  CHECK_TEXT(Has(r, "pen pressure f = 0.09 · e^(0.0035 · level) N"), r.output.c_str());
+  CHECK(Slurp(scene).find("\"b_per_level\": 0.0035") != std::string::npos);
+  CHECK(Slurp(scene).find("\"preset\": \"thesis-three-cube\"") != std::string::npos);
+  r = Palpa("--json scene calibrate-input " + scene + " --presses " + presses);
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  // The presses lie on 0.1 · e^(0.0039 · level) to four digits.
+  CHECK_TEXT(Has(r, "\"presses\":4"), r.output.c_str());
+  const auto back = palpa::host::LoadScene(scene);
+  CHECK_TEXT(back.ok() && back.value.tablet, back.message.c_str());
+  DOUBLES_EQUAL(0.1, back.value.tablet->pressure_force.a_n, 1e-4);
+  DOUBLES_EQUAL(0.0039, back.value.tablet->pressure_force.b_per_level, 1e-6);
+  ExpectUsage("scene calibrate-input " + scene, "one of --a A --b B, --presses PRESSES.csv");
+  ExpectUsage("scene calibrate-input " + scene + " --a 1", "--a and --b go together");
+  ExpectUsage("scene calibrate-input " + scene + " --a 0 --b 0.1",
+              "--a, --b: pressure_force: a = 0 N");
+  ExpectUsage("scene calibrate-input " + scene + " --a 1 --b 0.1 --presses " + presses,
+              "one of --a A --b B");
+  ExpectUsage("scene calibrate-input " + scene + " --pen evdev:/dev/input/event3",
+              "--pen and --rig go together");
+  ExpectUsage("scene calibrate-input " + scene + " --presses " + scene,
+              ": line 1: expected the header level,force_n");
+  {
+    std::ofstream p(presses);
+    p << "level,force_n\n100,0.2\n100,0.3\n";
+  }
+  ExpectUsage("scene calibrate-input " + scene + " --presses " + presses,
+              presses + ": presses: 2 presses; the fit needs at least two at different levels");
+  r = Palpa("scene calibrate-input " + scene + " --pen evdev:/dev/null --rig " + scene);
+  LONGS_EQUAL_TEXT(3, r.code, r.output.c_str());
+  CHECK_TEXT(Has(r, "/dev/null: not an input event device"), r.output.c_str());
+  std::remove(scene.c_str());
+  std::remove(presses.c_str());
 }

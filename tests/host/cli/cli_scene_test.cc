@@ -65,7 +65,7 @@ TEST(CliScene, AScenesMapAndFingersAreDrawn) {
 
 TEST(CliScene, WrongArgumentsAreNamed) {
   const std::string out = OwnTempPath("x.json");
-  ExpectUsage("scene", "phantom or show");
+  ExpectUsage("scene", "phantom, show or calibrate-input");
   ExpectUsage("scene shw", "unknown subcommand shw (did you mean show?)");
   ExpectUsage("scene phantom --out " + out, "either --preset NAME or --size");
   ExpectUsage("scene phantom --preset liver --out " + out, "the presets are thesis-three-cube");

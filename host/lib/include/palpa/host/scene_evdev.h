@@ -32,19 +32,24 @@ class PenTablet {
   Result<std::optional<SceneInput>> Next(int timeout_ms);
 
   const TabletMapping& mapping() const { return mapping_; }
+  /// The last report's pressure level (0 … 1 023; 0 without a pressure axis) and contact.
+  double last_level() const { return last_level_; }
+  bool last_touching() const { return last_touching_; }
   /// Reports re-read after the kernel dropped events (SYN_DROPPED), since opening.
   size_t resyncs() const { return resyncs_; }
 
  private:
   PenTablet(std::string path, int fd, libevdev* dev, TabletMapping mapping)
       : path_(std::move(path)), fd_(fd), dev_(dev), mapping_(std::move(mapping)) {}
-  SceneInput Current(double time_s) const;
+  SceneInput Current(double time_s);
 
   std::string path_;
   int fd_ = -1;
   libevdev* dev_ = nullptr;
   TabletMapping mapping_;
   size_t resyncs_ = 0;
+  double last_level_ = 0;
+  bool last_touching_ = false;
 };
 
 }  // namespace palpa::host
