@@ -8,6 +8,7 @@ import os
 from palpa_checks import palpa, refused, REPO
 
 EXAMPLE = os.path.join(REPO, "docs", "examples", "scene_three_cube.json")
+INPUTS = os.path.join(REPO, "docs", "examples", "scene_inputs.json")
 
 
 def main():
@@ -21,6 +22,17 @@ def main():
             assert all(not r["touching"] and r["target"] == 0 for r in lifted), lifted
             assert all(not r["touching"] for r in scene.feed(float("nan"), 12, 1.0))
             refused(TypeError, lambda: scene.feed("60", 12, 1.0), "x_mm must be a number")
+        with palpa.Scene(board, INPUTS) as scene:
+            renders = scene.feed_tactile([36, 40, 44, 10, 20, 30, 0, 0, 0])
+            assert abs(renders[0]["u"] - 1) < 1e-9 and abs(renders[1]["u"] - 0.5) < 1e-9, renders
+            assert renders[2]["target"] == 0, renders
+            assert all(not r["touching"] for r in scene.feed_tactile(None))
+            refused(palpa.PalpaError, lambda: scene.feed_tactile([1, 2]), "2 values, the scene's array has 9")
+            refused(TypeError, lambda: scene.feed_tactile(["a"] * 9), "values[0] must be a number")
+            refused(palpa.PalpaError, lambda: scene.predict(), "line 1 has no chamber model")
+            assert scene.predict(False) is None
+            refused(palpa.PalpaError, lambda: palpa.Tablet(scene, "/dev/null"),
+                    "/dev/null: not an input event device")
         samples = list(board.monitor(seconds=0))  # drained without waiting
         assert isinstance(samples, list)
         refused(palpa.PalpaError, lambda: palpa.Scene(board, "/nonexistent/scene.json"),

@@ -33,6 +33,41 @@ static void scene(palpa_device* d) {
   EXPECT(strstr(palpa_last_error(d), "/nonexistent/scene.json") != NULL, "%s", palpa_last_error(d));
 }
 
+/* Tactile frames grouped per finger, the release of a stalled stream, prediction refused where
+   the fingers' delay is not calibrated, and a device that is not a pen tablet. */
+static void inputs(palpa_device* d) {
+  palpa_scene* s = NULL;
+  int status = palpa_scene_open(d, PALPA_DOCS_DIR "/examples/scene_inputs.json", &s);
+  EXPECT(status == PALPA_OK, "%s", palpa_last_error(d));
+  if (s == NULL) return;
+  palpa_finger_render r[8];
+  /* Rows of a 3 x 3 array: means 40, 20 and 0 of the 0 … 40 kPa range. */
+  const double frame[9] = {36, 40, 44, 10, 20, 30, 0, 0, 0};
+  int n = palpa_scene_feed_tactile(s, frame, 9, r, 8);
+  EXPECT(n == 3, "%d: %s", n, palpa_last_error(d));
+  EXPECT(r[0].touching && r[0].u > 0.999 && r[0].value == 40, "u %g value %g", r[0].u, r[0].value);
+  EXPECT(r[1].u > 0.499 && r[1].u < 0.501, "u %g", r[1].u);
+  EXPECT(r[2].target == 0, "target %g", r[2].target);
+  n = palpa_scene_feed_tactile(s, NULL, 0, r, 8);
+  EXPECT(n == 3 && !r[0].touching && r[0].target == 0, "%d", n);
+  n = palpa_scene_feed_tactile(s, frame, 8, r, 8);
+  EXPECT(n == -PALPA_STATUS_INVALID_ARGUMENT, "%d", n);
+  EXPECT(strstr(palpa_last_error(d), "8 values, the scene's array has 9") != NULL, "%s",
+         palpa_last_error(d));
+  double horizon = -1;
+  status = palpa_scene_predict(s, 1, &horizon);
+  EXPECT(status == PALPA_STATUS_UNAVAILABLE, "%s", palpa_status_name(status));
+  EXPECT(strstr(palpa_last_error(d), "line 1 has no chamber model") != NULL, "%s",
+         palpa_last_error(d));
+  EXPECT(palpa_scene_predict(s, 0, NULL) == PALPA_OK, "%s", palpa_last_error(d));
+  palpa_tablet* t = NULL;
+  status = palpa_tablet_open(s, "/dev/null", &t);
+  EXPECT(status != PALPA_OK && t == NULL, "%s", palpa_status_name(status));
+  EXPECT(strstr(palpa_last_error(d), "/dev/null: not an input event device") != NULL, "%s",
+         palpa_last_error(d));
+  palpa_scene_close(s);
+}
+
 static void several(palpa_device* d) {
   const palpa_request up[3] = {{0, PALPA_TARGET_DEFORMATION, 1.0},
                                {1, PALPA_TARGET_LEVEL, 1},
@@ -58,6 +93,7 @@ int main(void) {
   palpa_device* d = open_board("sim:thesis-pneumatic-3");
   if (d == NULL) return 1;
   scene(d);
+  inputs(d);
   several(d);
   palpa_close(d);
   return verdict("scene_c");

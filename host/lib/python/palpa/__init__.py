@@ -427,4 +427,4 @@ class Device(_Closable):
         return _calibrate(self._lib, self._handle, os.fspath(rig_file), finger, out, options, self._check)
 
 
-from .scene import Scene  # noqa: E402  (it uses what is defined above)
+from .scene import Scene, Tablet  # noqa: E402  (it uses what is defined above)

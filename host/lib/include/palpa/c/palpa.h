@@ -235,6 +235,33 @@ int palpa_scene_feed(palpa_scene* scene, double time_s, double x_mm, double y_mm
                      palpa_finger_render* out, int capacity);
 void palpa_scene_close(palpa_scene* scene);
 
+/* Prediction: with `on`, each palpa_scene_feed renders where the hand will be after the fingers'
+   display delay — from their lines' calibrated chamber models (refused, naming the line, when a
+   finger has none: PALPA_STATUS_UNAVAILABLE) — bounded, and not at all when the motion is
+   erratic, reversing or stopping; the delay (s) goes to `horizon_s` when not NULL. 0 turns it off.
+   Tactile arrays: palpa_scene_feed_tactile renders one frame of the scene's tactile array (its
+   input.tactile section: `count` must be its elements), each finger's group averaged and mapped
+   by the rule; `values` NULL releases every finger (a stalled stream: the caller decides when).
+   Returns as palpa_scene_feed does. */
+int palpa_scene_predict(palpa_scene* scene, int on, double* horizon_s);
+int palpa_scene_feed_tactile(palpa_scene* scene, const double* values, int count,
+                             palpa_finger_render* out, int capacity);
+
+/* Pen tablets and touchpads (evdev): palpa_tablet_open maps the device at `path`
+   (/dev/input/eventN) onto the scene's tissue, pressure through the scene's input.tablet form;
+   a device that is not a pad is refused naming it and what it lacks (palpa_last_error of the
+   scene's device). palpa_tablet_next waits up to timeout_ms for the pad's next report: 1 and the
+   sample in `out`, 0 when none came, or a negated status (the device gone). Feed the sample to
+   palpa_scene_feed. */
+typedef struct palpa_tablet palpa_tablet;
+typedef struct {
+  double time_s; /* CLOCK_MONOTONIC */
+  double x_mm, y_mm, force_n;
+} palpa_input;
+int palpa_tablet_open(palpa_scene* scene, const char* path, palpa_tablet** out);
+int palpa_tablet_next(palpa_tablet* tablet, int timeout_ms, palpa_input* out);
+void palpa_tablet_close(palpa_tablet* tablet);
+
 #ifdef __cplusplus
 }
 #endif
