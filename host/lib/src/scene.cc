@@ -47,12 +47,13 @@ Result<std::vector<FingerRender>> Scene::FeedValues(const std::vector<double>* v
 
 Result<double> Scene::DisplayDelay() {
   double sum = 0;
-  for (const RenderFinger& f : renderer_.fingers()) {
+  for (size_t k = 0; k < renderer_.fingers().size(); ++k) {
+    const RenderFinger& f = renderer_.fingers()[k];
     const bool jamming = f.summary.kind == protocol::FingerKind::kJamming;
     const uint8_t line = jamming ? f.summary.line_b : f.summary.line_a;
     const auto config = device_.ReadLine(line);
     if (!config.ok()) return config.outcome();
-    const auto delay = host::DisplayDelay(config.value);
+    const auto delay = host::DisplayDelay(config.value, SceneStepPa(renderer_, k));
     if (!delay.ok()) {
       return {delay.status, device_.FingerName(f.board_finger) + ": " + delay.message};
     }

@@ -4,38 +4,73 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "number_text.h"
 
 namespace palpa::host {
 
-double HalfStepTime(double dead, double t1, double t2) {
-  const auto response = [&](double t) {
-    if (t2 <= 0) return 1 - std::exp(-t / t1);
-    if (std::fabs(t1 - t2) < 1e-9 * (t1 + t2)) return 1 - (1 + t / t1) * std::exp(-t / t1);
-    return 1 - (t1 * std::exp(-t / t1) - t2 * std::exp(-t / t2)) / (t1 - t2);
-  };
-  if (t1 <= 0 && t2 <= 0) return dead;
-  if (t1 <= 0) t1 = t2, t2 = 0;
-  double lo = 0, hi = 10 * (t1 + t2);
-  for (int k = 0; k < 60; ++k) {
-    const double mid = (lo + hi) / 2;
-    (response(mid) < 0.5 ? lo : hi) = mid;
-  }
-  return dead + (lo + hi) / 2;
+LineDynamics DynamicsOf(const protocol::ConfigureLine& line) {
+  return {line.model_dead_time_us * 1e-6, line.model_tau_us * 1e-6, line.chamber_tau_us * 1e-6,
+          static_cast<double>(line.overdrive_pa)};
 }
 
-Result<double> DisplayDelay(const protocol::ConfigureLine& line) {
+double HalfStepTime(const LineDynamics& m, double step_pa) {
+  // The board's models at a tenth of its tick: a delay line for the dead time, then two lags.
+  constexpr double dt = 1e-4;
+  const double step = std::fabs(step_pa);
+  if (!(step > 0)) return m.dead_time_s;
+  const bool shaped = m.chamber_tau_s > 0 && m.overdrive_pa > 0;
+  const double lead =
+      shaped ? std::max(0.0, (m.chamber_tau_s - m.regulator_tau_s) / (m.regulator_tau_s + dt))
+             : 0.0;
+  const size_t dead = static_cast<size_t>(std::lround(m.dead_time_s / dt));
+  std::vector<double> delayed(dead + 1, 0.0);
+  double regulator = 0, chamber = 0;
+  for (size_t k = 0; k < static_cast<size_t>(10.0 / dt); ++k) {
+    double command = step + lead * (step - chamber);
+    if (shaped) command = std::clamp(command, step - m.overdrive_pa, step + m.overdrive_pa);
+    delayed[k % delayed.size()] = command;
+    const double in = delayed[(k + 1) % delayed.size()];  // the command `dead` steps ago
+    regulator =
+        m.regulator_tau_s > 0 ? regulator + dt / (m.regulator_tau_s + dt) * (in - regulator) : in;
+    chamber = m.chamber_tau_s > 0 ? chamber + dt / (m.chamber_tau_s + dt) * (regulator - chamber)
+                                  : regulator;
+    if (chamber >= step / 2) return (static_cast<double>(k) + 1) * dt;
+  }
+  return 10.0;
+}
+
+Result<double> DisplayDelay(const protocol::ConfigureLine& line, double step_pa) {
   if (line.chamber_tau_us == 0) {
     return {Status::kUnavailable,
             "line " + std::to_string(line.line + 1) +
                 " has no chamber model: its delay is unknown until it is calibrated "
                 "(palpa calibrate), so nothing can be predicted for it"};
   }
-  const double dead = line.model_dead_time_us * 1e-6;
-  const double regulator = line.model_tau_us * 1e-6;
-  const double chamber = line.overdrive_pa > 0 ? 0.0 : line.chamber_tau_us * 1e-6;
-  return HalfStepTime(dead, regulator, chamber);
+  return HalfStepTime(DynamicsOf(line), step_pa);
+}
+
+double DriveForOutput(protocol::FingerKind kind, const FingerCurves& curves, double output) {
+  const bool jamming = kind == protocol::FingerKind::kJamming;
+  // Both curves are monotone over their drive: bisection on the magnitude 0 … 100 kPa.
+  const auto at = [&](double magnitude) {
+    return jamming ? StiffnessAtVacuum(curves, -magnitude)
+                   : DeformationAtPressure(curves, magnitude);
+  };
+  const bool rising = at(100) >= at(0);
+  double lo = 0, hi = 100;
+  for (int k = 0; k < 50; ++k) {
+    const double mid = (lo + hi) / 2;
+    ((at(mid) < output) == rising ? lo : hi) = mid;
+  }
+  return jamming ? -(lo + hi) / 2 : (lo + hi) / 2;
+}
+
+double SceneStepPa(const SceneRenderer& r, size_t k) {
+  const RenderFinger& f = r.fingers().at(k);
+  return 1000 * std::fabs(DriveForOutput(f.summary.kind, f.curves, r.OutputAt(k, 1)) -
+                          DriveForOutput(f.summary.kind, f.curves, r.OutputAt(k, 0)));
 }
 
 Outcome CheckPredictor(const PredictorOptions& o) {
@@ -76,10 +111,10 @@ const char* PredictionName(Prediction p) {
 namespace {
 
 /// Least-squares velocity of x and y over samples [begin, end), and the RMS of the residuals.
-struct LineFit {
+struct MotionFit {
   double vx = 0, vy = 0, rms = 0;
 };
-LineFit Fit(const std::deque<SceneInput>& h, size_t begin, size_t end) {
+MotionFit Fit(const std::deque<SceneInput>& h, size_t begin, size_t end) {
   const double n = static_cast<double>(end - begin);
   double st = 0, sx = 0, sy = 0;
   for (size_t k = begin; k < end; ++k) st += h[k].time_s, sx += h[k].x_mm, sy += h[k].y_mm;
@@ -89,7 +124,7 @@ LineFit Fit(const std::deque<SceneInput>& h, size_t begin, size_t end) {
     const double dt = h[k].time_s - mt;
     stt += dt * dt, stx += dt * (h[k].x_mm - mx), sty += dt * (h[k].y_mm - my);
   }
-  LineFit f;
+  MotionFit f;
   if (stt <= 0) return f;
   f.vx = stx / stt, f.vy = sty / stt;
   double ss = 0;
@@ -121,8 +156,8 @@ SceneInput MotionPredictor::Next(const SceneInput& s) {
   if (n < 3) {
     return Done(Prediction::kTooFewSamples, s);
   }
-  const LineFit all = Fit(history_, 0, n);
-  const LineFit recent = Fit(history_, n / 2, n);
+  const MotionFit all = Fit(history_, 0, n);
+  const MotionFit recent = Fit(history_, n / 2, n);
   const double speed = std::hypot(all.vx, all.vy);
   const double recent_speed = n >= 4 ? std::hypot(recent.vx, recent.vy) : speed;
   // The latest half moving against the whole window: a reversal under way (a stop is not one).

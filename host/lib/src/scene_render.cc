@@ -171,6 +171,12 @@ void SceneRenderer::Map(FingerRender& r, const RenderFinger& f, double lo, doubl
   r.mapped = MapRequest(f.summary, levels_, f.curves, r.request, RangePolicy::kClamp);
 }
 
+double SceneRenderer::OutputAt(size_t k, double u) const {
+  const RenderFinger& f = fingers_.at(k);
+  return MapRequest(f.summary, levels_, f.curves, Target(f, u), RangePolicy::kClamp).target /
+         1000.0;
+}
+
 std::vector<FingerRender> SceneRenderer::RenderValues(const std::vector<double>* values, double lo,
                                                       double hi) const {
   std::vector<FingerRender> out(fingers_.size());

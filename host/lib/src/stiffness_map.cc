@@ -245,6 +245,14 @@ Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& leve
   return m;
 }
 
+double StiffnessAtVacuum(const FingerCurves& curves, double vacuum_kpa) {
+  if (!curves.calibrated.empty()) {
+    const double a = curves.calibrated.front().first, b = curves.calibrated.back().first;
+    vacuum_kpa = std::clamp(vacuum_kpa, std::min(a, b), std::max(a, b));
+  }
+  return StiffnessAt(curves, std::clamp(vacuum_kpa, -100.0, 0.0));
+}
+
 double DeformationAtPressure(const FingerCurves& curves, double kpa) {
   if (!curves.calibrated.empty()) {
     const double a = curves.calibrated.front().first, b = curves.calibrated.back().first;

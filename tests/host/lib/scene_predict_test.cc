@@ -31,13 +31,26 @@ SimpleString StringFrom(ph::Prediction p) { return ph::PredictionName(p); }
 TEST_GROUP(ScenePredict){};
 
 TEST(ScenePredict, HalfStepTimes) {
-  DOUBLES_EQUAL(0.005 + 0.02 * std::log(2.0), ph::HalfStepTime(0.005, 0.02, 0), 1e-9);
-  DOUBLES_EQUAL(0.005, ph::HalfStepTime(0.005, 0, 0), 1e-12);
+  // Unshaped: dead time then one lag crosses half at dead + τ ln 2 (the model's tenth-of-a-tick
+  // steps: within a few of them).
+  DOUBLES_EQUAL(0.005 + 0.02 * std::log(2.0), ph::HalfStepTime({0.005, 0.02, 0, 0}, 30000), 3e-4);
+  DOUBLES_EQUAL(0.005, ph::HalfStepTime({0.005, 0, 0, 0}, 30000), 2e-4);
   // Two equal lags: 1 − (1 + t/τ)e^(−t/τ) = ½ at t = 1.67835 τ.
-  DOUBLES_EQUAL(1.67835 * 0.01, ph::HalfStepTime(0, 0.01, 0.01), 1e-6);
-  // Two lags take longer than either alone and less than both in a row at ln 2 each… plus.
-  const double two = ph::HalfStepTime(0, 0.02, 0.05);
-  CHECK(two > 0.05 * std::log(2.0) && two < 0.07);
+  DOUBLES_EQUAL(1.67835 * 0.02, ph::HalfStepTime({0, 0.02, 0.02, 0}, 30000), 3e-4);
+  // Shaped with room to overdrive (the board's lead on the chamber model): far faster than the
+  // chamber's lag alone would allow, never faster than dead time and the regulator's lag.
+  const ph::LineDynamics shaped{0.005, 0.02, 0.05, 1e9};
+  CHECK(ph::HalfStepTime(shaped, 30000) > 0.005 + 0.02 * std::log(2.0));
+  CHECK(ph::HalfStepTime(shaped, 30000) < 0.005 + 0.05 * std::log(2.0));
+  // Held within a 20 kPa overdrive: a 30 kPa step is partly shaped, a 100 kPa step much less —
+  // between the regulator's time and the unshaped one, longer the larger the step.
+  const ph::LineDynamics bounded{0.005, 0.02, 0.05, 20000};
+  const double unshaped = ph::HalfStepTime({0.005, 0.02, 0.05, 0}, 30000);
+  const double small = ph::HalfStepTime(bounded, 30000), large = ph::HalfStepTime(bounded, 100000);
+  CHECK(small > ph::HalfStepTime(shaped, 30000) + 1e-3);
+  CHECK(small < large);
+  CHECK(large < unshaped);
+  DOUBLES_EQUAL(unshaped, ph::HalfStepTime({0.005, 0.02, 0.05, 0}, 100000), 1e-9);
 }
 
 TEST(ScenePredict, DisplayDelayFromTheCalibratedLine) {
@@ -45,15 +58,29 @@ TEST(ScenePredict, DisplayDelayFromTheCalibratedLine) {
   line.line = 2;
   line.model_dead_time_us = 5000;
   line.model_tau_us = 20000;
-  const auto unknown = ph::DisplayDelay(line);
+  const auto unknown = ph::DisplayDelay(line, 30000);
   CHECK(!unknown.ok());
   STRCMP_CONTAINS("line 3 has no chamber model", unknown.message.c_str());
   line.chamber_tau_us = 50000;
-  const auto unshaped = ph::DisplayDelay(line);
+  const auto unshaped = ph::DisplayDelay(line, 30000);
   CHECK(unshaped.ok());
-  DOUBLES_EQUAL(ph::HalfStepTime(0.005, 0.02, 0.05), unshaped.value, 1e-12);
-  line.overdrive_pa = 20000;  // shaped steps: the chamber is driven through its lag
-  DOUBLES_EQUAL(ph::HalfStepTime(0.005, 0.02, 0), ph::DisplayDelay(line).value, 1e-12);
+  DOUBLES_EQUAL(ph::HalfStepTime({0.005, 0.02, 0.05, 0}, 30000), unshaped.value, 1e-12);
+  line.overdrive_pa = 20000;  // shaped steps: the chamber driven through its lag, within 20 kPa
+  DOUBLES_EQUAL(ph::HalfStepTime({0.005, 0.02, 0.05, 20000}, 30000),
+                ph::DisplayDelay(line, 30000).value, 1e-12);
+  CHECK(ph::DisplayDelay(line, 30000).value < unshaped.value);
+}
+
+TEST(ScenePredict, DrivesFoundOnTheFingersCurves) {
+  const ph::FingerCurves nominal;
+  // Table 5-4's line: 0.0458 mm/kPa − 0.2098 mm; 1 mm at 26.4 kPa.
+  DOUBLES_EQUAL((1 + 0.2098) / 0.0458, ph::DriveForOutput(pp::FingerKind::kPneumatic, nominal, 1),
+                1e-6);
+  // Jamming, nominal 0.7 … 1.3 N/mm over 0 … −100 kPa: 1.0 N/mm at −50 kPa.
+  DOUBLES_EQUAL(-50, ph::DriveForOutput(pp::FingerKind::kJamming, nominal, 1.0), 1e-6);
+  ph::FingerCurves calibrated;
+  calibrated.calibrated = {{0, 0}, {10, 0.2}, {40, 2.0}};
+  DOUBLES_EQUAL(25, ph::DriveForOutput(pp::FingerKind::kPneumatic, calibrated, 1.1), 1e-6);
 }
 
 TEST(ScenePredict, EvenMotionLeadsByVelocityTimesHorizon) {

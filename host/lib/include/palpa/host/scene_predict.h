@@ -9,19 +9,39 @@
 
 #include "palpa/host/outcome.h"
 #include "palpa/host/scene_input.h"
+#include "palpa/host/scene_render.h"
+#include "palpa/host/stiffness_map.h"
 #include "palpa/protocol/messages_config.h"
 
 namespace palpa::host {
 
-/// The time a line's model takes to cross half of a step: its dead time, then its regulator's
-/// lag and (unless the board shapes the line's steps, which drives the chamber through its lag)
-/// its chamber's. Half, because an edge is felt when the stiffness is half-way across it. From
-/// the line's configuration as a calibration set it (chamber_tau_us, model_tau_us,
-/// model_dead_time_us, overdrive_pa): the calibrated model, never a measurement of the output.
-/// A line without a chamber model (chamber_tau_us 0: never calibrated) is unavailable.
-Result<double> DisplayDelay(const protocol::ConfigureLine& line);
-/// Half-step time of a dead time then one or two first-order lags (tau2 0: one), in seconds.
-double HalfStepTime(double dead_time_s, double tau1_s, double tau2_s);
+/// A line's dynamics as its calibration configured it: the regulator model's dead time and lag
+/// (model_dead_time_us, model_tau_us), the chamber's identified lag (chamber_tau_us) and the
+/// overdrive a shaped step may use (overdrive_pa; 0: steps not shaped).
+struct LineDynamics {
+  double dead_time_s = 0, regulator_tau_s = 0, chamber_tau_s = 0, overdrive_pa = 0;
+};
+LineDynamics DynamicsOf(const protocol::ConfigureLine& line);
+
+/// The time the line's model takes to bring its chamber half-way through a step of `step_pa`:
+/// the board's own step shaping (line_step.h: the command led by the chamber model's lag, held
+/// within the overdrive beyond the target) through dead time, regulator lag and chamber lag,
+/// simulated. Half, because an edge is felt when the stiffness is half-way across it.
+double HalfStepTime(const LineDynamics& line, double step_pa);
+
+/// HalfStepTime of a line's calibrated configuration — the calibrated model, never a measurement
+/// of the output. A line without a chamber model (chamber_tau_us 0: never calibrated) is
+/// unavailable, naming the line.
+Result<double> DisplayDelay(const protocol::ConfigureLine& line, double step_pa);
+
+/// The drive (kPa: a pressure, or a vacuum, negative) at which a finger's curve gives `output`
+/// (mm of deformation, or N/mm), found on the curve (the calibrated one where loaded).
+double DriveForOutput(protocol::FingerKind kind, const FingerCurves& curves, double output);
+
+/// The largest step a scene asks of finger k's line (Pa): from the drive at its softest render
+/// to the drive at its stiffest, through its curve — an edge from the softest to the stiffest
+/// part of the tissue.
+double SceneStepPa(const SceneRenderer& renderer, size_t k);
 
 struct PredictorOptions {
   /// How far ahead to predict: the display's delay (DisplayDelay). Half of the input's own

@@ -84,6 +84,9 @@ class SceneRenderer {
   /// no values (nullptr: the stream stopped) releases every finger — they go soft.
   std::vector<FingerRender> RenderValues(const std::vector<double>* values, double lo,
                                          double hi) const;
+  /// What finger k (in the layout's order) is asked at u = 0 … 1, in its unit (mm or N/mm),
+  /// within its curve: the ends of what the scene renders on it.
+  double OutputAt(size_t k, double u) const;
   /// The requests for Device::Set (one per finger, all in one call: one stream frame).
   std::vector<FingerRequest> Requests(const std::vector<FingerRender>& renders) const;
 

@@ -86,6 +86,8 @@ Mapped MapRequest(const protocol::FingerSummary& finger, const LevelTables& leve
 /// one when loaded, within its range — as a level's table pressure is mapped (scenes map a
 /// fingertip stress to pressure, then through this).
 double DeformationAtPressure(const FingerCurves& curves, double kpa);
+/// A jamming finger's stiffness (N/mm) at a vacuum (kPa, negative) through its curve, likewise.
+double StiffnessAtVacuum(const FingerCurves& curves, double vacuum_kpa);
 
 /// The pressure a line is at, as far as the host knows: its sensor's reading, or its setpoint
 /// where it has no sensor.
