@@ -20,8 +20,8 @@ std::string ChangedJson(Bytes& in, int variant, const std::string& valid);
 /// A few bytes overwritten at chosen places, and perhaps the end cut off.
 std::string Damaged(Bytes& in, std::string text);
 
-/// Scene files, tissues (JSON grid, CSV force matrix, PGM image) and trajectories, picked by the
-/// input and changed as `variant` says.
+/// Scene files, tissues (JSON grid, CSV force matrix, PGM image), trajectories, tactile streams and
+/// datagrams, and pen presses, picked by the input and changed as `variant` says.
 void CheckSceneKind(Bytes& in, int variant);
 
 }  // namespace palpa::testing::files_fuzz

@@ -1,5 +1,6 @@
-// host_files_fuzz's scene kinds: scene files, tissues as a JSON grid, a CSV force matrix or a PGM
-// image, and trajectory CSVs. Each is refused with a reason in words, or accepted and then holds
+// host_files_fuzz's scene kinds: scene files (with and without input sections), tissues as a JSON
+// grid, a CSV force matrix or a PGM image, trajectory CSVs, tactile streams and datagrams, and pen
+// presses. Each is refused with a reason in words, or accepted and then holds
 // its rules: a scene file and a JSON tissue round-trip, an accepted tissue passes the map's checks
 // and renders, for inputs of any value (NaN and infinities included), targets the fingers' curves
 // allow; a force matrix's rows are one length of finite numbers; an image's values lie within its
@@ -13,6 +14,8 @@
 #include "palpa/host/scene_image.h"
 #include "palpa/host/scene_input.h"
 #include "palpa/host/scene_render.h"
+#include "palpa/host/scene_tablet.h"
+#include "palpa/host/scene_tactile.h"
 #include "small_tissue.h"
 
 namespace ph = palpa::host;
@@ -25,6 +28,13 @@ const std::string& ValidSceneText() {
   static const std::string text =
       ph::ReadFileWhole(PALPA_DOCS_DIR "/examples/scene_three_cube.json", ph::kSceneFileLimits)
           .value;
+  return text;
+}
+
+/// A scene with both input sections (a pen tablet's pressure form, a tactile array's groups).
+const std::string& ValidInputsSceneText() {
+  static const std::string text =
+      ph::ReadFileWhole(PALPA_DOCS_DIR "/examples/scene_inputs.json", ph::kSceneFileLimits).value;
   return text;
 }
 
@@ -115,6 +125,38 @@ void CheckTrajectory(const std::string& text) {
   }
 }
 
+/// A tactile stream of two elements: frames of two finite values, time rising.
+void CheckTactileStream(const std::string& text) {
+  const auto frames = ph::ParseTactileStream(text, "s.csv", 2);
+  if (!frames.ok()) return CheckReason("tactile stream", frames.message, text);
+  for (size_t k = 0; k < frames.value.size(); ++k) {
+    const ph::TactileFrame& f = frames.value[k];
+    if (f.values.size() != 2 || !std::isfinite(f.values[0]) || !std::isfinite(f.values[1]) ||
+        (k > 0 && !(f.time_s > frames.value[k - 1].time_s)))
+      Fail("an accepted tactile stream breaks its rules", text);
+  }
+}
+
+/// A tactile datagram for a two-element array: two finite values, or a reason.
+void CheckTactilePacket(const std::string& bytes) {
+  const auto f =
+      ph::DecodeTactilePacket(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size(), 2);
+  if (!f.ok()) return CheckReason("tactile datagram", f.message, bytes);
+  if (f.value.values.size() != 2 || !std::isfinite(f.value.values[0]) ||
+      !std::isfinite(f.value.values[1]))
+    Fail("an accepted tactile datagram breaks its rules", bytes);
+}
+
+/// Presses: refused in words, or fitted to a form within the input's force limit, or refused.
+void CheckPresses(const std::string& text) {
+  const auto presses = ph::ParsePresses(text, "p.csv");
+  if (!presses.ok()) return CheckReason("presses", presses.message, text);
+  const auto fit = ph::FitPressureForce(presses.value);
+  if (!fit.ok()) return CheckReason("presses", fit.message, text);
+  if (!ph::CheckPressureForce(fit.value.model).ok() || !std::isfinite(fit.value.rms_n))
+    Fail("a pressure form fitted from presses breaks its rules", text);
+}
+
 /// A CSV or image's reference: the fuzzer's own bytes, or the reference damaged.
 std::string ChangedBytes(Bytes& in, int variant, const std::string& valid) {
   return variant == 0 ? in.Rest() : Damaged(in, valid);
@@ -123,9 +165,20 @@ std::string ChangedBytes(Bytes& in, int variant, const std::string& valid) {
 }  // namespace
 
 void CheckSceneKind(Bytes& in, int variant) {
-  switch (in.Byte() % 6) {
+  switch (in.Byte() % 10) {
     case 0:
       return CheckScene(ChangedJson(in, variant, ValidSceneText()));
+    case 6:
+      return CheckScene(ChangedJson(in, variant, ValidInputsSceneText()));
+    case 7:
+      return CheckTactileStream(ChangedBytes(in, variant, "time_s,a,b\n0,1,2\n0.01,3,4.5\n"));
+    case 8: {
+      const auto packet = ph::EncodeTactilePacket(3, {1, 2});
+      return CheckTactilePacket(
+          ChangedBytes(in, variant, std::string(packet.begin(), packet.end())));
+    }
+    case 9:
+      return CheckPresses(ChangedBytes(in, variant, "level,force_n\n100,0.2\n900,3\n"));
     case 1: {
       const std::string text = ChangedJson(in, variant, ValidTissueText());
       return CheckTissueText(in, text);

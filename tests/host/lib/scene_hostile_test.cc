@@ -14,6 +14,8 @@
 #include "palpa/host/scene_image.h"
 #include "palpa/host/scene_input.h"
 #include "palpa/host/scene_render.h"
+#include "palpa/host/scene_tablet.h"
+#include "palpa/host/scene_tactile.h"
 #include "small_tissue.h"
 
 #include "CppUTest/TestHarness.h"
@@ -124,6 +126,50 @@ TEST(SceneHostileFiles, SceneFilesAreRefusedWithAReasonOrRoundTrip) {
   };
   EveryLeaf(valid, check);
   EveryCutAndByte(valid, check);
+}
+
+TEST(SceneHostileFiles, SceneInputSectionsAreRefusedWithAReasonOrRoundTrip) {
+  const std::string valid =
+      ph::ReadFileWhole(PALPA_DOCS_DIR "/examples/scene_inputs.json", ph::kSceneFileLimits).value;
+  size_t accepted = 0;
+  EveryLeaf(valid, [&](const std::string& text) {
+    const auto s = ph::ParseScene(text);
+    if (!s.ok()) return CheckReason(s, text);
+    ++accepted;
+    const auto written = ph::SerializeScene(s.value);
+    CHECK_TEXT(written.ok(), written.message.c_str());
+    if (s.value.tactile)
+      CHECK(ph::CheckTactile(*s.value.tactile, s.value.board_fingers.size()).ok());
+    if (s.value.tablet) CHECK(ph::CheckPressureForce(s.value.tablet->pressure_force).ok());
+  });
+  CHECK(accepted > 0);
+}
+
+TEST(SceneHostileFiles, TactileStreamsAndPressesAreRefusedWithAReasonOrHoldTheirRules) {
+  EveryCutAndByte("time_s,a,b\n0,1,2\n0.01,3,4.5\n", [](const std::string& text) {
+    const auto frames = ph::ParseTactileStream(text, "s.csv", 2);
+    if (!frames.ok()) return CheckReason(frames, text);
+    for (size_t k = 0; k < frames.value.size(); ++k) {
+      CHECK(frames.value[k].values.size() == 2);
+      if (k > 0) CHECK(frames.value[k].time_s > frames.value[k - 1].time_s);
+    }
+  });
+  EveryCutAndByte("level,force_n\n100,0.2\n900,3\n", [](const std::string& text) {
+    const auto presses = ph::ParsePresses(text, "p.csv");
+    if (!presses.ok()) return CheckReason(presses, text);
+    const auto fit = ph::FitPressureForce(presses.value);
+    if (!fit.ok()) return CheckReason(fit, text);
+    CHECK(ph::CheckPressureForce(fit.value.model).ok());
+  });
+  // Datagrams: every cut and byte of a valid frame decodes whole or is refused in words.
+  const auto packet = ph::EncodeTactilePacket(3, {1, 2});
+  const std::string bytes(packet.begin(), packet.end());
+  EveryCutAndByte(bytes, [](const std::string& text) {
+    const auto f =
+        ph::DecodeTactilePacket(reinterpret_cast<const uint8_t*>(text.data()), text.size(), 2);
+    if (!f.ok()) return CheckReason(f, "a datagram");
+    CHECK(f.value.values.size() == 2);
+  });
 }
 
 TEST(SceneHostileFiles, ForceMatricesAndTrajectoriesAreRefusedWithAReasonOrHoldTheirRules) {
