@@ -18,48 +18,20 @@
 
 #include "palpa/host/scene_file.h"
 #include "scene_pass.h"
+#include "scene_paths.h"
 
 namespace pb = palpa::bench;
 namespace pp = palpa::protocol;
 namespace ph = palpa::host;
 
+using pb::HandLike;
 using pb::kEndX;
 using pb::kStartX;
+using pb::Straight;
 
 namespace {
 
 double Percentile(std::vector<double> v, double p);
-
-/// A straight pass at a constant speed, a position per millisecond.
-std::vector<double> Straight(double speed_mm_s) {
-  std::vector<double> path;
-  for (double x = kStartX; x <= kEndX; x += speed_mm_s / 1000) path.push_back(x);
-  return path;
-}
-
-/// A hand-like pass: speed varying ±50 % about `speed` (a 2 s cycle), forward to 80 mm, a 0.5 s
-/// stop, back to 60 mm (over cube B again), another stop, then on to the end.
-std::vector<double> HandLike(double speed) {
-  std::vector<double> path;
-  double x = kStartX, t = 0;
-  auto go = [&](double to) {
-    const double dir = to > x ? 1 : -1;
-    while (dir * (to - x) > 0) {
-      x += dir * speed * (1 + 0.5 * std::sin(2 * M_PI * t / 2)) / 1000;
-      t += 0.001;
-      path.push_back(x);
-    }
-  };
-  auto stop = [&] {
-    for (int ms = 0; ms < 500; ++ms) path.push_back(x);
-  };
-  go(80);
-  stop();
-  go(60);
-  stop();
-  go(kEndX);
-  return path;
-}
 
 /// "RMS | p95 | edge lag" of one pass, as Markdown cells.
 std::string Cells(const pb::FingerScore& r) {
@@ -108,16 +80,7 @@ int Row(const ph::SceneRenderer& scene, bool jamming, const std::vector<uint8_t>
 /// The table of one scene's passes along y = `y`: straight at each speed, then hand-like.
 int Table(const ph::SceneRenderer& scene, bool jamming, const std::vector<uint8_t>& fingers,
           const std::string& title, double y) {
-  // The scene's target range: from the softest to the stiffest target the rule gives a finger
-  // on the tissue along the cubes' mid-line (every table the same denominator).
-  double lo = 1e9, hi = -1e9;
-  for (double x = 0; x <= 120; x += 0.25) {
-    for (const auto& r : scene.Render({0, x, pb::kMidLineY, 1})) {
-      if (!r.touching) continue;  // off the tissue: released, not part of the range
-      lo = std::min(lo, r.mapped.target / 1000.0);
-      hi = std::max(hi, r.mapped.target / 1000.0);
-    }
-  }
+  const auto [lo, hi] = pb::TargetRange(scene);  // along the mid-line: every table the same
   std::printf(
       "\n%s on palpa-sim %s, plant level 3, unit %u; passes along y = %g mm from x = %g to %g mm,"
       " input at %d Hz; target range %.3f %s\n\n",
@@ -151,28 +114,14 @@ int main(int argc, char** argv) {
   if (!spec.ok()) return std::fprintf(stderr, "%s\n", spec.message.c_str()), 1;
   const auto tissue = ph::LoadSceneTissue(spec.value);
   if (!tissue.ok()) return std::fprintf(stderr, "%s\n", tissue.message.c_str()), 1;
-  std::vector<ph::RenderFinger> fingers;
-  for (uint8_t f : spec.value.board_fingers)
-    fingers.push_back(
-        {f, {pp::FingerKind::kPneumatic, pp::FingerMode::kTarget, f, pp::kNoLine}, {}});
-  const auto scene = ph::SceneRenderer::Make(tissue.value, ph::MakeLayout(spec.value.layout),
-                                             spec.value.rule, fingers);
+  const auto scene = pb::PneumaticScene(spec.value, tissue.value);
   if (!scene.ok()) return std::fprintf(stderr, "%s\n", scene.message.c_str()), 1;
   // Along the mid-line fingers 0 and 1 cross the cubes; along the second line finger 2 does.
   for (const double y : {pb::kMidLineY, pb::kSecondLineY}) {
     if (Table(scene.value, false, spec.value.board_fingers, "scene " + spec.value.name, y) != 0)
       return 1;
   }
-  // The jamming pair on the same tissue, 20 mm apart, N/mm over each finger's nominal curve.
-  std::vector<ph::RenderFinger> pair;
-  for (uint8_t f = 0; f < 2; ++f) {
-    pair.push_back(
-        {f,
-         {pp::FingerKind::kJamming, pp::FingerMode::kTarget, f, static_cast<uint8_t>(f + 2)},
-         {}});
-  }
-  const auto jamming =
-      ph::SceneRenderer::Make(tissue.value, ph::JammingPairLayout(20, 4), {}, pair);
+  const auto jamming = pb::JammingPairScene(tissue.value);
   if (!jamming.ok()) return std::fprintf(stderr, "%s\n", jamming.message.c_str()), 1;
   return Table(jamming.value, true, {0, 1},
                "the jamming pair (20 mm, a 4 mm disc) on the same tissue", pb::kMidLineY);

@@ -11,6 +11,8 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <optional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -18,6 +20,7 @@
 #include "palpa/calibration/calibration_protocol.h"
 #include "palpa/host/board_curves.h"
 #include "palpa/host/calibration_file.h"
+#include "palpa/host/scene_predict.h"
 #include "palpa/host/scene_render.h"
 #include "sim_rig.h"
 
@@ -35,10 +38,11 @@ constexpr double kMidLineY = 15, kSecondLineY = 0;
 
 /// One finger's score over a pass.
 struct FingerScore {
-  std::vector<double> errors;    ///< |true − target| / range, every tick
-  double edge_lag_mm = NAN;      ///< NAN: the output never crossed half of the change over B
-  bool meets_edge = false;       ///< the finger's path crosses cube B's near face at all
-  double edge_speed_mm_s = NAN;  ///< the finger's speed where the rule's target crossed at B
+  std::vector<double> errors;         ///< |true − target| / range, every tick
+  double edge_lag_mm = NAN;           ///< NAN: the output never crossed half of the change over B
+  bool meets_edge = false;            ///< the finger's path crosses cube B's near face at all
+  double edge_speed_mm_s = NAN;       ///< the finger's speed where the rule's target crossed at B
+  std::vector<double> place, output;  ///< the finger's x and true output, every tick
 };
 using PassResult = std::vector<FingerScore>;
 
@@ -58,6 +62,38 @@ class ScenePass {
   }
   /// False when the board refused a calibrated line's configuration (said on stderr).
   bool ok() const { return ok_; }
+  /// The renderer the pass uses (through the calibrations, when calibrated).
+  const ph::SceneRenderer& scene() const { return *scene_; }
+
+  /// From now on each input sample is replaced by its prediction over the display delay of the
+  /// scene's fingers, from their lines' calibrated configuration (as Scene::DisplayDelay reads
+  /// it from a board). False (said on stderr) when a line has no chamber model.
+  bool Predict() {
+    double sum = 0;
+    for (size_t k = 0; k < scene_->fingers().size(); ++k) {
+      const pp::FingerSummary& f = scene_->fingers()[k].summary;
+      const uint8_t line = jamming_ ? f.line_b : f.line_a;  // the line that sets its output
+      const auto delay = ph::DisplayDelay(board_.config().lines[line], ph::SceneStepPa(*scene_, k));
+      if (!delay.ok()) {
+        std::fprintf(stderr, "scene bench: %s\n", delay.message.c_str());
+        return false;
+      }
+      sum += delay.value;
+    }
+    ph::PredictorOptions o;
+    o.horizon_s = sum / static_cast<double>(scene_->fingers().size());
+    predictor_.emplace(o);
+    predictor_->SetExtent(scene_->tissue().extent_x_mm(), scene_->tissue().extent_y_mm());
+    return true;
+  }
+  /// The prediction horizon (s; 0: no prediction).
+  double horizon_s() const { return predictor_ ? predictor_->options().horizon_s : 0; }
+  /// Samples predicted over the last pass, of all it sent.
+  size_t predicted() const { return predicted_; }
+  size_t samples() const { return samples_; }
+  /// A hand's tremor (or a pad's noise): each input sample's x and y moved by a normal draw of
+  /// this RMS (mm), the same draws every run.
+  void SetTremor(double rms_mm) { tremor_mm_ = rms_mm; }
 
   /// A path along y = `y`: the input's x at each millisecond of the pass (after settling at the
   /// first).
@@ -78,9 +114,24 @@ class ScenePass {
       half[f] = (before + on) / 2;
       r[f].meets_edge = on - before > 0.05 * range_mm;  // a change worth timing
     }
+    std::mt19937 rng(7);
+    std::normal_distribution<double> tremor(0, 1);
+    predicted_ = samples_ = 0;
     for (int ms = -settle_ms; ms <= pass_ms; ++ms) {
       const double x = path[static_cast<size_t>(std::max(0, ms))];
-      if (ms % kInputEveryMs == 0) SendTargets(x);
+      if (ms % kInputEveryMs == 0) {
+        ph::SceneInput in{(ms + settle_ms) * 1e-3, x, y_, 1};
+        if (tremor_mm_ > 0 && ms >= 0) {
+          in.x_mm += tremor_mm_ * tremor(rng);
+          in.y_mm += tremor_mm_ * tremor(rng);
+        }
+        if (predictor_) {
+          in = predictor_->Next(in);
+          predicted_ += ms >= 0 && predictor_->last() == ph::Prediction::kPredicted;
+        }
+        samples_ += ms >= 0;
+        SendTargets(in.x_mm, in.y_mm);
+      }
       board_.Run(1);
       if (ms < 0) continue;
       const auto truth = board_.sim().plant().Truth();
@@ -91,6 +142,8 @@ class ScenePass {
         FingerScore& s = r[f];
         s.errors.push_back(std::fabs(true_f - target) / range_mm);
         const double at = x + scene_->layout().fingers[f].dx_mm;
+        s.place.push_back(at);
+        s.output.push_back(true_f);
         if (!s.meets_edge) continue;
         if (std::isnan(rule_cross[f]) && target >= half[f]) {
           rule_cross[f] = at;
@@ -199,11 +252,11 @@ class ScenePass {
   double Target(size_t f, double x) const {
     return scene_->Render({0, x, y_, 1})[f].mapped.target / 1000.0;
   }
-  void SendTargets(double x) {
+  void SendTargets(double x, double y) {
     pp::SetFingerTargets t{};
     t.session = testing::InProcessBoard::kSession;
     t.generation = board_.next_generation();
-    const auto renders = scene_->Render({0, x, y_, 1});
+    const auto renders = scene_->Render({0, x, y, 1});
     const auto requests = scene_->Requests(renders);
     for (size_t f = 0; f < renders.size(); ++f) {
       t.entries[t.entry_count++] = {requests[f].finger,
@@ -221,6 +274,9 @@ class ScenePass {
   testing::InProcessBoard board_;
   bool ok_ = true;
   double y_ = kMidLineY;  ///< the pass's line
+  std::optional<ph::MotionPredictor> predictor_;
+  double tremor_mm_ = 0;
+  size_t predicted_ = 0, samples_ = 0;
 };
 
 }  // namespace palpa::bench
