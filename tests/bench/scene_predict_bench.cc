@@ -76,7 +76,7 @@ std::string Mm(double v) {
 
 int Row(const ph::SceneRenderer& scene, bool jamming, const std::vector<uint8_t>& fingers,
         const std::string& name, const std::vector<double>& path, double range, double tremor,
-        double* horizon_s) {
+        double* horizon_s, std::vector<std::string>* notes) {
   Scored off, on;
   if (!Run(scene, jamming, fingers, path, range, false, tremor, &off) ||
       !Run(scene, jamming, fingers, path, range, true, tremor, &on))
@@ -100,8 +100,13 @@ int Row(const ph::SceneRenderer& scene, bool jamming, const std::vector<uint8_t>
       name.c_str(), 100 * off.rms, Mm(off.lag_b).c_str(), Mm(off.worst).c_str(), 100 * on.rms,
       Mm(on.lag_b).c_str(), Mm(on.worst).c_str(), change, where.c_str(), on.predicted, on.samples);
   std::printf("%s\n", row);
-  if (off.never + on.never > 0)
-    std::printf("|  | %zu edges never crossed | | | %zu | | | | |\n", off.never, on.never);
+  if (off.never + on.never > 0) {
+    char note[160];
+    std::snprintf(note, sizeof(note),
+                  "%s: edges the output did not cross within %g mm of the rule: %zu off, %zu on",
+                  name.c_str(), pb::kEdgeSearchMm, off.never, on.never);
+    notes->push_back(note);
+  }
   std::fflush(stdout);
   return 0;
 }
@@ -140,11 +145,14 @@ int Table(const ph::SceneRenderer& scene, bool jamming, const std::vector<uint8_
     std::snprintf(name, sizeof(name), "hand-like, 30 mm/s, %g mm tremor", tremor);
     passes.push_back({name, pb::HandLike(30), tremor});
   }
+  std::vector<std::string> notes;
   for (const Pass& p : passes) {
-    if (Row(scene, jamming, fingers, p.name, p.path, hi - lo, p.tremor, &horizon) != 0) return 1;
+    if (Row(scene, jamming, fingers, p.name, p.path, hi - lo, p.tremor, &horizon, &notes) != 0)
+      return 1;
   }
   std::printf("\nprediction horizon: %.1f ms (the fingers' calibrated display delay)\n",
               horizon * 1e3);
+  for (const std::string& n : notes) std::printf("%s\n", n.c_str());
   return 0;
 }
 
