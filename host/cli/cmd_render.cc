@@ -16,6 +16,7 @@
 #include "palpa/host/scene_evdev.h"
 #include "palpa/host/scene_svg.h"
 #include "render_inputs.h"
+#include "render_record.h"
 
 namespace palpa::cli {
 namespace {
@@ -53,68 +54,6 @@ host::Result<RenderOptions> Options(const std::vector<std::string>& args) {
             std::string("a SCENE file and --input ") + kInputSyntax};
   return o;
 }
-
-/// "OUT" → "OUT.svg" beside it (an .csv ending replaced).
-std::string SvgPath(const std::string& record) {
-  const size_t dot = record.rfind(".csv");
-  return (dot != std::string::npos && dot + 4 == record.size() ? record.substr(0, dot) : record) +
-         ".svg";
-}
-
-/// The record's rows and the terminal's status line, one per rendered sample.
-struct Record {
-  std::string csv;
-  std::vector<std::pair<double, double>> path;
-  std::atomic<uint64_t> board_us{0};
-  bool live = false, hand = true, predicted = false;
-  size_t fed = 0;
-
-  void Header(const host::SceneSpec& spec) {
-    csv = hand ? "time_s,x_mm,y_mm,force_n" : "time_s";
-    if (predicted) csv += ",rendered_x_mm,rendered_y_mm";
-    csv += ",board_time_us";
-    for (uint8_t f : spec.board_fingers) {
-      const std::string n = std::to_string(f + 1);
-      csv += ",finger" + n + "_touching,finger" + n + "_value,finger" + n + "_target";
-    }
-    csv += "\n";
-  }
-  void Row(const host::SceneInput& s, const host::SceneInput* rendered,
-           const std::vector<host::FingerRender>& renders) {
-    ++fed;
-    char row[200];
-    if (hand) {
-      path.emplace_back(s.x_mm, s.y_mm);
-      std::snprintf(row, sizeof(row), "%.6f,%.4f,%.4f,%.4f", s.time_s, s.x_mm, s.y_mm, s.force_n);
-    } else {
-      std::snprintf(row, sizeof(row), "%.6f", s.time_s);
-    }
-    csv += row;
-    if (predicted && rendered != nullptr) {
-      std::snprintf(row, sizeof(row), ",%.4f,%.4f", rendered->x_mm, rendered->y_mm);
-      csv += row;
-    }
-    std::snprintf(row, sizeof(row), ",%llu", static_cast<unsigned long long>(board_us.load()));
-    csv += row;
-    std::string status;
-    for (const host::FingerRender& r : renders) {
-      std::snprintf(row, sizeof(row), ",%d,%.6g,%.6g", r.touching ? 1 : 0, r.value,
-                    r.mapped.target / 1000.0);
-      csv += row;
-      std::snprintf(row, sizeof(row), "  %5.3f", r.mapped.target / 1000.0);
-      status += row;
-    }
-    csv += "\n";
-    if (live) {
-      if (hand)
-        std::printf("\r%7.3f s  x %6.1f  y %6.1f mm  %4.2f N  targets%s", s.time_s, s.x_mm, s.y_mm,
-                    s.force_n, status.c_str());
-      else
-        std::printf("\r%7.3f s  targets%s", s.time_s, status.c_str());
-      std::fflush(stdout);
-    }
-  }
-};
 
 /// Sleeps until `at` seconds of input time have passed since `start` on the board's clock.
 void PaceTo(std::chrono::steady_clock::time_point start, double at, double scale) {
@@ -186,7 +125,7 @@ int CmdRender(Context& c, const std::vector<std::string>& args) {
     udp = std::move(opened.value);
   }
 
-  Record rec;
+  RenderRecord rec;
   rec.live = !JsonOutput() && isatty(fileno(stdout));
   rec.hand = !tactile;
   rec.predicted = o.predict;
@@ -288,7 +227,10 @@ int CmdRender(Context& c, const std::vector<std::string>& args) {
     const auto end = rec.path.empty() ? std::pair{0.0, 0.0} : rec.path.back();
     const std::string svg = host::SceneSvg(r.tissue(), r.layout(), end.first, end.second, rec.path,
                                            spec.value.name + " — " + o.input);
-    for (const auto& [file, text] : {std::pair{o.record, rec.csv}, {SvgPath(o.record), svg}}) {
+    // A tactile array has no path over the tissue: its record is the CSV alone.
+    std::vector<std::pair<std::string, std::string>> files{{o.record, rec.csv}};
+    if (rec.hand) files.emplace_back(SvgPath(o.record), svg);
+    for (const auto& [file, text] : files) {
       if (const host::Outcome w = host::WriteFileWhole(file, text); !w.ok())
         return Fail(cmd, w.status, w.message);
     }
@@ -321,7 +263,9 @@ int CmdRender(Context& c, const std::vector<std::string>& args) {
     std::fprintf(TextOut(), "%s: %zu of %zu %s rendered%s%s\n", spec.value.name.c_str(),
                  tactile ? taken : rec.fed, in.kind == InputSource::kTactileUdp ? taken : total,
                  tactile ? "frames" : "samples", o.record.empty() ? "" : "; recorded in ",
-                 o.record.empty() ? "" : (o.record + " and " + SvgPath(o.record)).c_str());
+                 o.record.empty() ? ""
+                 : rec.hand       ? (o.record + " and " + SvgPath(o.record)).c_str()
+                                  : o.record.c_str());
     if (p != nullptr)
       std::fprintf(TextOut(),
                    "prediction: %.1f ms ahead (the fingers' calibrated delay); %zu of %zu "
