@@ -123,6 +123,11 @@ int CmdRender(Context& c, const std::vector<std::string>& args) {
     auto opened = host::TactileUdp::Open(in.host, in.port, spec.value.tactile->elements);
     if (!opened.ok()) return Fail(cmd, opened.status, opened.message, kExitConnect);
     udp = std::move(opened.value);
+    if (in.host.rfind("127.", 0) != 0)
+      std::fprintf(stderr,
+                   "palpa render: warning: tactile-udp:%s:%u is reachable from other hosts, and "
+                   "whoever reaches it drives the fingers (within their limits)\n",
+                   in.host.c_str(), static_cast<unsigned>(in.port));
   }
 
   RenderRecord rec;
@@ -289,7 +294,8 @@ const Command kRenderCommand{
     "played at its own pace on the board's clock (a simulator at --speed X is fed X times "
     "faster);\n"
     "evdev:/dev/input/eventN, a pen tablet or touchpad mapped onto the tissue (pressure through\n"
-    "the scene's input.tablet form); tactile-udp:[HOST:]PORT, a tactile array's frames over UDP;\n"
+    "the scene's input.tablet form); tactile-udp:[HOST:]PORT, a tactile array's frames over UDP\n"
+    "(on loopback unless HOST names another address; 0.0.0.0: every one);\n"
     "or tactile-file:STREAM.csv, a recorded array stream (both grouped per finger by the scene's\n"
     "input.tactile; a stalled stream holds for hold_s, then the fingers go soft). Live inputs run\n"
     "until Ctrl-C or --duration. --predict renders where the hand will be after the fingers'\n"

@@ -23,7 +23,9 @@ host::Result<InputSource> ParseInputSource(const std::string& text) {
   } else if (auto u = rest("tactile-udp")) {
     const size_t colon = u->rfind(':');
     const std::string port = colon == std::string::npos ? *u : u->substr(colon + 1);
-    if (colon != std::string::npos) s.host = u->substr(0, colon);
+    // Loopback unless an address is named: frames are not authenticated (docs/threat_model.md).
+    s.host = colon != std::string::npos ? u->substr(0, colon) : "127.0.0.1";
+    if (s.host.empty()) return fail("an empty address before the port");
     if (port.empty() || port.size() > 5 ||
         port.find_first_not_of("0123456789") != std::string::npos || std::stoul(port) < 1 ||
         std::stoul(port) > 65535)

@@ -12,12 +12,13 @@ namespace palpa::cli {
 struct InputSource {
   enum Kind { kTrajectory, kEvdev, kTactileUdp, kTactileFile } kind = kTrajectory;
   std::string path;  ///< trajectory, evdev node, tactile stream
-  std::string host;  ///< tactile-udp: the address to listen on ("" every address)
+  std::string host;  ///< tactile-udp: the address to listen on (127.0.0.1 unless named)
   uint16_t port = 0;
 };
 
-/// PATH.csv or file:PATH (a trajectory), evdev:/dev/input/eventN, tactile-udp:[HOST:]PORT,
-/// tactile-file:PATH.csv. A wrong one names what was expected.
+/// PATH.csv or file:PATH (a trajectory), evdev:/dev/input/eventN, tactile-udp:[HOST:]PORT (on
+/// loopback unless HOST names another address, 0.0.0.0 for every one), tactile-file:PATH.csv. A
+/// wrong one names what was expected.
 host::Result<InputSource> ParseInputSource(const std::string& text);
 
 inline constexpr const char* kInputSyntax =

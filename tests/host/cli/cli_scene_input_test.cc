@@ -138,6 +138,8 @@ TEST(CliSceneInput, WrongInputsAreNamed) {
   ExpectUsage("render " + kInputs + " --input tactile-udp:0", "the port must be 1 … 65535");
   ExpectUsage("render " + kInputs + " --input tactile-udp:host:x", "the port must be 1 … 65535");
   ExpectUsage("render " + kInputs + " --input evdev:", "evdev: needs the event node's path");
+  ExpectUsage("render " + kInputs + " --input tactile-udp::5555",
+              "an empty address before the port");
   ExpectUsage("render " + kInputs + " --input tactile-file:" + kStream + " --predict",
               "a tactile array has no position to predict");
   ExpectUsage("render " + kInputs + " --input tactile-file:" + kStream + " --duration 2",
