@@ -88,6 +88,16 @@ class ScenePass {
   }
   /// The prediction horizon (s; 0: no prediction).
   double horizon_s() const { return predictor_ ? predictor_->options().horizon_s : 0; }
+  /// The scene's fingers whose line's shaped steps fell back to unshaped, slew-limited ones (the
+  /// outlet ran ahead of the model) by the end of the last pass.
+  size_t FellBack() const {
+    size_t n = 0;
+    for (const ph::RenderFinger& f : scene_->fingers()) {
+      const uint8_t line = jamming_ ? f.summary.line_b : f.summary.line_a;
+      n += board_.sim().board().line_state(line).shaping_fell_back ? 1 : 0;
+    }
+    return n;
+  }
   /// Samples predicted over the last pass, of all it sent.
   size_t predicted() const { return predicted_; }
   size_t samples() const { return samples_; }

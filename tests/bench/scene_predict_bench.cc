@@ -31,6 +31,7 @@ struct Scored {
   std::vector<pb::EdgeCrossing> edges;  ///< every finger's, in finger order
   size_t predicted = 0, samples = 0;
   double horizon_s = 0;
+  size_t fell_back = 0;  ///< fingers whose line's shaping fell back during the pass
 };
 
 /// One pass on a calibrated board, prediction off or on, scored.
@@ -64,6 +65,7 @@ bool Run(const ph::SceneRenderer& scene, bool jamming, const std::vector<uint8_t
   out->predicted = pass.predicted();
   out->samples = pass.samples();
   out->horizon_s = pass.horizon_s();
+  out->fell_back = pass.FellBack();
   return true;
 }
 
@@ -100,6 +102,14 @@ int Row(const ph::SceneRenderer& scene, bool jamming, const std::vector<uint8_t>
       name.c_str(), 100 * off.rms, Mm(off.lag_b).c_str(), Mm(off.worst).c_str(), 100 * on.rms,
       Mm(on.lag_b).c_str(), Mm(on.worst).c_str(), change, where.c_str(), on.predicted, on.samples);
   std::printf("%s\n", row);
+  if (off.fell_back + on.fell_back > 0) {
+    char note[160];
+    std::snprintf(note, sizeof(note),
+                  "%s: fingers whose line's shaped steps fell back to slew-limited ones: %zu off, "
+                  "%zu on",
+                  name.c_str(), off.fell_back, on.fell_back);
+    notes->push_back(note);
+  }
   if (off.never + on.never > 0) {
     char note[160];
     std::snprintf(note, sizeof(note),
