@@ -60,21 +60,6 @@ std::string Suggest(const std::string& word, const std::vector<std::string>& can
 
 namespace {
 
-bool EndsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() &&
-         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-bool EndsWithIgnoringCase(const std::string& s, const std::string& suffix) {
-  if (s.size() < suffix.size()) return false;
-  for (size_t i = 0; i < suffix.size(); ++i) {
-    if (std::tolower(static_cast<unsigned char>(s[s.size() - suffix.size() + i])) !=
-        std::tolower(static_cast<unsigned char>(suffix[i])))
-      return false;
-  }
-  return true;
-}
-
 /// "N=VALUE": the 0-based index N-1 (into `index`) and VALUE.
 host::Result<std::string> SplitIndex(const std::string& arg, const char* what, uint8_t count,
                                      uint8_t& index) {
@@ -112,18 +97,13 @@ host::Result<std::pair<uint8_t, double>> ParseLineArgument(const std::string& ar
   std::pair<uint8_t, double> out;
   const host::Result<std::string> split = SplitIndex(arg, "line", line_count, out.first);
   if (!split.ok()) return split.outcome();
-  std::string value = split.value;
-  if (EndsWithIgnoringCase(value, "kPa")) {
-    const std::string number = value.substr(0, value.size() - 3);
-    if (!EndsWith(value, "kPa")) {
-      return Invalid("'" + arg + "': unknown unit '" + value.substr(number.size()) +
-                     "' (did you mean " + number + "kPa?)");
-    }
-    value = number;
+  const host::Result<double> kpa = host::ParsePressureText(split.value);
+  if (!kpa.ok()) {
+    const bool not_a_number = kpa.message.rfind("expected", 0) == 0;
+    return Invalid("'" + arg + "': " +
+                   (not_a_number ? kpa.message + ", e.g. 2=30 or 6=-40kPa" : kpa.message));
   }
-  if (!ParseNumber(value, out.second)) {
-    return Invalid("'" + arg + "': expected a pressure in kPa, e.g. 2=30 or 6=-40kPa");
-  }
+  out.second = kpa.value;
   return out;
 }
 

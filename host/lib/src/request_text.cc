@@ -87,4 +87,18 @@ Result<Request> ParseRequestText(const std::string& value) {
   return Request{TargetKind::kNormalized, n};
 }
 
+Result<double> ParsePressureText(const std::string& value) {
+  std::string number = value;
+  if (EndsWithIgnoringCase(value, "kPa")) {
+    number = value.substr(0, value.size() - 3);
+    if (!EndsWith(value, "kPa")) {
+      return Invalid("unknown unit '" + value.substr(number.size()) + "' (did you mean " + number +
+                     "kPa?)");
+    }
+  }
+  double kpa = 0;
+  if (!ParseDecimal(number, kpa)) return Invalid("expected a pressure in kPa");
+  return kpa;
+}
+
 }  // namespace palpa::host

@@ -20,19 +20,6 @@ from selenium.webdriver.support.ui import Select, WebDriverWait
 from harness import Serve, Sim, fail
 
 
-def wait_truth(sim, predicate, what, seconds=10):
-    start = sim.latest()["board_time_us"]
-    while True:
-        sample = sim.latest()
-        if predicate(sample):
-            return sample
-        if sample["board_time_us"] > start + seconds * 1e6:
-            fingers = [f.get("deformation_mm", f.get("stiffness_n_per_mm")) for f in sample["fingers"]]
-            fail(f"{what}: not within {seconds} s of board time ({sample['board']}, "
-                 f"fingers {fingers} mm)")
-        time.sleep(0.02)
-
-
 def browser():
     options = webdriver.ChromeOptions()
     options.binary_location = "/usr/bin/chromium"
@@ -86,7 +73,7 @@ def drag_scene(driver, sim, wait, out):
     def stiffer(first, second):  # deformation grows with the rendered stiffness
         return lambda s: (s["fingers"][first]["deformation_mm"]
                           > s["fingers"][second]["deformation_mm"] + 0.3)
-    at45 = wait_truth(sim, stiffer(1, 0), "finger 2 over cube B, finger 1 on the matrix")
+    at45 = sim.wait(stiffer(1, 0), "finger 2 over cube B, finger 1 on the matrix")
     wait.until(lambda d: "touches" in text(d, "scene-fingers"))
     driver.save_screenshot(os.path.join(out, "serve_scene.png"))
     actions = ActionBuilder(driver)
@@ -94,7 +81,7 @@ def drag_scene(driver, sim, wait, out):
         actions.pointer_action.move_to_location(*scene_point(driver, x, 15))
         actions.pointer_action.pause(0.02)
     actions.perform()
-    at60 = wait_truth(sim, stiffer(0, 1), "finger 1 over cube B, finger 2 on the matrix")
+    at60 = sim.wait(stiffer(0, 1), "finger 1 over cube B, finger 2 on the matrix")
     print("ok  dragged across the scene: over cube B finger 2 "
           f"{at45['fingers'][1]['deformation_mm']:.2f} mm against finger 1's "
           f"{at45['fingers'][0]['deformation_mm']:.2f}; then finger 1 "
@@ -105,8 +92,8 @@ def drag_scene(driver, sim, wait, out):
     actions.perform()
     driver.find_element(By.ID, "scene-stop").click()
     wait.until(lambda d: text(d, "scene-running") == "stopped")
-    wait_truth(sim, lambda s: all(f["deformation_mm"] < 0.5 for f in s["fingers"][:3]),
-               "every finger soft after the scene stopped")
+    sim.wait(lambda s: all(f["deformation_mm"] < 0.5 for f in s["fingers"][:3]),
+             "every finger soft after the scene stopped")
     print("ok  the scene stopped: every finger soft")
     # The page broke no rule of its own Content-Security-Policy and threw nothing.
     errors = [e for e in driver.get_log("browser")
@@ -134,29 +121,29 @@ def main():
         driver.find_element(By.ID, "take").click()
         wait.until(lambda d: text(d, "control") == "you control the board")
         driver.find_element(By.CSS_SELECTOR, "#fingers .card:first-child [data-level='2']").click()
-        moved = wait_truth(sim, lambda s: s["fingers"][0]["deformation_mm"] > 0.5,
-                           "finger 1 to level 2 from the page")
+        moved = sim.wait(lambda s: s["fingers"][0]["deformation_mm"] > 0.5,
+                         "finger 1 to level 2 from the page")
         print(f"ok  finger 1 moved from the page: {moved['fingers'][0]['deformation_mm']} mm")
         time.sleep(1.5)  # a plot's worth of telemetry
         driver.save_screenshot(os.path.join(out, "serve_page.png"))
         drag_scene(driver, sim, wait, out)
         # The E-stop on its key, from wherever the focus is.
         driver.find_element(By.TAG_NAME, "body").send_keys(Keys.SPACE)
-        stopped = wait_truth(sim, lambda s: s["board"]["safe"] and s["board"]["faults"] != 0,
-                             "the E-stop key")
+        stopped = sim.wait(lambda s: s["board"]["safe"] and s["board"]["faults"] != 0,
+                           "the E-stop key")
         wait.until(lambda d: "estop_command" in text(d, "faults"))
         print(f"ok  Space stopped every line: faults {stopped['board']['faults']}")
         driver.save_screenshot(os.path.join(out, "serve_estop.png"))
         driver.find_element(By.ID, "clear").click()
-        wait_truth(sim, lambda s: s["board"]["faults"] == 0, "clear")
+        sim.wait(lambda s: s["board"]["faults"] == 0, "clear")
         driver.find_element(By.CSS_SELECTOR, "#fingers .card:first-child [data-level='1']").click()
-        wait_truth(sim, lambda s: not s["board"]["safe"], "level 1 after clear")
+        sim.wait(lambda s: not s["board"]["safe"], "level 1 after clear")
         # A frozen browser answers no pings: the server releases the board after three.
         children = descendants(driver.service.process.pid)  # the browser, its network service
         for p in children:
             os.kill(p, signal.SIGSTOP)
         frozen_at = sim.latest()["board_time_us"]
-        released = wait_truth(sim, lambda s: s["board"]["safe"], "the release of a frozen page")
+        released = sim.wait(lambda s: s["board"]["safe"], "the release of a frozen page")
         for p in children:
             os.kill(p, signal.SIGCONT)
         waited_ms = (released["board_time_us"] - frozen_at) / 1000
@@ -173,10 +160,10 @@ def main():
         driver.find_element(By.ID, "take").click()
         wait.until(lambda d: text(d, "control") == "you control the board")
         driver.find_element(By.CSS_SELECTOR, "#fingers .card:nth-child(2) [data-level='2']").click()
-        wait_truth(sim, lambda s: not s["board"]["safe"], "finger 2 from the page")
+        sim.wait(lambda s: not s["board"]["safe"], "finger 2 from the page")
         driver.quit()
         driver = None
-        closed = wait_truth(sim, lambda s: s["board"]["safe"], "the release when the tab closed")
+        closed = sim.wait(lambda s: s["board"]["safe"], "the release when the tab closed")
         print(f"ok  closing the tab released the board (faults {closed['board']['faults']})")
         if not serve.alive():
             fail("the server died")

@@ -22,17 +22,6 @@ def actuated(sample):
     return not sample["board"]["safe"]
 
 
-async def wait_truth(sim, predicate, what, seconds=5):
-    start = sim.latest()["board_time_us"]
-    while True:
-        sample = sim.latest()
-        if predicate(sample):
-            return sample
-        if sample["board_time_us"] > start + seconds * 1e6:
-            fail(f"{what}: not within {seconds} s of board time ({sample['board']})")
-        await asyncio.sleep(0.01)
-
-
 async def passing(serve, sim):
     a = await Client.connect(serve.url)
     b = await Client.connect(serve.url)
@@ -49,8 +38,8 @@ async def passing(serve, sim):
     expect_error(await b.call("board.release"), -32001, "a watcher's release")
     expect_error(await b.call("control.take"), -32002, "a take without force while A controls")
     await a.result("board.set", targets=[{"finger": 0, "level": 2}])
-    moved = await wait_truth(sim, lambda s: s["fingers"][0]["deformation_mm"] > 0.5,
-                             "A's level 2 on finger 0")
+    moved = await sim.wait_async(lambda s: s["fingers"][0]["deformation_mm"] > 0.5,
+                                 "A's level 2 on finger 0")
     print(f"ok  A moved finger 0 to {moved['fingers'][0]['deformation_mm']} mm")
     info = await b.result("board.info")  # watchers read
     if info["fingers"][0]["finger"] != 0:
@@ -61,7 +50,7 @@ async def passing(serve, sim):
     notice = await a.notification("notify_control")
     if notice["params"]["controller"] == 1 or not notice["params"]["board_released"]:
         fail(f"A was not told it lost control: {notice}")
-    safe = await wait_truth(sim, lambda s: not actuated(s), "the release on passing control")
+    safe = await sim.wait_async(lambda s: not actuated(s), "the release on passing control")
     print(f"ok  control passed to B by force: board safe at {safe['board_time_us']} us, "
           f"faults {safe['board']['faults']}")
     if safe["board"]["faults"] != 0:
@@ -69,11 +58,11 @@ async def passing(serve, sim):
     expect_error(await a.call("board.set", targets=[{"finger": 0, "level": 2}]), -32001,
                  "A's set after losing control")
     await b.result("board.set", targets=[{"finger": 1, "level": 1}])
-    await wait_truth(sim, actuated, "B's set")
+    await sim.wait_async(actuated, "B's set")
     # A watcher may always stop the board.
     await a.result("board.estop")
-    stopped = await wait_truth(sim, lambda s: s["board"]["faults"] != 0 and not actuated(s),
-                               "a watcher's E-stop")
+    stopped = await sim.wait_async(lambda s: s["board"]["faults"] != 0 and not actuated(s),
+                                   "a watcher's E-stop")
     print(f"ok  a watcher's E-stop: faults {stopped['board']['faults']}")
     await b.result("board.clear")
     await b.result("control.release")
@@ -91,7 +80,7 @@ async def missed_pings(serve, sim):
     answer = await asyncio.to_thread(page.call, "board.set", targets=[{"finger": 0, "level": 2}])
     if "result" not in answer:
         fail(f"the page's set: {answer}")
-    await wait_truth(sim, actuated, "the page's set")
+    await sim.wait_async(actuated, "the page's set")
     # Quiet but alive: it sends nothing for a second and answers every ping, and keeps control.
     quiet_from = sim.latest()["board_time_us"]
     await asyncio.to_thread(settle, sim, 1.0)
@@ -103,7 +92,7 @@ async def missed_pings(serve, sim):
     # Then it goes silent: neither reading nor answering.
     page.silence()
     silent_at = sim.latest()["board_time_us"]
-    released = await wait_truth(sim, lambda s: not actuated(s), "the release after missed pings")
+    released = await sim.wait_async(lambda s: not actuated(s), "the release after missed pings")
     notice = await watcher.notification("notify_control")
     waited_ms = (released["board_time_us"] - silent_at) / 1000
     print(f"ok  silent page released after {waited_ms:.0f} ms of board time: {notice['params']['reason']}")
@@ -127,7 +116,7 @@ async def missed_pings(serve, sim):
     print("ok  reconnecting restored nothing")
     await back.result("control.take")
     await back.result("board.set", targets=[{"finger": 2, "level": 1}])
-    await wait_truth(sim, actuated, "the next controller's set")
+    await sim.wait_async(actuated, "the next controller's set")
     stats = (await back.result("server.info"))["stats"]
     if stats["telemetry_lost_on_link"] != 0:
         fail(f"telemetry lost on the link: {stats}")

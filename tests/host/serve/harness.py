@@ -1,6 +1,7 @@
 """What the serve tests share: palpa-sim with its truth channel, `palpa serve` in front of it, raw
 HTTP and WebSocket requests (for headers a WebSocket library will not send wrong), and a JSON-RPC
 client over python3-websockets."""
+import asyncio
 import base64
 import json
 import os
@@ -61,6 +62,30 @@ class Sim:
                     return self.samples[-1]
             time.sleep(0.01)
         fail("no truth from palpa-sim")
+
+    def wait(self, predicate, what, seconds=10):
+        """The first truth sample that meets `predicate` within `seconds` of board time."""
+        start = self.latest()["board_time_us"]
+        while (sample := self._meets(predicate, what, seconds, start)) is None:
+            time.sleep(0.02)
+        return sample
+
+    async def wait_async(self, predicate, what, seconds=10):
+        """wait() for a test that runs an event loop: it yields to it while it waits."""
+        start = self.latest()["board_time_us"]
+        while (sample := self._meets(predicate, what, seconds, start)) is None:
+            await asyncio.sleep(0.01)
+        return sample
+
+    def _meets(self, predicate, what, seconds, start):
+        sample = self.latest()
+        if predicate(sample):
+            return sample
+        if sample["board_time_us"] > start + seconds * 1e6:
+            fingers = [f.get("deformation_mm", f.get("stiffness_n_per_mm")) for f in sample["fingers"]]
+            fail(f"{what}: not within {seconds} s of board time ({sample['board']}, "
+                 f"fingers {fingers})")
+        return None
 
     def since(self, board_time_us):
         with self.lock:

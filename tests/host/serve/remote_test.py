@@ -13,17 +13,6 @@ import time
 from harness import Client, Serve, Sim, fail, settle
 
 
-def wait_truth(sim, predicate, what, seconds=5):
-    start = sim.latest()["board_time_us"]
-    while True:
-        sample = sim.latest()
-        if predicate(sample):
-            return sample
-        if sample["board_time_us"] > start + seconds * 1e6:
-            fail(f"{what}: not within {seconds} s of board time ({sample['board']})")
-        time.sleep(0.02)
-
-
 def cli(palpa, device, *args, check=True):
     r = subprocess.run([palpa, "--device", device, "--json", *args], capture_output=True,
                        text=True, timeout=60)
@@ -54,7 +43,7 @@ def command_line(palpa, device, sim):
     print(f"ok  palpa set 6=L1 refused, numbered as the command line numbers: {error}")
     held = subprocess.Popen([palpa, "--device", device, "set", "1=L2", "--hold", "3"],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    moved = wait_truth(sim, lambda s: s["fingers"][0]["deformation_mm"] > 0.5, "palpa set 1=L2")
+    moved = sim.wait(lambda s: s["fingers"][0]["deformation_mm"] > 0.5, "palpa set 1=L2")
     print(f"ok  palpa set 1=L2 --hold 3 through the server: {moved['fingers'][0]['deformation_mm']} mm")
     monitor = cli(palpa, device, "monitor", "--duration", "1", "--rate", "100")
     samples = [json.loads(line) for line in monitor.stdout.splitlines()]
@@ -70,7 +59,7 @@ def command_line(palpa, device, sim):
     out, err = held.communicate(timeout=30)
     if held.returncode != 0:
         fail(f"palpa set --hold exited {held.returncode}: {out} {err}")
-    wait_truth(sim, lambda s: s["board"]["safe"], "the release when palpa set ended")
+    sim.wait(lambda s: s["board"]["safe"], "the release when palpa set ended")
     print("ok  palpa set's end gave control up: the board released")
     unsupported = cli(palpa, device, "calibrate", "--finger", "1", check=False)
     if unsupported.returncode != 2:
@@ -86,7 +75,7 @@ def python_module(package_dir, device, sim):
         if type(watcher).__name__ != "ServeDevice" or watcher.info()["fingers"][3] != "jamming":
             fail(f"palpa.Device('{device}'): {type(watcher)} {watcher.info()}")
         controller.set(0, level=2)
-        wait_truth(sim, lambda s: s["fingers"][0]["deformation_mm"] > 0.5, "Python's set(0, level=2)")
+        sim.wait(lambda s: s["fingers"][0]["deformation_mm"] > 0.5, "Python's set(0, level=2)")
         samples = list(watcher.monitor(seconds=0.5))
         if len(samples) < 200 or samples[-1]["finger_output"][0] < 0.5:
             fail(f"a Python watcher's monitor: {len(samples)} samples")
@@ -106,13 +95,13 @@ def python_module(package_dir, device, sim):
             if "finger 7 does not exist: this board has fingers 0 to 4" not in str(e):
                 fail(f"a finger the board lacks, numbered from 0: {e}")
         watcher.estop()
-        wait_truth(sim, lambda s: s["board"]["safe"] and s["board"]["faults"] != 0, "a watcher's E-stop")
+        sim.wait(lambda s: s["board"]["safe"] and s["board"]["faults"] != 0, "a watcher's E-stop")
         controller.clear_fault()
         controller.set(0, level=1)
-        wait_truth(sim, lambda s: not s["board"]["safe"], "set after clear")
+        sim.wait(lambda s: not s["board"]["safe"], "set after clear")
         print("ok  Python: the watcher's E-stop stopped every line; the controller cleared it")
-    wait_truth(sim, lambda s: s["board"]["safe"] and s["board"]["faults"] == 0,
-               "the release when the Python controller closed")
+    sim.wait(lambda s: s["board"]["safe"] and s["board"]["faults"] == 0,
+             "the release when the Python controller closed")
     print("ok  Python: closing gave control up and the board was released")
 
 

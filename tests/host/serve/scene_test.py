@@ -17,18 +17,6 @@ def expect_error(answer, code, what):
     print(f"ok  {what}: {answer['error']['message']}")
 
 
-async def wait_truth(sim, predicate, what, seconds=5):
-    start = sim.latest()["board_time_us"]
-    while True:
-        sample = sim.latest()
-        if predicate(sample):
-            return sample
-        if sample["board_time_us"] > start + seconds * 1e6:
-            fail(f"{what}: not within {seconds} s of board time: "
-                 f"{[f.get('deformation_mm') for f in sample['fingers']]}")
-        await asyncio.sleep(0.01)
-
-
 async def settle(sim, seconds):
     """The truth after `seconds` of board time, the clients answering pings meanwhile."""
     start = sim.latest()["board_time_us"]
@@ -87,8 +75,8 @@ async def scenes(serve, sim, scene_file):
     # A burst of samples ends at x = 45 mm: finger 1 (15 mm to the right) over cube B.
     for k in range(200):
         await pointer(a, 5 + 40 * k / 199, 15)
-    at45 = await wait_truth(sim, lambda s: deformation(s, 1) > deformation(s, 0) + 0.3,
-                            "finger 1 over cube B")
+    at45 = await sim.wait_async(lambda s: deformation(s, 1) > deformation(s, 0) + 0.3,
+                                "finger 1 over cube B")
     state = await a.notification("notify_scene")
     while abs(state["params"].get("input", {}).get("x_mm", 0) - 45) > 1e-6:
         state = await a.notification("notify_scene")
@@ -101,15 +89,15 @@ async def scenes(serve, sim, scene_file):
     if not p["fingers"][1]["touching"] or p["fingers"][1]["target"] <= p["fingers"][0]["target"]:
         fail(f"notify_scene does not show finger 1 the stiffer: {p['fingers']}")
     await pointer(a, 60, 15)
-    await wait_truth(sim, lambda s: deformation(s, 0) > deformation(s, 1) + 0.3,
-                     "finger 0 over cube B")
+    await sim.wait_async(lambda s: deformation(s, 0) > deformation(s, 1) + 0.3,
+                         "finger 0 over cube B")
     print("ok  at x = 60 mm finger 0 is over cube B and the stiffer")
     # The controller goes, a burst of samples behind it: the scene stops, the board is released,
     # and nothing queued re-actuates it.
     for k in range(50):
         await pointer(a, 60 + k / 10, 15)
     await a.close()
-    released = await wait_truth(sim, lambda s: s["board"]["safe"], "the release")
+    released = await sim.wait_async(lambda s: s["board"]["safe"], "the release")
     after = await settle(sim, 0.5)
     if not after["board"]["safe"] or any(deformation(after, f) > 0.2 for f in range(3)):
         fail(f"a finger moved after the controller left: {after['board']} {after['fingers'][:3]}")

@@ -17,4 +17,7 @@ bool ParseDecimal(const std::string& text, double& out);
 /// value (without the value's owner: the caller names the finger).
 Result<Request> ParseRequestText(const std::string& value);
 
+/// A line pressure in kPa: "30" or "-40kPa". "-40kpa" is refused naming the unit meant.
+Result<double> ParsePressureText(const std::string& value);
+
 }  // namespace palpa::host
