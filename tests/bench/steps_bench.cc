@@ -4,7 +4,6 @@
 // plant's fastest step. Prints Markdown; with a docs directory, writes it and the charts there.
 //   palpa_steps_bench [DOCS_DIR]
 #include <cstdio>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -93,15 +92,13 @@ RandomFigures RandomSteps(const pb::Variant& v, const pb::LineUnderTest& l) {
   double abs_sum = 0;
   int abs_n = 0, met = 0, fell_back = 0;
   for (int u = 0; u < kRandomUnits; ++u) {
-    std::mt19937 rng(900 + u);
-    std::uniform_real_distribution<double> target(0, 90000);
-    const auto session = v.Open(201 + u);
+    pb::RandomTargets targets(l, u);
+    const auto session = v.Open(pb::RandomTargets::Unit(u));
     pb::RawLineSession& s = *session;
     l.Hold(s);
     double at = 0;
     for (int i = 0; i < 2 * kRandomSteps; ++i) {
-      double to = l.sign * std::round(target(rng) / 100) * 100;
-      if (std::fabs(to - at) < 3000) to = at + (at * l.sign > 45000 ? -5000 : 5000) * l.sign;
+      const double to = targets.Next(at);
       const bool dwell_half = i >= kRandomSteps;
       const pb::StepFigures f = pb::RunStep(s, l.line, at, to, dwell_half ? 500 : 1000);
       if (dwell_half) {

@@ -3,10 +3,14 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
+#include "palpa/host/file_write.h"
+#include "palpa/host/svg_chart.h"
 #include "raw_line_session.h"
 #include "steps_calibration.h"
 
@@ -29,6 +33,24 @@ inline std::vector<LineUnderTest> Lines() {
   return {{"pneumatic (line 0)", 0, protocol::LineKind::kPressure, 1},
           {"jamming vacuum (line 5, 20 kPa bias)", 5, protocol::LineKind::kVacuum, -1}};
 }
+
+/// The random steps' targets on one held-out unit (the steps benchmark's `index`-th of its
+/// random units, seed 201 + index): over 0–90 kPa (0 to −90 kPa), at least 3 kPa from the last.
+class RandomTargets {
+ public:
+  RandomTargets(const LineUnderTest& l, int index) : sign_(l.sign), rng_(900 + index) {}
+  static uint32_t Unit(int index) { return static_cast<uint32_t>(201 + index); }
+  double Next(double at) {
+    double to = sign_ * std::round(target_(rng_) / 100) * 100;
+    if (std::fabs(to - at) < 3000) to = at + (at * sign_ > 45000 ? -5000 : 5000) * sign_;
+    return to;
+  }
+
+ private:
+  double sign_;
+  std::mt19937 rng_;
+  std::uniform_real_distribution<double> target_{0, 90000};
+};
 
 /// One way of driving the lines, on a plant that may differ from the nominal one.
 struct Variant {

@@ -64,6 +64,9 @@ class RawLineSession {
     return c.sensor_min_pa + (counts - c.sensor_counts_min) * (c.sensor_max_pa - c.sensor_min_pa) /
                                  static_cast<double>(c.sensor_counts_max - c.sensor_counts_min);
   }
+  /// The board's state of the line (its shaping models) and what it commanded the regulator.
+  const core::LineState& LineStateOf(uint8_t line) const { return sim_->board().line_state(line); }
+  double Command(uint8_t line) const { return sim_->board().line_output(line).command_pa; }
   uint8_t Status(uint8_t line) const { return sim_->board().line_output(line).status; }
   uint32_t Faults() const { return sim_->board().latched_faults(); }
   /// The lines whose own dump valves the board opens (bit i: line i), and the plant's valves.
