@@ -1,0 +1,86 @@
+#!/usr/bin/python3
+"""A Beckhoff EK9000 Modbus TCP coupler with 0-10 V output and input terminals, for the tests.
+
+Serves the coupler's registers as docs/linux.md gives them (output image at 0x0800, input image at
+0x0000 as status and value words, watchdog at 0x1120-0x1123) and implements its watchdog: after the
+first write to the output image, a silence longer than the watchdog time sets every output to zero
+(fallback 0) or leaves it (fallback 1, freeze); type 0 counts only writes to the output image as
+life, type 1 any telegram, type 2 turns the watchdog off. 0x1021 counts the fallbacks.
+Usage: ek9000_emulator.py PORT VOLTS[,VOLTS...]   (the input terminals' voltages)
+"""
+import sys
+import threading
+import time
+
+from pymodbus.datastore import ModbusSequentialDataBlock, ModbusServerContext, ModbusSlaveContext
+from pymodbus.server import StartTcpServer
+
+OUTPUTS, OUTPUT_WORDS = 0x0800, 16
+FALLBACKS, WD_TIME, WD_RESET, WD_TYPE, FALLBACK = 0x1021, 0x1120, 0x1121, 0x1122, 0x1123
+FULL_SCALE = 0x7FFF
+
+port = int(sys.argv[1])
+volts = [float(v) for v in sys.argv[2].split(",")]
+lock = threading.RLock()
+state = {"armed": False, "last": 0.0}
+
+
+def alive():
+    state["last"] = time.monotonic()
+
+
+class Holding(ModbusSequentialDataBlock):
+    def setValues(self, address, values):
+        with lock:
+            super().setValues(address, values)
+            if OUTPUTS <= address < OUTPUTS + OUTPUT_WORDS:
+                state["armed"] = True
+                alive()
+            elif self.word(WD_TYPE) == 1:
+                alive()
+
+    def getValues(self, address, count=1):
+        with lock:
+            if self.word(WD_TYPE) == 1:
+                alive()
+            return super().getValues(address, count)
+
+    def word(self, address):
+        return self.values[address - self.address]
+
+
+class Inputs(ModbusSequentialDataBlock):
+    def getValues(self, address, count=1):
+        with lock:
+            if holding.word(WD_TYPE) == 1:
+                alive()
+        return super().getValues(address, count)
+
+
+image = []
+for v in volts:
+    image += [0, max(0, min(FULL_SCALE, round(v / 10.0 * FULL_SCALE)))]  # status, value
+holding = Holding(0, [0] * 0x1200)
+holding.values[WD_TIME], holding.values[WD_TYPE], holding.values[FALLBACK] = 1000, 1, 0
+
+
+def watchdog():
+    while True:
+        time.sleep(0.005)
+        with lock:
+            limit = holding.word(WD_TIME) / 1000.0
+            if not state["armed"] or holding.word(WD_TYPE) == 2:
+                continue
+            if time.monotonic() - state["last"] > limit:
+                state["armed"] = False  # the next write to the output image starts it again
+                holding.values[FALLBACKS] += 1
+                if holding.word(FALLBACK) == 0:
+                    for i in range(OUTPUT_WORDS):
+                        holding.values[OUTPUTS + i] = 0
+
+
+threading.Thread(target=watchdog, daemon=True).start()
+context = ModbusServerContext(
+    slaves=ModbusSlaveContext(ir=Inputs(0, image + [0] * 16), hr=holding, zero_mode=True),
+    single=True)
+StartTcpServer(context=context, address=("127.0.0.1", port))

@@ -1,0 +1,245 @@
+// The Modbus analogue I/O module against an emulated EK9000 coupler (pymodbus, its watchdog too).
+#include <modbus.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <thread>
+
+#include "CppUTest/TestHarness.h"
+#include "mini_client.h"
+#include "palpa/hal/linux/modbus_aio.h"
+
+namespace aio = palpa::hal::linux_aio;
+using palpa::protocol::Status;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+constexpr int kWatchdogMs = 300;
+
+bool WaitUntil(const std::function<bool()>& done, double seconds) {
+  const auto end = Clock::now() + std::chrono::duration<double>(seconds);
+  while (Clock::now() < end) {
+    if (done()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return false;
+}
+
+// The emulator as a child process, and a second Modbus client that looks at its registers.
+class Emulator {
+ public:
+  explicit Emulator(const char* input_volts) : port_(palpa::testing::FreeTcpPort()) {
+    const std::string port = std::to_string(port_);
+    pid_ = fork();
+    if (pid_ == 0) {
+      execl("/usr/bin/python3", "python3", PALPA_SOURCE_DIR "/tests/hal/linux/ek9000_emulator.py",
+            port.c_str(), input_volts, nullptr);
+      _exit(127);
+    }
+    probe_ = modbus_new_tcp("127.0.0.1", port_);
+    modbus_set_response_timeout(probe_, 1, 0);
+    up_ = WaitUntil([&] { return modbus_connect(probe_) == 0; }, 10);
+  }
+  ~Emulator() {
+    modbus_close(probe_);
+    modbus_free(probe_);
+    Stop();
+  }
+  void Stop() {
+    if (pid_ <= 0) return;
+    kill(pid_, SIGKILL);
+    waitpid(pid_, nullptr, 0);
+    pid_ = -1;
+  }
+  void Pause() { kill(pid_, SIGSTOP); }
+  bool up() const { return up_; }
+  uint16_t Holding(int address) {
+    uint16_t v = 0xDEAD;
+    if (modbus_read_registers(probe_, address, 1, &v) != 1) FAIL("the emulator did not answer");
+    return v;
+  }
+  void SetHolding(int address, uint16_t value) { modbus_write_register(probe_, address, value); }
+  aio::ModbusAioConfig Config() const {
+    aio::ModbusAioConfig c;
+    c.port = port_;
+    c.watchdog_ms = kWatchdogMs;
+    c.response_timeout_ms = 100;
+    return c;
+  }
+
+ private:
+  int port_;
+  pid_t pid_ = -1;
+  modbus_t* probe_ = nullptr;
+  bool up_ = false;
+};
+
+// What the coupler's EL4004 holds for counts of a 12-bit output: 0x7FFF is 10 V.
+uint16_t ExpectedCode(uint32_t counts) {
+  return static_cast<uint16_t>(std::lround(counts / 4095.0 * 0x7FFF));
+}
+
+std::unique_ptr<aio::ModbusAioModule> OpenOrFail(const aio::ModbusAioConfig& config) {
+  std::string error;
+  auto m = aio::ModbusAioModule::Open(config, &error);
+  CHECK_TEXT(m != nullptr, error.c_str());
+  return m;
+}
+
+}  // namespace
+
+TEST_GROUP(ModbusAio){};
+
+TEST(ModbusAio, StartArmsTheWatchdogAndWritesTheSafeValues) {
+  Emulator emulator("0,0,0,0");
+  CHECK(emulator.up());
+  for (int i = 0; i < 4; ++i) emulator.SetHolding(0x0800 + i, 12345);  // left by an earlier run
+  emulator.SetHolding(0x1123, 1);                                      // freeze: not safe
+  auto module = OpenOrFail(emulator.Config());
+  LONGS_EQUAL(kWatchdogMs, emulator.Holding(0x1120));
+  LONGS_EQUAL(0, emulator.Holding(0x1122));  // retriggered by writes only
+  LONGS_EQUAL(0, emulator.Holding(0x1123));  // outputs to zero on a timeout
+  for (int i = 0; i < 4; ++i) LONGS_EQUAL(0, emulator.Holding(0x0800 + i));
+}
+
+TEST(ModbusAio, OutputsReachTheRegistersScaledAndInputsReadBackScaled) {
+  Emulator emulator("1,2.5,5,10");
+  CHECK(emulator.up());
+  auto module = OpenOrFail(emulator.Config());
+  aio::ModbusAioModule& m = *module;
+  LONGS_EQUAL(12, m.outputs().spec(0).bits);
+  const uint32_t counts[4] = {0, 1, 2048, 4095};
+  LONGS_EQUAL(palpa::hal::AnalogOutput::kAllWritten, m.outputs().WriteAll(counts, 4));
+  for (int i = 0; i < 4; ++i) LONGS_EQUAL(ExpectedCode(counts[i]), emulator.Holding(0x0800 + i));
+  CHECK(m.outputs().Write(2, 1000) == Status::kOk);
+  LONGS_EQUAL(ExpectedCode(1000), emulator.Holding(0x0802));
+  // Beyond the line's range nothing is written, in one channel or in a scan.
+  CHECK(m.outputs().Write(2, 4096) == Status::kOutOfRange);
+  const uint32_t too_high[4] = {5, 5, 4096, 5};
+  LONGS_EQUAL(2, m.outputs().WriteAll(too_high, 4));
+  LONGS_EQUAL(ExpectedCode(1000), emulator.Holding(0x0802));
+  LONGS_EQUAL(ExpectedCode(1), emulator.Holding(0x0801));
+  CHECK(m.outputs().Write(4, 0) == Status::kNotFound);
+
+  LONGS_EQUAL(12, m.inputs().bits());
+  uint32_t read[5];
+  m.inputs().ReadAll(read, 5);
+  const double volts[4] = {1, 2.5, 5, 10};
+  for (int i = 0; i < 4; ++i) DOUBLES_EQUAL(volts[i] / 10 * 4095, read[i], 1.0);
+  LONGS_EQUAL(palpa::hal::AnalogInput::kConversionFailed, read[4]);  // no fifth channel
+  const auto one = m.inputs().Read(3);
+  CHECK(one.ok());
+  LONGS_EQUAL(4095, one.value);
+  // A code no 0-10 V terminal gives (negative, over range) is no reading.
+  LONGS_EQUAL(palpa::hal::AnalogInput::kConversionFailed, m.InputCounts(0x8000));
+}
+
+TEST(ModbusAio, KillingTheControllerLeavesTheOutputsAtTheirSafeValues) {
+  Emulator emulator("0,0,0,0");
+  CHECK(emulator.up());
+  const aio::ModbusAioConfig config = emulator.Config();
+  const uint32_t counts[4] = {1000, 2000, 3000, 4000};
+  const pid_t controller = fork();
+  if (controller == 0) {  // a controller ticking its outputs every 10 ms until it is killed
+    std::string error;
+    auto m = aio::ModbusAioModule::Open(config, &error);
+    while (m != nullptr) {
+      m->outputs().WriteAll(counts, 4);
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    _exit(1);
+  }
+  struct Reaper {  // a failed check must not leave the controller running
+    pid_t pid;
+    ~Reaper() {
+      if (pid > 0) kill(pid, SIGKILL), waitpid(pid, nullptr, 0);
+    }
+  } reaper{controller};
+  auto driven = [&] {
+    for (int i = 0; i < 4; ++i) {
+      if (emulator.Holding(0x0800 + i) != ExpectedCode(counts[i])) return false;
+    }
+    return true;
+  };
+  CHECK(WaitUntil(driven, 10));
+  // Alive, it keeps the module's watchdog from firing for several watchdog times.
+  std::this_thread::sleep_for(std::chrono::milliseconds(3 * kWatchdogMs));
+  CHECK(driven());
+  LONGS_EQUAL(0, emulator.Holding(0x1021));
+  const auto killed = Clock::now();
+  kill(controller, SIGKILL);
+  waitpid(controller, nullptr, 0);
+  reaper.pid = -1;
+  auto safe = [&] {
+    for (int i = 0; i < 4; ++i) {
+      if (emulator.Holding(0x0800 + i) != 0) return false;
+    }
+    return true;
+  };
+  CHECK(WaitUntil(safe, 10));
+  LONGS_EQUAL(1, emulator.Holding(0x1021));  // one fallback: the watchdog's, not a write of zeros
+  std::printf(
+      "\n  outputs at zero %lld ms after kill -9 (watchdog %d ms)\n",
+      static_cast<long long>(
+          std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - killed).count()),
+      kWatchdogMs);
+}
+
+TEST(ModbusAio, AnOutageIsAnErrorNeverAStaleValue) {
+  Emulator emulator("5,5,5,5");
+  CHECK(emulator.up());
+  auto module = OpenOrFail(emulator.Config());
+  aio::ModbusAioModule& m = *module;
+  uint32_t read[4];
+  m.inputs().ReadAll(read, 4);
+  LONGS_EQUAL(2048, read[0]);
+  CHECK(m.last_error().empty());
+  const uint32_t counts[4] = {100, 100, 100, 100};
+
+  emulator.Pause();  // silent, like a pulled cable: each transfer ends at the response timeout
+  CHECK(m.outputs().WriteAll(counts, 4) != palpa::hal::AnalogOutput::kAllWritten);
+  CHECK_TEXT(m.last_error().find("timed out") != std::string::npos, m.last_error().c_str());
+  m.inputs().ReadAll(read, 4);
+  for (uint32_t r : read) LONGS_EQUAL(palpa::hal::AnalogInput::kConversionFailed, r);
+  CHECK(!m.inputs().Read(0).ok());
+  CHECK(m.outputs().Write(0, 1) == Status::kTimeout);
+
+  emulator.Stop();  // gone: refused at once, still an error
+  CHECK(m.outputs().WriteAll(counts, 4) != palpa::hal::AnalogOutput::kAllWritten);
+  m.inputs().ReadAll(read, 4);
+  for (uint32_t r : read) LONGS_EQUAL(palpa::hal::AnalogInput::kConversionFailed, r);
+  CHECK_TEXT(m.last_error().find("127.0.0.1") != std::string::npos, m.last_error().c_str());
+  CHECK(m.failures() >= 6);
+}
+
+TEST(ModbusAio, AModuleThatIsNotThereOrNotAnEk9000IsRefusedAtStart) {
+  aio::ModbusAioConfig config;
+  config.port = palpa::testing::FreeTcpPort();  // nothing listens there
+  std::string error;
+  CHECK(aio::ModbusAioModule::Open(config, &error) == nullptr);
+  const std::string where = "tcp:127.0.0.1:" + std::to_string(config.port) + " unit 1: ";
+  CHECK_TEXT(error.rfind(where + "connecting: ", 0) == 0, error.c_str());
+  // A Modbus server with another register map (the calibration tests' rig): no watchdog there.
+  const pid_t other = fork();
+  if (other == 0) {
+    execl("/usr/bin/python3", "python3", PALPA_SOURCE_DIR "/tests/calibration/pymodbus_rig.py",
+          std::to_string(config.port).c_str(), "/dev/null", nullptr);
+    _exit(127);
+  }
+  CHECK(WaitUntil(
+      [&] {
+        return aio::ModbusAioModule::Open(config, &error) == nullptr &&
+               error.find("connecting") == std::string::npos;
+      },
+      10));
+  kill(other, SIGKILL);
+  waitpid(other, nullptr, 0);
+  STRCMP_EQUAL((where + "writing 1 at 0x1120: Illegal data address").c_str(), error.c_str());
+}
