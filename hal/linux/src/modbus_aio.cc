@@ -166,8 +166,12 @@ void ModbusAioModule::Inputs::DoReadAll(uint32_t* counts, uint8_t count) {
     return;
   }
   m_.Succeeded();
+  const int words_per = m_.config_.input_words;
   for (uint8_t i = 0; i < have; ++i) {
-    counts[i] = m_.InputCounts(image[(i + 1) * m_.config_.input_words - 1]);
+    const uint16_t* channel = image + i * words_per;
+    // With the status word, a terminal that says its value is invalid (wire break, range) wins.
+    const bool invalid = words_per == 2 && (channel[0] & m_.config_.module->input_invalid) != 0;
+    counts[i] = invalid ? kConversionFailed : m_.InputCounts(channel[words_per - 1]);
   }
 }
 

@@ -6,7 +6,7 @@ Serves the coupler's registers as docs/linux.md gives them (output image at 0x08
 first write to the output image, a silence longer than the watchdog time sets every output to zero
 (fallback 0) or leaves it (fallback 1, freeze); type 0 counts only writes to the output image as
 life, type 1 any telegram, type 2 turns the watchdog off. 0x1021 counts the fallbacks.
-Usage: ek9000_emulator.py PORT VOLTS[,VOLTS...]   (the input terminals' voltages)
+Usage: ek9000_emulator.py PORT VOLTS[,VOLTS...]   (the input terminals' voltages; nan: wire break)
 """
 import sys
 import threading
@@ -59,7 +59,10 @@ class Inputs(ModbusSequentialDataBlock):
 
 image = []
 for v in volts:
-    image += [0, max(0, min(FULL_SCALE, round(v / 10.0 * FULL_SCALE)))]  # status, value
+    if v != v:  # nan: a broken wire, as the EL3064 reports it (overrange and error, full scale)
+        image += [0x0042, FULL_SCALE]
+    else:
+        image += [0, max(0, min(FULL_SCALE, round(v / 10.0 * FULL_SCALE)))]  # status, value
 holding = Holding(0, [0] * 0x1200)
 holding.values[WD_TIME], holding.values[WD_TYPE], holding.values[FALLBACK] = 1000, 1, 0
 

@@ -141,6 +141,17 @@ TEST(ModbusAio, OutputsReachTheRegistersScaledAndInputsReadBackScaled) {
   LONGS_EQUAL(palpa::hal::AnalogInput::kConversionFailed, m.InputCounts(0x8000));
 }
 
+TEST(ModbusAio, AnInputTheTerminalMarksInvalidIsNoReading) {
+  Emulator emulator("1,nan,5,10");  // channel 1's wire broken: full scale, with the error bit
+  CHECK(emulator.up());
+  auto module = OpenOrFail(emulator.Config());
+  uint32_t read[4];
+  module->inputs().ReadAll(read, 4);
+  LONGS_EQUAL(palpa::hal::AnalogInput::kConversionFailed, read[1]);
+  DOUBLES_EQUAL(409.5, read[0], 1.0);
+  LONGS_EQUAL(4095, read[3]);
+}
+
 TEST(ModbusAio, KillingTheControllerLeavesTheOutputsAtTheirSafeValues) {
   Emulator emulator("0,0,0,0");
   CHECK(emulator.up());

@@ -18,10 +18,19 @@ struct ModuleClass {
   uint16_t watchdog_type_at;  ///< 0: retriggered by writes only; 1: by any telegram; 2: off
   uint16_t fallback_at;       ///< 0: outputs to zero on a watchdog timeout; 1: freeze; 2: stop
   uint16_t max_channels;      ///< a limit of this driver (one transfer per tick), not the coupler
+  uint16_t input_invalid;     ///< status-word bits that make an input's value no reading
 };
 
-inline constexpr ModuleClass kBeckhoffEk9000{
-    "beckhoff-ek9000", 0x0800, 0x0000, 0x7FFF, 0x1120, 0x1122, 0x1123, 16};
+inline constexpr ModuleClass kBeckhoffEk9000{.name = "beckhoff-ek9000",
+                                             .outputs_at = 0x0800,
+                                             .inputs_at = 0x0000,
+                                             .full_scale_code = 0x7FFF,
+                                             .watchdog_time_at = 0x1120,
+                                             .watchdog_type_at = 0x1122,
+                                             .fallback_at = 0x1123,
+                                             .max_channels = 16,
+                                             // EL30xx status: bit 6 Error, bit 14 TxPDO State
+                                             .input_invalid = 0x4040};
 
 struct ModbusAioConfig {
   const ModuleClass* module = &kBeckhoffEk9000;
