@@ -215,7 +215,13 @@ TEST(ModbusAio, AnOutageIsAnErrorNeverAStaleValue) {
   const uint32_t counts[4] = {100, 100, 100, 100};
 
   emulator.Pause();  // silent, like a pulled cable: each transfer ends at the response timeout
+  const auto paused = Clock::now();
   CHECK(m.outputs().WriteAll(counts, 4) != palpa::hal::AnalogOutput::kAllWritten);
+  std::printf(
+      "\n  a silent module's write failed after %lld ms (response timeout %d ms)\n",
+      static_cast<long long>(
+          std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - paused).count()),
+      emulator.Config().response_timeout_ms);
   CHECK_TEXT(m.last_error().find("timed out") != std::string::npos, m.last_error().c_str());
   m.inputs().ReadAll(read, 4);
   for (uint32_t r : read) LONGS_EQUAL(palpa::hal::AnalogInput::kConversionFailed, r);
