@@ -6,20 +6,23 @@ Serves the coupler's registers as docs/linux.md gives them (output image at 0x08
 first write to the output image, a silence longer than the watchdog time sets every output to zero
 (fallback 0) or leaves it (fallback 1, freeze); type 0 counts only writes to the output image as
 life, type 1 any telegram, type 2 turns the watchdog off. 0x1021 counts the fallbacks.
-Usage: ek9000_emulator.py PORT VOLTS[,VOLTS...]   (the input terminals' voltages; nan: wire break)
+Usage: ek9000_emulator.py PORT|rtu:DEVICE VOLTS[,VOLTS...]
+  (TCP on 127.0.0.1:PORT, or RTU at 115200 8N1 on DEVICE; the input terminals' voltages, nan: a
+  wire break)
 """
 import sys
 import threading
 import time
 
 from pymodbus.datastore import ModbusSequentialDataBlock, ModbusServerContext, ModbusSlaveContext
-from pymodbus.server import StartTcpServer
+from pymodbus.server import StartSerialServer, StartTcpServer
+from pymodbus.transaction import ModbusRtuFramer
 
 OUTPUTS, OUTPUT_WORDS = 0x0800, 16
 FALLBACKS, WD_TIME, WD_RESET, WD_TYPE, FALLBACK = 0x1021, 0x1120, 0x1121, 0x1122, 0x1123
 FULL_SCALE = 0x7FFF
 
-port = int(sys.argv[1])
+where = sys.argv[1]
 volts = [float(v) for v in sys.argv[2].split(",")]
 lock = threading.RLock()
 state = {"armed": False, "last": 0.0}
@@ -86,4 +89,7 @@ threading.Thread(target=watchdog, daemon=True).start()
 context = ModbusServerContext(
     slaves=ModbusSlaveContext(ir=Inputs(0, image + [0] * 16), hr=holding, zero_mode=True),
     single=True)
-StartTcpServer(context=context, address=("127.0.0.1", port))
+if where.startswith("rtu:"):
+    StartSerialServer(context=context, framer=ModbusRtuFramer, port=where[4:], baudrate=115200)
+else:
+    StartTcpServer(context=context, address=("127.0.0.1", int(where)))

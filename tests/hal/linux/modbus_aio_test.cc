@@ -260,3 +260,62 @@ TEST(ModbusAio, AModuleThatIsNotThereOrNotAnEk9000IsRefusedAtStart) {
   waitpid(other, nullptr, 0);
   STRCMP_EQUAL((where + "writing 1 at 0x1120: Illegal data address").c_str(), error.c_str());
 }
+
+TEST(ModbusAio, TheSameModuleOverRtu) {
+  char dir_pattern[] = "/tmp/palpa-aio-rtu-XXXXXX";
+  CHECK(mkdtemp(dir_pattern) != nullptr);
+  const std::string dir = dir_pattern, module_end = dir + "/module", controller_end = dir + "/ctl";
+  const pid_t socat = fork();  // a pty pair stands for the RS-485 line
+  if (socat == 0) {
+    execlp("socat", "socat", ("pty,raw,echo=0,link=" + module_end).c_str(),
+           ("pty,raw,echo=0,link=" + controller_end).c_str(), nullptr);
+    _exit(127);
+  }
+  CHECK(WaitUntil([&] { return access(controller_end.c_str(), F_OK) == 0; }, 5));
+  const pid_t emulator = fork();
+  if (emulator == 0) {
+    execl("/usr/bin/python3", "python3", PALPA_SOURCE_DIR "/tests/hal/linux/ek9000_emulator.py",
+          ("rtu:" + module_end).c_str(), "2,4,6,8", nullptr);
+    _exit(127);
+  }
+  struct Reaper {
+    pid_t a, b;
+    ~Reaper() {
+      kill(a, SIGKILL), waitpid(a, nullptr, 0);
+      kill(b, SIGKILL), waitpid(b, nullptr, 0);
+    }
+  } reaper{emulator, socat};
+  aio::ModbusAioConfig config;
+  config.tcp = false;
+  config.host = controller_end;
+  config.watchdog_ms = 5000;  // outlives the module object, so the probe below sees its writes
+  config.response_timeout_ms = 200;
+  std::unique_ptr<aio::ModbusAioModule> module;
+  std::string error;
+  CHECK(WaitUntil([&] { return (module = aio::ModbusAioModule::Open(config, &error)) != nullptr; },
+                  10));
+  CHECK_TEXT(module != nullptr, error.c_str());
+  const uint32_t counts[4] = {4095, 2048, 1, 0};
+  LONGS_EQUAL(palpa::hal::AnalogOutput::kAllWritten, module->outputs().WriteAll(counts, 4));
+  uint32_t read[4];
+  module->inputs().ReadAll(read, 4);
+  for (int i = 0; i < 4; ++i) DOUBLES_EQUAL((2.0 + 2 * i) / 10 * 4095, read[i], 1.0);
+  module.reset();
+  modbus_t* probe = modbus_new_rtu(controller_end.c_str(), 115200, 'N', 8, 1);
+  modbus_set_slave(probe, 1);
+  modbus_set_response_timeout(probe, 1, 0);
+  CHECK(modbus_connect(probe) == 0);
+  uint16_t held[4] = {};
+  LONGS_EQUAL(4, modbus_read_registers(probe, 0x0800, 4, held));
+  for (int i = 0; i < 4; ++i) LONGS_EQUAL(ExpectedCode(counts[i]), held[i]);
+  LONGS_EQUAL(5000, [&] {
+    uint16_t v = 0;
+    modbus_read_registers(probe, 0x1120, 1, &v);
+    return v;
+  }());
+  modbus_close(probe);
+  modbus_free(probe);
+  std::remove(module_end.c_str());
+  std::remove(controller_end.c_str());
+  rmdir(dir.c_str());
+}
