@@ -4,11 +4,9 @@
 it), E-stop is everyone's, and a command's end gives control up and the board is released.
 Numbers as each side numbers: the command line from 1, Python from 0. Checked on palpa-sim's truth
 channel. Usage: remote_test.py PALPA PALPA_SIM PYTHON_PACKAGE_DIR"""
-import asyncio
 import json
 import subprocess
 import sys
-import time
 
 from harness import Client, Serve, Sim, fail, settle
 
