@@ -17,4 +17,10 @@ namespace palpa::host {
 /// message names the file and the reason.
 Outcome WriteFileWhole(const std::string& path, std::string_view bytes);
 
+/// Appends one journal line (ending in its only '\n') to `path` and flushes it to disk before
+/// returning, so a crash loses at most this line, left torn (without its newline); a torn last
+/// line an earlier crash left is cut off first, with a note saying so. Links and anything but a
+/// regular file are refused (io_error naming the file and the reason).
+Outcome AppendFileLine(const std::string& path, std::string_view line);
+
 }  // namespace palpa::host
