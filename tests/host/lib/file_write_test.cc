@@ -3,7 +3,6 @@
 // the file replaced, and flushed to disk with the directory that names it.
 #include "palpa/host/file_write.h"
 
-#include <dlfcn.h>
 #include <stdlib.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -14,6 +13,7 @@
 #include <string>
 
 #include "CppUTest/TestHarness.h"
+#include "fsync_seam.h"
 
 namespace fs = std::filesystem;
 namespace ph = palpa::host;
@@ -25,23 +25,7 @@ std::string ReadAll(const fs::path& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-/// What fsync was called on while recording: 'f' a regular file, 'd' a directory (a plain array:
-/// the leak checker would count a container's storage).
-bool g_record_fsyncs = false;
-char g_fsynced[8];
-size_t g_fsync_count = 0;
-
 }  // namespace
-
-// A link-time seam: the library's calls to fsync land here first, then in the C library.
-extern "C" int fsync(int fd) {
-  using Fsync = int (*)(int);
-  static const auto real = reinterpret_cast<Fsync>(dlsym(RTLD_NEXT, "fsync"));
-  struct stat st;
-  if (g_record_fsyncs && g_fsync_count < sizeof(g_fsynced) && fstat(fd, &st) == 0)
-    g_fsynced[g_fsync_count++] = S_ISDIR(st.st_mode) ? 'd' : S_ISREG(st.st_mode) ? 'f' : '?';
-  return real(fd);
-}
 
 TEST_GROUP(FileWrite) {
   fs::path dir;

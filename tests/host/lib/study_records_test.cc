@@ -3,9 +3,7 @@
 // naming the file, the line and the field.
 #include "palpa/host/study_records.h"
 
-#include <dlfcn.h>
 #include <stdlib.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -14,29 +12,11 @@
 #include <iterator>
 
 #include "CppUTest/TestHarness.h"
+#include "fsync_seam.h"
 
 namespace fs = std::filesystem;
 namespace ph = palpa::host;
 using nlohmann::json;
-
-namespace {
-
-/// fsync calls while recording: 'f' a regular file, 'd' a directory.
-bool g_record_fsyncs = false;
-char g_fsynced[8];
-size_t g_fsync_count = 0;
-
-}  // namespace
-
-// A link-time seam: the library's fsync calls land here first, then in the C library.
-extern "C" int fsync(int fd) {
-  using Fsync = int (*)(int);
-  static const auto real = reinterpret_cast<Fsync>(dlsym(RTLD_NEXT, "fsync"));
-  struct stat st;
-  if (g_record_fsyncs && g_fsync_count < sizeof(g_fsynced) && fstat(fd, &st) == 0)
-    g_fsynced[g_fsync_count++] = S_ISDIR(st.st_mode) ? 'd' : S_ISREG(st.st_mode) ? 'f' : '?';
-  return real(fd);
-}
 
 /// Two JSON values alike (CppUTest prints their text when not).
 #define JSON_EQUAL(expected, actual) \
