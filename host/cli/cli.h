@@ -76,7 +76,9 @@ struct Command {
 extern const Command kListCommand, kInfoCommand, kDiagCommand, kConfigCommand, kSetCommand,
     kLineCommand, kMonitorCommand, kRecordCommand, kEStopCommand, kClearCommand, kDemoCommand,
     kCalibrateCommand, kFlashCommand, kPackageCommand, kKeygenCommand, kSimCommand, kSceneCommand,
-    kRenderCommand, kServeCommand;
+    kRenderCommand, kServeCommand, kStudyCommand;
+/// palpa study's subcommands (cmd_study_*.cc), listed by cmd_study.cc.
+int CmdStudyReport(Context& c, const std::vector<std::string>& args);
 
 /// One finger request from "N=VALUE": L2 (level), 0.5 (0..1), 1.2mm, 0.9N/mm, -10kPa. Fingers are
 /// numbered from 1 on the command line, up to `finger_count`. Returns false with a message naming

@@ -18,10 +18,10 @@ const std::map<std::string, const Command*>& Commands() {
   static const std::map<std::string, const Command*> commands = [] {
     std::map<std::string, const Command*> by_name;
     for (const Command* c :
-         {&kListCommand, &kInfoCommand, &kDiagCommand, &kConfigCommand, &kSetCommand, &kLineCommand,
-          &kMonitorCommand, &kRecordCommand, &kEStopCommand, &kClearCommand, &kCalibrateCommand,
-          &kFlashCommand, &kPackageCommand, &kKeygenCommand, &kSimCommand, &kDemoCommand,
-          &kSceneCommand, &kRenderCommand, &kServeCommand})
+         {&kListCommand,      &kInfoCommand,    &kDiagCommand,    &kConfigCommand, &kSetCommand,
+          &kLineCommand,      &kMonitorCommand, &kRecordCommand,  &kEStopCommand,  &kClearCommand,
+          &kCalibrateCommand, &kFlashCommand,   &kPackageCommand, &kKeygenCommand, &kSimCommand,
+          &kDemoCommand,      &kSceneCommand,   &kRenderCommand,  &kServeCommand,  &kStudyCommand})
       by_name[c->name] = c;
     return by_name;
   }();

@@ -12,4 +12,12 @@ inline std::string Num(double v) {
   return b;
 }
 
+/// With a fixed number of decimals ("%.*f"); "—" for NaN (a proportion of nothing).
+inline std::string Fixed(double v, int decimals) {
+  if (v != v) return "—";
+  char b[48];
+  std::snprintf(b, sizeof(b), "%.*f", decimals, v);
+  return b;
+}
+
 }  // namespace palpa::host
