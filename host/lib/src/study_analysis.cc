@@ -199,6 +199,13 @@ Result<StudyAnalysis> AnalyseStudy(std::vector<SessionRecords> sessions) {
         staircases[t.block].push_back(&t);
         continue;
       }
+      // Records read from a directory always pass; ones a program built are checked here.
+      if (!t.mode || !t.condition || t.answer.fingers.size() != t.expected.size()) {
+        return Outcome::Fail(Status::kInvalidArgument,
+                             s.dir + ": trial " + std::to_string(t.index) +
+                                 ": a detection trial needs a mode, a condition and an answer "
+                                 "for each finger position");
+      }
       ++summary.detection_trials;
       const TrialMode mode = *t.mode;
       Find(

@@ -186,12 +186,20 @@ WilcoxonResult WilcoxonSignedRank(const std::vector<double>& first,
 
 double WilcoxonExactP(int n, double t) {
   if (n <= 0) return 1;
+  if (n > kWilcoxonExactMax) {
+    const double mean = n * (n + 1.0) / 4, sd = std::sqrt(n * (n + 1.0) * (2.0 * n + 1) / 24);
+    return std::min(1.0, 2 * NormalCdf((std::floor(t) - mean) / sd));
+  }
   const std::vector<double> counts = SignedRankCounts(UntiedDoubledRanks(n));
   return TwoSidedFromCounts(counts, static_cast<int>(std::floor(2 * t)));
 }
 
 int WilcoxonCriticalT(int n) {
   if (n <= 0) return -1;
+  if (n > kWilcoxonExactMax) {  // printed tables stop well before: the normal approximation's
+    const double mean = n * (n + 1.0) / 4, sd = std::sqrt(n * (n + 1.0) * (2.0 * n + 1) / 24);
+    return static_cast<int>(std::floor(mean - kZ95 * sd));
+  }
   const std::vector<double> counts = SignedRankCounts(UntiedDoubledRanks(n));
   const double all = std::ldexp(1.0, n);
   double below = 0;

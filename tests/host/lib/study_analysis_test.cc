@@ -154,6 +154,10 @@ TEST(StudyAnalysis, SessionsOfAnotherStudyOrAParticipantTwiceAreRefused) {
   r = ph::AnalyseStudy(sessions);
   STRCMP_CONTAINS("P3: participant \"P1\" is in P1 already", r.message.c_str());
   CHECK_FALSE(ph::AnalyseStudy({}).ok());
+  sessions = pt::ThesisShapedStudy();
+  sessions[4].trials[7].mode.reset();  // a record a program built, never read from a file
+  r = ph::AnalyseStudy(sessions);
+  STRCMP_CONTAINS("P5: trial 7: a detection trial needs a mode", r.message.c_str());
 }
 
 TEST(StudyAnalysis, AnUnfinishedSessionIsIncludedAndNoted) {

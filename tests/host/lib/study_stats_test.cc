@@ -88,6 +88,8 @@ TEST(StudyStats, WilcoxonCriticalValuesMatchThePublishedTable) {
                            46, 52, 58, 65, 73, 81, 89, 98, 107, 116, 126, 137};
   CHECK_EQUAL(-1, ph::WilcoxonCriticalT(5));
   for (int n = 6; n <= 30; ++n) CHECK_EQUAL(published[n - 6], ph::WilcoxonCriticalT(n));
+  // Beyond the exact range, the normal approximation's: floor(2525 − 1.96 × 290.84) = 1954.
+  CHECK_EQUAL(1954, ph::WilcoxonCriticalT(100));
   // Each critical value is the last whose exact p stays at or under 0.05.
   for (int n = 6; n <= 30; ++n) {
     CHECK(ph::WilcoxonExactP(n, ph::WilcoxonCriticalT(n)) <= 0.05);

@@ -69,9 +69,10 @@ WilcoxonResult WilcoxonSignedRank(const std::vector<double>& first,
 
 /// The α = 0.05 two-sided critical value of T = min(W₊, W₋) for n pairs without ties: the largest
 /// t with P(T ≤ t) ≤ 0.05 under the exact distribution, as printed tables give it; −1 when no t is
-/// small enough (n ≤ 5).
+/// small enough (n ≤ 5). Beyond kWilcoxonExactMax pairs, from the normal approximation.
 int WilcoxonCriticalT(int n);
-/// Two-sided exact p of T = min(W₊, W₋) ≤ t for n untied pairs (the table's distribution).
+/// Two-sided exact p of T = min(W₊, W₋) ≤ t for n untied pairs (the table's distribution); beyond
+/// kWilcoxonExactMax pairs, the normal approximation's.
 double WilcoxonExactP(int n, double t);
 
 struct TTestResult {
