@@ -30,15 +30,10 @@ std::string ReadAll(const fs::path& path) {
 TEST_GROUP(FileWrite) {
   fs::path dir;
   void setup() override {
-    std::string pattern = (fs::temp_directory_path() / "palpa-write-XXXXXX").string();
-    CHECK(mkdtemp(pattern.data()) != nullptr);
-    dir = pattern;
+    dir = MakeTestDir("palpa-write");
+    CHECK(!dir.empty());
   }
-  void teardown() override {
-    g_record_fsyncs = false;
-    g_fsync_count = 0;
-    fs::remove_all(dir);
-  }
+  void teardown() override { RemoveTestDir(dir); }
   size_t Entries() const {
     return static_cast<size_t>(
         std::distance(fs::directory_iterator(dir), fs::directory_iterator()));

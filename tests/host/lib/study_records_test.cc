@@ -96,15 +96,10 @@ void CheckRefused(const ph::Outcome& r, std::initializer_list<const char*> parts
 TEST_GROUP(StudyRecords) {
   fs::path dir;
   void setup() override {
-    std::string pattern = (fs::temp_directory_path() / "palpa-study-XXXXXX").string();
-    CHECK(mkdtemp(pattern.data()) != nullptr);
-    dir = pattern;
+    dir = MakeTestDir("palpa-study");
+    CHECK(!dir.empty());
   }
-  void teardown() override {
-    g_record_fsyncs = false;
-    g_fsync_count = 0;
-    fs::remove_all(dir);
-  }
+  void teardown() override { RemoveTestDir(dir); }
   fs::path Trials() const { return dir / ph::kTrialsFileName; }
   /// Writes the session and the trials, then `line` as the trials file's line 3 (after two good
   /// ones), and reads the directory back.
