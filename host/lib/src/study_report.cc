@@ -219,8 +219,8 @@ std::string ProportionText(Proportion p) {
 std::vector<ReportFile> RenderStudyReport(const StudyAnalysis& a) {
   std::string h =
       "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>palpa study " + E(a.study) +
-      "</title><style>body{font-family:sans-serif;max-width:1100px;margin:2em auto}"
-      "td,th{padding:2px 8px;text-align:right}table{border-collapse:collapse}"
+      "</title><style>body{font-family:sans-serif;max-width:1400px;margin:2em auto}"
+      "td,th{padding:2px 6px;text-align:right}table{border-collapse:collapse;font-size:85%}"
       "tr:nth-child(even){background:#f4f4f4}</style></head><body>\n<h1>Study " +
       E(a.study) + "</h1>\n<p>" + std::to_string(a.sessions.size()) +
       " sessions pooled. Unit of analysis: each finger position of each non-practice detection "
