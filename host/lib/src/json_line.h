@@ -1,0 +1,18 @@
+// Where a JSON path's value starts in its text: so that a file's error can name the line as well
+// as the field ("line 12: blocks[1].repetitions: ...").
+#pragma once
+
+#include <string>
+
+namespace palpa::host {
+
+/// The 1-based line of the value at `path` ("blocks[1].repetitions", as json_check names fields)
+/// in `text`, or of the deepest part of the path that is there (a missing field: its object);
+/// 0 when the text is not one well-formed document.
+int JsonPathLine(const std::string& text, const std::string& path);
+
+/// "line N: MESSAGE" when MESSAGE starts with a field's path ("a.b[2]: ...") found in `text`;
+/// MESSAGE as it was otherwise (a syntax error already names its line).
+std::string WithJsonLine(const std::string& text, const std::string& message);
+
+}  // namespace palpa::host
