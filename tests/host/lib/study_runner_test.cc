@@ -1,0 +1,304 @@
+// The study runner: the settle rule on its own, answers typed and checked, and a shortened study
+// on palpa-sim answered by the simulated participant — its records, the settle moment against
+// the simulator's truth channel, and the refusals (a reused participant, a board that does not
+// fit).
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "palpa/host/sim_truth.h"
+#include "palpa/host/study_participant.h"
+#include "palpa/host/study_runner.h"
+#include "palpa/host/transport.h"
+#include "study_settle.h"
+
+#include "CppUTest/TestHarness.h"
+
+namespace ph = palpa::host;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Three pneumatic fingers, pressures: the three conditions at once, then each finger in turn;
+/// no practice, short resets.
+const char kShort[] = R"({
+  "schema": "palpa-study", "schema_version": 1, "name": "short",
+  "finger_kind": "pneumatic", "fingers": 3, "unit": "kPa", "cap_kpa": 40,
+  "reset": {"hold_ms": 300},
+  "conditions": [{"values": [0, 30, 0]}, {"values": [10, 10, 10]}, {"values": [30, 30, 0]}],
+  "blocks": [
+    {"name": "at-once", "mode": "simultaneous", "break_every": 2},
+    {"name": "in-turn", "mode": "sequential", "present_ms": 400, "randomise": false}
+  ]
+})";
+
+ph::Study Short() {
+  const auto s = ph::ParseStudy(kShort);
+  CHECK_TEXT(s.ok(), s.message.c_str());
+  return s.value;
+}
+
+std::string TempDir(const std::string& name) {
+  const std::string dir = "/tmp/palpa-study-" + std::to_string(getpid()) + "-" + name;
+  fs::remove_all(dir);
+  return dir;
+}
+
+std::vector<nlohmann::json> Trials(const std::string& dir) {
+  std::ifstream in(dir + "/trials.jsonl");
+  std::vector<nlohmann::json> out;
+  for (std::string line; std::getline(in, line);) out.push_back(nlohmann::json::parse(line));
+  return out;
+}
+
+/// palpa-sim at ten times real time, its truth every 5 ms, every line given a 30 ms chamber model
+/// (as a calibration would: the plant's pneumatic line is about that, docs/plant.md).
+struct SimBoard {
+  std::unique_ptr<ph::Device> device;
+  ph::TruthReader truth;
+  explicit SimBoard(const char* config = "thesis-pneumatic-3") {
+    setenv("PALPA_SIM", PALPA_SIM_PATH, 1);
+    std::string address;
+    auto t = ph::LaunchSim(config, {"--speed", "10", "--truth-every-ms", "5"}, &address);
+    CHECK_TEXT(t.ok(), t.message.c_str());
+    ph::DeviceOptions options;
+    options.use_calibrations = false;
+    auto d = ph::Device::Attach(std::move(t.value), options);
+    CHECK_TEXT(d.ok(), d.message.c_str());
+    device = std::move(d.value);
+    CHECK(truth.Connect(address));
+    for (uint8_t l = 0; l < device->info().line_count; ++l) {
+      auto line = device->ReadLine(l);
+      CHECK_TEXT(line.ok(), line.message.c_str());
+      line.value.chamber_tau_us = 30000;
+      const ph::Outcome o = device->ConfigureLine(line.value);
+      CHECK_TEXT(o.ok(), o.message.c_str());
+    }
+  }
+};
+
+/// Each finger's true output at board time t (the newest sample at or before it).
+std::vector<double> TruthAt(const std::vector<ph::TruthReader::Sample>& all, double t) {
+  std::vector<double> out;
+  for (const auto& s : all) {
+    if (s.t_s > t) break;
+    out = s.outputs;
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_GROUP(StudySettle){};
+
+TEST(StudySettle, TheChamberModelDelaysTheSettleBehindTheOutlet) {
+  // An outlet that steps at once: alone it settles at the step; a chamber 0.1 s behind it is
+  // within 0.5 kPa of a 10 kPa step after ln(20) τ ≈ 0.30 s.
+  for (const double tau : {0.0, 0.1}) {
+    ph::SettleRule rule({{0, tau}}, 500, 3000, 0.02);
+    rule.Add(0, {0}, {0});
+    rule.Restart();
+    for (double t = 0.001; t < 2 && !rule.settled_s(); t += 0.001) rule.Add(t, {10000}, {10000});
+    CHECK(rule.settled_s().has_value());
+    DOUBLES_EQUAL(tau == 0 ? 0.001 : 0.1 * std::log(20.0), *rule.settled_s(), 0.003);
+  }
+}
+
+TEST(StudySettle, SteadyNearTheSetpointForTheHold) {
+  ph::SettleRule rule({{0, 0}}, 500, 3000, 0.05);
+  // A regulator 1 kPa off its setpoint, steady: settled (its accuracy is not the clock's).
+  rule.Add(0, {11000}, {10000});
+  rule.Add(0.03, {11000}, {10000});
+  rule.Add(0.04, {11600}, {10000});  // out of the tolerance of itself: the hold starts again
+  rule.Add(0.06, {11600}, {10000});
+  CHECK_FALSE(rule.settled_s().has_value());
+  rule.Add(0.09, {11400}, {10000});
+  rule.Add(0.10, {11500}, {10000});
+  DOUBLES_EQUAL(0.04, *rule.settled_s(), 1e-9);
+  // Steady but beyond the band: a step still on its way (or a stalled line) never settles.
+  ph::SettleRule far({{0, 0}}, 500, 3000, 0.05);
+  for (double t = 0; t < 1; t += 0.01) far.Add(t, {6000}, {10000});
+  CHECK_FALSE(far.settled_s().has_value());
+  // A slow ramp (0.2 kPa per 10 ms) inside the band: never within the tolerance for 50 ms.
+  ph::SettleRule ramp({{0, 0}}, 500, 3000, 0.05);
+  for (int i = 0; i < 20; ++i) ramp.Add(0.01 * i, {8000 + 200.0 * i}, {10000});
+  CHECK_FALSE(ramp.settled_s().has_value());
+}
+
+TEST_GROUP(StudyAnswers){};
+
+TEST(StudyAnswers, TypedAsPeopleCountAndChecked) {
+  ph::TrialPrompt t;
+  t.fingers = 3;
+  auto a = ph::ParseAnswerText(t, "n");
+  CHECK(a.ok() && !a.value.tumour);
+  a = ph::ParseAnswerText(t, "1, 2");
+  CHECK(a.ok() && a.value.tumour && a.value.fingers == (std::vector<bool>{true, true, false}));
+  CHECK(ph::ParseAnswerText(t, "4").message.find("\"4\": type n for no tumour") == 0);
+  CHECK(ph::ParseAnswerText(t, "0").message.find("\"0\"") == 0);
+  CHECK(ph::ParseAnswerText(t, "2 2").message == "finger 2 twice");
+  CHECK(ph::ParseAnswerText(t, "1 2 3").message.find("no tumour (all equal)") != std::string::npos);
+  CHECK(ph::ParseAnswerText(t, "").message.find("no answer") == 0);
+  CHECK_FALSE(ph::CheckAnswer(t, {false, {true, false, false}}).ok());
+  CHECK_FALSE(ph::CheckAnswer(t, {true, {false, false, false}}).ok());
+  CHECK_FALSE(ph::CheckAnswer(t, {false, {false, false}}).ok());
+  t.kind = ph::BlockKind::kStaircase;
+  t.compared = {0, 2};
+  CHECK(ph::ParseAnswerText(t, "3").ok());
+  CHECK(ph::ParseAnswerText(t, "2").message.find("1 or 3") != std::string::npos);
+  CHECK_FALSE(ph::ParseAnswerText(t, "n").ok());
+}
+
+TEST_GROUP(StudyRun){};
+
+TEST(StudyRun, AShortStudyOnTheSimulatedBoardAnsweredByTheSimulatedParticipant) {
+  SimBoard board;
+  const ph::Study study = Short();
+  ph::SimulatedParticipantOptions po;
+  po.seed = 5;
+  ph::SimulatedParticipant participant(board.truth, po);
+  ph::StudyRunOptions o;
+  o.out_dir = TempDir("run");
+  o.participant = "P01";
+  o.board = "sim:thesis-pneumatic-3";
+  o.sim = ph::SimProvenance{1, 1};
+  o.use_calibrations = false;
+  std::vector<ph::TriggerEvent> triggers;
+  o.on_trigger = [&](const ph::TriggerEvent& e) { triggers.push_back(e); };
+  const ph::Outcome done = ph::RunStudy(*board.device, study, participant, o);
+  CHECK_TEXT(done.ok(), done.message.c_str());
+
+  std::ifstream in(o.out_dir + "/session.json");
+  const nlohmann::json session = nlohmann::json::parse(in);
+  CHECK(session["complete"].get<bool>());
+  STRCMP_EQUAL("P01", session["participant"].get<std::string>().c_str());
+  LONGS_EQUAL(ph::StudySeed(study, "P01"), session["seed"].get<uint64_t>());
+  const nlohmann::json& p = session["provenance"];
+  for (const char* key : {"palpa_version", "firmware_version", "catalog_hash", "config_crc",
+                          "calibration_files", "board", "sim", "settle"})
+    CHECK_TEXT(p.contains(key), key);
+  STRCMP_EQUAL("0.03 s chamber model", p["settle"]["line 1"].get<std::string>().c_str());
+
+  const std::vector<nlohmann::json> trials = Trials(o.out_dir);
+  LONGS_EQUAL(6, trials.size());
+  LONGS_EQUAL(2 * 6, triggers.size());
+  LONGS_EQUAL(2, participant.breaks());  // after two scored trials, and between the blocks
+  const auto truth = board.truth.All();
+  int right = 0;
+  for (size_t i = 0; i < trials.size(); ++i) {
+    const nlohmann::json& t = trials[i];
+    LONGS_EQUAL(i, t["index"].get<int>());
+    const nlohmann::json& planned = session["order"][i];
+    STRCMP_EQUAL(planned["condition"].get<std::string>().c_str(),
+                 t["condition"].get<std::string>().c_str());
+    LONGS_EQUAL(t["answered_board_ms"].get<long>() - t["settled_board_ms"].get<long>(),
+                t["time_ms"].get<long>());
+    CHECK(t["time_ms"].get<long>() > 0);
+    DOUBLES_EQUAL(t["settled_board_ms"].get<double>(), triggers[2 * i].board_ms, 1);
+    const bool sequential = t["mode"] == "sequential";
+    STRCMP_EQUAL(i < 3 ? "simultaneous" : "sequential", t["mode"].get<std::string>().c_str());
+    right += t["answer"]["fingers"] == t["expected"];
+    if (sequential) continue;
+    // The settle moment against the truth: every finger's true output within 0.05 mm (about
+    // 1 kPa on Table 5-4's line) of where it ends up, and not long after the truth got there.
+    const double settled = t["settled_board_ms"].get<double>() / 1000;
+    const std::vector<double> final_out =
+        TruthAt(truth, t["answered_board_ms"].get<double>() / 1000);
+    const std::vector<double> at = TruthAt(truth, settled);
+    for (size_t f = 0; f < 3; ++f) DOUBLES_EQUAL(final_out[f], at[f], 0.05);
+    double reached = settled;
+    for (double s = settled; s > settled - 1; s -= 0.005) {
+      const std::vector<double> then = TruthAt(truth, s);
+      bool within = true;
+      for (size_t f = 0; f < 3; ++f) within = within && std::fabs(then[f] - final_out[f]) <= 0.05;
+      if (!within) break;
+      reached = s;
+    }
+    CHECK_TEXT(settled - reached < 0.15,
+               ("settled " + std::to_string(settled - reached) + " s after the truth").c_str());
+  }
+  CHECK(right >= 4);  // 0/10/30 kPa are far apart for a 15 % Weber fraction
+
+  // The same participant and directory again: refused, nothing written.
+  const auto before = fs::file_size(o.out_dir + "/trials.jsonl");
+  const ph::Outcome again = ph::RunStudy(*board.device, study, participant, o);
+  CHECK_FALSE(again.ok());
+  CHECK_TEXT(again.message.find("already holds a complete session of participant P01") !=
+                 std::string::npos,
+             again.message.c_str());
+  o.resume = true;
+  CHECK(ph::RunStudy(*board.device, study, participant, o).message.find("complete") !=
+        std::string::npos);
+  LONGS_EQUAL(before, fs::file_size(o.out_dir + "/trials.jsonl"));
+  fs::remove_all(o.out_dir);
+}
+
+TEST(StudyRun, AStoppedSessionResumesInTheSameOrder) {
+  SimBoard board;
+  const ph::Study study = Short();
+  ph::SimulatedParticipantOptions po;
+  po.stop_at = 2;
+  ph::SimulatedParticipant stopping(board.truth, po);
+  ph::StudyRunOptions o;
+  o.out_dir = TempDir("resume");
+  o.participant = "P02";
+  o.use_calibrations = false;
+  const ph::Outcome stopped = ph::RunStudy(*board.device, study, stopping, o);
+  CHECK_FALSE(stopped.ok());
+  CHECK_TEXT(stopped.message.find("2 trials kept; --resume continues") != std::string::npos,
+             stopped.message.c_str());
+  LONGS_EQUAL(2, Trials(o.out_dir).size());
+  // A torn line, as a kill while writing leaves: ignored with a warning and cut.
+  { std::ofstream(o.out_dir + "/trials.jsonl", std::ios::app) << "{\"index\": 2, \"blo"; }
+  ph::SimulatedParticipant resumed(board.truth, {});
+  std::vector<std::string> said;
+  o.progress = [&](const std::string& s) { said.push_back(s); };
+  o.resume = true;
+  o.participant = "P03";
+  CHECK(ph::RunStudy(*board.device, study, resumed, o).message.find("P02's session, not P03's") !=
+        std::string::npos);
+  o.participant = "P02";
+  const ph::Outcome done = ph::RunStudy(*board.device, study, resumed, o);
+  CHECK_TEXT(done.ok(), done.message.c_str());
+  CHECK_TEXT(said.size() >= 2 && said[0].find("line 3: torn") != std::string::npos &&
+                 said[1].find("cut off a torn last line") != std::string::npos,
+             said.front().c_str());
+  const auto trials = Trials(o.out_dir);
+  LONGS_EQUAL(6, trials.size());
+  std::ifstream in(o.out_dir + "/session.json");
+  const nlohmann::json session = nlohmann::json::parse(in);
+  for (size_t i = 0; i < trials.size(); ++i) {
+    LONGS_EQUAL(i, trials[i]["index"].get<int>());
+    CHECK(session["order"][i]["condition"] == trials[i]["condition"]);
+  }
+  LONGS_EQUAL(1, session["resumed"].size());
+  fs::remove_all(o.out_dir);
+}
+
+TEST(StudyRun, ABoardThatDoesNotFitIsRefusedBeforeAnythingIsSet) {
+  SimBoard board;
+  ph::SimulatedParticipant participant(board.truth, {});
+  ph::StudyRunOptions o;
+  o.out_dir = TempDir("refused");
+  o.participant = "P04";
+  o.use_calibrations = false;
+  auto jamming = ph::LoadStudy("thesis-jamming");
+  const ph::Outcome kind = ph::RunStudy(*board.device, jamming.value, participant, o);
+  CHECK_TEXT(
+      kind.message.find("finger 0 of this thesis-pneumatic-3 board is not a jamming finger") == 0,
+      kind.message.c_str());
+  // 2 mm needs more than 40 kPa through the nominal curve (Table 5-4: about 48 kPa).
+  ph::Study mm = Short();
+  mm.unit = "mm";
+  mm.conditions = {{"deep", {0, 2, 0}, {1}}};
+  const ph::Outcome cap = ph::RunStudy(*board.device, mm, participant, o);
+  CHECK_TEXT(cap.message.find("beyond the study's cap of 40 kPa") != std::string::npos,
+             cap.message.c_str());
+  o.participant = "../P04";
+  CHECK(ph::RunStudy(*board.device, Short(), participant, o).message.find("participant") == 0);
+  CHECK_FALSE(fs::exists(o.out_dir));
+}
