@@ -1,5 +1,6 @@
 // JSON validation with the failing field named.
 #include "palpa/host/json_check.h"
+#include "json_line.h"
 #include "number_text.h"
 
 #include <cmath>
@@ -22,7 +23,7 @@ class PathTracker {
       case Event::object_start:
       case Event::array_start:
         if (depth >= kMaxJsonDepth) throw TooDeep{};
-        levels_.push_back(Level{event == Event::array_start, "", 0});
+        levels_.push_back(JsonPathLevel{event == Event::array_start, "", 0});
         break;
       case Event::key:
         levels_.back().key = parsed.get<std::string>();
@@ -40,28 +41,13 @@ class PathTracker {
   }
 
   /// "board.host_timeout_us", "curve[2].kpa"; empty at the top.
-  std::string Path() const {
-    std::string path;
-    for (const Level& l : levels_) {
-      if (l.array) {
-        path += "[" + std::to_string(l.index) + "]";
-      } else if (!l.key.empty()) {
-        path += (path.empty() ? "" : ".") + l.key;
-      }
-    }
-    return path;
-  }
+  std::string Path() const { return JsonPathText(levels_); }
 
  private:
-  struct Level {
-    bool array;
-    std::string key;  ///< object: the key of the value being read
-    size_t index;     ///< array: the index of the value being read
-  };
   void Next() {
     if (!levels_.empty() && levels_.back().array) ++levels_.back().index;
   }
-  std::vector<Level> levels_;
+  std::vector<JsonPathLevel> levels_;
 };
 
 /// nlohmann's message without its "[json.exception.parse_error.101] " code.

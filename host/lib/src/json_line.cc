@@ -8,32 +8,13 @@
 namespace palpa::host {
 namespace {
 
-struct Level {
-  bool array;
-  std::string key;
-  size_t index = 0;
-  bool first = true;
-};
-
-std::string PathOf(const std::vector<Level>& levels) {
-  std::string path;
-  for (const Level& l : levels) {
-    if (l.array) {
-      path += "[" + std::to_string(l.index) + "]";
-    } else if (!l.key.empty()) {
-      path += (path.empty() ? "" : ".") + l.key;
-    }
-  }
-  return path;
-}
-
 /// Every value's path → its line. Stops (returning what it has) at anything malformed.
 std::map<std::string, int> ValueLines(const std::string& text) {
   std::map<std::string, int> lines;
-  std::vector<Level> levels;
+  std::vector<JsonPathLevel> levels;
   int line = 1;
   bool expect_key = false;
-  auto value_starts = [&] { lines.emplace(PathOf(levels), line); };
+  auto value_starts = [&] { lines.emplace(JsonPathText(levels), line); };
   for (size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
     if (c == '\n') ++line;
@@ -52,7 +33,7 @@ std::map<std::string, int> ValueLines(const std::string& text) {
       }
     } else if (c == '{' || c == '[') {
       value_starts();
-      levels.push_back(Level{c == '[', "", 0, true});
+      levels.push_back(JsonPathLevel{c == '[', "", 0});
       expect_key = c == '{';
     } else if (c == '}' || c == ']') {
       if (levels.empty()) return lines;
@@ -76,6 +57,18 @@ std::map<std::string, int> ValueLines(const std::string& text) {
 }
 
 }  // namespace
+
+std::string JsonPathText(const std::vector<JsonPathLevel>& levels) {
+  std::string path;
+  for (const JsonPathLevel& l : levels) {
+    if (l.array) {
+      path += "[" + std::to_string(l.index) + "]";
+    } else if (!l.key.empty()) {
+      path += (path.empty() ? "" : ".") + l.key;
+    }
+  }
+  return path;
+}
 
 int JsonPathLine(const std::string& text, const std::string& path) {
   const std::map<std::string, int> lines = ValueLines(text);

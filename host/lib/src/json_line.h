@@ -3,8 +3,18 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace palpa::host {
+
+/// One level of a JSON path being followed: an array's index, or an object's key.
+struct JsonPathLevel {
+  bool array = false;
+  std::string key;   ///< object: the key of the value being read
+  size_t index = 0;  ///< array: the index of the value being read
+};
+/// "board.host_timeout_us", "curve[2].kpa" (json_check's names); empty at the top.
+std::string JsonPathText(const std::vector<JsonPathLevel>& levels);
 
 /// The 1-based line of the value at `path` ("blocks[1].repetitions", as json_check names fields)
 /// in `text`, or of the deepest part of the path that is there (a missing field: its object);

@@ -23,22 +23,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// Three pneumatic fingers, pressures: the three conditions at once, then each finger in turn;
-/// no practice, short resets.
-const char kShort[] = R"({
-  "schema": "palpa-study", "schema_version": 1, "name": "short",
-  "finger_kind": "pneumatic", "fingers": 3, "unit": "kPa", "cap_kpa": 40,
-  "reset": {"hold_ms": 300},
-  "conditions": [{"values": [0, 30, 0]}, {"values": [10, 10, 10]}, {"values": [30, 30, 0]}],
-  "blocks": [
-    {"name": "at-once", "mode": "simultaneous", "break_every": 2},
-    {"name": "in-turn", "mode": "sequential", "present_ms": 400, "randomise": false}
-  ]
-})";
+const char kShort[] = PALPA_TEST_DATA_DIR "/study_short.json";
 
+/// The short study with one repetition (six trials) and a break after two.
 ph::Study Short() {
-  const auto s = ph::ParseStudy(kShort);
+  auto s = ph::LoadStudy(kShort);
   CHECK_TEXT(s.ok(), s.message.c_str());
+  s.value.blocks[0].repetitions = 1;
+  s.value.blocks[0].break_every = 2;
   return s.value;
 }
 
@@ -89,6 +81,15 @@ std::vector<double> TruthAt(const std::vector<ph::TruthReader::Sample>& all, dou
     out = s.outputs;
   }
   return out;
+}
+
+/// A session of `participant` in a fresh directory of its own, on the nominal curves.
+ph::StudyRunOptions Session(const std::string& participant) {
+  ph::StudyRunOptions o;
+  o.out_dir = TempDir(participant);
+  o.participant = participant;
+  o.use_calibrations = false;
+  return o;
 }
 
 }  // namespace
@@ -161,12 +162,9 @@ TEST(StudyRun, AShortStudyOnTheSimulatedBoardAnsweredByTheSimulatedParticipant) 
   ph::SimulatedParticipantOptions po;
   po.seed = 5;
   ph::SimulatedParticipant participant(board.truth, po);
-  ph::StudyRunOptions o;
-  o.out_dir = TempDir("run");
-  o.participant = "P01";
+  ph::StudyRunOptions o = Session("P01");
   o.board = "sim:thesis-pneumatic-3";
   o.sim = ph::SimProvenance{1, 1};
-  o.use_calibrations = false;
   std::vector<ph::TriggerEvent> triggers;
   o.on_trigger = [&](const ph::TriggerEvent& e) { triggers.push_back(e); };
   const ph::Outcome done = ph::RunStudy(*board.device, study, participant, o);
@@ -243,10 +241,7 @@ TEST(StudyRun, AStoppedSessionResumesInTheSameOrder) {
   ph::SimulatedParticipantOptions po;
   po.stop_at = 2;
   ph::SimulatedParticipant stopping(board.truth, po);
-  ph::StudyRunOptions o;
-  o.out_dir = TempDir("resume");
-  o.participant = "P02";
-  o.use_calibrations = false;
+  ph::StudyRunOptions o = Session("P02");
   const ph::Outcome stopped = ph::RunStudy(*board.device, study, stopping, o);
   CHECK_FALSE(stopped.ok());
   CHECK_TEXT(stopped.message.find("2 trials kept; --resume continues") != std::string::npos,
@@ -282,10 +277,7 @@ TEST(StudyRun, AStoppedSessionResumesInTheSameOrder) {
 TEST(StudyRun, ABoardThatDoesNotFitIsRefusedBeforeAnythingIsSet) {
   SimBoard board;
   ph::SimulatedParticipant participant(board.truth, {});
-  ph::StudyRunOptions o;
-  o.out_dir = TempDir("refused");
-  o.participant = "P04";
-  o.use_calibrations = false;
+  ph::StudyRunOptions o = Session("P04");
   auto jamming = ph::LoadStudy("thesis-jamming");
   const ph::Outcome kind = ph::RunStudy(*board.device, jamming.value, participant, o);
   CHECK_TEXT(
