@@ -27,6 +27,9 @@ struct Context {
   /// The device is a simulator started for this one command (no --device, no $PALPA_DEVICE and
   /// no `palpa sim start`): what the command changes is gone when it exits, and it says so.
   bool throwaway = false;
+  /// No --device, no $PALPA_DEVICE, no kept simulator: device_uri is the default
+  /// (sim:thesis-5finger), and a command may choose a simulated board that fits it instead.
+  bool device_defaulted = false;
   bool json = false;
   host::DeviceOptions options;  ///< how Device() opens it
   /// How the device's messages number fingers and lines: from 1, as the command line does, or

@@ -150,7 +150,10 @@ int main(int argc, char** argv) {
   } else if (UsesKeptSim(name)) {
     if (const auto sim = FindRunningSim(&gone)) context.device_uri = sim->uri;
   }
-  if (context.device_uri.empty()) context.device_uri = "sim:thesis-5finger";
+  if (context.device_uri.empty()) {
+    context.device_uri = "sim:thesis-5finger";
+    context.device_defaulted = true;
+  }
   context.throwaway = context.device_uri.rfind("sim", 0) == 0 && !OwnsItsBoards(name);
   if (context.device_uri.rfind("serve:", 0) == 0 && !OwnsItsBoards(name))
     return RunThroughServe(context, name, args);

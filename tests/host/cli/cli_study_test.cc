@@ -1,105 +1,119 @@
-// palpa study report on session directories written by the records library: the thesis-shaped
-// 12-participant study end to end, and every refusal as exit 2 naming what and where.
+// palpa study: show and its refusals, and a session killed with SIGKILL mid-way and resumed — the
+// records whole, every planned trial once, in the planned order.
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
+#include <set>
+#include <sstream>
+#include <thread>
 
-#include "palpa/host/file_write.h"
-#include "study_fixture.h"
-// CppUTest's checks after the standard headers (its leak checker redefines new).
-#include "CppUTest/TestHarness.h"
+#include <nlohmann/json.hpp>
+
 #include "cli_run.h"
 
+using palpa::testing::ExpectUsage;
+using palpa::testing::Has;
+using palpa::testing::OwnTempPath;
+using palpa::testing::Palpa;
+
 namespace fs = std::filesystem;
-namespace ph = palpa::host;
-namespace pt = palpa::testing;
 
 namespace {
 
-std::string ReadAll(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+/// Nine trials: three conditions twice at once, then once each finger in turn.
+const char kStudy[] = PALPA_TEST_DATA_DIR "/study_short.json";
+
+size_t Lines(const std::string& path) {
+  std::ifstream in(path);
+  size_t n = 0;
+  for (std::string line; std::getline(in, line);) ++n;
+  return n;
+}
+
+/// `palpa ARGS` as a child of this process (exec'd, so its pid is palpa's).
+pid_t Start(const std::string& args) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const std::string command =
+        std::string("exec env -u PALPA_DEVICE PALPA_STATE_DIR=/nonexistent ") + PALPA_CLI_PATH +
+        " " + args + " >/dev/null 2>&1";
+    execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  return pid;
 }
 
 }  // namespace
 
-TEST_GROUP(CliStudy) {
-  fs::path root;
-  std::string dirs;  ///< the session directories, as arguments
-  void setup() override {
-    root = pt::OwnTempPath("study");
-    fs::remove_all(root);
-    fs::create_directories(root);
-  }
-  void teardown() override { fs::remove_all(root); }
-  /// Each session written as the runner writes it: session.json whole, trials.jsonl a line per
-  /// trial (written at once here: a flush per line is the records tests' business).
-  void Write(const std::vector<ph::SessionRecords>& sessions) {
-    for (const ph::SessionRecords& s : sessions) {
-      const fs::path dir = root / s.dir;
-      fs::create_directories(dir);
-      CHECK(ph::WriteSession(dir, s.session).ok());
-      std::string lines;
-      for (const ph::TrialRecord& t : s.trials) lines += ph::TrialLine(t) + "\n";
-      CHECK(ph::WriteFileWhole(dir / ph::kTrialsFileName, lines).ok());
-      dirs += " " + dir.string();
-    }
-  }
-};
+TEST_GROUP(CliStudy){};
 
-TEST(CliStudy, ReportsTheThesisShapedStudy) {
-  std::vector<ph::SessionRecords> sessions = pt::ThesisShapedStudy();
-  pt::AddStaircase(sessions[0], {10, 8, 6, 4, 5, 6, 5, 4}, {1, 3, 5, 7});
-  Write(sessions);
-  const fs::path out = root / "out";
-  const pt::Run r = pt::Palpa("study report" + dirs + " --out " + out.string());
-  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
-  CHECK_TEXT(pt::Has(r, "study pneumatic: 12 sessions"), r.output.c_str());
-  CHECK_TEXT(pt::Has(r, "Se  sequential 88.5 % [82.5, 92.6] (138/156), simultaneous 93.6 %"),
-             r.output.c_str());
-  for (const char* f : {"report.html", "sessions.csv", "blocks.csv", "conditions.csv",
-                        "participants.csv", "comparisons.csv", "times.csv", "staircases.csv"})
-    CHECK_TEXT(fs::is_regular_file(out / f), f);
-  STRCMP_CONTAINS("one-finger,sequential,168,504,138,21,327,18,",
-                  ReadAll(out / "blocks.csv").c_str());
-  STRCMP_CONTAINS("P1,jnd,kPa,8,4,4,true,5.5,30,", ReadAll(out / "staircases.csv").c_str());
-  // Every session's provenance is listed.
-  const std::string provenance = ReadAll(out / "sessions.csv");
-  for (int p = 1; p <= 12; ++p)
-    STRCMP_CONTAINS((root / ("P" + std::to_string(p))).c_str(), provenance.c_str());
-  STRCMP_CONTAINS("1.4.0,c0ffee12,0x5eed,sim,7,12,finger1.json=", provenance.c_str());
-  // --json: the same figures for a program.
-  const pt::Run j = pt::Palpa("--json study report" + dirs + " --out " + out.string(), "", false);
-  LONGS_EQUAL_TEXT(0, j.code, j.output.c_str());
-  const auto doc = nlohmann::json::parse(j.output);
-  CHECK_EQUAL(12, doc["sessions"].get<int>());
-  DOUBLES_EQUAL(138.0 / 156, doc["comparison"][0]["sequential"].get<double>(), 1e-12);
+TEST(CliStudy, ShowPrintsTheResolvedStudyAndNamesABadField) {
+  const auto shown = Palpa("--json study show thesis-pneumatic");
+  LONGS_EQUAL_TEXT(0, shown.code, shown.output.c_str());
+  const auto j = nlohmann::json::parse(shown.output);
+  LONGS_EQUAL(14, j["conditions"].size());
+  STRCMP_EQUAL("sequential", j["blocks"][0]["mode"].get<std::string>().c_str());
+  const std::string bad = OwnTempPath("bad-study.json");
+  std::stringstream text;
+  text << std::ifstream(kStudy).rdbuf();
+  std::string edited = text.str();
+  edited.replace(edited.find("\"repetitions\": 2"), 16, "\"repetitions\": -1");
+  std::ofstream(bad) << edited;
+  const auto refused = Palpa("study show " + bad);
+  LONGS_EQUAL(2, refused.code);
+  CHECK_TEXT(Has(refused, "line 8: blocks[0].repetitions"), refused.output.c_str());
+  fs::remove(bad);
+  ExpectUsage("study run thesis-pneumatic --out /tmp/x", "--participant ID is missing");
+  ExpectUsage(
+      "study run thesis-pneumatic --participant P1 --out /tmp/x --device tcp:127.0.0.1:1 "
+      "--simulated-participant 1",
+      "a sim: device only");
 }
 
-TEST(CliStudy, RefusalsExitTwoNamingWhatAndWhere) {
-  std::vector<ph::SessionRecords> sessions = pt::ThesisShapedStudy();
-  sessions.resize(2);
-  sessions[1].session.study["name"] = "jamming";
-  Write(sessions);
-  const std::string p1 = (root / "P1").string(), p2 = (root / "P2").string();
-  const std::string out = (root / "out").string();
-  pt::ExpectUsage("study report" + dirs + " --out " + out,
-                  p2 + ": study \"jamming\", but " + p1 + " is study \"pneumatic\"");
-  CHECK_FALSE(fs::exists(out));  // a refused command creates nothing
-  pt::ExpectUsage("study report " + p1 + " " + p1, p1 + ": named twice");
-  pt::ExpectUsage("study report " + (root / "none").string(),
-                  (root / "none/session.json").string());
-  pt::ExpectUsage("study report", "needs at least one session directory");
-  pt::ExpectUsage("study report " + p1 + " --out", "--out");
-  pt::ExpectUsage("study report " + p1 + " --outt x", "unknown option '--outt'");
-  pt::ExpectUsage("study", "a subcommand is missing");
-  pt::ExpectUsage("study reprot", "did you mean 'report'?");
-  // A damaged journal line: file, line and field.
-  std::ofstream(root / "P1" / ph::kTrialsFileName, std::ios::app)
-      << "{\"index\": 40, \"kind\": \"detection\"}\n";
-  pt::ExpectUsage("study report " + p1,
-                  (root / "P1/trials.jsonl").string() + ": line 31: block: missing");
-  // OUT that is a file, not a directory.
-  std::ofstream(root / "file") << "x";
-  pt::ExpectUsage("study report " + p2 + " --out " + (root / "file").string(), "not a directory");
+TEST(CliStudy, KilledMidSessionAndResumed) {
+  const std::string dir = OwnTempPath("study-P07");
+  fs::remove_all(dir);
+  const std::string run = std::string("study run ") + kStudy + " --participant P07 --out " + dir +
+                          " --device sim:thesis-pneumatic-3 --speed 10 --simulated-participant 3";
+  const pid_t child = Start(run);
+  // SIGKILL once three trials are in: no chance to close anything.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (Lines(dir + "/trials.jsonl") < 3 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  kill(child, SIGKILL);
+  int status = 0;
+  waitpid(child, &status, 0);
+  CHECK(WIFSIGNALED(status));
+  const size_t kept = Lines(dir + "/trials.jsonl");
+  CHECK_TEXT(kept >= 3 && kept < 9, std::to_string(kept).c_str());
+
+  // The same participant again without --resume: refused, nothing touched.
+  const auto reused = Palpa(run);
+  LONGS_EQUAL(1, reused.code);
+  CHECK_TEXT(Has(reused, "already holds an incomplete session of participant P07"),
+             reused.output.c_str());
+  LONGS_EQUAL(kept, Lines(dir + "/trials.jsonl"));
+
+  const auto resumed = Palpa(run + " --resume");
+  LONGS_EQUAL_TEXT(0, resumed.code, resumed.output.c_str());
+  std::ifstream in(dir + "/session.json");
+  const auto session = nlohmann::json::parse(in);
+  CHECK(session["complete"].get<bool>());
+  LONGS_EQUAL(1, session["resumed"].size());
+  LONGS_EQUAL(1, session["provenance"]["sim"]["seed"].get<int>());
+  std::ifstream trials(dir + "/trials.jsonl");
+  std::set<int> seen;
+  int i = 0;
+  for (std::string line; std::getline(trials, line); ++i) {
+    const auto t = nlohmann::json::parse(line);  // every line whole
+    LONGS_EQUAL(i, t["index"].get<int>());       // in the planned order, none twice
+    CHECK(seen.insert(t["index"].get<int>()).second);
+    CHECK(session["order"][i]["condition"] == t["condition"]);
+  }
+  LONGS_EQUAL(9, i);
+  fs::remove_all(dir);
 }
