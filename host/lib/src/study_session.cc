@@ -82,8 +82,12 @@ std::vector<double> StudyValues(const Study& study) {
 
 double ResetValue(const Study& study) {
   const std::vector<double> v = StudyValues(study);
-  const bool up = LargerIsStiffer(study) != study.approach_from_above;  // the softest: smallest
-  return up ? *std::min_element(v.begin(), v.end()) : *std::max_element(v.begin(), v.end());
+  if (study.approach_from_above) {
+    return LargerIsStiffer(study) ? *std::max_element(v.begin(), v.end())
+                                  : *std::min_element(v.begin(), v.end());
+  }
+  // Vented: 0 in every unit but stiffness, whose softest a finger can show is its own curve's.
+  return study.unit == "N/mm" ? *std::min_element(v.begin(), v.end()) : 0.0;
 }
 
 Outcome CheckBoardForStudy(Device& device, const Study& study) {

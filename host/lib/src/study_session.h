@@ -15,8 +15,9 @@ namespace palpa::host {
 std::string UtcNow();
 /// Every value a study shows (its conditions, its staircases' reference and start).
 std::vector<double> StudyValues(const Study& study);
-/// The state each trial starts from: the softest value the study shows (approach from below) or
-/// the stiffest (from above).
+/// The state each trial starts from: vented, 0 in the study's unit (in N/mm, the softest value
+/// the study shows) when targets are approached from below; the stiffest value it shows from
+/// above.
 double ResetValue(const Study& study);
 /// The board has the study's fingers, of its kind, its bias, and every value within the cap.
 Outcome CheckBoardForStudy(Device& device, const Study& study);

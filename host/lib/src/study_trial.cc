@@ -153,6 +153,10 @@ Result<TrialRecord> PlayTrial(Device& device, const Study& study, const Schedule
     const bool reversal = !planned.practice && next.Answer(block.staircase, correct);
     r.staircase = {block.staircase.reference, comparison, study.unit, correct, reversal};
     r.extra["reversals_used"] = block.staircase.reversals_used;
+    // Which finger showed what, and which the participant named: the record keeps no stimulus
+    // or answer of its own for a staircase trial.
+    r.extra["values"] = values;
+    r.extra["marked"] = answer.fingers;
   }
   return r;
 }

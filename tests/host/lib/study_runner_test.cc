@@ -14,7 +14,7 @@
 #include "palpa/host/study_participant.h"
 #include "palpa/host/study_runner.h"
 #include "palpa/host/transport.h"
-#include "study_settle.h"
+#include "study_session.h"
 
 #include "CppUTest/TestHarness.h"
 
@@ -293,4 +293,68 @@ TEST(StudyRun, ABoardThatDoesNotFitIsRefusedBeforeAnythingIsSet) {
   o.participant = "../P04";
   CHECK(ph::RunStudy(*board.device, Short(), participant, o).message.find("participant") == 0);
   CHECK_FALSE(fs::exists(o.out_dir));
+}
+
+TEST_GROUP(StudyStaircase){};
+
+TEST(StudyStaircase, TwoDownOneUpWithItsReversals) {
+  ph::Staircase s;
+  s.reference = 10;
+  s.start = 20;
+  s.step = 2;
+  s.reversals = 3;
+  ph::StaircaseState st;
+  st.difference = 10;
+  // Two right: harder (8); one wrong: easier (10), a reversal; two right: harder (8), another;
+  // one right, one wrong: easier (10), the third.
+  const bool answers[] = {true, true, false, true, true, true, false};
+  const double after[] = {10, 8, 10, 10, 8, 8, 10};
+  const bool reversal[] = {false, false, true, false, true, false, true};
+  for (size_t i = 0; i < 7; ++i) {
+    CHECK_FALSE(st.done(s));
+    CHECK_EQUAL(reversal[i], st.Answer(s, answers[i]));
+    DOUBLES_EQUAL(after[i], st.difference, 1e-12);
+  }
+  CHECK(st.done(s));
+  // Never below a step, never easier than the start.
+  for (int i = 0; i < 20; ++i) st.Answer(s, true);
+  DOUBLES_EQUAL(2, st.difference, 1e-12);
+  for (int i = 0; i < 20; ++i) st.Answer(s, false);
+  DOUBLES_EQUAL(10, st.difference, 1e-12);
+}
+
+TEST(StudyStaircase, AStaircaseBlockOnTheSimulatedBoard) {
+  SimBoard board;
+  auto study = ph::ParseStudy(R"({
+    "schema": "palpa-study", "schema_version": 1, "name": "jnd", "finger_kind": "pneumatic",
+    "fingers": 3, "unit": "kPa", "cap_kpa": 40, "reset": {"hold_ms": 100},
+    "blocks": [{"name": "jnd", "kind": "staircase", "mode": "simultaneous",
+                "staircase": {"reference": 10, "start": 30, "step": 4, "reversals": 3,
+                              "reversals_used": 2, "max_trials": 14, "fingers": [1, 3]}}]})");
+  CHECK_TEXT(study.ok(), study.message.c_str());
+  ph::SimulatedParticipant participant(board.truth, {});
+  ph::StudyRunOptions o = Session("S01");
+  const ph::Outcome done = ph::RunStudy(*board.device, study.value, participant, o);
+  CHECK_TEXT(done.ok(), done.message.c_str());
+  // The comparisons replayed from the records' answers by the rule: the runner followed it.
+  ph::StaircaseState replay;
+  replay.difference = 20;
+  const std::vector<nlohmann::json> trials = Trials(o.out_dir);
+  CHECK(!trials.empty() && trials.size() <= 14);
+  for (const nlohmann::json& t : trials) {
+    STRCMP_EQUAL("staircase", t["kind"].get<std::string>().c_str());
+    const nlohmann::json& s = t["staircase"];
+    DOUBLES_EQUAL(10 + replay.difference, s["comparison"].get<double>(), 1e-9);
+    const nlohmann::json& values = t["values"];
+    DOUBLES_EQUAL(0, values[1].get<double>(), 0);  // the middle finger at the reset state
+    const nlohmann::json& marked = t["marked"];
+    const size_t named = marked[0].get<bool>() ? 0 : 2;
+    CHECK(marked[named].get<bool>() && !marked[1].get<bool>());
+    CHECK_EQUAL(values[named].get<double>() == s["comparison"].get<double>(),
+                s["correct"].get<bool>());
+    CHECK_EQUAL(replay.Answer(study.value.blocks[0].staircase, s["correct"].get<bool>()),
+                s["reversal"].get<bool>());
+  }
+  CHECK(replay.done(study.value.blocks[0].staircase));
+  fs::remove_all(o.out_dir);
 }

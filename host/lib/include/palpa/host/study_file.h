@@ -66,9 +66,10 @@ struct Study {
   /// No stimulus may need more than this drive (kPa, magnitude): checked on the file's values
   /// where they are pressures, and through the finger's curves before the first trial.
   double cap_kpa = 100;
-  /// Each trial starts from every finger at `reset` (the softest: vented) held reset_ms, so
-  /// every target is approached from below (rising) — or, approach "above", from the study's
-  /// stiffest value down. Hysteresis otherwise carries each trial into the next.
+  /// Each trial starts from every finger vented (0 in the study's unit; in N/mm the softest value
+  /// the study shows) held reset_ms, so every target is approached from below (rising) — or,
+  /// approach "above", from the study's stiffest value down. Hysteresis otherwise carries each
+  /// trial into the next.
   bool approach_from_above = false;
   int reset_ms = 500;
   /// Settled: every driven line's outlet reading steady within tolerance_kpa for hold_ms, within
