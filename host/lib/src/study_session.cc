@@ -6,9 +6,9 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <filesystem>
 
 #include "number_text.h"
@@ -17,6 +17,7 @@
 #include "palpa/host/file_read.h"
 #include "palpa/host/scene_predict.h"
 #include "palpa/protocol/sha256.h"
+#include "recording_format.h"
 
 #ifndef PALPA_VERSION_TEXT
 #define PALPA_VERSION_TEXT "unknown"
@@ -59,12 +60,8 @@ Result<double> DriveKpa(Device& device, const Study& study, uint8_t f, double va
 }  // namespace
 
 std::string UtcNow() {
-  const std::time_t t = std::time(nullptr);
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char b[32];
-  std::strftime(b, sizeof(b), "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return b;
+  return recording::UtcText(
+      std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count());
 }
 
 std::vector<double> StudyValues(const Study& study) {
