@@ -117,3 +117,28 @@ TEST(CliStudy, KilledMidSessionAndResumed) {
   LONGS_EQUAL(9, i);
   fs::remove_all(dir);
 }
+
+TEST(CliStudy, AnswersTypedAtTheTerminalAndABadOneAskedAgain) {
+  const std::string file = OwnTempPath("one-trial.json");
+  const std::string dir = OwnTempPath("study-T1");
+  fs::remove_all(dir);
+  std::ofstream(file) << R"({"schema": "palpa-study", "schema_version": 1, "name": "one",
+    "finger_kind": "pneumatic", "fingers": 3, "unit": "kPa", "cap_kpa": 40,
+    "reset": {"hold_ms": 100}, "conditions": [{"values": [0, 30, 0]}],
+    "blocks": [{"name": "b", "mode": "simultaneous"}]})";
+  const auto r = palpa::testing::Shell(
+      std::string("printf '4\\n1 2 3\\n2\\n' | env -u PALPA_DEVICE ") + PALPA_CLI_PATH +
+      " study run " + file + " --participant T1 --out " + dir + " --speed 10");
+  LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
+  CHECK_TEXT(Has(r, "\"4\": type n for no tumour, or the fingers' numbers (1 to 3)"),
+             r.output.c_str());
+  CHECK_TEXT(Has(r, "a tumour under every finger is no tumour"), r.output.c_str());
+  std::ifstream in(dir + "/trials.jsonl");
+  std::string line;
+  CHECK(static_cast<bool>(std::getline(in, line)));
+  const auto t = nlohmann::json::parse(line);
+  CHECK(t["answer"]["fingers"] == nlohmann::json({false, true, false}));
+  CHECK(t["expected"] == nlohmann::json({false, true, false}));
+  fs::remove_all(dir);
+  fs::remove(file);
+}
