@@ -61,20 +61,33 @@ Outcome CheckOneStudy(const std::vector<SessionRecords>& sessions) {
   return {};
 }
 
-/// study.staircase.reversals_used: how many of the last reversals the JND averages.
-Result<int> ReversalsUsed(const SessionRecords& s) {
+/// The staircase block's reversals_used (study.blocks[i].staircase, as the runner wrote the study):
+/// how many of the last reversals the JND averages.
+Result<int> ReversalsUsed(const SessionRecords& s, const std::string& block) {
   const json& study = s.session.study;
-  const json* v = nullptr;
-  if (study.contains("staircase") && study["staircase"].is_object() &&
-      study["staircase"].contains("reversals_used"))
-    v = &study["staircase"]["reversals_used"];
-  if (v == nullptr || !v->is_number_integer() || v->get<long>() < 1 || v->get<long>() > 1000) {
-    return Outcome::Fail(Status::kInvalidArgument,
-                         s.dir + "/" + kSessionFileName +
-                             ": study.staircase.reversals_used: must be an integer, 1 … 1000 "
-                             "(the staircase's JND averages that many last reversals)");
+  const std::string where = s.dir + "/" + kSessionFileName + ": ";
+  const json* blocks = study.contains("blocks") ? &study["blocks"] : nullptr;
+  if (blocks != nullptr && blocks->is_array()) {
+    for (size_t i = 0; i < blocks->size(); ++i) {
+      const json& b = (*blocks)[i];
+      if (!b.is_object() || !b.contains("name") || b["name"] != block) continue;
+      const std::string field = "study.blocks[" + std::to_string(i) + "].staircase.reversals_used";
+      const json* v = b.contains("staircase") && b["staircase"].is_object() &&
+                              b["staircase"].contains("reversals_used")
+                          ? &b["staircase"]["reversals_used"]
+                          : nullptr;
+      if (v == nullptr || !v->is_number_integer() || v->get<long>() < 1 || v->get<long>() > 1000) {
+        return Outcome::Fail(Status::kInvalidArgument,
+                             where + field +
+                                 ": must be an integer, 1 … 1000 (the staircase's JND averages "
+                                 "that many last reversals)");
+      }
+      return static_cast<int>(v->get<long>());
+    }
   }
-  return static_cast<int>(v->get<long>());
+  return Outcome::Fail(Status::kInvalidArgument,
+                       where + "study.blocks: no block \"" + block +
+                           "\", which trials.jsonl's staircase trials name");
 }
 
 void Finish(StaircaseSummary& s, const std::vector<const TrialRecord*>& trials) {
@@ -231,17 +244,15 @@ Result<StudyAnalysis> AnalyseStudy(std::vector<SessionRecords> sessions) {
           })
           .tally.Add(t);
     }
-    if (!staircase_order.empty()) {
-      const Result<int> used = ReversalsUsed(s);
+    for (const std::string& block : staircase_order) {
+      const Result<int> used = ReversalsUsed(s, block);
       if (!used.ok()) return used.outcome();
-      for (const std::string& block : staircase_order) {
-        StaircaseSummary st;
-        st.participant = who;
-        st.block = block;
-        st.reversals_used = used.value;
-        Finish(st, staircases[block]);
-        a.staircases.push_back(st);
-      }
+      StaircaseSummary st;
+      st.participant = who;
+      st.block = block;
+      st.reversals_used = used.value;
+      Finish(st, staircases[block]);
+      a.staircases.push_back(st);
     }
     if (!s.session.complete) {
       a.notes.push_back(s.dir + ": the session of " + who +

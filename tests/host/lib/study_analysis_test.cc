@@ -129,11 +129,18 @@ TEST(StudyAnalysis, StaircaseJndIsTheMeanOfTheLastReversals) {
   CHECK_TRUE(s.enough);
   CHECK_FALSE(a.staircases[1].enough);
   DOUBLES_EQUAL(8, a.staircases[1].jnd, 1e-12);
-  // Without the study's reversals_used there is no JND to give: refused, naming the field.
-  for (ph::SessionRecords& r : sessions) r.session.study.erase("staircase");
+  // Without the block's reversals_used there is no JND to give: refused, naming the field.
+  for (ph::SessionRecords& r : sessions)
+    r.session.study["blocks"][2]["staircase"].erase("reversals_used");
   const auto refused = ph::AnalyseStudy(sessions);
   CHECK_FALSE(refused.ok());
-  STRCMP_CONTAINS("P1/session.json: study.staircase.reversals_used", refused.message.c_str());
+  STRCMP_CONTAINS("P1/session.json: study.blocks[2].staircase.reversals_used",
+                  refused.message.c_str());
+  // Nor for staircase trials of a block the study does not have.
+  for (ph::SessionRecords& r : sessions) r.session.study["blocks"][2]["name"] = "other";
+  const auto unknown = ph::AnalyseStudy(sessions);
+  CHECK_FALSE(unknown.ok());
+  STRCMP_CONTAINS("P1/session.json: study.blocks: no block \"jnd\"", unknown.message.c_str());
 }
 
 TEST(StudyAnalysis, SessionsOfAnotherStudyOrAParticipantTwiceAreRefused) {

@@ -24,8 +24,10 @@ inline constexpr bool kStimuli14[14][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {1, 
 inline host::StudySession StudySessionFor(const std::string& study, const std::string& who) {
   host::StudySession s;
   s.study = {{"name", study},
-             {"blocks", {"one-finger", "three-finger"}},
-             {"staircase", {{"reversals_used", 4}}}};
+             {"blocks",
+              {{{"name", "one-finger"}, {"kind", "detection"}},
+               {{"name", "three-finger"}, {"kind", "detection"}},
+               {{"name", "jnd"}, {"kind", "staircase"}, {"staircase", {{"reversals_used", 4}}}}}}};
   s.participant = who;
   s.seed = 1000 + who.size();
   s.provenance = {"0.9.0",

@@ -93,7 +93,7 @@ struct StudyAnalysis {
 
 /// Pools the sessions of one study. Refused (invalid argument, naming both directories): sessions
 /// of different studies, or of one study name run with different definitions, or one participant
-/// twice; staircase trials without study.staircase.reversals_used.
+/// twice; staircase trials whose block (study.blocks[i], by name) has no staircase.reversals_used.
 Result<StudyAnalysis> AnalyseStudy(std::vector<SessionRecords> sessions);
 
 }  // namespace palpa::host
