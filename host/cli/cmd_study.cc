@@ -245,7 +245,7 @@ const Subcommand kSubcommands[] = {
 int CmdStudy(Context& c, const std::vector<std::string>& args) {
   std::vector<std::string> names;
   for (const Subcommand& s : kSubcommands) names.push_back(s.name);
-  if (args.empty()) return Usage("study", "expected list, show, run or report");
+  if (args.empty()) return Usage("study", "a subcommand is missing: list, show, run or report");
   for (const Subcommand& s : kSubcommands) {
     if (args[0] == s.name) return s.run(c, {args.begin() + 1, args.end()});
   }
