@@ -23,7 +23,7 @@ std::string ReadAll(const fs::path& path) {
 
 }  // namespace
 
-TEST_GROUP(CliStudy) {
+TEST_GROUP(CliStudyReport) {
   fs::path root;
   std::string dirs;  ///< the session directories, as arguments
   void setup() override {
@@ -47,7 +47,7 @@ TEST_GROUP(CliStudy) {
   }
 };
 
-TEST(CliStudy, ReportsTheThesisShapedStudy) {
+TEST(CliStudyReport, ReportsTheThesisShapedStudy) {
   std::vector<ph::SessionRecords> sessions = pt::ThesisShapedStudy();
   pt::AddStaircase(sessions[0], {10, 8, 6, 4, 5, 6, 5, 4}, {1, 3, 5, 7});
   Write(sessions);
@@ -76,7 +76,7 @@ TEST(CliStudy, ReportsTheThesisShapedStudy) {
   DOUBLES_EQUAL(138.0 / 156, doc["comparison"][0]["sequential"].get<double>(), 1e-12);
 }
 
-TEST(CliStudy, RefusalsExitTwoNamingWhatAndWhere) {
+TEST(CliStudyReport, RefusalsExitTwoNamingWhatAndWhere) {
   std::vector<ph::SessionRecords> sessions = pt::ThesisShapedStudy();
   sessions.resize(2);
   sessions[1].session.study["name"] = "jamming";
