@@ -16,7 +16,6 @@
 #include <string>
 #include <vector>
 
-#include "palpa/host/scene_file.h"
 #include "scene_pass.h"
 #include "scene_paths.h"
 
@@ -106,23 +105,15 @@ int Table(const ph::SceneRenderer& scene, bool jamming, const std::vector<uint8_
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::fprintf(stderr, "usage: palpa_scene_bench SCENE.json\n");
-    return 2;
-  }
-  const auto spec = ph::LoadScene(argv[1]);
-  if (!spec.ok()) return std::fprintf(stderr, "%s\n", spec.message.c_str()), 1;
-  const auto tissue = ph::LoadSceneTissue(spec.value);
-  if (!tissue.ok()) return std::fprintf(stderr, "%s\n", tissue.message.c_str()), 1;
-  const auto scene = pb::PneumaticScene(spec.value, tissue.value);
-  if (!scene.ok()) return std::fprintf(stderr, "%s\n", scene.message.c_str()), 1;
+  int status = 0;
+  const auto scenes = pb::LoadBenchScenes(argc, argv, "palpa_scene_bench", &status);
+  if (!scenes) return status;
   // Along the mid-line fingers 0 and 1 cross the cubes; along the second line finger 2 does.
   for (const double y : {pb::kMidLineY, pb::kSecondLineY}) {
-    if (Table(scene.value, false, spec.value.board_fingers, "scene " + spec.value.name, y) != 0)
+    if (Table(scenes->pneumatic, false, scenes->spec.board_fingers, "scene " + scenes->spec.name,
+              y) != 0)
       return 1;
   }
-  const auto jamming = pb::JammingPairScene(tissue.value);
-  if (!jamming.ok()) return std::fprintf(stderr, "%s\n", jamming.message.c_str()), 1;
-  return Table(jamming.value, true, {0, 1},
+  return Table(scenes->jamming, true, {0, 1},
                "the jamming pair (20 mm, a 4 mm disc) on the same tissue", pb::kMidLineY);
 }

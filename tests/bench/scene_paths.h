@@ -1,10 +1,13 @@
 // The scene benchmarks' passes across the three-cube phantom — straight at a constant speed, and
 // hand-like: speed varying, stops and a reversal over cube B; a position per millisecond — and
-// their scenes: the example's pneumatic triangle and the jamming pair, and the target range.
+// their scenes, from the scene file a benchmark is given: its pneumatic fingers (the example's
+// triangle) and the jamming pair; and the target range.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -79,6 +82,38 @@ inline ph::Result<ph::SceneRenderer> JammingPairScene(const ph::TissueMap& tissu
          {}});
   }
   return ph::SceneRenderer::Make(tissue, ph::JammingPairLayout(20, 4), {}, pair);
+}
+
+/// A scene benchmark's scenes, from the scene file it is given: the file's scene on its pneumatic
+/// fingers (nominal curves), and the jamming pair on the same tissue.
+struct BenchScenes {
+  ph::SceneSpec spec;
+  ph::SceneRenderer pneumatic, jamming;
+};
+
+/// `program SCENE.json`'s scenes; nullopt, said on stderr, with the exit status in `status` (2: the
+/// command line, 1: a scene that cannot be made).
+inline std::optional<BenchScenes> LoadBenchScenes(int argc, char** argv, const char* program,
+                                                  int* status) {
+  *status = 1;
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: %s SCENE.json\n", program);
+    *status = 2;
+    return std::nullopt;
+  }
+  BenchScenes out;
+  const auto spec = ph::LoadScene(argv[1]);
+  if (!spec.ok()) return std::fprintf(stderr, "%s\n", spec.message.c_str()), std::nullopt;
+  const auto tissue = ph::LoadSceneTissue(spec.value);
+  if (!tissue.ok()) return std::fprintf(stderr, "%s\n", tissue.message.c_str()), std::nullopt;
+  auto scene = PneumaticScene(spec.value, tissue.value);
+  if (!scene.ok()) return std::fprintf(stderr, "%s\n", scene.message.c_str()), std::nullopt;
+  auto jamming = JammingPairScene(tissue.value);
+  if (!jamming.ok()) return std::fprintf(stderr, "%s\n", jamming.message.c_str()), std::nullopt;
+  out.spec = spec.value;
+  out.pneumatic = std::move(scene.value);
+  out.jamming = std::move(jamming.value);
+  return out;
 }
 
 }  // namespace palpa::bench
