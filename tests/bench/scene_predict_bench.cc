@@ -5,7 +5,8 @@
 // (scene_predict.h). Prints, per pass, the error (RMS of every finger, of the target range), the
 // edge lag at cube B's near face (finger 0, first crossing) and the worst edge lag at any cube face
 // any finger crosses either way (scene_edges.h), with prediction off and on; the worst change an
-// edge's lag takes from off to on; and how many samples were predicted. Then the jamming pair.
+// edge's lag takes from off to on; and how many samples were predicted. Then every edge of the
+// issue's goal pass (hand-like, 30 mm/s) off and on. Then the jamming pair.
 //   palpa_scene_predict_bench SCENE.json
 #include <algorithm>
 #include <cmath>
@@ -75,14 +76,30 @@ std::string Mm(double v) {
   return b;
 }
 
+/// Each edge's lag off and on, a Markdown row each.
+std::vector<std::string> EdgeRows(const Scored& off, const Scored& on) {
+  std::vector<std::string> rows;
+  for (size_t k = 0; k < off.edges.size() && k < on.edges.size(); ++k) {
+    const pb::EdgeCrossing& a = off.edges[k];
+    const double change = std::fabs(on.edges[k].lag_mm) - std::fabs(a.lag_mm);
+    char row[160];
+    std::snprintf(row, sizeof(row), "| %zu | %g mm %s | %s | %s | %s |", a.finger, a.face_mm,
+                  a.direction > 0 ? "→" : "←", Mm(a.lag_mm).c_str(), Mm(on.edges[k].lag_mm).c_str(),
+                  std::isnan(change) ? "—" : (change >= 0 ? "+" + Mm(change) : Mm(change)).c_str());
+    rows.push_back(row);
+  }
+  return rows;
+}
+
 int Row(const ph::SceneRenderer& scene, bool jamming, const std::vector<uint8_t>& fingers,
         const std::string& name, const std::vector<double>& path, double range, double tremor,
-        double* horizon_s, std::vector<std::string>* notes) {
+        double* horizon_s, std::vector<std::string>* notes, std::vector<std::string>* edges) {
   Scored off, on;
   if (!Run(scene, jamming, fingers, path, range, false, tremor, &off) ||
       !Run(scene, jamming, fingers, path, range, true, tremor, &on))
     return 1;
   *horizon_s = on.horizon_s;
+  if (edges != nullptr) *edges = EdgeRows(off, on);
   // The same path crosses the same edges in the same order, whatever is rendered.
   double change = -INFINITY;
   std::string where;
@@ -137,6 +154,7 @@ int Table(const ph::SceneRenderer& scene, bool jamming, const std::vector<uint8_
     std::string name;
     std::vector<double> path;
     double tremor;
+    bool every_edge = false;  ///< the pass the issue's goal is set on: each edge listed
   };
   std::vector<Pass> passes;
   for (const double v : {10.0, 20.0, 30.0, 45.0, 60.0}) {
@@ -147,21 +165,30 @@ int Table(const ph::SceneRenderer& scene, bool jamming, const std::vector<uint8_
   for (const double v : {10.0, 20.0, 30.0, 45.0}) {
     char name[64];
     std::snprintf(name, sizeof(name), "hand-like, %g mm/s ± 50 %%", v);
-    passes.push_back({name, pb::HandLike(v), 0});
+    passes.push_back({name, pb::HandLike(v), 0, v == 30});
   }
   for (const double tremor : {0.05, 0.2}) {
     char name[64];
     std::snprintf(name, sizeof(name), "hand-like, 30 mm/s, %g mm tremor", tremor);
     passes.push_back({name, pb::HandLike(30), tremor});
   }
-  std::vector<std::string> notes;
+  std::vector<std::string> notes, edges;
+  std::string listed;
   for (const Pass& p : passes) {
-    if (Row(scene, jamming, fingers, p.name, p.path, hi - lo, p.tremor, &horizon, &notes) != 0)
+    if (Row(scene, jamming, fingers, p.name, p.path, hi - lo, p.tremor, &horizon, &notes,
+            p.every_edge ? &edges : nullptr) != 0)
       return 1;
+    if (p.every_edge) listed = p.name;
   }
   std::printf("\nprediction horizon: %.1f ms (the fingers' calibrated display delay)\n",
               horizon * 1e3);
   for (const std::string& n : notes) std::printf("%s\n", n.c_str());
+  std::printf(
+      "\nevery edge of %s, finger by finger and face by face, each face's crossings in turn:\n\n"
+      "| finger | face | off: edge lag | on: edge lag | change, off → on |\n"
+      "|---:|---|---:|---:|---:|\n",
+      listed.c_str());
+  for (const std::string& e : edges) std::printf("%s\n", e.c_str());
   return 0;
 }
 
