@@ -101,6 +101,29 @@ class ScenePass {
   /// Samples predicted over the last pass, of all it sent.
   size_t predicted() const { return predicted_; }
   size_t samples() const { return samples_; }
+  /// The calibration file of `finger` of unit kUnit behind `config`, run once per finger
+  /// (the study bench applies the same files to a palpa-sim of the same unit).
+  static const ph::CalibrationFile* FingerCalibrationFor(const std::string& config,
+                                                         uint8_t finger) {
+    static std::map<std::pair<std::string, uint8_t>, ph::CalibrationFile> known;
+    const auto found = known.find({config, finger});
+    if (found != known.end()) return &found->second;
+    testing::SimRig sim({config, finger, kUnit, kUnit});
+    calibration::Rig rig = sim.rig();
+    calibration::Journal journal;
+    calibration::CalibrationRun run;
+    const std::string serial = "U" + std::to_string(kUnit) + "-F" + std::to_string(finger);
+    const calibration::RunInfo info{serial, kUnit, "2026-11-26T00:00:00Z", "sim", serial + ".csv"};
+    const calibration::RigStatus status = calibration::RunCalibration(
+        rig, finger, calibration::ProtocolOptions{}, info, journal, nullptr, &run);
+    if (!status.ok()) {
+      std::fprintf(stderr, "calibrating finger %u failed: %s\n", finger, status.message.c_str());
+      return nullptr;
+    }
+    std::fprintf(stderr, "%s finger %u calibrated in %.0f s of rig time (%s)\n", config.c_str(),
+                 finger, sim.Now(), ph::CompensatorLabel(run.file).c_str());
+    return &(known[{config, finger}] = run.file);
+  }
   /// A hand's tremor (or a pad's noise): each input sample's x and y moved by a normal draw of
   /// this RMS (mm), the same draws every run.
   void SetTremor(double rms_mm) { tremor_mm_ = rms_mm; }
@@ -231,29 +254,6 @@ class ScenePass {
     calibrated_scene_ = std::make_unique<ph::SceneRenderer>(std::move(made.value));
     scene_ = calibrated_scene_.get();
     return true;
-  }
-  /// The calibration file of `finger` of unit kUnit behind `config`, run once per finger.
-  static const ph::CalibrationFile* FingerCalibrationFor(const std::string& config,
-                                                         uint8_t finger) {
-    static std::map<std::pair<std::string, uint8_t>, ph::CalibrationFile> known;
-    const auto found = known.find({config, finger});
-    if (found != known.end()) return &found->second;
-    testing::SimRig sim({config, finger, kUnit, kUnit});
-    calibration::Rig rig = sim.rig();
-    calibration::Journal journal;
-    calibration::CalibrationRun run;
-    const std::string serial = "U" + std::to_string(kUnit) + "-F" + std::to_string(finger);
-    const calibration::RunInfo info{serial, kUnit, "2026-11-26T00:00:00Z", "sim", serial + ".csv"};
-    const calibration::RigStatus status = calibration::RunCalibration(
-        rig, finger, calibration::ProtocolOptions{}, info, journal, nullptr, &run);
-    if (!status.ok()) {
-      std::fprintf(stderr, "scene bench: calibrating finger %u failed: %s\n", finger,
-                   status.message.c_str());
-      return nullptr;
-    }
-    std::fprintf(stderr, "scene bench: %s finger %u calibrated in %.0f s of rig time (%s)\n",
-                 config.c_str(), finger, sim.Now(), ph::CompensatorLabel(run.file).c_str());
-    return &(known[{config, finger}] = run.file);
   }
   /// A finger's true output in its unit: deformation (mm) or stiffness (N/mm).
   double True(const ps::PlantTruth& t, size_t f) const {
