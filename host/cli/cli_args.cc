@@ -100,8 +100,8 @@ host::Result<std::pair<uint8_t, double>> ParseLineArgument(const std::string& ar
   const host::Result<double> kpa = host::ParsePressureText(split.value);
   if (!kpa.ok()) {
     const bool not_a_number = kpa.message.rfind("expected", 0) == 0;
-    return Invalid("'" + arg + "': " +
-                   (not_a_number ? kpa.message + ", e.g. 2=30 or 6=-40kPa" : kpa.message));
+    return Invalid("'" + arg +
+                   "': " + (not_a_number ? kpa.message + ", e.g. 2=30 or 6=-40kPa" : kpa.message));
   }
   out.second = kpa.value;
   return out;
