@@ -135,6 +135,8 @@ host::Result<RunArgs> ParseRun(const std::vector<std::string>& args) {
   }
   if (r.study.empty()) return {Status::kInvalidArgument, "a STUDY is missing"};
   if (r.participant.empty()) return {Status::kInvalidArgument, "--participant ID is missing"};
+  if (const host::Outcome id = host::CheckParticipant(r.participant); !id.ok())
+    return {id.status, id.message};
   if (r.out.empty()) return {Status::kInvalidArgument, "--out DIR is missing"};
   return r;
 }

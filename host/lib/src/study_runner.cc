@@ -14,19 +14,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-Outcome CheckParticipant(const std::string& id) {
-  const bool ok = !id.empty() && id.size() <= 64 &&
-                  id.find_first_not_of(
-                      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
-                      "0123456789_.-") == std::string::npos &&
-                  id[0] != '.' && id[0] != '-';
-  if (ok) return {};
-  return Outcome::Fail(Status::kInvalidArgument,
-                       "participant \"" + id +
-                           "\": 1 to 64 letters, digits, '_', '.' or '-', not starting with "
-                           "'.' or '-'");
-}
-
 /// A fresh directory (missing, or empty) for a new session (none returned); the records in it
 /// for a resumed one.
 Result<std::optional<SessionRecords>> Claim(const Study& study, const StudyRunOptions& o,
@@ -85,6 +72,19 @@ class Released {
 };
 
 }  // namespace
+
+Outcome CheckParticipant(const std::string& id) {
+  const bool ok = !id.empty() && id.size() <= 64 &&
+                  id.find_first_not_of(
+                      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
+                      "0123456789_.-") == std::string::npos &&
+                  id[0] != '.' && id[0] != '-';
+  if (ok) return {};
+  return Outcome::Fail(Status::kInvalidArgument,
+                       "participant \"" + id +
+                           "\": 1 to 64 letters, digits, '_', '.' or '-', not starting with "
+                           "'.' or '-'");
+}
 
 Outcome RunStudy(Device& device, const Study& study, StudyParticipant& participant,
                  const StudyRunOptions& o) {

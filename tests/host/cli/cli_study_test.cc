@@ -68,6 +68,9 @@ TEST(CliStudy, ShowPrintsTheResolvedStudyAndNamesABadField) {
   CHECK_TEXT(Has(refused, "line 8: blocks[0].repetitions"), refused.output.c_str());
   fs::remove(bad);
   ExpectUsage("study run thesis-pneumatic --out /tmp/x", "--participant ID is missing");
+  // A bad id is a usage error, refused before any board is started.
+  ExpectUsage("study run thesis-pneumatic --participant ../P1 --out /tmp/x",
+              "participant \"../P1\": 1 to 64 letters");
   ExpectUsage(
       "study run thesis-pneumatic --participant P1 --out /tmp/x --device tcp:127.0.0.1:1 "
       "--simulated-participant 1",

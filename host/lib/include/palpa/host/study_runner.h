@@ -97,6 +97,10 @@ struct SettleLine {
 Outcome RunStudy(Device& device, const Study& study, StudyParticipant& participant,
                  const StudyRunOptions& options);
 
+/// A participant id, which names the session and its records: 1 to 64 letters, digits, '_', '.'
+/// or '-', not starting with '.' or '-'. Invalid argument, in words.
+Outcome CheckParticipant(const std::string& id);
+
 /// Checks an answer against the trial: one flag per finger; a tumour marks 1 … fingers − 1
 /// fingers, no tumour none; a staircase answer marks one of the two compared fingers.
 Outcome CheckAnswer(const TrialPrompt& trial, const StudyAnswer& answer);
