@@ -123,6 +123,7 @@ Outcome RunStudy(Device& device, const Study& study, StudyParticipant& participa
     session.extra["resumed"].push_back(resumed);
   }
   if (const Outcome w = WriteSession(o.out_dir, session); !w.ok()) return w;
+  if (o.on_started) o.on_started();
   const StudyPlan plan = PlanStudy(study, session.seed);
 
   // What is done, and where each staircase stands.
@@ -146,8 +147,10 @@ Outcome RunStudy(Device& device, const Study& study, StudyParticipant& participa
     if (o.progress) o.progress(n);
 
   Released released(device);
-  TelemetryClock clock(device, SettleRule(lines.value, study.tolerance_kpa * 1000,
-                                          study.band_kpa * 1000, study.hold_ms / 1000.0));
+  TelemetryClock clock(device,
+                       SettleRule(lines.value, study.tolerance_kpa * 1000, study.band_kpa * 1000,
+                                  study.hold_ms / 1000.0),
+                       o.stopped);
   const int total = static_cast<int>(plan.trials.size());
   bool played_any = false;
   for (const ScheduledTrial& t : plan.trials) {
@@ -155,6 +158,9 @@ Outcome RunStudy(Device& device, const Study& study, StudyParticipant& participa
     if (done.count(t.index)) continue;
     if (block.kind == BlockKind::kStaircase && !t.practice && stairs[t.block].done(block.staircase))
       continue;  // its reversals are in
+    if (o.stopped && o.stopped())
+      return Outcome::Fail(Status::kUnavailable, "stopped after " + std::to_string(done.size()) +
+                                                     " trials: --resume continues");
     if (t.break_before || (!played_any && !done.empty())) {
       device.Release();
       if (!participant.Break(static_cast<int>(done.size()), total))

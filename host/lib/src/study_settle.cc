@@ -60,8 +60,8 @@ void SettleRule::Add(double t_s, const std::vector<double>& outlet_pa,
   if (t_s - *within_since_ >= hold_s_) settled_ = within_since_;
 }
 
-TelemetryClock::TelemetryClock(Device& device, SettleRule rule)
-    : device_(device), rule_(std::move(rule)) {
+TelemetryClock::TelemetryClock(Device& device, SettleRule rule, std::function<bool()> stop)
+    : device_(device), rule_(std::move(rule)), stop_(std::move(stop)) {
   subscription_ = device_.Subscribe([this](const TelemetryFrame& f) { Take(f); });
 }
 
@@ -95,8 +95,10 @@ void TelemetryClock::Wait(double seconds) {
   const double until = now_s() + seconds;
   std::unique_lock<std::mutex> lock(mutex_);
   // A board that stops reporting for 2 s of wall time is gone: the caller finds out next.
-  while (now_s_ < until) {
-    if (!changed_.wait_for(lock, std::chrono::seconds(2), [&] { return now_s_ >= until; })) return;
+  while (now_s_ < until && !stopped()) {
+    if (!changed_.wait_for(lock, std::chrono::seconds(2),
+                           [&] { return now_s_ >= until || stopped(); }))
+      return;
   }
 }
 
@@ -104,9 +106,9 @@ std::optional<double> TelemetryClock::WaitSettled(double timeout_s) {
   const double until = now_s() + timeout_s;
   std::unique_lock<std::mutex> lock(mutex_);
   rule_.Restart();
-  while (!rule_.settled_s() && now_s_ < until) {
+  while (!rule_.settled_s() && now_s_ < until && !stopped()) {
     if (!changed_.wait_for(lock, std::chrono::seconds(2),
-                           [&] { return rule_.settled_s() || now_s_ >= until; }))
+                           [&] { return rule_.settled_s() || now_s_ >= until || stopped(); }))
       break;
   }
   return rule_.settled_s();

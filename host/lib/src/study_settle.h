@@ -6,6 +6,7 @@
 
 #include <condition_variable>
 #include <deque>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <vector>
@@ -41,13 +42,15 @@ class SettleRule {
 /// The board's clock, and the settle rule fed from the same telemetry.
 class TelemetryClock final : public BoardClock {
  public:
-  TelemetryClock(Device& device, SettleRule rule);
+  /// `stop`, optional: true once the session stops — every wait ends then.
+  TelemetryClock(Device& device, SettleRule rule, std::function<bool()> stop = nullptr);
   ~TelemetryClock() override;
   double now_s() override;
   void Wait(double seconds) override;
   /// Restarts the rule and waits until it says settled (the board time then), or `timeout_s`
   /// of board time passes (none).
   std::optional<double> WaitSettled(double timeout_s);
+  bool stopped() const { return stop_ && stop_(); }
 
  private:
   void Take(const TelemetryFrame& f);
@@ -57,6 +60,7 @@ class TelemetryClock final : public BoardClock {
   std::condition_variable changed_;
   double now_s_ = -1;
   SettleRule rule_;
+  std::function<bool()> stop_;
 };
 
 }  // namespace palpa::host

@@ -10,8 +10,11 @@
 namespace palpa::host {
 namespace {
 
-/// Every finger to its value in one Set: one frame, every finger changing on the same tick.
-Outcome SetAll(Device& device, const Study& study, const std::vector<double>& values) {
+/// Every finger to its value in one Set: one frame, every finger changing on the same tick. Never
+/// once the session is stopping: the board was released for the participant.
+Outcome SetAll(Device& device, const Study& study, const std::vector<double>& values,
+               TelemetryClock& clock) {
+  if (clock.stopped()) return Outcome::Fail(Status::kUnavailable, "stopped");
   std::vector<FingerRequest> requests;
   for (size_t f = 0; f < values.size(); ++f)
     requests.push_back({static_cast<uint8_t>(f), StudyRequest(study, values[f])});
@@ -20,8 +23,9 @@ Outcome SetAll(Device& device, const Study& study, const std::vector<double>& va
 
 Result<double> ShowAndSettle(Device& device, const Study& study, const std::vector<double>& values,
                              TelemetryClock& clock) {
-  if (const Outcome o = SetAll(device, study, values); !o.ok()) return o;
+  if (const Outcome o = SetAll(device, study, values, clock); !o.ok()) return o;
   const std::optional<double> settled = clock.WaitSettled(study.settle_timeout_ms / 1000.0);
+  if (clock.stopped()) return {Status::kUnavailable, "stopped"};
   if (!settled) {
     return {Status::kTimeout, "the display did not settle on " + ConditionName(values) + " " +
                                   study.unit + " within " +
@@ -89,7 +93,8 @@ Result<TrialRecord> PlayTrial(Device& device, const Study& study, const Schedule
     for (int f : c.tumour) expected[static_cast<size_t>(f)] = true;
   }
   // Reset: hysteresis would otherwise carry the last trial into this one.
-  if (const Outcome o = SetAll(device, study, std::vector<double>(values.size(), reset)); !o.ok())
+  if (const Outcome o = SetAll(device, study, std::vector<double>(values.size(), reset), clock);
+      !o.ok())
     return o;
   clock.Wait(study.reset_ms / 1000.0);
   auto trigger = [&](const char* kind, double board_s) {
@@ -115,7 +120,8 @@ Result<TrialRecord> PlayTrial(Device& device, const Study& study, const Schedule
       shown.push_back(Ms(s.value));
       participant.Feel(prompt, static_cast<int>(f), clock, s.value + block.present_ms / 1000.0);
     }
-    if (const Outcome o = SetAll(device, study, std::vector<double>(values.size(), reset)); !o.ok())
+    if (const Outcome o = SetAll(device, study, std::vector<double>(values.size(), reset), clock);
+        !o.ok())
       return o;
   }
   StudyAnswer answer;

@@ -41,7 +41,7 @@ Api::~Api() { device_.Unsubscribe(telemetry_subscription_); }
 
 ClientId Api::Connect(std::shared_ptr<Peer> peer, const std::string& description) {
   const ClientId id = next_id_++;
-  clients_[id] = Client{std::move(peer), description, {}, 0};
+  clients_[id] = Client{std::move(peer), description, {}, 0, {}, false};
   return id;
 }
 
@@ -135,6 +135,12 @@ void Api::GroupMethod(const MethodGroup& group, ClientId id, const rpc::Call& ca
                    nullptr};
   }
   if (prepared.error) return Answer(id, call, batch, rpc::ErrorAnswer(call.id, *prepared.error));
+  if (!prepared.join.empty()) {  // one channel of a group at a time
+    std::set<std::string>& channels = clients_[id].channels;
+    std::erase_if(channels, [&](const std::string& c) { return c.rfind(group.prefix, 0) == 0; });
+    channels.insert(prepared.join);
+    clients_[id].alone = prepared.join_alone;
+  }
   if (prepared.admit && !prepared.admit())  // carried by a job already queued
     return Answer(id, call, batch, rpc::Result(call.id, nullptr));
   const bool urgent = prepared.urgent, needs_control = prepared.needs_control;
@@ -186,6 +192,19 @@ void Api::Broadcast(const Json& notification) {
   for (auto& [id, client] : clients_) client.peer->Send(text);
 }
 
+void Api::SendChannels() {
+  for (const MethodGroup& g : groups_) {
+    if (!g.channel_notifications) continue;
+    for (Json& n : g.channel_notifications()) {
+      const std::string channel = n["channel"];
+      const std::string text = rpc::Text(rpc::Notification(n["method"], std::move(n["params"])));
+      for (auto& [id, client] : clients_) {
+        if (client.channels.count(channel)) client.peer->Send(text);
+      }
+    }
+  }
+}
+
 void Api::AddTruth(Json& params) {
   host::TruthReader::Sample truth;
   if (truth_ && truth_->Latest(truth)) {  // a simulated board: what the fingers really did
@@ -214,9 +233,10 @@ void Api::Tick(double now_s) {
     AddTruth(n["params"]);
     const std::string text = rpc::Text(rpc::Notification(n["method"], std::move(n["params"])));
     for (auto& [id, client] : clients_) {
-      if (!client.peer->SendDroppable(text)) ++client.telemetry_dropped;
+      if (!client.alone && !client.peer->SendDroppable(text)) ++client.telemetry_dropped;
     }
   }
+  SendChannels();
   if (now_s >= next_events_s_) {  // what happened to the link, told to everyone
     next_events_s_ = now_s + 0.1;
     for (const std::string& event : device_.link().TakeEvents()) {

@@ -82,6 +82,13 @@ struct StudyRunOptions {
   bool use_calibrations = true;
   std::function<void(const TriggerEvent&)> on_trigger;
   std::function<void(const std::string&)> progress;  ///< a line per trial, for the experimenter
+  /// The session is claimed (session.json written): a caller that started the run on a thread of
+  /// its own learns that the directory and the board were accepted.
+  std::function<void()> on_started;
+  /// Optional: true once the session is to stop (a participant's stop button). Nothing is set on
+  /// the board after it says so, waits on the board's clock end, and the run returns cancelled
+  /// with what was journalled kept (a resume continues).
+  std::function<bool()> stopped;
 };
 
 /// The trial's settle moment from its lines' telemetry (study_settle.cc).

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -66,6 +67,8 @@ class Api {
     std::string name;
     std::vector<Subscription> subscriptions;
     uint64_t telemetry_dropped = 0;
+    std::set<std::string> channels;  ///< the groups' channels joined ("study.participant")
+    bool alone = false;              ///< its channels only: no group's notification for all
   };
 
   /// One call: an answer now (server methods), later (board jobs) or none (notifications).
@@ -81,6 +84,8 @@ class Api {
   /// old controller still queued), and tell every client.
   void ControlChanged(const Control::Change& change, const std::string& reason);
   void Broadcast(const rpc::Json& notification);
+  /// The groups' channel notifications, each to the clients in its channel.
+  void SendChannels();
   /// On a simulated board, each finger's true output and its board time into a notification.
   void AddTruth(rpc::Json& params);
   /// An error for a message that held no call, to its sender.

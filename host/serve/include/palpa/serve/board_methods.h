@@ -32,6 +32,12 @@ struct PreparedCall {
   /// Optional, on the server's thread once the call is allowed: false when a job already queued
   /// will carry this call's effect (a newer sample replacing an older one), so none is queued.
   std::function<bool()> admit = nullptr;
+  /// Optional: the caller joins this channel of the group (leaving any other of the group's), and
+  /// from then on gets its channel notifications — which go to no other client.
+  std::string join = "";
+  /// With `join`: the caller hears its channel alone — none of the groups' notifications for
+  /// every client (a scene's state) — as a participant's page, which must learn nothing else.
+  bool join_alone = false;
 };
 
 /// A group of methods sharing a prefix ("board.", "scene."): its names (for server.info, and to
@@ -46,6 +52,11 @@ struct MethodGroup {
   /// Optional, on the server's thread every few milliseconds: a notification for every client
   /// ({"method", "params"}), or null. Sent as telemetry is: dropped for a client not keeping up.
   std::function<rpc::Json(double now_s)> notification;
+  /// Optional, on the server's thread every few milliseconds: the notifications queued since,
+  /// each {"channel", "method", "params"}, sent in order to the clients that joined that channel
+  /// only, and never dropped (a study's events: each one counts, and one view must not see
+  /// another's).
+  std::function<std::vector<rpc::Json>()> channel_notifications = nullptr;
 };
 
 /// The board's methods; `board`: what the device said at Hello.

@@ -1,0 +1,36 @@
+// A study's methods ("study."): the experimenter starts a participant's session (the library's
+// runner, its journal and provenance, on a thread of its own), the participant's page answers
+// each trial and may stop it, and two channels tell each view only what it should know.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "palpa/host/study_file.h"
+#include "palpa/serve/board_methods.h"
+
+namespace palpa::serve {
+
+/// A study file the operator named on the command line (palpa serve --study FILE): read at
+/// start, offered to pages by its name. A page itself never names a file on the server.
+struct ServerStudy {
+  std::string name;
+  host::Study study;
+};
+
+struct StudyServeOptions {
+  /// Where sessions go, each in DIR/STUDY/PARTICIPANT (palpa serve --study-dir); empty: none
+  /// can start.
+  std::string study_dir;
+  std::vector<ServerStudy> server_studies;
+  /// The board as the provenance names it (the device URI).
+  std::string board;
+  std::string calibration_dir;
+  bool use_calibrations = true;
+};
+
+/// study.list, study.start, study.watch, study.answer, study.next and study.stop; channels
+/// "study.participant" (notify_study_participant) and "study.experimenter" (notify_study).
+MethodGroup StudyMethods(StudyServeOptions options);
+
+}  // namespace palpa::serve

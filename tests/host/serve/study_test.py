@@ -1,0 +1,174 @@
+#!/usr/bin/python3
+"""A study through `palpa serve`'s API, in front of palpa-sim: the experimenter starts a short
+study (two conditions, once each) and a second client, the participant, answers every trial;
+the records on disk equal what the API reported, the triggers come with increasing board times,
+the participant's channel carries nothing of the condition; bad inputs are refused saying what;
+the participant's stop mid-session vents every finger (palpa-sim's truth) and keeps the journal,
+and a resume completes it. Usage: study_test.py PALPA PALPA_SIM"""
+import asyncio
+import json
+import os
+import sys
+import tempfile
+
+from harness import Client, Serve, Sim, fail
+
+STUDY = {
+    "schema": "palpa-study", "schema_version": 1, "name": "two-web",
+    "description": "Two conditions once each, at once: a short study for the API's test.",
+    "finger_kind": "pneumatic", "fingers": 3, "unit": "kPa", "cap_kpa": 40,
+    "reset": {"hold_ms": 300},
+    "conditions": [{"values": [0, 30, 0]}, {"values": [10, 10, 10]}],
+    "blocks": [{"name": "at-once", "mode": "simultaneous", "repetitions": 1}],
+}
+# What the participant's channel must never carry: the condition, the stimulus, the scoring.
+SECRETS = ["condition", "stimulus", "expected", "correct", "0-30-0", "10-10-10", "kPa", "block"]
+
+
+async def expect_error(client, method, says, **params):
+    answer = await client.call(method, **params)
+    if "error" not in answer or says not in answer["error"]["message"]:
+        fail(f"{method} {params}: expected an error saying {says!r}, got {answer}")
+    return answer["error"]["message"]
+
+
+async def participant_state(part, state, timeout=20):
+    while True:
+        n = await part.notification("notify_study_participant", timeout)
+        if n["params"]["state"] == state:
+            return n["params"]
+
+
+async def answer_all(part, until_state, answers, stop_after=None):
+    """Answers each trial asked (a tumour under finger 2), until `until_state`; with stop_after,
+    stops the session once that many trials are answered, while the next is under way."""
+    while True:
+        n = (await part.notification("notify_study_participant", 30))["params"]
+        if n["state"] == until_state:
+            return n
+        if n["state"] == "break":  # a resumed session starts with a rest: the participant goes on
+            await part.result("study.next")
+        if n["state"] == "answer":
+            if stop_after is not None and len(answers) == stop_after:
+                return n
+            await expect_error(part, "study.answer", "is not the trial asked",
+                               trial=n["trial"] + 1, tumour=True, fingers=[False, True, False])
+            await expect_error(part, "study.answer", "finger", trial=n["trial"], tumour=True,
+                               fingers=[False, True])
+            answers.append(await part.result("study.answer", trial=n["trial"], tumour=True,
+                                             fingers=[False, True, False]))
+
+
+def on_disk(directory):
+    with open(os.path.join(directory, "trials.jsonl")) as f:
+        trials = [json.loads(line) for line in f if line.strip()]
+    with open(os.path.join(directory, "session.json")) as f:
+        return json.load(f), trials
+
+
+async def experimenter_events(exp):
+    """The experimenter's events up to the session's end."""
+    events = []
+    while not events or events[-1]["event"] != "finished":
+        events.append((await exp.notification("notify_study", 30))["params"])
+    return events
+
+
+async def main(palpa, palpa_sim):
+    tmp = tempfile.mkdtemp(prefix="palpa-study-web-")
+    study_file = os.path.join(tmp, "two-web.json")
+    with open(study_file, "w") as f:
+        json.dump(STUDY, f)
+    sessions = os.path.join(tmp, "sessions")
+    sim = Sim(palpa_sim, "thesis-pneumatic-3")
+    serve = Serve(palpa, sim.address, extra=["--study-dir", sessions, "--study", study_file])
+    exp = await Client.connect(serve.url)
+    part = await Client.connect(serve.url)
+    try:
+        await part.result("study.watch", view="participant")  # first, as its page does
+        names = [s["name"] for s in (await part.result("study.list"))["studies"]]
+        if not {"thesis-pneumatic", "thesis-jamming", "two-web"} <= set(names):
+            fail(f"study.list: {names}")
+        await expect_error(exp, "study.start", "take control first", study="two-web",
+                           participant="P01")
+        await exp.result("control.take")
+        await expect_error(exp, "study.start", 'no study "nope"', study="nope", participant="P01")
+        await expect_error(exp, "study.start", "names no file", study=study_file, participant="P1")
+        await expect_error(exp, "study.start", "cannot name a directory", study="two-web",
+                           participant="../P01")
+        await expect_error(exp, "study.start", "blocks[0].repetitions", participant="P01",
+                           study={**STUDY, "blocks": [{"name": "b", "mode": "simultaneous", "repetitions": 0}]})
+        await expect_error(exp, "study.watch", "'view'", view="everything")
+        await expect_error(part, "study.answer", "no study session is running", trial=0,
+                           tumour=False, fingers=[False, False, False])
+        await exp.result("study.watch", view="experimenter")
+
+        # A whole session, answered by the participant's client.
+        started = await exp.result("study.start", study="two-web", participant="P01")
+        if started["out_dir"] != "two-web/P01" or started["provenance"] is None:
+            fail(f"study.start: {started}")
+        answers = []
+        await answer_all(part, "finished", answers)
+        events = await experimenter_events(exp)
+        done = [e for e in events if e["event"] == "finished"]
+        if len(done) != 1 or not done[0]["complete"]:
+            fail(f"no complete session: {events[-3:]}")
+        session, trials = on_disk(os.path.join(sessions, "two-web", "P01"))
+        reported = [e["record"] for e in events if e["event"] == "trial_answered"]
+        for r in reported:
+            del r["correct"]
+        if not session["complete"] or trials != reported or len(trials) != 2:
+            fail(f"records on disk {trials} differ from the API's {reported}")
+        triggers = [e for e in events if e["event"] == "trigger"]
+        times = [t["board_ms"] for t in triggers]
+        if [t["kind"] for t in triggers] != ["settled", "answered"] * 2 or times != sorted(times):
+            fail(f"triggers: {triggers}")
+        for t, r in zip(triggers[0::2], trials):
+            if round(t["board_ms"]) != r["settled_board_ms"]:
+                fail(f"the settled trigger {t} is not the record's {r['settled_board_ms']}")
+        print(f"ok  a session through the API: 2 trials, records on disk as reported, triggers "
+              f"at board ms {[round(t) for t in times]}")
+        await expect_error(exp, "study.start", "already holds", study="two-web", participant="P01")
+
+        # The participant's stop button mid-session: every finger vented, the journal kept.
+        await exp.result("study.start", study="two-web", participant="P02")
+        answers = []
+        asked = await answer_all(part, "finished", answers, stop_after=1)
+        await sim.wait_async(lambda s: any(l["chamber_pa"] > 5000 for l in s["lines"]),
+                             "a stimulus shown before the stop")
+        await part.result("study.stop")
+        vented = await sim.wait_async(
+            lambda s: all(abs(l["chamber_pa"]) < 500 for l in s["lines"])
+            and all(f["deformation_mm"] < 0.05 for f in s["fingers"]), "every finger vented", 3)
+        await participant_state(part, "stopped")
+        session, trials = on_disk(os.path.join(sessions, "two-web", "P02"))
+        if session["complete"] or len(trials) != 1:
+            fail(f"after the stop: complete {session['complete']}, {len(trials)} trials")
+        print(f"ok  stopped at trial {asked['trial']}: every line at "
+              f"{max(abs(l['chamber_pa']) for l in vented['lines']):.0f} Pa or less, 1 trial kept")
+        await experimenter_events(exp)
+        await exp.result("study.start", study="two-web", participant="P02", resume=True)
+        await answer_all(part, "finished", answers)
+        session, trials = on_disk(os.path.join(sessions, "two-web", "P02"))
+        if not session["complete"] or sorted(t["index"] for t in trials) != [0, 1]:
+            fail(f"the resumed session: {session['complete']}, {trials}")
+        print("ok  resumed: the session completed, each trial once")
+
+        # Everything the participant's socket got: prompts, never the condition.
+        for n in part.notifications:
+            text = json.dumps(n)
+            if n["method"] != "notify_study_participant" and n["method"] != "notify_control":
+                fail(f"the participant got {n['method']}")
+            for secret in SECRETS:
+                if secret in text:
+                    fail(f"the participant's channel carried {secret!r}: {text}")
+    finally:
+        await exp.close()
+        await part.close()
+        serve.close()
+        sim.close()
+    print("study_test: a study run, stopped and resumed through the API")
+
+
+if __name__ == "__main__":
+    asyncio.run(main(sys.argv[1], sys.argv[2]))
