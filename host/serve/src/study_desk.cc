@@ -195,6 +195,10 @@ Outcome StudyDesk::Answer(int trial, const host::StudyAnswer& answer) {
                                                        " is not the trial asked (" +
                                                        std::to_string(prompt_.index) + " is)");
   }
+  if (answer_) {  // handed over, not yet taken: the first answer stands
+    return Outcome::Fail(Status::kInvalidArgument,
+                         "trial " + std::to_string(trial) + " is answered already");
+  }
   if (const Outcome check = host::CheckAnswer(prompt_, answer); !check.ok()) return check;
   answer_ = answer;
   changed_.notify_all();
