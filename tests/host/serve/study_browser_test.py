@@ -1,11 +1,11 @@
 #!/usr/bin/python3
-"""The participant's view in a real browser (headless chromium, python3-selenium) against
-`palpa serve` and palpa-sim: an experimenter's script starts a three-trial study, the page is
-clicked through two trials and its stop button pressed during the third — every finger vents
-(palpa-sim's truth), the journal keeps the two trials. Everything the page showed, and every
-WebSocket frame the browser received for it, is checked for the condition, the stimulus and the
-scoring; the page logged no error. Then the experimenter's view shows the session's table and
-provenance. Usage: study_browser_test.py PALPA PALPA_SIM OUT_DIR"""
+"""The two study views in real browsers (headless chromium, python3-selenium) against
+`palpa serve` and palpa-sim: the experimenter's page starts a three-trial study, the
+participant's page (a browser of its own) is clicked through two trials and its stop button
+pressed during the third — every finger vents (palpa-sim's truth), the journal keeps the two
+trials, the experimenter's table fills as they are answered. Everything the participant's page
+showed, and every WebSocket frame its browser received, is checked for the condition, the stimulus
+and the scoring; neither page logged an error. Usage: study_browser_test.py PALPA PALPA_SIM OUT_DIR"""
 import json
 import os
 import sys
@@ -15,9 +15,9 @@ import time
 from selenium import webdriver
 from selenium.webdriver.chrome.service import Service
 from selenium.webdriver.common.by import By
-from selenium.webdriver.support.ui import WebDriverWait
+from selenium.webdriver.support.ui import Select, WebDriverWait
 
-from harness import RawClient, Serve, Sim, fail
+from harness import Serve, Sim, fail
 
 STUDY = {
     "schema": "palpa-study", "schema_version": 1, "name": "three-web",
@@ -64,6 +64,13 @@ def frames_received(driver):
     return frames
 
 
+def console_errors(driver, whose):
+    errors = [e for e in driver.get_log("browser")
+              if e["level"] == "SEVERE" and "favicon.ico" not in e["message"]]
+    if errors:
+        fail(f"the {whose} page logged errors: {errors[:3]}")
+
+
 def main():
     palpa, palpa_sim, out = sys.argv[1], sys.argv[2], sys.argv[3]
     began = time.monotonic()
@@ -76,16 +83,18 @@ def main():
     sim = Sim(palpa_sim, "thesis-pneumatic-3")
     serve = Serve(palpa, sim.address, extra=["--study-dir", sessions, "--study", study_file])
     driver = browser()
-    experimenter = RawClient(serve.port)
+    experimenter = browser()
     try:
         wait = WebDriverWait(driver, 20)
         driver.get(f"http://{serve.authority}/participant.html")
         wait.until(lambda d: "Waiting for the session to start" in d.find_element(By.ID, "p-end").text)
-        if "result" not in experimenter.call("control.take"):
-            fail("control.take")
-        started = experimenter.call("study.start", study="three-web", participant="B01")
-        if "result" not in started:
-            fail(f"study.start: {started}")
+        experimenter.get(f"http://{serve.authority}/study.html")
+        ewait = WebDriverWait(experimenter, 20)
+        ewait.until(lambda d: "three-web" in d.find_element(By.ID, "e-study").text)
+        Select(experimenter.find_element(By.ID, "e-study")).select_by_value("three-web")
+        experimenter.find_element(By.ID, "e-participant").send_keys("B01")
+        experimenter.find_element(By.ID, "e-start").click()  # takes control, then starts
+        ewait.until(lambda d: "running" in d.find_element(By.ID, "e-status").text)
         seen = []
         for trial, clicks in enumerate([["Finger 2", "p-here"], ["p-none"]]):
             wait.until(lambda d: visible(d, "p-ask"))
@@ -100,6 +109,13 @@ def main():
             wait.until(lambda d: visible(d, "p-wait"))  # "please wait" while the next settles
             check_shown(driver, seen)
         print("ok  two trials answered by clicking the participant's page")
+        ewait.until(lambda d: len(d.find_elements(By.CSS_SELECTOR, "#e-trials tbody tr.right")) == 2)
+        table = experimenter.find_element(By.ID, "e-trials").text
+        if "0-30-0" not in table or "tumour: 2" not in table or "10-10-10" not in table:
+            fail(f"the experimenter's table: {table}")
+        if "trigger: " not in experimenter.find_element(By.ID, "e-trigger").text:
+            fail("the experimenter's page shows no trigger")
+        print("ok  the experimenter's table filled as the trials were answered, both correct")
         wait.until(lambda d: visible(d, "p-ask"))
         driver.save_screenshot(os.path.join(out, "study_participant.png"))
         sim.wait(lambda s: any(l["chamber_pa"] > 5000 for l in s["lines"]), "trial 3 shown")
@@ -127,29 +143,22 @@ def main():
             for secret in SECRETS:
                 if secret in frame:
                     fail(f"the participant's socket received {secret!r}: {frame}")
-        errors = [e for e in driver.get_log("browser")
-                  if e["level"] == "SEVERE" and "favicon.ico" not in e["message"]]
-        if errors:
-            fail(f"the participant's page logged errors: {errors[:3]}")
+        console_errors(driver, "participant's")
         print(f"ok  {len(seen)} views and {len(frames)} frames received: no condition, stimulus "
               "or score; no console error")
-        # The experimenter's view of the same session: the table, the scoring, the provenance.
-        driver.get(f"http://{serve.authority}/study.html")
-        wait.until(lambda d: len(d.find_elements(By.CSS_SELECTOR, "#e-trials tbody tr")) == 2)
-        table = driver.find_element(By.ID, "e-trials").text
-        if "0-30-0" not in table or "tumour: 2" not in table or "yes" not in table:
-            fail(f"the experimenter's table: {table}")
-        wait.until(lambda d: "stopped" in d.find_element(By.ID, "e-status").text)
-        if "firmware" not in driver.find_element(By.ID, "e-provenance").text:
+        # The experimenter's view of the stopped session, reloaded: the table, the provenance.
+        ewait.until(lambda d: "stopped" in d.find_element(By.ID, "e-status").text)
+        experimenter.refresh()
+        ewait.until(lambda d: len(d.find_elements(By.CSS_SELECTOR, "#e-trials tbody tr")) == 2)
+        ewait.until(lambda d: "stopped" in d.find_element(By.ID, "e-status").text)
+        if "firmware" not in experimenter.find_element(By.ID, "e-provenance").text:
             fail("no provenance shown")
-        driver.save_screenshot(os.path.join(out, "study_experimenter.png"))
-        errors = [e for e in driver.get_log("browser")
-                  if e["level"] == "SEVERE" and "favicon.ico" not in e["message"]]
-        if errors:
-            fail(f"the experimenter's page logged errors: {errors[:3]}")
-        print("ok  the experimenter's view: each trial's condition, answer and score, provenance")
+        experimenter.save_screenshot(os.path.join(out, "study_experimenter.png"))
+        console_errors(experimenter, "experimenter's")
+        print("ok  the experimenter's view reloaded: the session's trials, its end, its provenance")
     finally:
         driver.quit()
+        experimenter.quit()
         serve.close()
         sim.close()
     print(f"study_browser_test: the participant's view in chromium, {time.monotonic() - began:.1f} s")
