@@ -30,7 +30,7 @@ void OnSignal(int) { g_stop = 1; }
 /// palpa-sim's parts, opened in order by main and served until a signal stops it.
 struct Sim {
   palpa::sim::SimCommandLine cmd;
-  palpa::sim::FdLink link;
+  palpa::hosted::FdLink link;
   palpa::sim::TruthStream truth;
   std::unique_ptr<palpa::sim::SimBoard> board;
   // Written whole (like every file palpa writes): it appears complete when palpa-sim stops.

@@ -27,7 +27,7 @@ bool TruthStream::Open(const std::string& spec, std::string* error) {
     address_ = spec;
     return true;
   }
-  listen_fd_ = ListenTcp(spec, "--truth", &address_, error);
+  listen_fd_ = hosted::ListenTcp(spec, "--truth", &address_, error);
   return listen_fd_ >= 0;
 }
 

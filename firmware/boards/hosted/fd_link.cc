@@ -1,4 +1,4 @@
-// TCP and pty transports for palpa-sim.
+// TCP, pty and serial-device transports for the hosted boards.
 #include "fd_link.h"
 
 #include <fcntl.h>
@@ -15,7 +15,7 @@
 
 #include "tcp_listener.h"
 
-namespace palpa::sim {
+namespace palpa::hosted {
 namespace {
 
 void NonBlocking(int fd) { fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) | O_NONBLOCK); }
@@ -42,61 +42,97 @@ bool FdLink::MayReplace(const std::string& spec, std::string* error) const {
   if (lstat(symlink_.c_str(), &st) != 0) return true;  // nothing there
   const std::string target = S_ISLNK(st.st_mode) ? LinkTarget(symlink_) : "";
   if (target.rfind("/dev/pts/", 0) != 0) {
-    *error = "--listen " + spec + ": " + symlink_ +
-             " exists and is not a pty link (palpa-sim replaces only a link to a pty that is "
-             "gone; remove it or choose another path)";
+    *error = option_ + " " + spec + ": " + symlink_ +
+             " exists and is not a pty link (only a link to a pty that is gone is replaced; "
+             "remove it or choose another path)";
     return false;
   }
   if (stat(symlink_.c_str(), &st) == 0) {
-    *error = "--listen " + spec + ": " + symlink_ + " links to " + target +
-             ", a pty in use (another palpa-sim?)";
+    *error = option_ + " " + spec + ": " + symlink_ + " links to " + target +
+             ", a pty in use (another board?)";
     return false;
   }
-  return true;  // a link left by a palpa-sim that was killed
+  return true;  // a link left by a board that was killed
 }
 
-bool FdLink::Open(const std::string& spec, std::string* error) {
+bool FdLink::Open(const std::string& spec, std::string* error, const char* option, int baud) {
+  option_ = option;
   if (spec.rfind("tcp:", 0) == 0) {
-    listen_fd_ = ListenTcp(spec, "--listen", &address_, error);
+    listen_fd_ = ListenTcp(spec, option, &address_, error);
     return listen_fd_ >= 0;
   }
-  if (spec.rfind("pty:", 0) == 0) {
-    symlink_ = spec.substr(4);
-    if (symlink_.empty()) {
-      *error = "--listen " + spec + ": expected pty:PATH";
-      return false;
-    }
-    if (!MayReplace(spec, error)) {
-      symlink_.clear();
-      return false;
-    }
-    int master = -1;
-    char name[256];
-    if (openpty(&master, &pty_slave_, name, nullptr, nullptr) != 0) {
-      *error = std::string("--listen ") + spec + ": openpty: " + std::strerror(errno);
-      symlink_.clear();
-      return false;
-    }
-    pty_name_ = name;
-    termios raw{};
-    tcgetattr(pty_slave_, &raw);
-    cfmakeraw(&raw);
-    tcsetattr(pty_slave_, TCSANOW, &raw);
-    unlink(symlink_.c_str());  // a stale pty link, checked above; symlink() then never clobbers
-    if (symlink(name, symlink_.c_str()) != 0) {
-      *error = "--listen " + spec + ": cannot create the symlink: " + std::strerror(errno);
-      symlink_.clear();
-      close(master);
-      return false;
-    }
-    NonBlocking(master);
-    clients_.push_back(Peer{master, {}, {}});
-    is_pty_ = true;
-    address_ = "serial:" + symlink_;
-    return true;
-  }
-  *error = "--listen " + spec + ": expected tcp:HOST:PORT or pty:PATH";
+  if (spec.rfind("pty:", 0) == 0) return OpenPty(spec, error);
+  if (spec.rfind("tty:", 0) == 0) return OpenTty(spec, baud, error);
+  *error = option_ + " " + spec + ": expected tcp:HOST:PORT, pty:PATH or tty:DEVICE";
   return false;
+}
+
+bool FdLink::OpenPty(const std::string& spec, std::string* error) {
+  symlink_ = spec.substr(4);
+  if (symlink_.empty()) {
+    *error = option_ + " " + spec + ": expected pty:PATH";
+    return false;
+  }
+  if (!MayReplace(spec, error)) {
+    symlink_.clear();
+    return false;
+  }
+  int master = -1;
+  char name[256];
+  if (openpty(&master, &pty_slave_, name, nullptr, nullptr) != 0) {
+    *error = option_ + " " + spec + ": openpty: " + std::strerror(errno);
+    symlink_.clear();
+    return false;
+  }
+  pty_name_ = name;
+  termios raw{};
+  tcgetattr(pty_slave_, &raw);
+  cfmakeraw(&raw);
+  tcsetattr(pty_slave_, TCSANOW, &raw);
+  unlink(symlink_.c_str());  // a stale pty link, checked above; symlink() then never clobbers
+  if (symlink(name, symlink_.c_str()) != 0) {
+    *error = option_ + " " + spec + ": cannot create the symlink: " + std::strerror(errno);
+    symlink_.clear();
+    close(master);
+    return false;
+  }
+  NonBlocking(master);
+  clients_.push_back(Peer{master, {}, {}});
+  is_pty_ = true;
+  address_ = "serial:" + symlink_;
+  return true;
+}
+
+bool FdLink::OpenTty(const std::string& spec, int baud, std::string* error) {
+  const std::string device = spec.substr(4);
+  const int fd = device.empty() ? -1 : open(device.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK);
+  if (fd < 0) {
+    *error = option_ + " " + spec + ": " +
+             (device.empty() ? std::string("expected tty:DEVICE") : std::strerror(errno));
+    return false;
+  }
+  termios raw{};
+  if (tcgetattr(fd, &raw) != 0) {
+    *error = option_ + " " + spec + ": not a serial device (" + std::strerror(errno) + ")";
+    close(fd);
+    return false;
+  }
+  cfmakeraw(&raw);
+  raw.c_cflag |= CLOCAL | CREAD;  // no modem lines: a board's UART has none
+  const speed_t speed = baud == 9600     ? B9600
+                        : baud == 19200  ? B19200
+                        : baud == 38400  ? B38400
+                        : baud == 57600  ? B57600
+                        : baud == 230400 ? B230400
+                        : baud == 460800 ? B460800
+                        : baud == 921600 ? B921600
+                                         : B115200;
+  cfsetspeed(&raw, speed);
+  tcsetattr(fd, TCSANOW, &raw);
+  clients_.push_back(Peer{fd, {}, {}});
+  is_pty_ = true;
+  address_ = "serial:" + device;
+  return true;
 }
 
 bool FdLink::ReadFrom(Peer& peer) {
@@ -185,4 +221,4 @@ size_t FdLink::DoWriteSpace() const {
   return clients_.empty() ? kTxCapacity : kTxCapacity - emptiest;
 }
 
-}  // namespace palpa::sim
+}  // namespace palpa::hosted

@@ -1,4 +1,4 @@
-// A non-blocking TCP listening socket for palpa-sim's link and truth channel.
+// A non-blocking TCP listening socket for the hosted boards' links and palpa-sim's truth channel.
 #include "tcp_listener.h"
 
 #include <arpa/inet.h>
@@ -11,7 +11,7 @@
 #include <cstdlib>
 #include <cstring>
 
-namespace palpa::sim {
+namespace palpa::hosted {
 
 int ListenTcp(const std::string& spec, const char* option, std::string* address,
               std::string* error) {
@@ -51,4 +51,4 @@ int ListenTcp(const std::string& spec, const char* option, std::string* address,
   return fd;
 }
 
-}  // namespace palpa::sim
+}  // namespace palpa::hosted
