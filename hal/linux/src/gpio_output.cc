@@ -8,8 +8,7 @@
 
 namespace palpa::hal::linux_gpio {
 
-std::unique_ptr<GpioOutput> GpioOutput::Open(const std::string& spec, bool initial,
-                                             std::string* error) {
+gpiod_line* OpenLine(const std::string& spec, gpiod_chip** chip_out, std::string* error) {
   const size_t colon = spec.rfind(':');
   if (colon == std::string::npos || colon == 0 || colon + 1 == spec.size()) {
     *error = "'" + spec + "': expected CHIP:LINE, e.g. gpiochip0:17";
@@ -34,7 +33,16 @@ std::unique_ptr<GpioOutput> GpioOutput::Open(const std::string& spec, bool initi
     gpiod_chip_close(chip);
     return nullptr;
   }
-  if (gpiod_line_request_output(line, "palpa flash", initial ? 1 : 0) != 0) {
+  *chip_out = chip;
+  return line;
+}
+
+std::unique_ptr<GpioOutput> GpioOutput::Open(const std::string& spec, bool initial,
+                                             std::string* error) {
+  gpiod_chip* chip = nullptr;
+  gpiod_line* line = OpenLine(spec, &chip, error);
+  if (line == nullptr) return nullptr;
+  if (gpiod_line_request_output(line, "palpa", initial ? 1 : 0) != 0) {
     *error = "'" + spec + "': cannot drive the line (" + std::strerror(errno) +
              "; is it used by another program?)";
     gpiod_chip_close(chip);

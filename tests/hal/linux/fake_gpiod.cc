@@ -1,4 +1,4 @@
-// The fake libgpiod: the six v1 functions GpioOutput uses.
+// The fake libgpiod: the v1 functions GpioOutput and GpioEdgeInput use.
 #include "fake_gpiod.h"
 
 #include <gpiod.h>
@@ -68,6 +68,41 @@ int gpiod_line_request_output(gpiod_line* line, const char*, int default_val) {
 int gpiod_line_set_value(gpiod_line* line, int value) {
   fg::state().log.push_back("set " + line->Name() + "=" + std::to_string(value));
   return 0;
+}
+
+int gpiod_line_request_both_edges_events(gpiod_line* line, const char*) {
+  if (fg::state().busy.count(line->Name())) {
+    errno = EBUSY;
+    return -1;
+  }
+  fg::state().log.push_back("events " + line->Name());
+  return 0;
+}
+
+int gpiod_line_get_value(gpiod_line* line) {
+  if (fg::state().broken.count(line->Name())) {
+    errno = EIO;
+    return -1;
+  }
+  return fg::state().levels[line->Name()];
+}
+
+int gpiod_line_event_wait(gpiod_line* line, const timespec* timeout) {
+  if (timeout == nullptr || timeout->tv_sec != 0 || timeout->tv_nsec != 0) return -1;  // blocks
+  if (fg::state().broken.count(line->Name())) {
+    errno = EIO;
+    return -1;
+  }
+  return fg::state().edges[line->Name()].empty() ? 0 : 1;
+}
+
+int gpiod_line_event_read_multiple(gpiod_line* line, gpiod_line_event* events, unsigned n) {
+  auto& queue = fg::state().edges[line->Name()];
+  unsigned i = 0;
+  for (; i < n && !queue.empty(); ++i, queue.pop_front())
+    events[i].event_type =
+        queue.front() ? GPIOD_LINE_EVENT_RISING_EDGE : GPIOD_LINE_EVENT_FALLING_EDGE;
+  return static_cast<int>(i);
 }
 
 void gpiod_line_release(gpiod_line* line) { fg::state().log.push_back("release " + line->Name()); }

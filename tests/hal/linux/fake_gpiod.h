@@ -1,7 +1,10 @@
 // A fake libgpiod (v1) for the link-time seam: chips and lines the test declares, every request
-// and value written logged in order; errors injected by name.
+// and value written logged in order; input levels and edge events set by the test; errors injected
+// by name.
 #pragma once
 
+#include <deque>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -14,6 +17,10 @@ struct State {
   std::set<std::string> busy;    ///< "gpiochip0:17": requested by someone else
   std::vector<std::string> log;  ///< "request gpiochip0:17=1", "set gpiochip0:17=0", "release ..."
   int open_chips = 0;
+  // Inputs with edge events: each line's level now and the edges still queued (true: rising).
+  std::map<std::string, int> levels;
+  std::map<std::string, std::deque<bool>> edges;
+  std::set<std::string> broken;  ///< reads of these lines fail (EIO)
 };
 State& state();
 void Reset();

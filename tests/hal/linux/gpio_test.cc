@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "fake_gpiod.h"
+#include "palpa/hal/linux/gpio_edge_input.h"
 #include "palpa/hal/linux/gpio_output.h"
 #include "palpa/host/boot_pins.h"
 
@@ -66,4 +67,37 @@ TEST(Gpio, BootPinsHoldBootWhileResetPulsesAndReleaseItBeforeTheReboot) {
       "set gpiochip0:2=0",     "set gpiochip0:1=0",     "set gpiochip0:1=1"};
   CHECK(fg::state().log == expected);
   CHECK(waits.size() == 4 && waits[0] == palpa::host::BootPins::kResetPulseMs);
+}
+
+TEST(Gpio, TheEStopSeesAPressShorterThanATickAndNeverBlocks) {
+  using palpa::hal::linux_gpio::GpioEdgeInput;
+  std::string error;
+  fg::state().busy = {"gpiochip0:9"};
+  CHECK(GpioEdgeInput::Open("gpiochip0:9", true, &error) == nullptr);
+  CHECK(error.find("edges") != std::string::npos);
+  auto estop = GpioEdgeInput::Open("gpiochip0:5", true, &error);  // NC contact: high = pressed
+  CHECK_TEXT(estop != nullptr, error.c_str());
+  CHECK(!estop->Read());
+  // Pressed and released between two ticks: the level is back, the rising edge is not lost.
+  fg::state().edges["gpiochip0:5"] = {true, false};
+  CHECK(estop->Read());
+  LONGS_EQUAL(1, estop->active_edges());
+  CHECK(!estop->Read());                  // read once: the queue is drained
+  fg::state().levels["gpiochip0:5"] = 1;  // held down, its edge lost: the level says so
+  CHECK(estop->Read());
+  fg::state().levels["gpiochip0:5"] = 0;
+  CHECK(!estop->Read());
+  // A line that cannot be read is an asserted E-stop, from then on.
+  fg::state().broken = {"gpiochip0:5"};
+  CHECK(estop->Read());
+  fg::state().broken.clear();
+  CHECK(estop->Read());
+  CHECK(estop->failed());
+
+  auto low = GpioEdgeInput::Open("gpiochip1:2", false, &error);  // active low
+  fg::state().levels["gpiochip1:2"] = 1;
+  CHECK(!low->Read());
+  fg::state().edges["gpiochip1:2"] = {false, true};  // a short pull to ground
+  CHECK(low->Read());
+  CHECK(!low->Read());
 }

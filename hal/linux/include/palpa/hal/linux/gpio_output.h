@@ -1,5 +1,6 @@
 // A GPIO output line on Linux through libgpiod (v1 API): the reset and boot pins of a board the
-// host flashes. Tests link a fake libgpiod in its place (a link-time seam).
+// host flashes, and the Linux board's valves and enables. Tests link a fake libgpiod in its place
+// (a link-time seam).
 #pragma once
 
 #include <memory>
@@ -31,5 +32,9 @@ class GpioOutput final : public DigitalOutput {
   gpiod_line* line_;
   bool ok_ = true;
 };
+
+/// The chip and line of "CHIP:LINE" (by name, label, path or number), opened and not yet
+/// requested; nullptr with *error naming the spec and why (shared by the GPIO classes).
+gpiod_line* OpenLine(const std::string& spec, gpiod_chip** chip, std::string* error);
 
 }  // namespace palpa::hal::linux_gpio
