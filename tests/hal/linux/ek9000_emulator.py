@@ -6,10 +6,14 @@ Serves the coupler's registers as docs/linux.md gives them (output image at 0x08
 first write to the output image, a silence longer than the watchdog time sets every output to zero
 (fallback 0) or leaves it (fallback 1, freeze); type 0 counts only writes to the output image as
 life, type 1 any telegram, type 2 turns the watchdog off. 0x1021 counts the fallbacks.
-Usage: ek9000_emulator.py PORT|rtu:DEVICE VOLTS[,VOLTS...]
+Usage: ek9000_emulator.py PORT|rtu:DEVICE VOLTS[,VOLTS...] [plant=TAU_MS:A/G[,A/G...]]
   (TCP on 127.0.0.1:PORT, or RTU at 115200 8N1 on DEVICE; the input terminals' voltages, nan: a
   wire break)
+  plant=...: a stand-in for the plant behind the module, so a closed loop can be seen: input i
+  follows A + G x (output i's volts), clamped to 0-10 V, through a first-order lag of TAU_MS
+  (a regulator and its pressure sensor, linear; not the project's plant model).
 """
+import math
 import sys
 import threading
 import time
@@ -85,10 +89,29 @@ def watchdog():
                         holding.values[OUTPUTS + i] = 0
 
 
+def plant(tau_s, lines):
+    last = time.monotonic()
+    while True:
+        time.sleep(0.001)
+        now = time.monotonic()
+        keep = math.exp(-(now - last) / tau_s)
+        last = now
+        with lock:
+            for i, (a, g) in enumerate(lines):
+                out = holding.values[OUTPUTS + i] * 10.0 / FULL_SCALE
+                target = max(0.0, min(10.0, a + g * out))
+                volts[i] = target + (volts[i] - target) * keep
+                inputs.values[2 * i + 1] = round(volts[i] / 10.0 * FULL_SCALE)
+
+
 threading.Thread(target=watchdog, daemon=True).start()
+inputs = Inputs(0, image + [0] * 16)
+if len(sys.argv) > 3 and sys.argv[3].startswith("plant="):
+    tau_ms, _, spec = sys.argv[3][6:].partition(":")
+    lines = [tuple(float(x) for x in item.split("/")) for item in spec.split(",")]
+    threading.Thread(target=plant, args=(float(tau_ms) / 1000.0, lines), daemon=True).start()
 context = ModbusServerContext(
-    slaves=ModbusSlaveContext(ir=Inputs(0, image + [0] * 16), hr=holding, zero_mode=True),
-    single=True)
+    slaves=ModbusSlaveContext(ir=inputs, hr=holding, zero_mode=True), single=True)
 if where.startswith("rtu:"):
     StartSerialServer(context=context, framer=ModbusRtuFramer, port=where[4:], baudrate=115200)
 else:

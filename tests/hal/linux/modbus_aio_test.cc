@@ -11,9 +11,11 @@
 #include <string>
 #include <thread>
 
-#include "CppUTest/TestHarness.h"
+#include "ek9000_process.h"
 #include "mini_client.h"
 #include "palpa/hal/linux/modbus_aio.h"
+
+#include "CppUTest/TestHarness.h"
 
 namespace aio = palpa::hal::linux_aio;
 using palpa::protocol::Status;
@@ -23,62 +25,20 @@ namespace {
 
 constexpr int kWatchdogMs = 300;
 
-bool WaitUntil(const std::function<bool()>& done, double seconds) {
-  const auto end = Clock::now() + std::chrono::duration<double>(seconds);
-  while (Clock::now() < end) {
-    if (done()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  return false;
-}
+using palpa::testing::Ek9000Emulator;
+using palpa::testing::WaitUntil;
 
-// The emulator as a child process, and a second Modbus client that looks at its registers.
-class Emulator {
+// The emulator with this file's watchdog time and response timeout.
+class Emulator : public Ek9000Emulator {
  public:
-  explicit Emulator(const char* input_volts) : port_(palpa::testing::FreeTcpPort()) {
-    const std::string port = std::to_string(port_);
-    pid_ = fork();
-    if (pid_ == 0) {
-      execl("/usr/bin/python3", "python3", PALPA_SOURCE_DIR "/tests/hal/linux/ek9000_emulator.py",
-            port.c_str(), input_volts, nullptr);
-      _exit(127);
-    }
-    probe_ = modbus_new_tcp("127.0.0.1", port_);
-    modbus_set_response_timeout(probe_, 1, 0);
-    up_ = WaitUntil([&] { return modbus_connect(probe_) == 0; }, 10);
-  }
-  ~Emulator() {
-    modbus_close(probe_);
-    modbus_free(probe_);
-    Stop();
-  }
-  void Stop() {
-    if (pid_ <= 0) return;
-    kill(pid_, SIGKILL);
-    waitpid(pid_, nullptr, 0);
-    pid_ = -1;
-  }
-  void Pause() { kill(pid_, SIGSTOP); }
-  bool up() const { return up_; }
-  uint16_t Holding(int address) {
-    uint16_t v = 0xDEAD;
-    if (modbus_read_registers(probe_, address, 1, &v) != 1) FAIL("the emulator did not answer");
-    return v;
-  }
-  void SetHolding(int address, uint16_t value) { modbus_write_register(probe_, address, value); }
+  explicit Emulator(const char* input_volts) : Ek9000Emulator(input_volts) {}
   aio::ModbusAioConfig Config() const {
     aio::ModbusAioConfig c;
-    c.port = port_;
+    c.port = port();
     c.watchdog_ms = kWatchdogMs;
     c.response_timeout_ms = 100;
     return c;
   }
-
- private:
-  int port_;
-  pid_t pid_ = -1;
-  modbus_t* probe_ = nullptr;
-  bool up_ = false;
 };
 
 // What the coupler's EL4004 holds for counts of a 12-bit output: 0x7FFF is 10 V.
