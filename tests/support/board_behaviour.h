@@ -12,6 +12,7 @@ namespace palpa::testing {
 /// Hello with a matching catalog, a configuration change, a setpoint the plant follows in
 /// telemetry, and — watched with a bare protocol client over the same device URI — every line
 /// safe with host_silence latched once the host goes quiet.
-void CheckBoardBehaviour(const std::string& uri, protocol::BoardKind kind);
+void CheckBoardBehaviour(const std::string& uri, protocol::BoardKind kind,
+                         bool plant_simulated = true);
 
 }  // namespace palpa::testing

@@ -173,13 +173,14 @@ int FreeTcpPort() {
   return ntohs(a.sin_port);
 }
 
-bool SimProcess::Start(const std::vector<std::string>& args) {
+bool SimProcess::Start(const std::vector<std::string>& args, const char* program) {
   // Built before the fork: the child of a process with threads may only call what is
   // async-signal-safe (an allocation can wait forever on a lock another thread held).
   std::vector<char*> argv;
   // $PALPA_SIM: another palpa-sim than the build's (inside the real-kernel guest).
-  const char* path =
-      std::getenv("PALPA_SIM") != nullptr ? std::getenv("PALPA_SIM") : PALPA_SIM_PATH;
+  const char* path = program != nullptr                    ? program
+                     : std::getenv("PALPA_SIM") != nullptr ? std::getenv("PALPA_SIM")
+                                                           : PALPA_SIM_PATH;
   argv.push_back(const_cast<char*>(path));
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);

@@ -1,0 +1,43 @@
+// palpa-linux-board's configuration: one JSON file naming the core's board configuration, the
+// analogue I/O module, the GPIO lines, the host link, the watchdog device and real-time settings.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "palpa/core/board_config.h"
+#include "palpa/hal/linux/modbus_aio_config.h"
+
+namespace palpa::linux_board {
+
+struct BoardFile {
+  std::string board = "thesis-5finger";  ///< the compiled-in core configuration
+  const core::BoardConfig* config = nullptr;
+  uint32_t board_id = 1;
+  std::string listen = "tcp:127.0.0.1:5600";  ///< tcp:HOST:PORT, pty:PATH or tty:DEVICE
+  int baud = 115200;                          ///< tty only
+  hal::linux_aio::ModbusAioConfig module;
+  // GPIO lines as CHIP:LINE; empty: not fitted (the host tests run without GPIO).
+  std::string supply_enable, dump_enable, pump_enable;
+  std::vector<std::string> valves;  ///< line i's dump valve driver (powered: closed)
+  std::string estop;
+  bool estop_active_high = true;
+  std::string watchdog;        ///< a watchdog device (/dev/watchdog); empty: none
+  int watchdog_timeout_s = 0;  ///< 0: the driver's own
+  int rt_priority = 50;        ///< SCHED_FIFO priority; 0: not asked for
+};
+
+/// Parses the file's text; every refusal names its field ("gpio.valves[2]: ..."). Checks the board
+/// configuration against the module too (FitsTheModule).
+std::optional<BoardFile> ParseBoardFile(const std::string& json_text, std::string* error);
+/// Reads and parses a file; *error starts with its path.
+std::optional<BoardFile> LoadBoardFile(const std::string& path, std::string* error);
+
+/// Whether `config`'s lines can sit on `module`: no more lines than outputs, sensors within the
+/// inputs, the same resolutions, a 0-10 V signal, and a safe value commanded by 0 V on every line
+/// (the module's only fallback when the controller dies). False with *error naming the line.
+bool FitsTheModule(const core::BoardConfig& config, const std::string& name,
+                   const hal::linux_aio::ModbusAioConfig& module, std::string* error);
+
+}  // namespace palpa::linux_board

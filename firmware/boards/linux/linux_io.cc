@@ -1,0 +1,88 @@
+// palpa-linux-board's hardware: opened in a safe state, driven by the core, made safe at the end.
+#include "linux_io.h"
+
+#include <time.h>
+
+namespace palpa::linux_board {
+
+uint64_t MonotonicClock::DoNowMicros() {
+  timespec now;
+  clock_gettime(CLOCK_MONOTONIC, &now);
+  return static_cast<uint64_t>(now.tv_sec) * 1000000u + static_cast<uint64_t>(now.tv_nsec) / 1000u;
+}
+
+std::unique_ptr<LinuxIo> LinuxIo::Open(const BoardFile& file, std::string* error) {
+  std::unique_ptr<LinuxIo> io(new LinuxIo());
+  // GPIO first, every line low: nothing is powered while the module is reached.
+  auto output = [&](const char* field, const std::string& spec,
+                    std::unique_ptr<hal::linux_gpio::GpioOutput>* out) {
+    if (spec.empty()) return true;
+    *out = hal::linux_gpio::GpioOutput::Open(spec, false, error);
+    if (*out == nullptr) *error = std::string("gpio.") + field + ": " + *error;
+    return *out != nullptr;
+  };
+  if (!output("supply_enable", file.supply_enable, &io->supply_.line) ||
+      !output("dump_enable", file.dump_enable, &io->dump_.line) ||
+      !output("pump_enable", file.pump_enable, &io->pump_.line)) {
+    return nullptr;
+  }
+  for (size_t i = 0; i < file.valves.size(); ++i) {
+    io->valves_.valves.emplace_back();
+    const std::string field = "valves[" + std::to_string(i) + "]";
+    if (!output(field.c_str(), file.valves[i], &io->valves_.valves.back())) return nullptr;
+  }
+  if (!file.estop.empty()) {
+    io->estop_ = hal::linux_gpio::GpioEdgeInput::Open(file.estop, file.estop_active_high, error);
+    if (io->estop_ == nullptr) {
+      *error = "gpio.estop: " + *error;
+      return nullptr;
+    }
+  }
+  io->module_ = hal::linux_aio::ModbusAioModule::Open(file.module, error);
+  if (io->module_ == nullptr) {
+    *error = "analog_module: " + *error;
+    return nullptr;
+  }
+  return io;
+}
+
+core::BoardIo LinuxIo::Io(hal::ByteLink& link) {
+  core::BoardIo io{clock_,
+                   module_->outputs(),
+                   &module_->inputs(),
+                   supply_,
+                   dump_,
+                   pump_,
+                   estop_.get(),
+                   link,
+                   nullptr,
+                   0};
+  if (!valves_.valves.empty()) io.line_vents = &valves_;
+  return io;
+}
+
+bool LinuxIo::WriteSafe(std::string* error) {
+  // The module first: the regulators vent on 0 V whatever the valves do.
+  const bool module_ok = module_->WriteSafe() == protocol::Status::kOk;
+  if (!module_ok) *error = module_->last_error();
+  supply_.Set(false);
+  dump_.Set(false);
+  pump_.Set(false);
+  valves_.Write(~0u);  // every valve driver released
+  return module_ok;
+}
+
+bool LinuxIo::gpio_failed() const {
+  bool failed = false;
+  for (const OptionalOutput* o : {&supply_, &dump_, &pump_}) failed |= o->line && !o->line->ok();
+  for (const auto& v : valves_.valves) failed |= !v->ok();
+  return failed || (estop_ && estop_->failed());
+}
+
+size_t LinuxIo::gpio_lines() const {
+  size_t n = valves_.valves.size() + (estop_ ? 1 : 0);
+  for (const OptionalOutput* o : {&supply_, &dump_, &pump_}) n += o->line ? 1 : 0;
+  return n;
+}
+
+}  // namespace palpa::linux_board

@@ -1,0 +1,74 @@
+// palpa-linux-board's hardware behind the HAL: the monotonic clock, the Modbus analogue I/O module,
+// the valves and enables on GPIO output lines and the E-stop on a GPIO input with edge events.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "board_file.h"
+#include "palpa/core/board.h"
+#include "palpa/hal/clock.h"
+#include "palpa/hal/digital_io.h"
+#include "palpa/hal/linux/gpio_edge_input.h"
+#include "palpa/hal/linux/gpio_output.h"
+#include "palpa/hal/linux/modbus_aio.h"
+
+namespace palpa::linux_board {
+
+/// CLOCK_MONOTONIC in microseconds: the clock the tick loop sleeps on.
+class MonotonicClock final : public hal::Clock {
+ private:
+  uint64_t DoNowMicros() override;
+};
+
+/// A GPIO output, or nothing when the configuration names no line for it.
+class OptionalOutput final : public hal::DigitalOutput {
+ public:
+  std::unique_ptr<hal::linux_gpio::GpioOutput> line;
+
+ private:
+  void DoSet(bool level) override {
+    if (line) line->Set(level);
+  }
+};
+
+/// The lines' dump valve drivers: bit i set releases line i's valve (unpowered: open), so the
+/// GPIO line is low; clear powers it shut.
+class ValvePort final : public hal::DigitalPort {
+ public:
+  std::vector<std::unique_ptr<hal::linux_gpio::GpioOutput>> valves;
+
+ private:
+  void DoWrite(uint32_t bits) override {
+    for (size_t i = 0; i < valves.size(); ++i) valves[i]->Set((bits >> i & 1u) == 0);
+  }
+};
+
+class LinuxIo {
+ public:
+  /// Opens the module (its watchdog armed, 0 V written) and every GPIO line at its safe level
+  /// (low: enables off, valves released); nullptr with *error naming the field.
+  static std::unique_ptr<LinuxIo> Open(const BoardFile& file, std::string* error);
+
+  /// The board's hardware; `link` carries the host's bytes.
+  core::BoardIo Io(hal::ByteLink& link);
+  /// Everything to its safe value: 0 V on every module output, every GPIO line low. False when
+  /// the module could not be written (its own watchdog then zeroes the outputs).
+  bool WriteSafe(std::string* error);
+  /// A GPIO write failed (the tick cannot see it through DigitalOutput): reported, not hidden.
+  bool gpio_failed() const;
+
+  hal::linux_aio::ModbusAioModule& module() { return *module_; }
+  size_t gpio_lines() const;
+
+ private:
+  LinuxIo() = default;
+  MonotonicClock clock_;
+  std::unique_ptr<hal::linux_aio::ModbusAioModule> module_;
+  OptionalOutput supply_, dump_, pump_;
+  ValvePort valves_;
+  std::unique_ptr<hal::linux_gpio::GpioEdgeInput> estop_;
+};
+
+}  // namespace palpa::linux_board

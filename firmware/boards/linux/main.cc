@@ -1,0 +1,115 @@
+// palpa-linux-board: the firmware core on a Linux computer at 1 kHz, with the regulators and
+// sensors on a Modbus analogue I/O module, valves and the E-stop on GPIO, the host on TCP or
+// serial.
+#include <signal.h>
+
+#include <cstdio>
+#include <memory>
+#include <random>
+#include <string>
+
+#include "board_file.h"
+#include "fd_link.h"
+#include "linux_io.h"
+#include "realtime.h"
+
+namespace {
+
+namespace lb = palpa::linux_board;
+
+const char kUsage[] =
+    "usage: palpa-linux-board BOARD.json\n"
+    "\n"
+    "Runs the palpa firmware core at 1 kHz on this computer: the analogue I/O module, GPIO\n"
+    "lines, host link and watchdog the file names (docs/linux.md). SIGTERM or SIGINT writes\n"
+    "every output safe and exits 0.\n";
+
+volatile sig_atomic_t g_stop = 0;
+void OnSignal(int) { g_stop = 1; }
+
+int Failed(const std::string& why, int code) {
+  std::fprintf(stderr, "palpa-linux-board: %s\n", why.c_str());
+  return code;
+}
+
+/// The tick statistics the core keeps (also reported over the link by GetLoopStats).
+void ReportTicks(const palpa::core::TickStats& t) {
+  std::printf(
+      "palpa-linux-board: %llu ticks, %u overruns, jitter max %u us, tick mean %.1f us, worst "
+      "%u us\n",
+      static_cast<unsigned long long>(t.ticks), t.overruns, t.jitter_max_us,
+      t.ticks > 0 ? static_cast<double>(t.busy_us) / static_cast<double>(t.ticks) : 0.0,
+      t.worst_tick_us);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc == 2 && std::string(argv[1]) == "--help") {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
+  if (argc != 2) return Failed("expected one argument, the board file (see --help)", 2);
+  std::string error;
+  const auto file = lb::LoadBoardFile(argv[1], &error);
+  if (!file) return Failed(error, 2);
+
+  struct sigaction action {};
+  action.sa_handler = OnSignal;  // no SA_RESTART: the tick's sleep returns, the loop ends
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+  signal(SIGPIPE, SIG_IGN);
+
+  auto io = lb::LinuxIo::Open(*file, &error);
+  if (!io) return Failed(error, 1);
+  palpa::hosted::FdLink link;
+  if (!link.Open(file->listen, &error, "link.listen", file->baud)) {
+    io->WriteSafe(&error);
+    return Failed(error, 1);
+  }
+  lb::WatchdogDevice watchdog;
+  if (!file->watchdog.empty() && !watchdog.Open(file->watchdog, file->watchdog_timeout_s, &error)) {
+    io->WriteSafe(&error);
+    return Failed(error, 1);
+  }
+  const lb::RealTimeReport rt = lb::EnterRealTime(file->rt_priority);
+
+  palpa::core::BoardIdentity id;
+  id.kind = palpa::protocol::BoardKind::kLinux;
+  id.board_id = file->board_id;
+  id.boot_nonce = std::random_device{}() | 1u;  // each start is a new boot to a host
+  id.rx_buffer_bytes = 4096;
+  palpa::core::Board board(*file->config, io->Io(link), id);
+  board.Start();
+
+  const auto& m = file->module;
+  std::printf(
+      "palpa-linux-board: %s, analogue I/O %s (%s, %u outputs, %u inputs), %zu GPIO lines%s\n",
+      file->board.c_str(), m.Describe().c_str(), m.module->name, m.output_count, m.input_count,
+      io->gpio_lines(), io->gpio_lines() == 0 ? " (none configured)" : "");
+  std::printf("palpa-linux-board: real time: %s\n", rt.Describe(file->rt_priority).c_str());
+  if (watchdog.is_open()) std::printf("palpa-linux-board: watchdog %s\n", file->watchdog.c_str());
+  std::printf("palpa-linux-board: listening on %s\n", link.address().c_str());
+  std::fflush(stdout);
+
+  // The grid starts where the core's tick pacer did (Board::Start read the same clock just now).
+  lb::DeadlineGrid grid(lb::MonotonicNs(), palpa::core::Board::kTickUs * 1000u);
+  bool gpio_reported = false;
+  while (!g_stop) {
+    if (!grid.Sleep()) continue;  // a signal: the loop condition decides
+    link.Pump();
+    if (board.Step()) watchdog.Kick();  // only after a tick wrote its outputs
+    link.Pump();
+    if (!gpio_reported && io->gpio_failed()) {
+      gpio_reported = true;
+      std::fprintf(stderr, "palpa-linux-board: a GPIO line could not be written or read\n");
+    }
+    grid.Advance(lb::MonotonicNs());
+  }
+  const bool safe = io->WriteSafe(&error);
+  watchdog.Close();  // after the outputs are safe: a failure above still leaves the reset armed
+  ReportTicks(board.tick_stats());
+  if (!safe) return Failed("writing the safe outputs: " + error, 1);
+  std::printf("palpa-linux-board: outputs safe, stopped\n");
+  return 0;
+}

@@ -1,0 +1,173 @@
+// palpa-linux-board as a process, with the EK9000 emulator and a stand-in plant behind it: the
+// link behaviour every board meets, safe outputs on SIGTERM, the module's watchdog after kill -9,
+// a Modbus outage latched and reported over the link, refusals at start.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "board_behaviour.h"
+#include "mini_client.h"
+#include "palpa/host/device.h"
+#include "palpa/protocol/faults.h"
+
+// Last: both define CppUTest's allocation macros.
+#include "CppUTest/TestHarness.h"
+#include "ek9000_process.h"
+
+namespace pp = palpa::protocol;
+namespace pt = palpa::testing;
+
+namespace {
+
+constexpr int kOutputs = 0x0800, kFallbacks = 0x1021;
+// thesis-5finger's lines: a sensor reads 1 V at 0 Pa and 9 V at ±103.4 kPa; a regulator commands
+// 0 to ±100 kPa with 0-10 V. Pressure lines 0-4 rise, vacuum lines 5-6 fall; channel 7 is spare.
+constexpr const char* kVolts = "1,1,1,1,1,9,9,1";
+const std::string kPlant =
+    "plant=20:1/0.7736,1/0.7736,1/0.7736,1/0.7736,1/0.7736,9/-0.7736,9/-0.7736,1/0";
+
+std::string Temp(const std::string& name) {
+  return "/tmp/palpa-linux-board-" + std::to_string(getpid()) + "-" + name;
+}
+
+std::string ReadAll(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// A board file for thesis-5finger on the emulator; `extra` adds top-level fields.
+std::string WriteBoardFile(int module_port, const std::string& listen, const std::string& extra) {
+  const std::string path = Temp("board.json");
+  std::ofstream(path) << R"({"board": "thesis-5finger", "realtime": {"priority": 0},
+    "link": {"listen": ")"
+                      << listen << R"("}, "analog_module": {"port": )" << module_port
+                      << R"(, "watchdog_ms": 300, "response_timeout_ms": 50,
+    "outputs": {"count": 8}, "inputs": {"count": 8, "bits": 14}})"
+                      << (extra.empty() ? "" : ", " + extra) << "}";
+  return path;
+}
+
+/// What a command printed on stdout.
+std::string Run(const std::string& command) {
+  std::string out;
+  FILE* p = popen(command.c_str(), "r");
+  char buffer[512];
+  for (size_t n; p != nullptr && (n = fread(buffer, 1, sizeof(buffer), p)) > 0;)
+    out.append(buffer, n);
+  if (p != nullptr) pclose(p);
+  return out;
+}
+
+int WaitExit(int pid) {
+  int status = 0;
+  for (int i = 0; i < 250; ++i) {
+    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    usleep(20000);
+  }
+  return -2;
+}
+
+}  // namespace
+
+TEST_GROUP(LinuxBoard){};
+
+TEST(LinuxBoard, MeetsTheLinkBehaviourAndSigtermLeavesZeroVolts) {
+  pt::Ek9000Emulator emulator(kVolts, kPlant);
+  CHECK(emulator.up());
+  const std::string watchdog = Temp("watchdog");
+  std::ofstream(watchdog).close();  // a file stands in for /dev/watchdog: the kicks are its bytes
+  const std::string file = WriteBoardFile(emulator.port(), "tcp:127.0.0.1:0",
+                                          R"("watchdog": {"device": ")" + watchdog + R"("})");
+  pt::SimProcess board;
+  CHECK_TEXT(board.Start({file}, PALPA_LINUX_BOARD_PATH), board.output().c_str());
+  CHECK(board.output().find("0 GPIO lines (none configured)") != std::string::npos);
+  // Through the host library: Hello, a configuration change, line 0 at 40 kPa read back by its
+  // sensor through the module (the closed loop), host silence making every line safe.
+  pt::CheckBoardBehaviour(board.address(), pp::BoardKind::kLinux, /*plant_simulated=*/false);
+
+  // The command line through a tcp: device URI.
+  const std::string info =
+      Run(std::string(PALPA_CLI_PATH) + " --device " + board.address() + " info");
+  CHECK_TEXT(info.find("board         linux, id 1") != std::string::npos, info.c_str());
+  CHECK_TEXT(info.find("configuration thesis-5finger") != std::string::npos, info.c_str());
+
+  auto opened = palpa::host::Device::Open(board.address(), {});
+  CHECK_TEXT(opened.ok(), opened.message.c_str());
+  CHECK(opened.value->ClearFault().ok());
+  CHECK(opened.value->SetLines({{0, 60.0}}).ok());
+  CHECK(pt::WaitUntil([&] { return emulator.Holding(kOutputs) > 0x7FFF / 2; }, 3));
+  kill(board.pid(), SIGTERM);  // with the session open and line 0 commanding 6 V
+  LONGS_EQUAL(0, WaitExit(board.pid()));
+  opened.value.reset();
+  for (int i = 0; i < 8; ++i) LONGS_EQUAL(0, emulator.Holding(kOutputs + i));
+  LONGS_EQUAL(0, emulator.Holding(kFallbacks));  // written by the board, not by the module
+  const std::string kicks = ReadAll(watchdog);
+  CHECK(kicks.size() > 100 && kicks.find_first_not_of('k') == kicks.size() - 1);
+  CHECK(kicks.back() == 'V');  // the magic close: a clean exit does not reset the machine
+  unlink(watchdog.c_str());
+  unlink(file.c_str());
+}
+
+TEST(LinuxBoard, AnOutageIsLatchedOverThePtyAndKillLeavesTheModuleToItsWatchdog) {
+  pt::Ek9000Emulator emulator(kVolts, kPlant);
+  CHECK(emulator.up());
+  const std::string pty = Temp("pty");
+  const std::string file = WriteBoardFile(emulator.port(), "pty:" + pty, "");
+  pt::SimProcess board;
+  CHECK_TEXT(board.Start({file}, PALPA_LINUX_BOARD_PATH), board.output().c_str());
+  STRCMP_EQUAL(("serial:" + pty).c_str(), board.address().c_str());
+  auto opened = palpa::host::Device::Open(board.address(), {});
+  CHECK_TEXT(opened.ok(), opened.message.c_str());
+  palpa::host::Device& d = *opened.value;
+  CHECK(d.info().board_kind == pp::BoardKind::kLinux);
+  CHECK(d.SetLines({{1, 30.0}}).ok());
+  CHECK(pt::WaitUntil([&] { return emulator.Holding(kOutputs + 1) > 0; }, 3));
+
+  emulator.Pause();  // the module falls silent: the tick's transfers time out
+  const uint32_t output_write = pp::FaultBit(pp::Fault::kOutputWrite);
+  uint32_t latched = 0;
+  pt::WaitUntil(
+      [&] {
+        auto diag = d.Diagnostics();
+        latched = diag.ok() ? diag.value.fault_bitmap : 0;
+        return (latched & output_write) != 0;
+      },
+      5);
+  emulator.Resume();
+  CHECK_TEXT(latched & output_write, palpa::host::FaultNames(latched).c_str());
+  // The module back (its backlog of stale requests answered first): the fault clears and the
+  // board takes commands again.
+  CHECK(pt::WaitUntil([&] { return d.ClearFault().ok(); }, 5));
+  CHECK(d.SetLines({{1, 30.0}}).ok());
+  CHECK(pt::WaitUntil([&] { return emulator.Holding(kOutputs + 1) > 0; }, 3));
+  const uint16_t fallbacks = emulator.Holding(kFallbacks);
+
+  kill(board.pid(), SIGKILL);  // nothing writes the safe outputs now: the module's watchdog does
+  LONGS_EQUAL(-1, WaitExit(board.pid()));
+  CHECK(pt::WaitUntil([&] { return emulator.Holding(kOutputs + 1) == 0; }, 3));
+  LONGS_EQUAL(fallbacks + 1, emulator.Holding(kFallbacks));
+  unlink(file.c_str());
+}
+
+TEST(LinuxBoard, RefusesABadFileOrAMissingModuleAndSaysWhy) {
+  pt::SimProcess board;
+  const std::string file = WriteBoardFile(1, "tcp:127.0.0.1:0", R"("gpio": {"valves": [3]})");
+  CHECK(!board.Start({file}, PALPA_LINUX_BOARD_PATH));
+  CHECK_TEXT(board.output().find("gpio.valves[0]: expected CHIP:LINE") != std::string::npos,
+             board.output().c_str());
+  LONGS_EQUAL(2, WaitExit(board.pid()));
+  // Nothing answers Modbus at the port: refused at start, naming the module.
+  const std::string nothing = WriteBoardFile(pt::FreeTcpPort(), "tcp:127.0.0.1:0", "");
+  pt::SimProcess none;
+  CHECK(!none.Start({nothing}, PALPA_LINUX_BOARD_PATH));
+  CHECK_TEXT(none.output().find("analog_module: tcp:127.0.0.1:") != std::string::npos,
+             none.output().c_str());
+  LONGS_EQUAL(1, WaitExit(none.pid()));
+  unlink(file.c_str());
+}
