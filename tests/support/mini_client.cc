@@ -246,6 +246,19 @@ int SimProcess::Stop() {
   return -1;
 }
 
+int SimProcess::WaitExit(int timeout_ms) {
+  if (pid_ <= 0) return -2;
+  int status = 0;
+  for (int waited = 0; waited <= timeout_ms; waited += 20) {
+    if (waitpid(pid_, &status, WNOHANG) == pid_) {
+      pid_ = -1;
+      return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    }
+    usleep(20000);
+  }
+  return -2;
+}
+
 SimProcess::~SimProcess() {
   Stop();
   if (out_fd_ >= 0) close(out_fd_);

@@ -89,6 +89,9 @@ class SimProcess {
   ~SimProcess();
   /// Sends SIGTERM and returns the exit status (-1 if it had to be killed).
   int Stop();
+  /// Waits up to `timeout_ms` for it to exit by itself (or by a signal the test sent): its exit
+  /// status, -1 when a signal ended it, -2 when it is still running.
+  int WaitExit(int timeout_ms);
   const std::string& address() const {
     return address_;
   }  ///< "tcp:127.0.0.1:PORT" or "serial:PATH"

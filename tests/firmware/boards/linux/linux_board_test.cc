@@ -1,7 +1,6 @@
 // palpa-linux-board as a process, with the EK9000 emulator and a stand-in plant behind it: the
 // link behaviour every board meets, safe outputs on SIGTERM, the module's watchdog after kill -9,
 // a Modbus outage latched and reported over the link, refusals at start.
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -64,15 +63,6 @@ std::string Run(const std::string& command) {
   return out;
 }
 
-int WaitExit(int pid) {
-  int status = 0;
-  for (int i = 0; i < 250; ++i) {
-    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    usleep(20000);
-  }
-  return -2;
-}
-
 }  // namespace
 
 TEST_GROUP(LinuxBoard){};
@@ -103,7 +93,7 @@ TEST(LinuxBoard, MeetsTheLinkBehaviourAndSigtermLeavesZeroVolts) {
   CHECK(opened.value->SetLines({{0, 60.0}}).ok());
   CHECK(pt::WaitUntil([&] { return emulator.Holding(kOutputs) > 0x7FFF / 2; }, 3));
   kill(board.pid(), SIGTERM);  // with the session open and line 0 commanding 6 V
-  LONGS_EQUAL(0, WaitExit(board.pid()));
+  LONGS_EQUAL(0, board.WaitExit(5000));
   opened.value.reset();
   for (int i = 0; i < 8; ++i) LONGS_EQUAL(0, emulator.Holding(kOutputs + i));
   LONGS_EQUAL(0, emulator.Holding(kFallbacks));  // written by the board, not by the module
@@ -149,7 +139,7 @@ TEST(LinuxBoard, AnOutageIsLatchedOverThePtyAndKillLeavesTheModuleToItsWatchdog)
   const uint16_t fallbacks = emulator.Holding(kFallbacks);
 
   kill(board.pid(), SIGKILL);  // nothing writes the safe outputs now: the module's watchdog does
-  LONGS_EQUAL(-1, WaitExit(board.pid()));
+  LONGS_EQUAL(-1, board.WaitExit(5000));
   CHECK(pt::WaitUntil([&] { return emulator.Holding(kOutputs + 1) == 0; }, 3));
   LONGS_EQUAL(fallbacks + 1, emulator.Holding(kFallbacks));
   unlink(file.c_str());
@@ -161,13 +151,13 @@ TEST(LinuxBoard, RefusesABadFileOrAMissingModuleAndSaysWhy) {
   CHECK(!board.Start({file}, PALPA_LINUX_BOARD_PATH));
   CHECK_TEXT(board.output().find("gpio.valves[0]: expected CHIP:LINE") != std::string::npos,
              board.output().c_str());
-  LONGS_EQUAL(2, WaitExit(board.pid()));
+  LONGS_EQUAL(2, board.WaitExit(5000));
   // Nothing answers Modbus at the port: refused at start, naming the module.
   const std::string nothing = WriteBoardFile(pt::FreeTcpPort(), "tcp:127.0.0.1:0", "");
   pt::SimProcess none;
   CHECK(!none.Start({nothing}, PALPA_LINUX_BOARD_PATH));
   CHECK_TEXT(none.output().find("analog_module: tcp:127.0.0.1:") != std::string::npos,
              none.output().c_str());
-  LONGS_EQUAL(1, WaitExit(none.pid()));
+  LONGS_EQUAL(1, none.WaitExit(5000));
   unlink(file.c_str());
 }
