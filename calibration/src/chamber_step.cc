@@ -34,23 +34,29 @@ ChamberFit FitChamberStep(const std::vector<std::pair<double, double>>& samples,
   const double span = end - start;
   // A step the readings' noise could fake is no step to fit.
   if (std::fabs(span) < std::max(10.0 * noise, 1e-12)) return best;
-  auto cost = [&](const ChamberFit& f) {
+  int n = 0;
+  for (const auto& sample : samples) n += sample.first >= 0 ? 1 : 0;
+  best.rms = 1e9;
+  if (n == 0) return best;
+  // The candidate's RMS; above `give_up` (a sum of squares no better fit can have) it stops
+  // early and says so with a huge value: most of the grid is far off within the first samples.
+  auto cost = [&](const ChamberFit& f, double give_up) {
     double sum = 0;
-    int n = 0;
     for (const auto& [t, v] : samples) {
       if (t < 0) continue;
       const double e = (v - start) / span - ChamberResponse(f, t);
       sum += e * e;
-      ++n;
+      if (sum > give_up) return 1e9;
     }
-    return n > 0 ? std::sqrt(sum / n) : 1e9;
+    return std::sqrt(sum / n);
   };
   // A grid: dead time by 0.5 ms up to 50 ms; the chamber's lag none, or 0.5 ms to 2 s by 2 %.
-  best.rms = 1e9;
   for (double dead = 0; dead <= 0.05; dead += 0.0005) {
     for (double tau = 0; tau <= 2.0; tau = tau == 0 ? 0.0005 : tau * 1.02) {
       const ChamberFit f{dead, regulator_tau_s, tau, 0, true};
-      const double c = cost(f);
+      // A margin over the best's sum of squares, so rounding never drops a candidate it keeps.
+      const double give_up = best.rms < 1e9 ? best.rms * best.rms * n * (1 + 1e-9) : HUGE_VAL;
+      const double c = cost(f, give_up);
       if (c < best.rms) best = ChamberFit{dead, regulator_tau_s, tau, c, true};
     }
   }
