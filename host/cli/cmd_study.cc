@@ -3,9 +3,12 @@
 #include <poll.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <regex>
+#include <thread>
 
 #include "cli.h"
 #include "palpa/host/file_write.h"
@@ -13,6 +16,7 @@
 #include "palpa/host/study_participant.h"
 #include "palpa/host/study_runner.h"
 #include "palpa/host/transport.h"
+#include "palpa/hal/linux/gpio_output.h"
 
 namespace palpa::cli {
 
@@ -84,7 +88,7 @@ int Show(const std::vector<std::string>& args) {
 }
 
 struct RunArgs {
-  std::string study, participant, out, device, calibration_dir, triggers;
+  std::string study, participant, out, device, calibration_dir, triggers, trigger_gpio;
   bool resume = false, nominal = false;
   std::string speed = "1";
   long simulated = -1;  ///< the simulated participant's seed; −1: the terminal
@@ -116,6 +120,8 @@ host::Result<RunArgs> ParseRun(const std::vector<std::string>& args) {
       r.calibration_dir = v.value;
     } else if (a == "--triggers") {
       r.triggers = v.value;
+    } else if (a == "--trigger-gpio") {
+      r.trigger_gpio = v.value;
     } else if (a == "--speed") {
       if (!ParseNumber(v.value, n) || n < 0.1 || n > 100)
         return {Status::kInvalidArgument, "--speed " + v.value + ": 0.1 to 100"};
@@ -128,7 +134,8 @@ host::Result<RunArgs> ParseRun(const std::vector<std::string>& args) {
     } else {
       const std::string near =
           Suggest(a, {"--participant", "--out", "--device", "--resume", "--calibration-dir",
-                      "--nominal-only", "--triggers", "--speed", "--simulated-participant"});
+                      "--nominal-only", "--triggers", "--trigger-gpio", "--speed",
+                      "--simulated-participant"});
       return {Status::kInvalidArgument,
               "unknown option '" + a + "'" + (near.empty() ? "" : " (did you mean " + near + "?)")};
     }
@@ -139,6 +146,15 @@ host::Result<RunArgs> ParseRun(const std::vector<std::string>& args) {
     return {id.status, id.message};
   if (r.out.empty()) return {Status::kInvalidArgument, "--out DIR is missing"};
   return r;
+}
+
+/// One trigger on the GPIO line: high for 10 ms, long enough for a recorder sampling at 500 Hz or
+/// more to see it. Every event is one pulse; --triggers FILE says which event each was.
+void PulseTrigger(hal::linux_gpio::GpioOutput& line) {
+  line.Set(true);
+  std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  line.Set(false);
+  if (!line.ok()) std::fprintf(stderr, "palpa study: the trigger line's write failed\n");
 }
 
 /// "palpa-sim: thesis-pneumatic-3, plant level 3, unit 12, seed 1, speed 1x" → {seed, unit}.
@@ -163,6 +179,13 @@ int Run(Context& c, const std::vector<std::string>& args) {
                                                           : "sim:thesis-pneumatic-3";
   }
   c.device_uri = uri;  // what the closing message names
+  // The trigger line is taken before the board starts: a missing or busy line refuses the run.
+  std::shared_ptr<hal::linux_gpio::GpioOutput> trigger_line;
+  if (!r.value.trigger_gpio.empty()) {
+    std::string error;
+    trigger_line = hal::linux_gpio::GpioOutput::Open(r.value.trigger_gpio, false, &error);
+    if (trigger_line == nullptr) return Fail(cmd, Status::kIoError, "--trigger-gpio " + error);
+  }
   const bool sim = uri == "sim" || uri.rfind("sim:", 0) == 0;
   if (r.value.simulated >= 0 && !sim)
     return Usage(cmd,
@@ -201,9 +224,11 @@ int Run(Context& c, const std::vector<std::string>& args) {
   } else {
     if (c.Device() == nullptr) return kExitConnect;
   }
-  if (!r.value.triggers.empty()) {
+  if (!r.value.triggers.empty() || trigger_line != nullptr) {
     const std::string path = r.value.triggers;
-    o.on_trigger = [path](const host::TriggerEvent& e) {
+    o.on_trigger = [path, trigger_line](const host::TriggerEvent& e) {
+      if (trigger_line != nullptr) PulseTrigger(*trigger_line);  // first: the edge is the moment
+      if (path.empty()) return;
       const nlohmann::ordered_json j = {
           {"event", e.kind}, {"trial", e.trial}, {"board_ms", e.board_ms}};
       const host::Outcome written = host::AppendFileLine(path, j.dump() + "\n");
@@ -262,7 +287,8 @@ int CmdStudy(Context& c, const std::vector<std::string>& args) {
 const Command kStudyCommand{
     "study",
     "study list | show STUDY | run STUDY --participant ID --out DIR [--device URI] [--resume] "
-    "[--calibration-dir DIR | --nominal-only] [--triggers FILE] [--speed X] "
+    "[--calibration-dir DIR | --nominal-only] [--triggers FILE] [--trigger-gpio CHIP:LINE] "
+    "[--speed X] "
     "[--simulated-participant SEED] | report DIR... [--out OUT]",
     "Discrimination studies (docs/studies.md): the thesis's two built in (thesis-pneumatic,\n"
     "thesis-jamming) or a study file. show prints a study resolved, every default filled in.\n"
@@ -272,7 +298,8 @@ const Command kStudyCommand{
     "trials.jsonl, a line per trial as it ends: a killed session loses at most the trial in\n"
     "progress, and --resume continues it in the same order. A participant's DIR is used once.\n"
     "On a sim: device (started here, at --speed X) --simulated-participant SEED answers instead.\n"
-    "--triggers FILE appends each trial's settled and answered events (board time) as JSON lines.\n"
+    "--triggers FILE appends each trial's settled and answered events (board time) as JSON lines;\n"
+    "--trigger-gpio CHIP:LINE pulses a GPIO line (libgpiod) high for 10 ms at each of them.\n"
     "report analyses the sessions of one study (each DIR a session's directory) as the thesis\n"
     "analysed its studies, pooling the participants: Se, Sp, PPV and ACC per block, mode,\n"
     "condition and participant with Wilson intervals (each finger position of each non-practice\n"

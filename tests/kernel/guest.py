@@ -10,8 +10,12 @@ The guest's console goes to stdout; the exit status is the scenario script's.
 
 DIR for --kernel is where `./run` unpacked the kernel package (boot/vmlinuz-*, lib/modules/*).
 --module adds a module built out of tree for this kernel, loaded after the scenario's.
-A scenario directory holds scenario.json ({"modules": [...], "memory_mb": N, "cpus": N,
-"qemu": [extra arguments]}) and guest.sh (run by /init with ARGS; its exit status is the guest's).
+A scenario directory holds scenario.json, guest.sh (run by /init with ARGS; its exit status is
+the guest's) and any files guest.sh reads (in /scenario). scenario.json: {"modules": [...], "module_options": {"module": "param=value ..."},
+"memory_mb": N, "cpus": N, "qemu": [extra arguments], "disk_kb": N, "reboots": N}. disk_kb gives
+the guest a zeroed virtio disk (/dev/vda) that keeps what it writes across a reset; reboots lets
+the machine reset that many times (a watchdog's reset) before the scenario ends, where otherwise
+a reset ends QEMU and fails the run.
 --icount SHIFT runs the guest on virtual time, 2^SHIFT ns an instruction, idle time skipped: its
 clocks then follow its own work, not the load on the machine running it (benchmarks).
 """
@@ -178,8 +182,11 @@ def build_initramfs(path, scenario_dir, config, modules_dir, version, programs, 
         a.symlink("usr/sbin", "../bin")
         with open(os.path.join(here, "init.sh"), "rb") as f:
             a.file("init", f.read(), 0o755)
-        with open(os.path.join(scenario_dir, "guest.sh"), "rb") as f:
-            a.file("scenario/guest.sh", f.read(), 0o755)
+        for name in sorted(os.listdir(scenario_dir)):  # guest.sh and the files it reads
+            path = os.path.join(scenario_dir, name)
+            if name != "scenario.json" and os.path.isfile(path):
+                with open(path, "rb") as f:
+                    a.file("scenario/" + name, f.read(), 0o755 if name == "guest.sh" else 0o644)
         # Modules built out of tree (against the same kernel's headers) join the package's: they
         # are loaded after what they depend on, like the others.
         index = module_index(modules_dir)
@@ -190,7 +197,13 @@ def build_initramfs(path, scenario_dir, config, modules_dir, version, programs, 
         for ko in order:
             with open(ko, "rb") as f:
                 a.file("lib/modules/%s/%s" % (version, os.path.basename(ko)), f.read())
-        a.file("scenario/modules", "".join(os.path.basename(k) + "\n" for k in order).encode())
+        options = config.get("module_options", {})
+        lines = []
+        for ko in order:
+            name = os.path.basename(ko)
+            option = options.get(name[:-3].replace("-", "_"))
+            lines.append(name + (" " + option if option else "") + "\n")
+        a.file("scenario/modules", "".join(lines).encode())
         for program in programs:
             a.file("bin/" + os.path.basename(program), without_debug_info(program), 0o755)
         for lib in shared_libraries(programs):
@@ -199,18 +212,24 @@ def build_initramfs(path, scenario_dir, config, modules_dir, version, programs, 
         a.close()
 
 
-def run_guest(kernel, initrd, config, append, timeout, log_path, icount):
+def run_guest(kernel, initrd, config, append, timeout, work, icount):
     qemu = shutil.which("qemu-system-x86_64")
     if qemu is None:
         fail("qemu-system-x86_64 is not installed (./run installs qemu-system-x86)")
     # On virtual time QEMU 7.2 runs every CPU in one thread, and this kernel did not boot with two.
     cpus = 1 if icount is not None else config.get("cpus", 2)
+    reboots = config.get("reboots", 0)
     command = [
         qemu, "-accel", "tcg", "-m", str(config.get("memory_mb", 512)), "-smp",
-        str(cpus), "-nographic", "-monitor", "none", "-serial", "stdio",
-        "-no-reboot", "-nodefaults", "-kernel", kernel, "-initrd", initrd, "-append",
+        str(cpus), "-nographic", "-monitor", "none", "-serial", "stdio", "-nodefaults",
+        "-kernel", kernel, "-initrd", initrd, "-append",
         "console=ttyS0 panic=-1 loglevel=4 " + append
-    ] + config.get("qemu", [])
+    ] + ([] if reboots else ["-no-reboot"]) + config.get("qemu", [])
+    if "disk_kb" in config:
+        disk = os.path.join(work, "disk.img")
+        with open(disk, "wb") as f:
+            f.write(b"\0" * 1024 * config["disk_kb"])
+        command += ["-drive", "file=%s,format=raw,if=virtio" % disk]
     if icount is not None:
         command += ["-icount", "shift=%d,sleep=off" % icount]
     started = time.monotonic()
@@ -218,7 +237,9 @@ def run_guest(kernel, initrd, config, append, timeout, log_path, icount):
                              stderr=subprocess.STDOUT, start_new_session=True)
     status = None
     pending = b""
-    with open(log_path, "wb") as log:
+    boots = 0
+    partial = b""
+    with open(os.path.join(work, "console.log"), "wb") as log:
         while True:
             left = started + timeout - time.monotonic()
             if left <= 0:
@@ -233,7 +254,14 @@ def run_guest(kernel, initrd, config, append, timeout, log_path, icount):
             log.write(chunk)
             sys.stdout.buffer.write(chunk)
             sys.stdout.flush()
+            # Whole lines are counted: each boot's /init says so first.
+            *lines, partial = (partial + chunk).split(b"\n")
+            boots += sum(1 for line in lines if line.strip() == b"palpa-guest: boot")
             pending = (pending + chunk)[-4096:]
+            if boots > reboots + 1:
+                print("\nguest.py: the guest booted %d times, %d allowed" % (boots, reboots + 1),
+                      flush=True)
+                break
             m = re.search(rb"palpa-guest: exit (\d+)\r?\n", pending)
             if m:
                 status = int(m.group(1))
@@ -266,14 +294,13 @@ def main():
             fail("%s: not an executable (build it first)" % program)
     for ko in o.module:
         if not ko.endswith(".ko") or not os.path.isfile(ko):
-            fail("%s: not a kernel module file (.ko)" % ko)
+            fail("%s: not a kernel module file (.ko; ./run kernel builds gpio-mockup.ko)" % ko)
     work = o.work or os.path.join(os.getcwd(), "guest-" + os.path.basename(o.scenario.rstrip("/")))
     os.makedirs(work, exist_ok=True)
     initrd = os.path.join(work, "initramfs.cpio")
     build_initramfs(initrd, o.scenario, config, modules_dir, version, o.bin, o.module)
     append = "palpa.args=" + ",".join(o.args) if o.args else ""
-    sys.exit(run_guest(kernel, initrd, config, append, o.timeout, os.path.join(work, "console.log"),
-                       o.icount))
+    sys.exit(run_guest(kernel, initrd, config, append, o.timeout, work, o.icount))
 
 
 if __name__ == "__main__":

@@ -1,7 +1,9 @@
 #!/bin/sh
-# The guest's /init: mounts, loads the scenario's modules in dependency order, runs its script
-# with the arguments given on the kernel command line, reports its exit status and powers off.
+# The guest's /init: says it booted, mounts, loads the scenario's modules in dependency order with
+# their options, runs its script with the arguments given on the kernel command line, reports its
+# exit status and powers off.
 export PATH=/bin LD_LIBRARY_PATH=/lib:/usr/lib
+echo "palpa-guest: boot"
 mount -t proc proc /proc
 mount -t sysfs sysfs /sys
 mount -t devtmpfs devtmpfs /dev
@@ -13,8 +15,9 @@ ln -sf /proc/self/fd /dev/fd
 ip link set lo up 2>/dev/null
 version=$(uname -r)
 status=0
-while read -r module; do
-  if ! insmod "/lib/modules/$version/$module" 2>/tmp/insmod.err; then
+while read -r module options; do
+  # shellcheck disable=SC2086
+  if ! insmod "/lib/modules/$version/$module" $options 2>/tmp/insmod.err; then
     echo "palpa-guest: cannot load $module: $(cat /tmp/insmod.err)"
     status=3
   fi

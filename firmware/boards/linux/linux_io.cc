@@ -32,7 +32,9 @@ std::unique_ptr<LinuxIo> LinuxIo::Open(const BoardFile& file, std::string* error
     if (!output(field.c_str(), file.valves[i], &io->valves_.valves.back())) return nullptr;
   }
   if (!file.estop.empty()) {
-    io->estop_ = hal::linux_gpio::GpioEdgeInput::Open(file.estop, file.estop_active_high, error);
+    // The file names the level that asserts the E-stop; the line is requested in that sense.
+    io->estop_ = hal::linux_gpio::GpioEdgeInput::Open(
+        file.estop, /*active_low=*/!file.estop_active_high, error);
     if (io->estop_ == nullptr) {
       *error = "gpio.estop: " + *error;
       return nullptr;
@@ -76,7 +78,7 @@ bool LinuxIo::gpio_failed() const {
   bool failed = false;
   for (const OptionalOutput* o : {&supply_, &dump_, &pump_}) failed |= o->line && !o->line->ok();
   for (const auto& v : valves_.valves) failed |= !v->ok();
-  return failed || (estop_ && estop_->failed());
+  return failed || (estop_ && !estop_->error().empty());
 }
 
 size_t LinuxIo::gpio_lines() const {

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+struct gpiod_line;
+
 namespace palpa::testing::fake_gpiod {
 
 struct State {
@@ -17,10 +19,12 @@ struct State {
   std::set<std::string> busy;    ///< "gpiochip0:17": requested by someone else
   std::vector<std::string> log;  ///< "request gpiochip0:17=1", "set gpiochip0:17=0", "release ..."
   int open_chips = 0;
-  // Inputs with edge events: each line's level now and the edges still queued (true: rising).
+  // Inputs with edge events: each line's electrical level now and the edges still queued as the
+  // kernel stamped them (true: rising); reported in the line's sense, as the kernel does.
   std::map<std::string, int> levels;
   std::map<std::string, std::deque<bool>> edges;
-  std::set<std::string> broken;  ///< reads of these lines fail (EIO)
+  std::set<std::string> broken;          ///< reads of these lines fail (EIO)
+  std::vector<gpiod_line*> event_lines;  ///< every line got from an open chip (fd to line)
 };
 State& state();
 void Reset();

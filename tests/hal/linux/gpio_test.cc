@@ -73,31 +73,57 @@ TEST(Gpio, TheEStopSeesAPressShorterThanATickAndNeverBlocks) {
   using palpa::hal::linux_gpio::GpioEdgeInput;
   std::string error;
   fg::state().busy = {"gpiochip0:9"};
-  CHECK(GpioEdgeInput::Open("gpiochip0:9", true, &error) == nullptr);
+  CHECK(GpioEdgeInput::Open("gpiochip0:9", false, &error) == nullptr);
   CHECK(error.find("edges") != std::string::npos);
-  auto estop = GpioEdgeInput::Open("gpiochip0:5", true, &error);  // NC contact: high = pressed
+  auto estop = GpioEdgeInput::Open("gpiochip0:5", false, &error);  // NC contact: high = pressed
   CHECK_TEXT(estop != nullptr, error.c_str());
-  CHECK(!estop->Read());
+  CHECK_TEXT(!estop->Read(), estop->error().c_str());  // nothing queued: the read did not wait
   // Pressed and released between two ticks: the level is back, the rising edge is not lost.
   fg::state().edges["gpiochip0:5"] = {true, false};
   CHECK(estop->Read());
-  LONGS_EQUAL(1, estop->active_edges());
-  CHECK(!estop->Read());                  // read once: the queue is drained
+  CHECK(!estop->Read());  // read once: the queue is drained
+  // Shorter than the kernel's interrupt handling: both edges stamped with the level after them.
+  fg::state().edges["gpiochip0:5"] = {false, false};
+  CHECK(estop->Read());
+  fg::state().edges["gpiochip0:5"] = {false};  // a release alone is no press
+  CHECK(!estop->Read());
   fg::state().levels["gpiochip0:5"] = 1;  // held down, its edge lost: the level says so
+  CHECK(estop->Read());
   CHECK(estop->Read());
   fg::state().levels["gpiochip0:5"] = 0;
   CHECK(!estop->Read());
+  CHECK(estop->error().empty());
   // A line that cannot be read is an asserted E-stop, from then on.
   fg::state().broken = {"gpiochip0:5"};
   CHECK(estop->Read());
   fg::state().broken.clear();
   CHECK(estop->Read());
-  CHECK(estop->failed());
+  CHECK(estop->error().find("'gpiochip0:5': reading the line") != std::string::npos);
 
-  auto low = GpioEdgeInput::Open("gpiochip1:2", false, &error);  // active low
+  // Active low: the kernel reports the line's sense, so a short pull to ground is an active edge.
+  auto low = GpioEdgeInput::Open("gpiochip1:2", true, &error);
+  CHECK_TEXT(low != nullptr, error.c_str());
   fg::state().levels["gpiochip1:2"] = 1;
   CHECK(!low->Read());
-  fg::state().edges["gpiochip1:2"] = {false, true};  // a short pull to ground
+  fg::state().edges["gpiochip1:2"] = {false, true};
   CHECK(low->Read());
   CHECK(!low->Read());
+}
+
+TEST(Gpio, EdgesAreReadInOrderAndWhatDoesNotFitStaysQueued) {
+  using palpa::hal::linux_gpio::GpioEdge;
+  using palpa::hal::linux_gpio::GpioEdgeInput;
+  std::string error;
+  auto input = GpioEdgeInput::Open("gpiochip0:6", true, &error);
+  CHECK_TEXT(input != nullptr, error.c_str());
+  fg::state().edges["gpiochip0:6"] = {false, true, false};  // pulled to ground, back, again
+  GpioEdge edges[2];
+  LONGS_EQUAL(2, input->ReadEvents(edges, 2));
+  CHECK(edges[0].active && !edges[1].active);
+  LONGS_EQUAL(1, input->ReadEvents(edges, 2));
+  CHECK(edges[0].active);
+  LONGS_EQUAL(0, input->ReadEvents(edges, 2));
+  fg::state().broken = {"gpiochip0:6"};
+  LONGS_EQUAL(-1, input->ReadEvents(edges, 2));
+  CHECK(input->error().find("reading the line's edges failed") != std::string::npos);
 }

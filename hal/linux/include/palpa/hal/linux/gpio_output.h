@@ -33,8 +33,4 @@ class GpioOutput final : public DigitalOutput {
   bool ok_ = true;
 };
 
-/// The chip and line of "CHIP:LINE" (by name, label, path or number), opened and not yet
-/// requested; nullptr with *error naming the spec and why (shared by the GPIO classes).
-gpiod_line* OpenLine(const std::string& spec, gpiod_chip** chip, std::string* error);
-
 }  // namespace palpa::hal::linux_gpio

@@ -1,0 +1,47 @@
+// A Linux watchdog device (/dev/watchdog): armed when opened, kicked by the controller after each
+// tick that wrote its outputs; only a deliberate Close stops it.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <utility>
+
+namespace palpa::hal::linux_wdt {
+
+class WatchdogDevice {
+ public:
+  /// Opens `path` (which starts the watchdog) and sets its timeout, read back from the driver.
+  /// nullptr with *error naming the path and the reason; a timeout the driver refuses or changes
+  /// is an error, and the watchdog is then stopped again (magic close) before returning.
+  static std::unique_ptr<WatchdogDevice> Open(const std::string& path, int timeout_s,
+                                              std::string* error);
+  /// Without Close(): the device is closed without the magic character and stays armed, so the
+  /// machine resets unless another program takes the watchdog over in time.
+  ~WatchdogDevice();
+  WatchdogDevice(const WatchdogDevice&) = delete;
+  WatchdogDevice& operator=(const WatchdogDevice&) = delete;
+
+  /// Restarts the timeout. false, with error() set, when the driver refused.
+  bool Kick();
+  /// Clean stop: writes the magic 'V' and closes, which stops the watchdog (unless the kernel
+  /// was built or loaded with nowayout). false, with error() set, when the write failed.
+  bool Close();
+  int timeout_s() const { return timeout_s_; }
+  /// The driver reported that the last reset was the watchdog's (WDIOF_CARDRESET at open).
+  bool reset_by_watchdog() const { return reset_by_watchdog_; }
+  const std::string& error() const { return error_; }
+
+ private:
+  WatchdogDevice(std::string path, int fd, int timeout_s, bool reset_by_watchdog)
+      : path_(std::move(path)),
+        fd_(fd),
+        timeout_s_(timeout_s),
+        reset_by_watchdog_(reset_by_watchdog) {}
+  std::string path_;
+  int fd_;
+  int timeout_s_;
+  bool reset_by_watchdog_;
+  std::string error_;
+};
+
+}  // namespace palpa::hal::linux_wdt

@@ -1,0 +1,85 @@
+// The Linux watchdog API (linux/watchdog.h): ioctls for the timeout and the kick, 'V' to stop.
+#include "palpa/hal/linux/watchdog_device.h"
+
+#include <fcntl.h>
+#include <linux/watchdog.h>
+#include <sys/ioctl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+namespace palpa::hal::linux_wdt {
+namespace {
+
+// The magic close: the driver stops the timer only when 'V' was the last thing written.
+bool MagicClose(int fd) {
+  const bool written = write(fd, "V", 1) == 1;
+  close(fd);
+  return written;
+}
+
+}  // namespace
+
+std::unique_ptr<WatchdogDevice> WatchdogDevice::Open(const std::string& path, int timeout_s,
+                                                     std::string* error) {
+  if (timeout_s < 1) {
+    *error = path + ": timeout " + std::to_string(timeout_s) + " s (at least 1 s)";
+    return nullptr;
+  }
+  const int fd = open(path.c_str(), O_WRONLY | O_CLOEXEC);
+  if (fd < 0) {
+    *error = path + ": cannot open the watchdog (" + std::strerror(errno) + ")";
+    return nullptr;
+  }
+  int status = 0;
+  const bool reset_by_watchdog =
+      ioctl(fd, WDIOC_GETBOOTSTATUS, &status) == 0 && (status & WDIOF_CARDRESET) != 0;
+  int set = timeout_s;
+  if (ioctl(fd, WDIOC_SETTIMEOUT, &set) != 0) {
+    *error = path + ": the driver refuses a timeout of " + std::to_string(timeout_s) + " s (" +
+             std::strerror(errno) + ")";
+    MagicClose(fd);
+    return nullptr;
+  }
+  int got = 0;
+  if (ioctl(fd, WDIOC_GETTIMEOUT, &got) != 0 || got != timeout_s) {
+    *error = path + ": asked for a timeout of " + std::to_string(timeout_s) +
+             " s, the driver has " + std::to_string(got) + " s";
+    MagicClose(fd);
+    return nullptr;
+  }
+  return std::unique_ptr<WatchdogDevice>(
+      new WatchdogDevice(path, fd, timeout_s, reset_by_watchdog));
+}
+
+WatchdogDevice::~WatchdogDevice() {
+  if (fd_ >= 0) close(fd_);  // no 'V': the watchdog stays armed
+}
+
+bool WatchdogDevice::Kick() {
+  if (fd_ < 0) {
+    error_ = path_ + ": kicked after Close";
+    return false;
+  }
+  int unused = 0;
+  if (ioctl(fd_, WDIOC_KEEPALIVE, &unused) != 0) {
+    error_ = path_ + ": keepalive refused (" + std::strerror(errno) + ")";
+    return false;
+  }
+  return true;
+}
+
+bool WatchdogDevice::Close() {
+  if (fd_ < 0) return true;
+  const int fd = fd_;
+  fd_ = -1;
+  if (!MagicClose(fd)) {
+    error_ = path_ + ": writing the magic close failed (" + std::strerror(errno) +
+             "); the watchdog stays armed";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace palpa::hal::linux_wdt

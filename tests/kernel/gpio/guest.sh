@@ -1,0 +1,64 @@
+#!/bin/sh
+# The GPIO and watchdog scenario, in the guest: hal/linux's GPIO classes on gpio-mockup's lines,
+# WatchdogDevice on the i6300esb, the study's trigger line, then a watchdog reset. A phase marker on the
+# virtual disk (/dev/vda, kept across the reset) tells the second boot what the first one did.
+set -u
+
+fail() { echo "gpio scenario: $*"; exit 1; }
+mark() { printf '%-16s\n' "$1" | dd of=/dev/vda conv=fsync 2>/dev/null || fail "cannot write /dev/vda"; }
+
+[ -b /dev/vda ] || fail "no virtual disk /dev/vda"
+phase=$(head -c 16 /dev/vda | tr -d ' \0\n')
+case "$phase" in
+  "")
+    ;;
+  unclean-close)
+    # Second boot: the i6300esb reset the machine after the controller died without the magic
+    # close; its driver reports that as the boot status.
+    palpa_guest_gpio_tests after-reset
+    exit $?
+    ;;
+  *)
+    fail "the machine reset during phase '$phase' (a kick or the magic close did not hold it)"
+    ;;
+esac
+
+mount -t debugfs none /sys/kernel/debug || fail "cannot mount debugfs"
+chip=$(ls /sys/kernel/debug/gpio-mockup/)
+[ "$(echo "$chip" | wc -w)" -eq 1 ] || fail "expected one gpio-mockup chip, found '$chip'"
+[ -c "/dev/$chip" ] || fail "no /dev/$chip"
+export PALPA_GPIO_CHIP=$chip
+echo "gpio scenario: $chip, $(ls /sys/kernel/debug/gpio-mockup/$chip | wc -l) lines; $(cat /sys/class/watchdog/watchdog0/identity)"
+
+mark tests
+palpa_guest_gpio_tests -v || exit 1
+
+# The study's trigger line: palpa study run pulses gpio-mockup's line 6 at every trigger event; the
+# kernel's gpio_value trace events show each level the line was set to.
+out=$(palpa study run /scenario/study.json --participant G1 --out /tmp/G1 --trigger-gpio "$chip:99" \
+  --simulated-participant 1 2>&1) && fail "a missing trigger line was not refused"
+echo "$out" | grep -q "no line 99" || fail "a missing trigger line was refused without naming it: $out"
+[ -d /tmp/G1 ] && fail "a refused run left /tmp/G1 behind"
+mount -t tracefs none /sys/kernel/tracing || fail "cannot mount tracefs"
+gpio=$(( $(sed -n 's/^gpiochip.*: GPIOs \([0-9]*\)-.*gpio-mockup.*/\1/p' /sys/kernel/debug/gpio) + 6 ))
+echo 1 > /sys/kernel/tracing/events/gpio/gpio_value/enable
+palpa study run /scenario/study.json --participant G1 --out /tmp/G1 --speed 20 \
+  --simulated-participant 1 --triggers /tmp/triggers.jsonl --trigger-gpio "$chip:6" ||
+  fail "palpa study run with a trigger line failed"
+echo 0 > /sys/kernel/tracing/events/gpio/gpio_value/enable
+sed -n "s/.* \([0-9.]*\): gpio_value: $gpio set \([01]\)$/\1 \2/p" /sys/kernel/tracing/trace > /tmp/levels
+events=$(wc -l < /tmp/triggers.jsonl)
+echo "gpio scenario: $events trigger events, line levels (time, level): $(tr '\n' ' ' < /tmp/levels)"
+[ "$events" -ge 2 ] || fail "the study wrote $events trigger events"
+# Low when palpa takes the line, then a pulse for each event.
+expected=$(echo 0; for _ in $(seq "$events"); do printf '1\n0\n'; done)
+[ "$(cut -d' ' -f2 /tmp/levels)" = "$expected" ] ||
+  fail "the trigger line did not pulse once per event ($events events)"
+
+# The controller dies without the magic close: the watchdog stays armed and must reset the machine
+# (1 s timeout, two stages on the i6300esb: about 2 s); 10 s without a reset fails.
+mark unclean-close
+palpa_guest_gpio_tests unclean-close || exit 1
+echo "gpio scenario: waiting for the watchdog's reset (uptime $(cut -d' ' -f1 /proc/uptime) s)"
+sleep 10
+fail "no reset 10 s after the watchdog was left armed"
