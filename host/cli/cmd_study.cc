@@ -11,12 +11,12 @@
 #include <thread>
 
 #include "cli.h"
+#include "palpa/hal/linux/gpio_output.h"
 #include "palpa/host/file_write.h"
 #include "palpa/host/sim_truth.h"
 #include "palpa/host/study_participant.h"
 #include "palpa/host/study_runner.h"
 #include "palpa/host/transport.h"
-#include "palpa/hal/linux/gpio_output.h"
 
 namespace palpa::cli {
 
@@ -132,10 +132,9 @@ host::Result<RunArgs> ParseRun(const std::vector<std::string>& args) {
                 "--simulated-participant " + v.value + ": a seed, 0 or more"};
       r.simulated = static_cast<long>(n);
     } else {
-      const std::string near =
-          Suggest(a, {"--participant", "--out", "--device", "--resume", "--calibration-dir",
-                      "--nominal-only", "--triggers", "--trigger-gpio", "--speed",
-                      "--simulated-participant"});
+      const std::string near = Suggest(a, {"--participant", "--out", "--device", "--resume",
+                                           "--calibration-dir", "--nominal-only", "--triggers",
+                                           "--trigger-gpio", "--speed", "--simulated-participant"});
       return {Status::kInvalidArgument,
               "unknown option '" + a + "'" + (near.empty() ? "" : " (did you mean " + near + "?)")};
     }

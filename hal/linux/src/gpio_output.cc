@@ -15,7 +15,7 @@ std::unique_ptr<GpioOutput> GpioOutput::Open(const std::string& spec, bool initi
   gpiod_chip* chip = nullptr;
   gpiod_line* line = FindGpioLine(spec, &chip, error);
   if (line == nullptr) return nullptr;
-  if (gpiod_line_request_output(line, "palpa flash", initial ? 1 : 0) != 0) {
+  if (gpiod_line_request_output(line, "palpa", initial ? 1 : 0) != 0) {
     *error = "'" + spec + "': cannot drive the line (" + std::strerror(errno) +
              "; is it used by another program?)";
     gpiod_chip_close(chip);

@@ -27,8 +27,8 @@ mount -t debugfs none /sys/kernel/debug || fail "cannot mount debugfs"
 chip=$(ls /sys/kernel/debug/gpio-mockup/)
 [ "$(echo "$chip" | wc -w)" -eq 1 ] || fail "expected one gpio-mockup chip, found '$chip'"
 [ -c "/dev/$chip" ] || fail "no /dev/$chip"
-export PALPA_GPIO_CHIP=$chip
-echo "gpio scenario: $chip, $(ls /sys/kernel/debug/gpio-mockup/$chip | wc -l) lines; $(cat /sys/class/watchdog/watchdog0/identity)"
+export PALPA_GPIO_CHIP="$chip"
+echo "gpio scenario: $chip, $(ls "/sys/kernel/debug/gpio-mockup/$chip" | wc -l) lines; $(cat /sys/class/watchdog/watchdog0/identity)"
 
 mark tests
 palpa_guest_gpio_tests -v || exit 1
