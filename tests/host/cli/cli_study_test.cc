@@ -75,6 +75,16 @@ TEST(CliStudy, ShowPrintsTheResolvedStudyAndNamesABadField) {
       "study run thesis-pneumatic --participant P1 --out /tmp/x --device tcp:127.0.0.1:1 "
       "--simulated-participant 1",
       "a sim: device only");
+  // A trigger line that is not there refuses the run before a board is started or DIR made (the
+  // line's pulses are tested on a real kernel's gpio-mockup: tests/kernel/gpio).
+  const std::string out = OwnTempPath("study-no-line");
+  fs::remove_all(out);
+  const auto no_line = Palpa("study run thesis-pneumatic --participant P1 --out " + out +
+                             " --simulated-participant 1 --trigger-gpio nochip:0");
+  LONGS_EQUAL(1, no_line.code);
+  CHECK_TEXT(Has(no_line, "--trigger-gpio 'nochip:0': no GPIO chip 'nochip'"),
+             no_line.output.c_str());
+  CHECK_FALSE(fs::exists(out));
 }
 
 TEST(CliStudy, KilledMidSessionAndResumed) {
