@@ -11,11 +11,11 @@ The guest's console goes to stdout; the exit status is the scenario script's.
 DIR for --kernel is where `./run` unpacked the kernel package (boot/vmlinuz-*, lib/modules/*).
 --module adds a module built out of tree for this kernel, loaded after the scenario's.
 A scenario directory holds scenario.json, guest.sh (run by /init with ARGS; its exit status is
-the guest's) and any files guest.sh reads (in /scenario). scenario.json: {"modules": [...], "module_options": {"module": "param=value ..."},
-"memory_mb": N, "cpus": N, "qemu": [extra arguments], "disk_kb": N, "reboots": N}. disk_kb gives
-the guest a zeroed virtio disk (/dev/vda) that keeps what it writes across a reset; reboots lets
-the machine reset that many times (a watchdog's reset) before the scenario ends, where otherwise
-a reset ends QEMU and fails the run.
+the guest's) and any files guest.sh reads (in /scenario). scenario.json: {"modules": [...],
+"module_options": {"module": "param=value ..."}, "memory_mb": N, "cpus": N, "qemu": [extra
+arguments], "disk_kb": N, "reboots": N}. disk_kb gives the guest a zeroed virtio disk (/dev/vda)
+that keeps what it writes across a reset; reboots lets the machine reset that many times (a
+watchdog's reset) before the scenario ends, where otherwise a reset ends QEMU and fails the run.
 --icount SHIFT runs the guest on virtual time, 2^SHIFT ns an instruction, idle time skipped: its
 clocks then follow its own work, not the load on the machine running it (benchmarks).
 """

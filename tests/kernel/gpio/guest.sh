@@ -1,7 +1,7 @@
 #!/bin/sh
 # The GPIO and watchdog scenario, in the guest: hal/linux's GPIO classes on gpio-mockup's lines,
-# WatchdogDevice on the i6300esb, the study's trigger line, then a watchdog reset. A phase marker on the
-# virtual disk (/dev/vda, kept across the reset) tells the second boot what the first one did.
+# WatchdogDevice on the i6300esb, the study's trigger line, then a watchdog reset. A phase marker
+# on the virtual disk (/dev/vda, kept across the reset) tells the second boot what the first did.
 set -u
 
 fail() { echo "gpio scenario: $*"; exit 1; }
@@ -49,7 +49,7 @@ echo 0 > /sys/kernel/tracing/events/gpio/gpio_value/enable
 sed -n "s/.* \([0-9.]*\): gpio_value: $gpio set \([01]\)$/\1 \2/p" /sys/kernel/tracing/trace > /tmp/levels
 events=$(wc -l < /tmp/triggers.jsonl)
 echo "gpio scenario: $events trigger events, line levels (time, level): $(tr '\n' ' ' < /tmp/levels)"
-[ "$events" -ge 2 ] || fail "the study wrote $events trigger events"
+[ "$events" -eq 4 ] || fail "the study wrote $events trigger events, not 4 (two trials)"
 # Low when palpa takes the line, then a pulse for each event.
 expected=$(echo 0; for _ in $(seq "$events"); do printf '1\n0\n'; done)
 [ "$(cut -d' ' -f2 /tmp/levels)" = "$expected" ] ||
