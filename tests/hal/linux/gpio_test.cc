@@ -87,6 +87,10 @@ TEST(Gpio, TheEStopSeesAPressShorterThanATickAndNeverBlocks) {
   CHECK(estop->Read());
   fg::state().edges["gpiochip0:5"] = {false};  // a release alone is no press
   CHECK(!estop->Read());
+  fg::state().edges["gpiochip0:5"] = {true};  // the press alone, its release not yet handled
+  CHECK(estop->Read());
+  fg::state().edges["gpiochip0:5"] = {false};
+  CHECK(!estop->Read());
   fg::state().levels["gpiochip0:5"] = 1;  // held down, its edge lost: the level says so
   CHECK(estop->Read());
   CHECK(estop->Read());
