@@ -75,6 +75,7 @@ int CmdServe(Context& c, const std::vector<std::string>& args) {
   if (d == nullptr) return kExitConnect;
   if (options.truth_address.empty()) options.truth_address = c.truth_address;
   studies.board = c.device_uri;
+  studies.sim = host::SimProvenanceOf(d->link().Describe());  // nullopt on a real board
   studies.calibration_dir = c.options.calibration_dir;
   studies.use_calibrations = c.options.use_calibrations;
   auto server = serve::Server::Bind(

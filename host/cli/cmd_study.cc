@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
-#include <regex>
 #include <thread>
 
 #include "cli.h"
@@ -156,15 +155,6 @@ void PulseTrigger(hal::linux_gpio::GpioOutput& line) {
   if (!line.ok()) std::fprintf(stderr, "palpa study: the trigger line's write failed\n");
 }
 
-/// "palpa-sim: thesis-pneumatic-3, plant level 3, unit 12, seed 1, speed 1x" → {seed, unit}.
-std::optional<host::SimProvenance> SimOf(const std::string& announcement) {
-  std::smatch unit, seed;
-  if (!std::regex_search(announcement, unit, std::regex("unit (\\d+)")) ||
-      !std::regex_search(announcement, seed, std::regex("seed (\\d+)")))
-    return std::nullopt;
-  return host::SimProvenance{std::stoull(seed[1]), std::stoll(unit[1])};
-}
-
 int Run(Context& c, const std::vector<std::string>& args) {
   const std::string cmd = "study run";
   const auto r = ParseRun(args);
@@ -216,7 +206,7 @@ int Run(Context& c, const std::vector<std::string>& args) {
     if (r.value.simulated >= 0 && !truth.Connect(truth_address))
       return Fail(cmd, Status::kIoError, "cannot read the truth channel at " + truth_address,
                   kExitConnect);
-    o.sim = SimOf(announcement);
+    o.sim = host::SimProvenanceOf(announcement);
     if (!o.sim)
       return Fail(cmd, Status::kIoError, "palpa-sim did not say its unit and seed: " + announcement,
                   kExitConnect);

@@ -316,8 +316,12 @@ Result<std::unique_ptr<Transport>> LaunchSim(const std::string& config,
     waitpid(child, nullptr, 0);
     return fd.outcome();
   }
+  // The description carries what palpa-sim said it runs (its plant's unit and seed), so a record
+  // made through this link can say which simulated board it was.
+  const std::string said = text.substr(0, text.find('\n'));
+  const std::string runs = said.rfind("palpa-sim: ", 0) == 0 ? said.substr(11) : said;
   return std::unique_ptr<Transport>(new SimTransport(
-      fd.value, child, "sim:" + uri.config + " (palpa-sim on tcp:" + address + ")"));
+      fd.value, child, "sim:" + uri.config + " (palpa-sim on tcp:" + address + ": " + runs + ")"));
 }
 
 Result<std::unique_ptr<Transport>> OpenTransport(const std::string& uri,

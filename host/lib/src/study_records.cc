@@ -3,6 +3,8 @@
 #include "palpa/host/study_records.h"
 
 #include <cctype>
+#include <cerrno>
+#include <climits>
 #include <cmath>
 #include <cstdlib>
 #include <set>
@@ -370,6 +372,26 @@ Result<SessionRecords> ReadSessionDir(const std::string& dir) {
     r.trials.push_back(std::move(t.value));
   }
   return r;
+}
+
+/// The decimal number after `word ` in text (the first such), if any.
+static std::optional<uint64_t> SimNumberAfter(const std::string& text, const std::string& word) {
+  for (size_t at = text.find(word + " "); at != std::string::npos;
+       at = text.find(word + " ", at + 1)) {
+    if (at > 0 && std::isalnum(static_cast<unsigned char>(text[at - 1]))) continue;
+    const char* digits = text.c_str() + at + word.size() + 1;
+    if (!std::isdigit(static_cast<unsigned char>(*digits))) continue;
+    errno = 0;
+    const unsigned long long value = std::strtoull(digits, nullptr, 10);
+    if (errno == 0) return value;
+  }
+  return std::nullopt;
+}
+
+std::optional<SimProvenance> SimProvenanceOf(const std::string& text) {
+  const auto unit = SimNumberAfter(text, "unit"), seed = SimNumberAfter(text, "seed");
+  if (!unit || !seed || *unit > static_cast<uint64_t>(INT64_MAX)) return std::nullopt;
+  return SimProvenance{*seed, static_cast<int64_t>(*unit)};
 }
 
 }  // namespace palpa::host

@@ -128,6 +128,7 @@ Outcome StudyDesk::Start(host::Device& device, const host::Study& study,
   o.participant = participant;
   o.resume = resume;
   o.board = options_.board;
+  o.sim = options_.sim;
   o.calibration_dir = options_.calibration_dir;
   o.use_calibrations = options_.use_calibrations;
   o.on_trigger = [this](const host::TriggerEvent& e) { OnTrigger(e); };

@@ -318,3 +318,22 @@ TEST(StudyRecords, EverySessionFieldIsChecked) {
   WriteRaw(dir / ph::kSessionFileName, "{\"format\": ");
   CheckRefused(ph::ReadSessionDir(dir), {at.c_str(), "not valid JSON"});
 }
+
+TEST(StudyRecords, ASimulatedBoardsSeedAndUnitAreReadFromWhatPalpaSimSaid) {
+  const auto said = ph::SimProvenanceOf(
+      "palpa-sim: thesis-pneumatic-3, plant level 3, unit 12, seed 7, speed 1x");
+  CHECK(said.has_value());
+  LONGS_EQUAL(12, said->unit);
+  CHECK(said->seed == 7);
+  // The link's description carries the announcement after the address.
+  const auto link = ph::SimProvenanceOf(
+      "sim:thesis-5finger (palpa-sim on tcp:127.0.0.1:4001: thesis-5finger, plant level 3, "
+      "unit 0, seed 1, speed 1x)");
+  CHECK(link.has_value());
+  LONGS_EQUAL(0, link->unit);
+  CHECK(link->seed == 1);
+  CHECK_FALSE(ph::SimProvenanceOf("tcp:127.0.0.1:4001").has_value());
+  CHECK_FALSE(ph::SimProvenanceOf("palpa-sim: x, unit 3").has_value());  // no seed
+  CHECK_FALSE(ph::SimProvenanceOf("subunit 3, seed 1").has_value());     // a word, not the unit
+  CHECK_FALSE(ph::SimProvenanceOf("unit twelve, seed 1").has_value());
+}

@@ -107,6 +107,8 @@ async def main(palpa, palpa_sim):
         started = await exp.result("study.start", study="two-web", participant="P01")
         if started["out_dir"] != "two-web/P01" or started["provenance"] is None:
             fail(f"study.start: {started}")
+        if started["provenance"]["sim"] is not None:  # a tcp: board may be any board
+            fail(f"a board reached over tcp: recorded as simulated: {started['provenance']}")
         answers = []
         await answer_all(part, "finished", answers)
         events = await experimenter_events(exp)
@@ -167,6 +169,26 @@ async def main(palpa, palpa_sim):
         await part.close()
         serve.close()
         sim.close()
+
+    # palpa serve starting palpa-sim itself: the records name the simulated board's seed and unit.
+    own = Serve(palpa, "sim:thesis-pneumatic-3",
+                extra=["--study-dir", sessions, "--study", study_file])
+    client = await Client.connect(own.url)
+    try:
+        await client.result("control.take")
+        started = await client.result("study.start", study="two-web", participant="P03")
+        said = started["provenance"]["sim"]
+        if not said or not isinstance(said.get("unit"), int) or not isinstance(said.get("seed"), int):
+            fail(f"a palpa-sim started by palpa serve, recorded as {started['provenance']}")
+        await client.result("study.stop")
+        with open(os.path.join(sessions, "two-web", "P03", "session.json")) as f:
+            session = json.load(f)  # stopped before a trial was answered: no trials.jsonl yet
+        if session["provenance"]["sim"] != said:
+            fail(f"session.json's sim {session['provenance']['sim']} is not the API's {said}")
+        print(f"ok  a palpa-sim started by palpa serve: unit {said['unit']}, seed {said['seed']}")
+    finally:
+        await client.close()
+        own.close()
     print("study_test: a study run, stopped and resumed through the API")
 
 

@@ -29,6 +29,11 @@ struct SimProvenance {
   int64_t unit = 0;
 };
 
+/// The seed and unit in palpa-sim's announcement ("palpa-sim: thesis-pneumatic-3, plant level 3,
+/// unit 12, seed 1, speed 1x"), or in the description of a link to a palpa-sim started by the
+/// library, which carries it; nullopt when either is missing.
+std::optional<SimProvenance> SimProvenanceOf(const std::string& text);
+
 /// What the trials were run with, so a result can be traced to a board, firmware and calibration.
 struct StudyProvenance {
   std::string palpa_version, firmware_version, catalog_hash;

@@ -3,10 +3,12 @@
 // each trial and may stop it, and two channels tell each view only what it should know.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "palpa/host/study_file.h"
+#include "palpa/host/study_records.h"
 #include "palpa/serve/board_methods.h"
 
 namespace palpa::serve {
@@ -25,6 +27,8 @@ struct StudyServeOptions {
   std::vector<ServerStudy> server_studies;
   /// The board as the provenance names it (the device URI).
   std::string board;
+  /// A simulated board's seed and unit (from its link's description), for the provenance.
+  std::optional<host::SimProvenance> sim;
   std::string calibration_dir;
   bool use_calibrations = true;
 };
