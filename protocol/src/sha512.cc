@@ -5,7 +5,7 @@ namespace palpa::protocol {
 namespace {
 
 // The first 64 bits of the fractional parts of the cube roots of the first 80 primes (§4.2.3).
-constexpr uint64_t kRound[80] = {
+constexpr uint64_t kSha512Round[80] = {
     0x428a2f98d728ae22ull, 0x7137449123ef65cdull, 0xb5c0fbcfec4d3b2full, 0xe9b5dba58189dbbcull,
     0x3956c25bf348b538ull, 0x59f111f1b605d019ull, 0x923f82a4af194f9bull, 0xab1c5ed5da6d8118ull,
     0xd807aa98a3030242ull, 0x12835b0145706fbeull, 0x243185be4ee4b28cull, 0x550c7dc3d5ffb4e2ull,
@@ -54,8 +54,8 @@ void Sha512Hasher::Block(const uint8_t* p) {
   uint64_t a = state_[0], b = state_[1], c = state_[2], d = state_[3];
   uint64_t e = state_[4], f = state_[5], g = state_[6], h = state_[7];
   for (int t = 0; t < 80; ++t) {
-    const uint64_t t1 =
-        h + (Rotr(e, 14) ^ Rotr(e, 18) ^ Rotr(e, 41)) + ((e & f) ^ (~e & g)) + kRound[t] + w[t];
+    const uint64_t t1 = h + (Rotr(e, 14) ^ Rotr(e, 18) ^ Rotr(e, 41)) + ((e & f) ^ (~e & g)) +
+                        kSha512Round[t] + w[t];
     const uint64_t t2 = (Rotr(a, 28) ^ Rotr(a, 34) ^ Rotr(a, 39)) + ((a & b) ^ (a & c) ^ (b & c));
     h = g;
     g = f;

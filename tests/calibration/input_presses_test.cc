@@ -11,14 +11,14 @@
 
 #include "CppUTest/TestHarness.h"
 
-namespace pc = palpa::calibration;
+namespace cal = palpa::calibration;
 namespace ph = palpa::host;
 
 namespace {
 
 const ph::PressureForce kTruth{0.09, 0.0036};
 
-struct VirtualTime : pc::RigTime {
+struct VirtualTime : cal::RigTime {
   double now = 0;
   double Now() override { return now; }
   void Wait(double s) override { now += s; }
@@ -46,25 +46,25 @@ struct Hand {
   }
 };
 
-struct Pen : pc::PenLevels {
+struct Pen : cal::PenLevels {
   VirtualTime& time;
   const Hand& hand;
   bool gone = false;
   Pen(VirtualTime& t, const Hand& h) : time(t), hand(h) {}
-  ph::Result<std::optional<pc::PenState>> Next(int) override {
+  ph::Result<std::optional<cal::PenState>> Next(int) override {
     time.Wait(0.01);  // a report every 10 ms
     if (gone) return {ph::Status::kIoError, "pen: the device is gone"};
-    pc::PenState s;
+    cal::PenState s;
     s.level = std::round(hand.Level(time.now, &s.touching));
-    return std::optional<pc::PenState>(s);
+    return std::optional<cal::PenState>(s);
   }
 };
 
-struct Sensor : pc::ForceSensor {
+struct Sensor : cal::ForceSensor {
   VirtualTime& time;
   const Hand& hand;
   std::mt19937 rng{11};
-  std::normal_distribution<double> noise{0, pc::kNano17NoiseN};
+  std::normal_distribution<double> noise{0, cal::kNano17NoiseN};
   double offset = 0.05, tare = 0;
   Sensor(VirtualTime& t, const Hand& h) : time(t), hand(h) {}
   double Raw() {
@@ -72,11 +72,11 @@ struct Sensor : pc::ForceSensor {
     const double level = hand.Level(time.now, &touching);
     return offset + (touching ? ph::ForceAtLevel(kTruth, level) : 0.0) + noise(rng);
   }
-  pc::RigStatus Read(double* n) override {
+  cal::RigStatus Read(double* n) override {
     *n = Raw() - tare;
     return {};
   }
-  pc::RigStatus Tare() override {
+  cal::RigStatus Tare() override {
     tare = Raw();
     return {};
   }
@@ -93,7 +93,7 @@ TEST(InputPresses, PressesFitThePensOwnExponential) {
   Sensor sensor(time, hand);
   std::vector<std::string> said;
   const auto presses =
-      pc::CollectPresses(pen, sensor, time, {}, [&](const std::string& s) { said.push_back(s); });
+      cal::CollectPresses(pen, sensor, time, {}, [&](const std::string& s) { said.push_back(s); });
   CHECK_TEXT(presses.ok(), presses.message.c_str());
   LONGS_EQUAL(5, presses.value.size());
   DOUBLES_EQUAL(150, presses.value[0].level, 3);
@@ -113,9 +113,9 @@ TEST(InputPresses, AHandThatNeverPressesRunsOutOfTime) {
   Hand hand{};
   Pen pen(time, hand);
   Sensor sensor(time, hand);
-  pc::PressOptions o;
+  cal::PressOptions o;
   o.timeout_s = 3;
-  const auto presses = pc::CollectPresses(pen, sensor, time, o, [](const std::string&) {});
+  const auto presses = cal::CollectPresses(pen, sensor, time, o, [](const std::string&) {});
   CHECK(!presses.ok());
   STRCMP_CONTAINS("time ran out after 0 of 5 presses", presses.message.c_str());
 }
@@ -126,7 +126,7 @@ TEST(InputPresses, APenThatGoesAwayStopsTheRun) {
   Pen pen(time, hand);
   Sensor sensor(time, hand);
   pen.gone = true;
-  const auto presses = pc::CollectPresses(pen, sensor, time, {}, [](const std::string&) {});
+  const auto presses = cal::CollectPresses(pen, sensor, time, {}, [](const std::string&) {});
   CHECK(!presses.ok());
   STRCMP_CONTAINS("the device is gone", presses.message.c_str());
 }

@@ -13,7 +13,9 @@
 #include "palpa/calibration/report.h"
 #include "palpa/calibration/session.h"
 #include "palpa/host/file_write.h"
+#include "short_protocol.h"
 #include "sim_rig.h"
+#include "temp_dir.h"
 
 // Last: its memory-leak macros redefine new.
 #include "CppUTest/TestHarness.h"
@@ -26,19 +28,6 @@ namespace ph = palpa::host;
 namespace {
 
 constexpr const char* kDate = "2026-11-22T12:00:00Z";
-
-cal::ProtocolOptions Short() {
-  cal::ProtocolOptions o = cal::QuickProtocol();
-  o.dwell_s = 1;
-  o.contact.speed_mm_s = 0.5;
-  return o;
-}
-
-std::string TempDir() {
-  char dir[] = "/tmp/palpa-session-XXXXXX";
-  CHECK(mkdtemp(dir) != nullptr);
-  return dir;
-}
 
 std::string ReadAll(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -55,7 +44,7 @@ bool Exists(const std::string& path) {
 cal::SessionOptions Options(const std::string& dir) {
   cal::SessionOptions o;
   o.finger = 0;
-  o.protocol = Short();
+  o.protocol = pt::ShortProtocol();
   o.out_dir = dir;
   o.date = kDate;
   return o;
@@ -75,7 +64,8 @@ TEST(CalibrationSession, ItsFilesAreTheProtocolsRunByteForByte) {
     cal::Journal journal;
     cal::CalibrationRun run;
     const cal::RunInfo info{"PN-1", 7, kDate, "sim", "PN-1.csv"};
-    const cal::RigStatus s = cal::RunCalibration(rig, 0, Short(), info, journal, nullptr, &run);
+    const cal::RigStatus s =
+        cal::RunCalibration(rig, 0, pt::ShortProtocol(), info, journal, nullptr, &run);
     CHECK_TEXT(s.ok(), s.message.c_str());
     for (const std::string& row : run.csv) csv += row + "\n";
     const auto text = ph::SerializeCalibration(run.file);
@@ -83,7 +73,7 @@ TEST(CalibrationSession, ItsFilesAreTheProtocolsRunByteForByte) {
     json = text.value;
     html = cal::RenderReport(run);
   }
-  const std::string dir = TempDir() + "/out";  // made by the session
+  const std::string dir = pt::MakeTempDir("palpa-session") + "/out";  // made by the session
   pt::SimRig sim({"thesis-5finger", 0, 0, 31});
   cal::Session session(sim.rig(), "PN-1", 7, false, Options(dir));
   const ph::Outcome o = session.Calibrate(nullptr);
@@ -103,7 +93,7 @@ TEST(CalibrationSession, ItsFilesAreTheProtocolsRunByteForByte) {
 
 TEST(CalibrationSession, EachPhaseSaysWhatFailedWithItsStatus) {
   pt::SimRig sim({"thesis-5finger", 0, 0, 32});
-  const std::string dir = TempDir();
+  const std::string dir = pt::MakeTempDir("palpa-session");
   {
     cal::Session session(sim.rig(), "PN-1", 7, false, Options(dir));
     const ph::Outcome o = session.Resume();
@@ -139,7 +129,7 @@ TEST(CalibrationSession, EachPhaseSaysWhatFailedWithItsStatus) {
 }
 
 TEST(CalibrationSession, AStoppedSessionKeepsItsJournalAndTheNextResumesIt) {
-  const std::string dir = TempDir();
+  const std::string dir = pt::MakeTempDir("palpa-session");
   {
     pt::SimRig sim({"thesis-5finger", 0, 0, 33});
     cal::Session session(sim.rig(), "PN-1", 7, false, Options(dir));
@@ -175,7 +165,7 @@ TEST(CalibrationSession, AForceLimitAndALostDeviceAreToldApartByTheirCode) {
   pt::SimRig limited({"thesis-5finger", 0, 0, 35});
   cal::Rig rig = limited.rig();
   rig.limits.max_force_n = 0.01;
-  cal::Session stopped(rig, "PN-1", 7, false, Options(TempDir()));
+  cal::Session stopped(rig, "PN-1", 7, false, Options(pt::MakeTempDir("palpa-session")));
   CHECK(stopped.OpenOutput().ok());
   ph::Outcome o = stopped.Run(nullptr);
   CHECK(stopped.stopped());
@@ -183,7 +173,7 @@ TEST(CalibrationSession, AForceLimitAndALostDeviceAreToldApartByTheirCode) {
   STRCMP_CONTAINS("above the limit of 0.01 N", o.message.c_str());
   // The stage stops answering mid-run: unavailable, as a lost force sensor is.
   pt::SimRig lost({"thesis-5finger", 0, 0, 36});
-  cal::Session session(lost.rig(), "PN-1", 7, false, Options(TempDir()));
+  cal::Session session(lost.rig(), "PN-1", 7, false, Options(pt::MakeTempDir("palpa-session")));
   CHECK(session.OpenOutput().ok());
   o = session.Run([&](const cal::Progress& p) {
     if (p.done == 2) lost.stage_lost = true;

@@ -8,6 +8,7 @@
 
 #include "palpa/calibration/calibration_protocol.h"
 #include "palpa/core/board_config.h"
+#include "short_protocol.h"
 #include "sim_rig.h"
 
 #include "palpa/hal/sim/plant_params.h"
@@ -22,13 +23,6 @@ namespace ph = palpa::host;
 namespace {
 
 /// The quick settings, with longer dwells and a slower approach.
-cal::ProtocolOptions Short() {
-  cal::ProtocolOptions o = cal::QuickProtocol();
-  o.dwell_s = 1;
-  o.contact.speed_mm_s = 0.5;
-  return o;
-}
-
 cal::RunInfo Info(const char* serial) {
   return cal::RunInfo{serial, 1, "2026-11-22T12:00:00Z", "sim", std::string(serial) + ".csv"};
 }
@@ -57,7 +51,8 @@ TEST(ThesisProtocol, PneumaticFingerGivesAValidCalibrationCloseToTable54) {
   cal::CalibrationRun run;
   int reports = 0;
   const cal::RigStatus s = cal::RunCalibration(
-      rig, 0, Short(), Info("PN-1"), journal, [&](const cal::Progress&) { ++reports; }, &run);
+      rig, 0, pt::ShortProtocol(), Info("PN-1"), journal, [&](const cal::Progress&) { ++reports; },
+      &run);
   CHECK_TEXT(s.ok(), s.message.c_str());
   CHECK(reports > 10);
   const auto written = ph::SerializeCalibration(run.file);
@@ -134,7 +129,7 @@ TEST(ThesisProtocol, AnAsymmetricModelFitsTheFilmsLoopCloserThanPi) {
     cal::Rig rig = sim.rig();
     cal::Journal journal;
     cal::CalibrationRun run;
-    cal::ProtocolOptions o = Short();
+    cal::ProtocolOptions o = pt::ShortProtocol();
     o.compensator = kinds[k];
     o.compensator_operators = 8;
     const cal::RigStatus s = cal::RunCalibration(rig, 0, o, Info("PN-1"), journal, nullptr, &run);
@@ -227,7 +222,7 @@ TEST(ThesisProtocol, JammingFingerRecommendsTheBiasWithTheSmallerLoop) {
   cal::Journal journal;
   cal::CalibrationRun run;
   const cal::RigStatus s =
-      cal::RunCalibration(rig, 3, Short(), Info("JAM-1"), journal, nullptr, &run);
+      cal::RunCalibration(rig, 3, pt::ShortProtocol(), Info("JAM-1"), journal, nullptr, &run);
   CHECK_TEXT(s.ok(), s.message.c_str());
   LONGS_EQUAL(4, run.file.grid.size());
   LONGS_EQUAL(2, run.file.regulator_corrections.size());  // the bias line and the vacuum line
@@ -260,7 +255,7 @@ TEST(ThesisProtocol, AnInterruptedRunResumesFromItsJournal) {
     cal::CalibrationRun run;
     // The force sensor drops out part-way through the sweep.
     const cal::RigStatus s = cal::RunCalibration(
-        rig, 0, Short(), Info("PN-1"), journal,
+        rig, 0, pt::ShortProtocol(), Info("PN-1"), journal,
         [&](const cal::Progress& p) {
           if (p.done == 8) sim.force_lost = true;
         },
@@ -277,7 +272,7 @@ TEST(ThesisProtocol, AnInterruptedRunResumesFromItsJournal) {
   cal::CalibrationRun run;
   int first_done = -1;
   const cal::RigStatus s = cal::RunCalibration(
-      rig, 0, Short(), Info("PN-1"), journal,
+      rig, 0, pt::ShortProtocol(), Info("PN-1"), journal,
       [&](const cal::Progress& p) {
         if (first_done < 0 && p.step.find("sweep") != std::string::npos) first_done = p.done;
       },

@@ -2,10 +2,11 @@
 // short enough for the stiffest of them. Float only, absolute pressures inside.
 #include "palpa/hal/sim/line_flow.h"
 
+#include <algorithm>
+
 namespace palpa::sim {
 namespace {
 
-float Clamp(float v, float lo, float hi) { return v < lo ? lo : (v > hi ? hi : v); }
 float Max(float a, float b) { return a > b ? a : b; }
 
 /// The last stretch of the flow function that is linear (a fraction of the pressure ratio).
@@ -24,12 +25,12 @@ float Orifice(float c, float from, float to, float b) {
 }  // namespace
 
 float OrificeFlowFactor(float ratio, float critical_ratio) {
-  const float b = Clamp(critical_ratio, 0.0f, 0.95f);
+  const float b = std::clamp(critical_ratio, 0.0f, 0.95f);
   auto elliptic = [b](float r) {
     const float x = (r - b) / (1.0f - b);
     return __builtin_sqrtf(Max(0.0f, 1.0f - x * x));
   };
-  const float r = Clamp(ratio, 0.0f, 1.0f);
+  const float r = std::clamp(ratio, 0.0f, 1.0f);
   if (r <= b) return 1.0f;
   const float knee = 1.0f - kLinearStretch;
   if (r < knee) return elliptic(r);
@@ -60,7 +61,7 @@ void LineFlow::Preset(float pa) {
 }
 
 float LineFlow::Opening(float pilot_pa) const {
-  return Clamp(setup_.sign * (pilot_pa - outlet_pa()) / setup_.band_pa, -1.0f, 1.0f);
+  return std::clamp(setup_.sign * (pilot_pa - outlet_pa()) / setup_.band_pa, -1.0f, 1.0f);
 }
 
 void LineFlow::Step(float pilot_pa, bool vented, bool dump_open) {
@@ -69,7 +70,7 @@ void LineFlow::Step(float pilot_pa, bool vented, bool dump_open) {
 }
 
 void LineFlow::StepOpen(float opening) {
-  for (uint8_t i = 0; i < sub_steps_; ++i) Advance(Clamp(opening, -1.0f, 1.0f), false);
+  for (uint8_t i = 0; i < sub_steps_; ++i) Advance(std::clamp(opening, -1.0f, 1.0f), false);
 }
 
 float LineFlow::ValveFlow(float opening) const {

@@ -2,13 +2,13 @@
 // (line_flow.cc). Float only.
 #include "palpa/hal/sim/regulator_line.h"
 
+#include <algorithm>
+
 #include "palpa/hal/sim/plant_params.h"
 
 namespace palpa::sim {
 namespace p = params;
 namespace {
-
-float Clamp(float v, float lo, float hi) { return v < lo ? lo : (v > hi ? hi : v); }
 
 constexpr float kPi = 3.14159265f;
 constexpr float kLitresPerMinute = 1.0f / 60000.0f;  // → m³/s
@@ -69,10 +69,10 @@ RegulatorLine::RegulatorLine(const RegulatorSetup& setup, float step_s)
 float RegulatorLine::StaticOutput(float magnitude) const {
   const RegulatorErrors& e = setup_.errors;
   const float fs = setup_.full_scale_pa;
-  const float x = Clamp(magnitude / fs, 0.0f, 1.0f);
+  const float x = std::clamp(magnitude / fs, 0.0f, 1.0f);
   // Linearity error: a bow, zero at both ends, largest mid-scale (4x(1-x) peaks at 1).
   const float bow = e.linearity_pa * 4.0f * x * (1.0f - x);
-  return Clamp((1.0f + e.gain) * magnitude + e.offset_pa + bow, 0.0f, fs);
+  return std::clamp((1.0f + e.gain) * magnitude + e.offset_pa + bow, 0.0f, fs);
 }
 
 void RegulatorLine::Step(float command_pa, bool vented, bool dump_open) {
@@ -90,7 +90,7 @@ void RegulatorLine::Step(float command_pa, bool vented, bool dump_open) {
     return;
   }
   // The regulator only makes pressure of its own sign; a command the other way means 0.
-  const float magnitude = Clamp(command_pa * setup_.sign, 0.0f, setup_.full_scale_pa);
+  const float magnitude = std::clamp(command_pa * setup_.sign, 0.0f, setup_.full_scale_pa);
   // Hysteresis and sensitivity: the command must move past the play before the output follows.
   const float r = setup_.errors.play_pa;
   if (magnitude > play_ + r) play_ = magnitude - r;

@@ -5,14 +5,10 @@
 #include <cstdio>
 #include <numbers>
 
+#include "number_text.h"
+
 namespace palpa::host {
 namespace {
-
-std::string Num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof(b), "%g", v);
-  return b;
-}
 
 std::string Spacing(double mm) { return Num(mm) + " mm"; }
 

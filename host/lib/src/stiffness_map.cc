@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "number_text.h"
 #include "palpa/host/json_check.h"
 
 namespace palpa::host {
@@ -23,12 +24,6 @@ Mapped Refuse(const std::string& why, Status status = Status::kOutOfRange) {
   m.status = status;
   m.error = why;
   return m;
-}
-
-std::string Num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof(b), "%g", v);
-  return b;
 }
 
 /// Which range a curve-bound value is held to: a calibration's only when one is loaded, else

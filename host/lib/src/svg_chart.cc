@@ -12,7 +12,7 @@ namespace {
 const char* const kPalette[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
                                 "#9467bd", "#8c564b", "#17becf", "#7f7f7f"};
 
-std::string Num(double v) {
+std::string Tenths(double v) {
   char b[32];
   std::snprintf(b, sizeof(b), "%.1f", v);
   return b;
@@ -83,8 +83,8 @@ Range XRange(const Chart& c) {
 }
 
 std::string Header(double width, double height) {
-  return "<svg xmlns='http://www.w3.org/2000/svg' width='" + Num(width) + "' height='" +
-         Num(height) +
+  return "<svg xmlns='http://www.w3.org/2000/svg' width='" + Tenths(width) + "' height='" +
+         Tenths(height) +
          "' font-family='sans-serif' font-size='12'>\n<rect width='100%' height='100%' "
          "fill='white'/>\n";
 }
@@ -110,24 +110,24 @@ void DrawPanel(std::string& svg, const Chart& c, double offset_y, double x0, dou
   auto px = [&](double x) { return left + (AxisX(c, x) - x0) / (x1 - x0) * pw; };
   auto py = [&](double y) { return top + (1 - (y - y0) / (y1 - y0)) * ph; };
   if (titled) {
-    svg += "<text x='" + Num(c.width / 2) + "' y='" + Num(offset_y + 22) +
+    svg += "<text x='" + Tenths(c.width / 2) + "' y='" + Tenths(offset_y + 22) +
            "' text-anchor='middle' font-size='14'>" + SvgEscape(c.title) + "</text>\n";
   }
   for (const Marker& m : c.markers) {  // behind the data
     const double a = std::clamp(px(m.x), left, left + pw);
     const double b = std::clamp(px(m.x_end), left, left + pw);
     if (b > a + 0.5) {
-      svg += "<rect x='" + Num(a) + "' y='" + Num(top) + "' width='" + Num(b - a) + "' height='" +
-             Num(ph) + "' fill='#f2f2f2'/>";
+      svg += "<rect x='" + Tenths(a) + "' y='" + Tenths(top) + "' width='" + Tenths(b - a) +
+             "' height='" + Tenths(ph) + "' fill='#f2f2f2'/>";
     } else {
-      svg += "<line x1='" + Num(a) + "' y1='" + Num(top) + "' x2='" + Num(a) + "' y2='" +
-             Num(top + ph) + "' stroke='#888' stroke-dasharray='2,3'/>";
+      svg += "<line x1='" + Tenths(a) + "' y1='" + Tenths(top) + "' x2='" + Tenths(a) + "' y2='" +
+             Tenths(top + ph) + "' stroke='#888' stroke-dasharray='2,3'/>";
     }
-    svg += "<text x='" + Num((a + b) / 2) + "' y='" + Num(top + 14) +
+    svg += "<text x='" + Tenths((a + b) / 2) + "' y='" + Tenths(top + 14) +
            "' text-anchor='middle' fill='#555' font-size='11'>" + SvgEscape(m.label) + "</text>\n";
   }
-  svg += "<rect x='" + Num(left) + "' y='" + Num(top) + "' width='" + Num(pw) + "' height='" +
-         Num(ph) + "' fill='none' stroke='#444'/>\n";
+  svg += "<rect x='" + Tenths(left) + "' y='" + Tenths(top) + "' width='" + Tenths(pw) +
+         "' height='" + Tenths(ph) + "' fill='none' stroke='#444'/>\n";
   // A log axis is labelled at 1, 2 and 5 of each decade (round numbers a reader can place).
   std::vector<double> x_ticks;
   if (c.log_x) {
@@ -142,21 +142,21 @@ void DrawPanel(std::string& svg, const Chart& c, double offset_y, double x0, dou
   if (x_ticks.size() < 2) x_ticks = Ticks(x0, x1, 8);
   for (double t : x_ticks) {
     const double x = left + (t - x0) / (x1 - x0) * pw;
-    svg += "<line x1='" + Num(x) + "' y1='" + Num(top) + "' x2='" + Num(x) + "' y2='" +
-           Num(top + ph) + "' stroke='#eee'/>";
-    svg += "<text x='" + Num(x) + "' y='" + Num(top + ph + 16) + "' text-anchor='middle'>" +
+    svg += "<line x1='" + Tenths(x) + "' y1='" + Tenths(top) + "' x2='" + Tenths(x) + "' y2='" +
+           Tenths(top + ph) + "' stroke='#eee'/>";
+    svg += "<text x='" + Tenths(x) + "' y='" + Tenths(top + ph + 16) + "' text-anchor='middle'>" +
            Label(c.log_x ? std::pow(10.0, t) : t) + "</text>\n";
   }
   for (double t : Ticks(y0, y1, 6)) {
     const double y = py(t);
-    svg += "<line x1='" + Num(left) + "' y1='" + Num(y) + "' x2='" + Num(left + pw) + "' y2='" +
-           Num(y) + "' stroke='#eee'/>";
-    svg += "<text x='" + Num(left - 6) + "' y='" + Num(y + 4) + "' text-anchor='end'>" + Label(t) +
-           "</text>\n";
+    svg += "<line x1='" + Tenths(left) + "' y1='" + Tenths(y) + "' x2='" + Tenths(left + pw) +
+           "' y2='" + Tenths(y) + "' stroke='#eee'/>";
+    svg += "<text x='" + Tenths(left - 6) + "' y='" + Tenths(y + 4) + "' text-anchor='end'>" +
+           Label(t) + "</text>\n";
   }
-  svg += "<text x='" + Num(left + pw / 2) + "' y='" + Num(offset_y + c.height - 10) +
+  svg += "<text x='" + Tenths(left + pw / 2) + "' y='" + Tenths(offset_y + c.height - 10) +
          "' text-anchor='middle'>" + SvgEscape(c.x_label) + "</text>\n";
-  svg += "<text transform='translate(16," + Num(top + ph / 2) +
+  svg += "<text transform='translate(16," + Tenths(top + ph / 2) +
          ") rotate(-90)' text-anchor='middle'>" + SvgEscape(c.y_label) + "</text>\n";
   size_t listed = 0;  // legend entries so far
   for (size_t i = 0; i < c.series.size(); ++i) {
@@ -165,25 +165,25 @@ void DrawPanel(std::string& svg, const Chart& c, double offset_y, double x0, dou
     auto polyline = [&](const char* width, bool dashed) {
       svg += "<polyline fill='none' stroke='" + color + "' stroke-width='" + width + "'" +
              (dashed ? std::string(" stroke-dasharray='6,4'") : std::string()) + " points='";
-      for (const auto& [x, y] : s.points) svg += Num(px(x)) + "," + Num(py(y)) + " ";
+      for (const auto& [x, y] : s.points) svg += Tenths(px(x)) + "," + Tenths(py(y)) + " ";
       svg += "'/>\n";
     };
     if (s.markers) {
       if (s.joined) polyline("1", false);
       for (const auto& [x, y] : s.points) {
-        svg +=
-            "<circle cx='" + Num(px(x)) + "' cy='" + Num(py(y)) + "' r='4' fill='" + color + "'/>";
+        svg += "<circle cx='" + Tenths(px(x)) + "' cy='" + Tenths(py(y)) + "' r='4' fill='" +
+               color + "'/>";
       }
     } else {
       polyline("1.6", s.dashed);
     }
     if (s.name.empty()) continue;  // drawn, not listed (e.g. a second part of a named series)
     const double ly = top + 14 + 18 * static_cast<double>(listed++);
-    svg += "<line x1='" + Num(left + pw + 12) + "' y1='" + Num(ly - 4) + "' x2='" +
-           Num(left + pw + 34) + "' y2='" + Num(ly - 4) + "' stroke='" + color +
+    svg += "<line x1='" + Tenths(left + pw + 12) + "' y1='" + Tenths(ly - 4) + "' x2='" +
+           Tenths(left + pw + 34) + "' y2='" + Tenths(ly - 4) + "' stroke='" + color +
            "' stroke-width='3'" +
            (s.dashed ? std::string(" stroke-dasharray='6,4'") : std::string()) + "/>";
-    svg += "<text x='" + Num(left + pw + 40) + "' y='" + Num(ly) + "'>" + SvgEscape(s.name) +
+    svg += "<text x='" + Tenths(left + pw + 40) + "' y='" + Tenths(ly) + "'>" + SvgEscape(s.name) +
            "</text>\n";
   }
 }
@@ -208,7 +208,7 @@ std::string RenderSvgPanels(const std::vector<Chart>& panels, const std::string&
     height += c.height;
   }
   std::string svg = Header(width, height);
-  svg += "<text x='" + Num(width / 2) + "' y='22' text-anchor='middle' font-size='14'>" +
+  svg += "<text x='" + Tenths(width / 2) + "' y='22' text-anchor='middle' font-size='14'>" +
          SvgEscape(title) + "</text>\n";
   double offset = 34;
   for (const Chart& c : panels) {

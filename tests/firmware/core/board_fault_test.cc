@@ -19,13 +19,6 @@ using pp::FaultBit;
 
 namespace {
 
-bool AllLinesSafe(const BoardHarness& h) {
-  for (uint8_t i = 0; i < h.board->config().line_count; ++i) {
-    if (h.dac.counts[i] != 0) return false;  // every compiled configuration's safe value is 0 Pa
-  }
-  return true;
-}
-
 void RawSetpoints(BoardHarness& h, uint32_t generation, int32_t pa) {
   pp::SetLineSetpoints m{};
   m.generation = generation;
@@ -61,7 +54,7 @@ TEST(HostSilence, SafeCommandWrittenWithinTimeoutPlusOneTickInRandomTrials) {
     while (safe_at == 0 && h.clock.now_us < last_frame + 1000000) {
       h.clock.Advance(pc::Board::kTickUs - h.clock.now_us % pc::Board::kTickUs);  // next tick edge
       h.board->Step();
-      if (AllLinesSafe(h)) safe_at = h.clock.now_us;
+      if (h.AllLinesSafe()) safe_at = h.clock.now_us;
     }
     CHECK(safe_at != 0);
     CHECK_TEXT(safe_at - last_frame <= 100000 + pc::Board::kTickUs,
@@ -83,12 +76,12 @@ TEST_GROUP(BoardFaults) {
 };
 
 TEST(BoardFaults, EStopGoesSafeOnTheNextTickAndIsAcked) {
-  CHECK_FALSE(AllLinesSafe(h));
+  CHECK_FALSE(h.AllLinesSafe());
   h.Send(pp::EStop{});
   LONGS_EQUAL((int)pp::Status::kOk,
               (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kEStop));
   h.Run(1, true);
-  CHECK(AllLinesSafe(h));
+  CHECK(h.AllLinesSafe());
   CHECK(h.board->latched_faults() & FaultBit(Fault::kEStopCommand));
 }
 
@@ -139,16 +132,16 @@ TEST(BoardFaults, ClearedFaultKeepsOutputsSafeUntilNewSetpointsAndRehomes) {
               (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kClearFault));
   LONGS_EQUAL(0, h.board->latched_faults());
   h.Run(50, true);
-  CHECK(AllLinesSafe(h));  // the old setpoint does not come back by itself
+  CHECK(h.AllLinesSafe());  // the old setpoint does not come back by itself
   RawSetpoints(h, 9, 10000);
   h.Run(100, true);
-  CHECK_FALSE(AllLinesSafe(h));
+  CHECK_FALSE(h.AllLinesSafe());
 }
 
 TEST(BoardFaults, ClearFaultIsRefusedWhileTheEStopPinIsHeld) {
   h.estop.level = true;
   h.Run(2, true);
-  CHECK(AllLinesSafe(h));
+  CHECK(h.AllLinesSafe());
   h.Drain();
   h.Send(pp::ClearFault{});
   LONGS_EQUAL((int)pp::Status::kConditionPersists,
@@ -171,7 +164,7 @@ TEST(BoardFaults, FlippedByteInTheLiveConfigurationFaultsWithinTheCheckPeriod) {
   CHECK(h.board->latched_faults() & FaultBit(Fault::kConfigCrc));
   // One full pass of the CRC over the configuration takes a few ticks after each period starts.
   CHECK(h.clock.now_us - flipped_at <= period_us + 20 * pc::Board::kTickUs);
-  CHECK(AllLinesSafe(h));
+  CHECK(h.AllLinesSafe());
 }
 
 TEST(BoardFaults, SensorReadingBeyondTheLimitsFaults) {
@@ -183,7 +176,7 @@ TEST(BoardFaults, SensorReadingBeyondTheLimitsFaults) {
   h.Run(2, true);
   CHECK(h.board->latched_faults() &
         (FaultBit(Fault::kOverLimit) | FaultBit(Fault::kImplausibleSensor)));
-  CHECK(AllLinesSafe(h));
+  CHECK(h.AllLinesSafe());
 }
 
 TEST(BoardFaults, BrokenSensorWireIsImplausible) {
@@ -211,7 +204,7 @@ TEST(BoardFaults, AFailedConversionIsNoPressure) {
   h.Run(1, true);
   CHECK(h.board->line_output(0).status & pp::line_status::kSensorFault);
   CHECK(h.board->latched_faults() & FaultBit(Fault::kImplausibleSensor));
-  CHECK(AllLinesSafe(h));
+  CHECK(h.AllLinesSafe());
 }
 
 TEST(BoardFaults, AFailedDacWriteLatchesAndTheValvesLetGo) {
@@ -231,7 +224,7 @@ TEST(BoardFaults, AFailedDacWriteLatchesAndTheValvesLetGo) {
               (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kClearFault));
   h.dac.fail = false;
   h.Run(2, true);
-  CHECK(AllLinesSafe(h));  // the safe codes reach the regulators once writes work again
+  CHECK(h.AllLinesSafe());  // the safe codes reach the regulators once writes work again
   h.Send(pp::ClearFault{});
   LONGS_EQUAL((int)pp::Status::kOk,
               (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kClearFault));

@@ -37,6 +37,13 @@ void BoardHarness::Run(uint32_t ms, bool heartbeat) {
   }
 }
 
+bool BoardHarness::AllLinesSafe() const {
+  for (uint8_t i = 0; i < board->config().line_count; ++i) {
+    if (dac.counts[i] != 0) return false;
+  }
+  return true;
+}
+
 bool BoardHarness::Step() {
   const size_t before = link.tx.size();
   const bool ticked = board->Step();

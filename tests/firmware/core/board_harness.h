@@ -68,6 +68,8 @@ struct BoardHarness {
   void Run(uint32_t ms, bool heartbeat = false);
   /// Frames the board has sent since the last call.
   std::vector<BoardFrame> Drain();
+  /// Every configured line's output at 0 Pa, every compiled configuration's safe value.
+  bool AllLinesSafe() const;
   /// The last Ack or Nack in `frames` for message type `type`, as a status (kOk for Ack).
   static pp::Status AnswerFor(const std::vector<BoardFrame>& frames, pp::MessageType type);
   /// Sensor counts on every configured line that read `pa` (the ideal plant of these tests).

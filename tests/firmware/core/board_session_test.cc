@@ -30,13 +30,6 @@ pp::SetLineSetpoints Setpoints(uint32_t generation, int32_t pa, uint32_t session
   return m;
 }
 
-bool AllLinesSafe(const BoardHarness& h) {
-  for (uint8_t i = 0; i < h.board->config().line_count; ++i) {
-    if (h.dac.counts[i] != 0) return false;  // every compiled configuration's safe value is 0 Pa
-  }
-  return true;
-}
-
 /// Runs `ms` ticks with the plant following the regulator model, heartbeating when asked.
 void Follow(BoardHarness& h, uint32_t ms, bool heartbeat) {
   for (uint32_t i = 0; i < ms; ++i) {
@@ -66,7 +59,7 @@ TEST_GROUP(BoardClose) {
   void Actuate() {
     ActuateLine0(h);
     CHECK_FALSE(h.board->safe());
-    CHECK_FALSE(AllLinesSafe(h));
+    CHECK_FALSE(h.AllLinesSafe());
   }
 };
 
@@ -80,7 +73,7 @@ TEST(BoardClose, CloseMakesEveryOutputSafeWithinATickLatchesNothingAndEndsTheSes
   }
   CHECK_FALSE(h.board->session_open());
   h.Run(1);
-  CHECK(AllLinesSafe(h));
+  CHECK(h.AllLinesSafe());
   CHECK(h.board->safe());
   Follow(h, 5 * kTimeoutMs, false);  // and silence afterwards is no fault either
   LONGS_EQUAL(0, h.board->latched_faults());
@@ -102,7 +95,7 @@ TEST(BoardClose, AnotherSessionsCloseOrReleaseChangesNothing) {
   LONGS_EQUAL((int)pp::Status::kNoSession, (int)Answer(h, pp::MessageType::kRelease));
   Follow(h, 50, true);
   CHECK(h.board->session_open());
-  CHECK_FALSE(AllLinesSafe(h));
+  CHECK_FALSE(h.AllLinesSafe());
 }
 
 TEST(BoardClose, ReleaseMakesEveryOutputSafeAndKeepsTheSession) {
@@ -110,14 +103,14 @@ TEST(BoardClose, ReleaseMakesEveryOutputSafeAndKeepsTheSession) {
   h.Send(pp::Release{});
   LONGS_EQUAL((int)pp::Status::kOk, (int)Answer(h, pp::MessageType::kRelease));
   h.Run(1);
-  CHECK(AllLinesSafe(h));
+  CHECK(h.AllLinesSafe());
   CHECK(h.board->session_open());
   Follow(h, 5 * kTimeoutMs, true);  // the session goes on, safe, without a fault
-  CHECK(AllLinesSafe(h));
+  CHECK(h.AllLinesSafe());
   LONGS_EQUAL(0, h.board->latched_faults());
   h.Send(Setpoints(2, 30000));  // and actuates again when told to
   Follow(h, 300, true);
-  CHECK_FALSE(AllLinesSafe(h));
+  CHECK_FALSE(h.AllLinesSafe());
 }
 
 TEST(BoardClose, AfterAReleaseSilenceEndsTheSessionQuietly) {
@@ -147,7 +140,7 @@ TEST(BoardClose, ACloseDuringAnUpdateLeavesTheLinesSafeAndTheImageResumable) {
               (int)BoardHarness::AnswerFor(u.Drain(), pp::MessageType::kClose));
   CHECK_FALSE(engine.in_update_mode());
   u.Run(1);
-  CHECK(AllLinesSafe(u));
+  CHECK(u.AllLinesSafe());
   LONGS_EQUAL(0, u.board->latched_faults());
   // The next session resumes where the update stopped.
   u.Connect();
@@ -180,7 +173,7 @@ TEST(BoardBusy, ASecondHostsHelloIsAnsweredBusyAndTakesNothing) {
   // The first host goes on: its heartbeats and setpoints still count.
   h.Send(Setpoints(2, 40000));
   Follow(h, 300, true);
-  CHECK_FALSE(AllLinesSafe(h));
+  CHECK_FALSE(h.AllLinesSafe());
   LONGS_EQUAL(0, h.board->latched_faults());
   // Its frames the second host might send are not applied.
   h.Send(Setpoints(100, 90000, 0xFEED));
@@ -234,7 +227,7 @@ TEST_GROUP(BoardSilence) {
       if (i % 10 == 0) frame_of(i);
       h.Run(1);
       h.FollowModel();
-      if (AllLinesSafe(h)) return false;
+      if (h.AllLinesSafe()) return false;
     }
     return true;
   }

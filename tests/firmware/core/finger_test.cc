@@ -28,10 +28,10 @@ TEST(Finger, StaticInverseFollowsTheThesisFitAndMapsZeroToZero) {
 namespace {
 
 /// One step into fresh line arrays (NaN where the finger wrote nothing).
-struct Step {
+struct FingerStep {
   float setpoints[pp::kMaxLines];
   uint8_t status[pp::kMaxLines];
-  Step(const pc::FingerParams& p, pc::FingerState& s, uint64_t now_us, float applied = 0) {
+  FingerStep(const pc::FingerParams& p, pc::FingerState& s, uint64_t now_us, float applied = 0) {
     for (float& v : setpoints) v = __builtin_nanf("");
     for (uint8_t& v : status) v = 0xFF;
     pc::StepFinger(p, s, applied, pc::FingerTick{now_us, 300000, setpoints, status});
@@ -43,21 +43,21 @@ struct Step {
 TEST(Finger, HomesVentedThenFollows) {
   pc::FingerState s;
   s.target = 2000;
-  Step out(pneumatic, s, 1000);
+  FingerStep out(pneumatic, s, 1000);
   CHECK(s.phase != pc::HomePhase::kHomed);
   DOUBLES_EQUAL(0, out.setpoints[0], 0);
   LONGS_EQUAL(0, out.status[0]);
   CHECK(__builtin_isnan(out.setpoints[1]));  // nothing written on lines it does not own
   LONGS_EQUAL(0xFF, out.status[1]);
-  Step(pneumatic, s, 300999);
+  FingerStep(pneumatic, s, 300999);
   CHECK(s.phase != pc::HomePhase::kHomed);
-  Step(pneumatic, s, 301000);  // dwell over: the last homing tick
+  FingerStep(pneumatic, s, 301000);  // dwell over: the last homing tick
   CHECK(s.phase == pc::HomePhase::kHomed);
-  out = Step(pneumatic, s, 302000);
+  out = FingerStep(pneumatic, s, 302000);
   DOUBLES_EQUAL(48249, out.setpoints[0], 1);
   LONGS_EQUAL(0, out.status[0]);
   pc::RequireHoming(s);
-  DOUBLES_EQUAL(0, Step(pneumatic, s, 303000).setpoints[0], 0);
+  DOUBLES_EQUAL(0, FingerStep(pneumatic, s, 303000).setpoints[0], 0);
   CHECK(s.phase != pc::HomePhase::kHomed);
 }
 
@@ -65,12 +65,12 @@ TEST(Finger, JammingHomesWithVacuumReleasedAndTheBiasOn) {
   pc::FingerState s;
   s.target = 1300;
   const uint8_t bias = jamming.line_a, vacuum = jamming.line_b;
-  Step out(jamming, s, 0);
+  FingerStep out(jamming, s, 0);
   CHECK(s.phase != pc::HomePhase::kHomed);
   DOUBLES_EQUAL(20000, out.setpoints[bias], 0);
   DOUBLES_EQUAL(0, out.setpoints[vacuum], 0);
-  Step(jamming, s, 300000);
-  out = Step(jamming, s, 301000);
+  FingerStep(jamming, s, 300000);
+  out = FingerStep(jamming, s, 301000);
   DOUBLES_EQUAL(20000, out.setpoints[bias], 0);
   DOUBLES_EQUAL(-100000, out.setpoints[vacuum], 1);
   LONGS_EQUAL(0, out.status[vacuum]);

@@ -36,8 +36,8 @@ struct Stepped : pc::LineOutput {
   uint32_t counts = 0;
 };
 
-Stepped Step(const pc::LineParams& p, pc::LineState& s, float setpoint, bool measured_valid = false,
-             float measured = 0, bool safe = false) {
+Stepped StepLine(const pc::LineParams& p, pc::LineState& s, float setpoint,
+                 bool measured_valid = false, float measured = 0, bool safe = false) {
   Stepped out;
   const pc::LineReading reading{measured_valid, 0, measured};
   out.counts =
@@ -55,12 +55,12 @@ TEST(LinePipeline, SlewLimitsTheSetpointPerTick) {
   const pc::LineParams p = pc::MakeLineParams(c, 1000);
   pc::LineState s;
   pc::ResetLineState(p, s, 0);
-  auto out = Step(p, s, 50000);
+  auto out = StepLine(p, s, 50000);
   DOUBLES_EQUAL(100, s.slewed_pa, 1e-3);
   CHECK(out.status & ls::kSlewing);
-  for (int i = 0; i < 499; ++i) Step(p, s, 50000);
+  for (int i = 0; i < 499; ++i) StepLine(p, s, 50000);
   DOUBLES_EQUAL(50000, s.slewed_pa, 1e-2);
-  out = Step(p, s, 50000);
+  out = StepLine(p, s, 50000);
   CHECK_FALSE(out.status & ls::kSlewing);
 }
 
@@ -73,10 +73,10 @@ TEST(LinePipeline, FeedForwardInvertsTheRisingAndFallingCorrection) {
   const pc::LineParams p = pc::MakeLineParams(c, 1000);
   pc::LineState s;
   pc::ResetLineState(p, s, 0);
-  auto out = Step(p, s, 49000);  // rising: the regulator makes 0.98 per commanded Pa
+  auto out = StepLine(p, s, 49000);  // rising: the regulator makes 0.98 per commanded Pa
   DOUBLES_EQUAL(50000, out.command_pa, 1);
   CHECK(out.status & ls::kOpenLoop);
-  out = Step(p, s, 40000);  // falling: produced = 1000 + 0.99 * command
+  out = StepLine(p, s, 40000);  // falling: produced = 1000 + 0.99 * command
   DOUBLES_EQUAL((40000 - 1000) / 0.99, out.command_pa, 1);
 }
 
@@ -99,9 +99,11 @@ TEST(LinePipeline, BeyondTheCorrectionsPointsTheNearestEndsOffsetHolds) {
     const pc::LineParams p = pc::MakeLineParams(c, 1000);
     pc::LineState s;
     pc::ResetLineState(p, s, 0);
-    DOUBLES_EQUAL(sign * 3500, Step(p, s, sign * 3000).command_pa, 1);  // not the 10 kPa point's
-    DOUBLES_EQUAL(sign * 96000, Step(p, s, sign * 95000).command_pa, 1);
-    DOUBLES_EQUAL(sign * (10000 + 40250 * 80000.0 / 79500), Step(p, s, sign * 49750).command_pa, 1);
+    DOUBLES_EQUAL(sign * 3500, StepLine(p, s, sign * 3000).command_pa,
+                  1);  // not the 10 kPa point's
+    DOUBLES_EQUAL(sign * 96000, StepLine(p, s, sign * 95000).command_pa, 1);
+    DOUBLES_EQUAL(sign * (10000 + 40250 * 80000.0 / 79500), StepLine(p, s, sign * 49750).command_pa,
+                  1);
   }
 }
 
@@ -111,16 +113,16 @@ TEST(LinePipeline, WithoutCorrectionTheCommandIsTheSetpoint) {
   const pc::LineParams p = pc::MakeLineParams(c, 1000);
   pc::LineState s;
   pc::ResetLineState(p, s, 0);
-  DOUBLES_EQUAL(30000, Step(p, s, 30000).command_pa, 1e-3);
+  DOUBLES_EQUAL(30000, StepLine(p, s, 30000).command_pa, 1e-3);
 }
 
 TEST(LinePipeline, TrimIntegratesOutsideTheDeadBandOnly) {
   const pc::LineParams p = pc::MakeLineParams(PressureLine(), 1000);
   pc::LineState s;
   pc::ResetLineState(p, s, 20000);
-  Step(p, s, 20000, true, 19950);  // 50 Pa error: inside ±100 Pa
+  StepLine(p, s, 20000, true, 19950);  // 50 Pa error: inside ±100 Pa
   DOUBLES_EQUAL(0, s.integrator_pa, 1e-6);
-  auto out = Step(p, s, 20000, true, 19000);  // 1 kPa short
+  auto out = StepLine(p, s, 20000, true, 19000);  // 1 kPa short
   DOUBLES_EQUAL(1000 * 0.001, s.integrator_pa, 1e-4);
   DOUBLES_EQUAL(20000 + 0.1 * 1000 + 1.0, out.command_pa, 1e-2);
 }
@@ -130,12 +132,12 @@ TEST(LinePipeline, TrimAuthorityClampsWithBackCalculation) {
   pc::LineState s;
   pc::ResetLineState(p, s, 50000);
   pc::LineOutput out;
-  for (int i = 0; i < 5000; ++i) out = Step(p, s, 50000, true, 30000);  // 20 kPa short for 5 s
+  for (int i = 0; i < 5000; ++i) out = StepLine(p, s, 50000, true, 30000);  // 20 kPa short for 5 s
   CHECK(out.status & ls::kTrimClamped);
   DOUBLES_EQUAL(55000, out.command_pa, 1e-2);  // +5 % F.S. at most
   // Anti-windup: P + I equals the clamp, so the integrator did not run away to 100 kPa.
   DOUBLES_EQUAL(5000 - 0.1 * 20000, s.integrator_pa, 1e-2);
-  out = Step(p, s, 50000, true, 50000);  // error gone: the trim drops at once
+  out = StepLine(p, s, 50000, true, 50000);  // error gone: the trim drops at once
   CHECK(out.command_pa < 53100);
 }
 
@@ -146,7 +148,7 @@ TEST(LinePipeline, FinalClampHoldsTheLimitsAndUnwindsTheIntegrator) {
   pc::LineState s;
   pc::ResetLineState(p, s, 60000);
   pc::LineOutput out;
-  for (int i = 0; i < 3000; ++i) out = Step(p, s, 60000, true, 58000);
+  for (int i = 0; i < 3000; ++i) out = StepLine(p, s, 60000, true, 58000);
   DOUBLES_EQUAL(60000, out.command_pa, 1e-3);
   CHECK(out.status & ls::kSaturated);
   CHECK(s.integrator_pa <= 1e-3);  // back-calculated: nothing stored beyond the limit
@@ -156,9 +158,9 @@ TEST(LinePipeline, BelowTheRegulatorMinimumCommandsZeroWithTheIntegratorOff) {
   const pc::LineParams p = pc::MakeLineParams(PressureLine(), 1000);
   pc::LineState s;
   pc::ResetLineState(p, s, 20000);
-  for (int i = 0; i < 100; ++i) Step(p, s, 20000, true, 15000);
+  for (int i = 0; i < 100; ++i) StepLine(p, s, 20000, true, 15000);
   CHECK(s.integrator_pa > 0);
-  const auto out = Step(p, s, 500, true, 15000);
+  const auto out = StepLine(p, s, 500, true, 15000);
   DOUBLES_EQUAL(0, out.command_pa, 0);
   DOUBLES_EQUAL(0, s.integrator_pa, 0);
   CHECK(out.status & ls::kOpenLoop);
@@ -169,7 +171,7 @@ TEST(LinePipeline, NoSensorOrInvalidReadingIsOpenLoop) {
   const pc::LineParams p = pc::MakeLineParams(PressureLine(), 1000);
   pc::LineState s;
   pc::ResetLineState(p, s, 0);
-  const auto out = Step(p, s, 30000, false, 0);
+  const auto out = StepLine(p, s, 30000, false, 0);
   CHECK(out.status & ls::kOpenLoop);
   DOUBLES_EQUAL(30000, out.command_pa, 1e-3);
   DOUBLES_EQUAL(0, s.integrator_pa, 0);
@@ -182,7 +184,7 @@ TEST(LinePipeline, SafeBypassesSlewAndResetsTheState) {
   const pc::LineParams p = pc::MakeLineParams(c, 1000);
   pc::LineState s;
   pc::ResetLineState(p, s, 80000);
-  const auto out = Step(p, s, 80000, true, 80000, true);
+  const auto out = StepLine(p, s, 80000, true, 80000, true);
   DOUBLES_EQUAL(0, out.command_pa, 0);
   LONGS_EQUAL(0, out.counts);
   CHECK(out.status & ls::kSafe);
@@ -197,10 +199,10 @@ TEST(LinePipeline, ReferenceModelHasTheRegulatorsDeadTimeAndLag) {
   pc::LineState s;
   pc::ResetLineState(p, s, 0);
   for (int i = 0; i < 5; ++i) {
-    Step(p, s, 10000);
+    StepLine(p, s, 10000);
     DOUBLES_EQUAL(0, s.reference_pa, 1e-3);  // nothing during the dead time
   }
-  for (int i = 0; i < 20; ++i) Step(p, s, 10000);
+  for (int i = 0; i < 20; ++i) StepLine(p, s, 10000);
   DOUBLES_EQUAL(10000 * (1 - 0.368), s.reference_pa, 300);  // one time constant later
 }
 
@@ -234,7 +236,7 @@ TEST(LinePipeline, LimitsAreIntersectedWithTheHardCeiling) {
   DOUBLES_EQUAL(20000, p.limit_max_pa, 0);
   pc::LineState s;
   pc::ResetLineState(p, s, 0);
-  CHECK(Step(p, s, 90000).command_pa <= 20000);
+  CHECK(StepLine(p, s, 90000).command_pa <= 20000);
 }
 
 TEST(LinePipeline, SensorSpanAndScaleArePreparedOncePerConfiguration) {

@@ -12,6 +12,7 @@
 
 #include "cli_run.h"
 #include "mini_client.h"
+#include "temp_dir.h"
 
 #include "CppUTest/TestHarness.h"
 
@@ -21,13 +22,6 @@ namespace palpa::testing {
 inline const std::string kNowhere = "--device tcp:127.0.0.1:1 ";
 
 inline const std::string kDevelopmentKey = PALPA_DEVELOPMENT_KEY;  // DEVELOPMENT ONLY
-
-/// A new, empty directory of this test's own: /tmp/PREFIX-XXXXXX.
-inline std::string MakeTempDir(const std::string& prefix) {
-  std::string pattern = "/tmp/" + prefix + "-XXXXXX";
-  CHECK_TEXT(mkdtemp(pattern.data()) != nullptr, pattern.c_str());
-  return pattern;
-}
 
 /// Everything in the file at `path` ("" when it cannot be read).
 inline std::string FileText(const std::string& path) {

@@ -6,11 +6,21 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "CppUTest/TestHarness.h"
 
 namespace palpa::testing {
+
+/// A file's whole text ("" when it cannot be read).
+inline std::string Slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
 
 struct Run {
   int code;

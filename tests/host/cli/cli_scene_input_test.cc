@@ -33,13 +33,6 @@ const std::string kInputs = kDocs + "/examples/scene_inputs.json";
 const std::string kStream = kDocs + "/examples/tactile_grasper.csv";
 const std::string kSim = std::string("PALPA_SIM=") + PALPA_SIM_PATH;
 
-std::string Slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 /// A UDP port free a moment ago.
 uint16_t FreePort() {
   const int s = socket(AF_INET, SOCK_DGRAM, 0);
@@ -64,7 +57,7 @@ TEST(CliSceneInput, ARecordedTactileStreamIsPlayedAndGoesSoftInAStall) {
                        kSim);
   LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
   CHECK_TEXT(Has(r, "267 of 267 frames rendered; recorded in " + record + "\n"), r.output.c_str());
-  const std::string csv = Slurp(record);
+  const std::string csv = palpa::testing::Slurp(record);
   CHECK(csv.rfind("time_s,board_time_us,finger1_touching,finger1_value,finger1_target,", 0) == 0);
   // The first frame: row 0 at 0 kPa (released), row 1's mean 20 kPa of 0 … 40 (half the stress
   // range: 0.477 mm), row 2's 15 kPa.
@@ -83,7 +76,7 @@ TEST(CliSceneInput, ARecordedTactileStreamIsPlayedAndGoesSoftInAStall) {
   }
   CHECK(soft_rows >= 1);
   // No path over the tissue, so no SVG of one.
-  CHECK(Slurp(record.substr(0, record.size() - 4) + ".svg").empty());
+  CHECK(palpa::testing::Slurp(record.substr(0, record.size() - 4) + ".svg").empty());
   std::remove(record.c_str());
 }
 
@@ -161,7 +154,7 @@ TEST(CliSceneInput, PenPressureFormSetOrFittedIntoTheSceneFile) {
   const std::string scene = OwnTempPath("pen.json"), presses = OwnTempPath("presses.csv");
   {
     std::ofstream out(scene);
-    out << Slurp(kDocs + "/examples/scene_three_cube.json");
+    out << palpa::testing::Slurp(kDocs + "/examples/scene_three_cube.json");
     std::ofstream p(presses);
     p << "level,force_n\n# level, what the sensor read\n100,0.1477\n400,0.4759\n700,1.5333\n"
          "1000,4.9402\n";
@@ -169,8 +162,9 @@ TEST(CliSceneInput, PenPressureFormSetOrFittedIntoTheSceneFile) {
   auto r = Palpa("scene calibrate-input " + scene + " --a 0.09 --b 0.0035");
   LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
   CHECK_TEXT(Has(r, "pen pressure f = 0.09 · e^(0.0035 · level) N"), r.output.c_str());
-  CHECK(Slurp(scene).find("\"b_per_level\": 0.0035") != std::string::npos);
-  CHECK(Slurp(scene).find("\"preset\": \"thesis-three-cube\"") != std::string::npos);
+  CHECK(palpa::testing::Slurp(scene).find("\"b_per_level\": 0.0035") != std::string::npos);
+  CHECK(palpa::testing::Slurp(scene).find("\"preset\": \"thesis-three-cube\"") !=
+        std::string::npos);
   r = Palpa("--json scene calibrate-input " + scene + " --presses " + presses);
   LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
   // The presses lie on 0.1 · e^(0.0039 · level) to four digits.

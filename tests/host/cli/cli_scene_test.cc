@@ -22,13 +22,6 @@ namespace {
 
 const std::string kExample = std::string(PALPA_DOCS_DIR) + "/examples/scene_three_cube.json";
 
-std::string Slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 }  // namespace
 
 TEST_GROUP(CliScene){};
@@ -57,7 +50,7 @@ TEST(CliScene, AScenesMapAndFingersAreDrawn) {
   const std::string out = OwnTempPath("scene.svg");
   const auto r = Palpa("scene show " + kExample + " --at 60,12 --out " + out);
   LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
-  const std::string svg = Slurp(out);
+  const std::string svg = palpa::testing::Slurp(out);
   CHECK(svg.rfind("<svg ", 0) == 0);
   CHECK(svg.find("three-cube, three fingers — right triangle, 15 mm") != std::string::npos);
   std::remove(out.c_str());
@@ -100,7 +93,7 @@ TEST(CliScene, ATrajectoryIsRenderedToTheBoardAndRecorded) {
                        std::string("PALPA_SIM=") + PALPA_SIM_PATH);
   LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
   CHECK_TEXT(Has(r, "101 of 101 samples rendered; recorded in " + record), r.output.c_str());
-  const std::string csv = Slurp(record);
+  const std::string csv = palpa::testing::Slurp(record);
   CHECK(csv.rfind("time_s,x_mm,y_mm,force_n,board_time_us,finger1_touching,finger1_value,"
                   "finger1_target,",
                   0) == 0);
@@ -109,7 +102,7 @@ TEST(CliScene, ATrajectoryIsRenderedToTheBoardAndRecorded) {
   // 1.164 mm on Table 5-4's line); finger 2 at x = 75 on the block.
   CHECK_TEXT(csv.find("0.400000,60.0000,12.0000,1.0000,") != std::string::npos, csv.c_str());
   CHECK(csv.find(",1,36.2473,1.164,1,14.7,0,") != std::string::npos);
-  CHECK(Slurp(svg).find("<polyline") != std::string::npos);
+  CHECK(palpa::testing::Slurp(svg).find("<polyline") != std::string::npos);
   ExpectUsage("render " + kExample, "a SCENE file and --input TRAJECTORY.csv");
   ExpectUsage("render " + kExample + " --input " + record, "expected the header time_s,x_mm");
   for (const std::string& f : {input, record, svg}) std::remove(f.c_str());
@@ -134,7 +127,7 @@ TEST(CliScene, ATrajectoryKeepsItsPaceOnTheBoardsClockWhateverTheSimulatorsSpeed
   LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
   Palpa("sim stop", env);
   // time_s and board_time_us of the first row telemetry had reached, and of the last.
-  std::istringstream rows(Slurp(record));
+  std::istringstream rows(palpa::testing::Slurp(record));
   std::string row;
   std::getline(rows, row);  // the header
   double first_t = -1, first_us = 0, last_t = 0, last_us = 0;

@@ -8,16 +8,12 @@
 #include "palpa/host/device.h"
 
 #include "CppUTest/TestHarness.h"
+#include "temp_dir.h"
 
 namespace ph = palpa::host;
 namespace pp = palpa::protocol;
 
 namespace {
-
-std::string TempDir() {
-  char pattern[] = "/tmp/palpa-curves-XXXXXX";
-  return mkdtemp(pattern);
-}
 
 pp::ConfigureFinger WithInverse(const ph::CalibrationFile& c) {
   pp::ConfigureFinger f{};
@@ -31,7 +27,7 @@ pp::ConfigureFinger WithInverse(const ph::CalibrationFile& c) {
 /// calibrations in a directory holding `file`.
 std::unique_ptr<ph::Device> OpenWith(const ph::CalibrationFile& held,
                                      const ph::CalibrationFile& file, std::string& dir) {
-  dir = TempDir();
+  dir = palpa::testing::MakeTempDir("palpa-curves");
   const ph::Outcome saved = ph::SaveCalibration(file, ph::CalibrationPath(dir, "PN-1"));
   CHECK_TEXT(saved.ok(), saved.message.c_str());
   ph::DeviceOptions options;
@@ -130,7 +126,7 @@ TEST(BoardCurves, AFileEditedBeyondItsResidualIsNamedBesideTheBoard) {
 }
 
 TEST(BoardCurves, ACalibrationNotOnItsNominalBoardIsNamedAndTheNominalCurveFollowed) {
-  const std::string dir = TempDir();
+  const std::string dir = palpa::testing::MakeTempDir("palpa-curves");
   CHECK(ph::SaveCalibration(palpa::testing::ExampleCalibration(), ph::CalibrationPath(dir, "PN-1"))
             .ok());
   ph::DeviceOptions options;

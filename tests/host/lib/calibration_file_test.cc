@@ -17,6 +17,7 @@
 #include "palpa/host/device.h"
 
 #include "CppUTest/TestHarness.h"
+#include "temp_dir.h"
 
 namespace ph = palpa::host;
 namespace pp = palpa::protocol;
@@ -25,11 +26,6 @@ using nlohmann::json;
 namespace {
 
 ph::CalibrationFile Example() { return palpa::testing::ExampleCalibration(); }
-
-std::string TempDir() {
-  char pattern[] = "/tmp/palpa-cal-XXXXXX";
-  return mkdtemp(pattern);
-}
 
 std::string ErrorAfter(const std::function<void(json&)>& edit) {
   json j = json::parse(ph::SerializeCalibration(Example()).value);
@@ -45,7 +41,7 @@ std::string ErrorAfter(const std::function<void(json&)>& edit) {
 TEST_GROUP(CalibrationFile){};
 
 TEST(CalibrationFile, SavesAtomicallyAndReadsBackEveryField) {
-  const std::string dir = TempDir();
+  const std::string dir = palpa::testing::MakeTempDir("palpa-cal");
   const ph::Outcome saved = ph::SaveCalibration(Example(), ph::CalibrationPath(dir, "PN-1"));
   CHECK_TEXT(saved.ok(), saved.message.c_str());
   const auto found = ph::FindCalibration(dir, "PN-1");
@@ -209,7 +205,7 @@ TEST(CalibrationFile, TheStiffnessMapReadsTheCalibratedCurveAndNeverExtrapolates
 }
 
 TEST(CalibrationFile, DeviceFindsCalibrationsByActuatorSerialAndUploadsThemAtomically) {
-  const std::string dir = TempDir();
+  const std::string dir = palpa::testing::MakeTempDir("palpa-cal");
   CHECK(ph::SaveCalibration(Example(), ph::CalibrationPath(dir, "PN-1")).ok());
   ph::DeviceOptions options;
   options.calibration_dir = dir;

@@ -7,12 +7,15 @@
 #include "palpa/host/config_json.h"
 
 #include "CppUTest/TestHarness.h"
+#include "text_checks.h"
 
 namespace pc = palpa::core;
 namespace ph = palpa::host;
 using nlohmann::json;
 
 namespace {
+
+using palpa::testing::Contains;
 
 /// The message ApplyConfigJson throws for the JSON text `patch` onto thesis-5finger ("" when it
 /// applies).
@@ -24,10 +27,6 @@ std::string RefusalOf(const char* patch) {
     return e.what();
   }
   return "";
-}
-
-bool Contains(const std::string& text, const char* part) {
-  return text.find(part) != std::string::npos;
 }
 
 }  // namespace

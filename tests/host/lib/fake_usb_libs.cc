@@ -4,6 +4,7 @@
 #include <hidapi/hidapi.h>
 #include <libusb-1.0/libusb.h>
 
+#include <algorithm>
 #include <cstring>
 
 namespace palpa::testing {
@@ -123,9 +124,12 @@ int libusb_open(libusb_device*, libusb_device_handle** h) {
 void libusb_close(libusb_device_handle*) {}
 int libusb_get_string_descriptor_ascii(libusb_device_handle*, uint8_t index, unsigned char* data,
                                        int length) {
+  // As libusb: at most length - 1 characters and a terminating NUL; the count copied returned.
   const char* text = index == 2 ? Usb().product : Usb().serial;
-  std::strncpy(reinterpret_cast<char*>(data), text, static_cast<size_t>(length));
-  return static_cast<int>(std::strlen(text));
+  const size_t n = std::min(std::strlen(text), static_cast<size_t>(length) - 1);
+  std::memcpy(data, text, n);
+  data[n] = 0;
+  return static_cast<int>(n);
 }
 const char* libusb_error_name(int code) {
   return code == LIBUSB_ERROR_ACCESS ? "LIBUSB_ERROR_ACCESS" : "LIBUSB_ERROR";

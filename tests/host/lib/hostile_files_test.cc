@@ -20,21 +20,20 @@
 #include "palpa/host/stimulus_set.h"
 
 #include "CppUTest/TestHarness.h"
+#include "temp_dir.h"
+#include "text_checks.h"
 
 namespace ph = palpa::host;
 namespace pp = palpa::protocol;
 
 namespace {
 
+using palpa::testing::Contains;
+
 /// Why `r` was refused, or "" when it was not.
 template <class R>
-std::string Refusal(const R& r) {
+std::string MessageIfRefused(const R& r) {
   return r.ok() ? "" : r.message;
-}
-
-std::string TempDir() {
-  char pattern[] = "/tmp/palpa-hostile-XXXXXX";
-  return mkdtemp(pattern);
 }
 
 std::string ValidText() {
@@ -48,15 +47,11 @@ std::string Replaced(std::string text, const std::string& from, const std::strin
   return text.replace(at, from.size(), to);
 }
 
-bool Contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
-
 }  // namespace
 
 TEST_GROUP(HostileFiles) {
   std::string dir;
-  void setup() override { dir = TempDir(); }
+  void setup() override { dir = palpa::testing::MakeTempDir("palpa-hostile"); }
   void teardown() override { std::system(("rm -rf " + dir).c_str()); }
   std::string Write(const std::string& name, const std::string& text) {
     const std::string path = dir + "/" + name;
@@ -85,7 +80,7 @@ TEST(HostileFiles, AFifoNamedLikeACalibrationIsRefusedNotWaitedOn) {
   CHECK_FALSE(c.ok());
   std::string error = c.message;
   CHECK_TEXT(Contains(error, path + ": not a regular file"), error.c_str());
-  error = Refusal(ph::LoadCalibration("/dev/null"));
+  error = MessageIfRefused(ph::LoadCalibration("/dev/null"));
   CHECK_FALSE(error.empty());
   CHECK_TEXT(Contains(error, "/dev/null: not a regular file"), error.c_str());
 }
@@ -94,18 +89,18 @@ TEST(HostileFiles, AFileLargerThanItsKindAllowsIsRefusedNamingTheLimit) {
   // A valid calibration padded far beyond any real one: refused before it is read into memory.
   const std::string path = Write("PN-1.json", ValidText() + std::string(3 << 20, ' '));
   std::string error;
-  error = Refusal(ph::LoadCalibration(path));
+  error = MessageIfRefused(ph::LoadCalibration(path));
   CHECK_FALSE(error.empty());
   CHECK_TEXT(Contains(error, path + ": larger than the"), error.c_str());
   CHECK_TEXT(Contains(error, "limit for a calibration file"), error.c_str());
   // A stimulus set likewise, and one that is a device is never read from.
   const std::string set =
       Write("set.json", ph::ShippedStimulusSetText("thesis-jamming-8") + std::string(1 << 20, ' '));
-  error = Refusal(ph::LoadStimulusSet(set));
+  error = MessageIfRefused(ph::LoadStimulusSet(set));
   CHECK_FALSE(error.empty());
   CHECK_TEXT(Contains(error, set + ": larger than the 256 KiB limit for a stimulus set"),
              error.c_str());
-  error = Refusal(ph::LoadStimulusSet("/dev/zero"));
+  error = MessageIfRefused(ph::LoadStimulusSet("/dev/zero"));
   CHECK_FALSE(error.empty());
   CHECK_TEXT(Contains(error, "/dev/zero: not a regular file"), error.c_str());
 }
@@ -113,27 +108,27 @@ TEST(HostileFiles, AFileLargerThanItsKindAllowsIsRefusedNamingTheLimit) {
 TEST(HostileFiles, DeepNestingIsRefusedNamingTheLimit) {
   const std::string deep = std::string(100000, '[') + std::string(100000, ']');
   std::string error;
-  error = Refusal(ph::ParseCalibration(deep));
+  error = MessageIfRefused(ph::ParseCalibration(deep));
   CHECK_FALSE(error.empty());
   CHECK_TEXT(Contains(error, "nested deeper than"), error.c_str());
   // Within a level file's size limit, nesting alone is refused.
   const std::string path = Write(
       "levels.json", "{\"pneumatic\": " + std::string(20000, '[') + std::string(20000, ']') + "}");
-  error = Refusal(ph::LevelTables::Load(path));
+  error = MessageIfRefused(ph::LevelTables::Load(path));
   CHECK_FALSE(error.empty());
   CHECK_TEXT(Contains(error, path + ": pneumatic"), error.c_str());
   CHECK_TEXT(Contains(error, "nested deeper than"), error.c_str());
 }
 
 TEST(HostileFiles, NumbersJsonCannotHoldAreNamedByTheirField) {
-  std::string error = Refusal(ph::ParseCalibration(
+  std::string error = MessageIfRefused(ph::ParseCalibration(
       Replaced(ValidText(), "\"speed_um_s\": 100.0", "\"speed_um_s\": 1e400")));
   CHECK_FALSE(error.empty());
   CHECK_TEXT(Contains(error, "conditions.speed_um_s: "), error.c_str());
   CHECK_TEXT(Contains(error, "1e400"), error.c_str());
   CHECK_FALSE(Contains(error, "[json.exception"));  // words for people, not the library's codes
   const std::string curve = Replaced(ValidText(), "\"output\": 300.0", "\"output\": -1e999");
-  error = Refusal(ph::ParseCalibration(curve));
+  error = MessageIfRefused(ph::ParseCalibration(curve));
   CHECK_FALSE(error.empty());
   CHECK_TEXT(Contains(error, "curve[1].output: "), error.c_str());
 }
@@ -144,17 +139,17 @@ TEST(HostileFiles, LevelFilesNameTheFieldOfEveryMistake) {
       Write("levels.json",
             "{\"pneumatic\": {\"levels_kpa\": \"high\"}, \"jamming\": {\"bias_kpa\": "
             "20, \"levels_kpa\": [0]}}");
-  error = Refusal(ph::LevelTables::Load(path));
+  error = MessageIfRefused(ph::LevelTables::Load(path));
   CHECK_FALSE(error.empty());
   CHECK_TEXT(Contains(error, path + ": pneumatic.levels_kpa: must be an array"), error.c_str());
   path = Write("levels.json",
                "{\"pneumatic\": {\"levels_kpa\": [0, 10]}, \"jamming\": {\"bias_kpa\": 1e400, "
                "\"levels_kpa\": [0]}}");
-  error = Refusal(ph::LevelTables::Load(path));
+  error = MessageIfRefused(ph::LevelTables::Load(path));
   CHECK_FALSE(error.empty());
   CHECK_TEXT(Contains(error, path + ": jamming.bias_kpa: "), error.c_str());
   path = Write("levels.json", "{\"pneumatic\": {\"levels_kpa\": [0, 10]}}");
-  error = Refusal(ph::LevelTables::Load(path));
+  error = MessageIfRefused(ph::LevelTables::Load(path));
   CHECK_FALSE(error.empty());
   CHECK_TEXT(Contains(error, path + ": jamming: missing"), error.c_str());
 }
@@ -186,7 +181,7 @@ TEST(HostileValues, NotANumberIsRefusedUnderEveryPolicy) {
 
 TEST_GROUP(HostileCalibrations) {
   std::string dir;
-  void setup() override { dir = TempDir(); }
+  void setup() override { dir = palpa::testing::MakeTempDir("palpa-hostile"); }
   void teardown() override { std::system(("rm -rf " + dir).c_str()); }
   std::unique_ptr<ph::Device> Open(bool strict) {
     ph::DeviceOptions options;

@@ -10,13 +10,12 @@
 #include "palpa/host/scene.h"
 
 #include "CppUTest/TestHarness.h"
+#include "scene_examples.h"
 
 namespace ph = palpa::host;
 namespace pp = palpa::protocol;
 
 namespace {
-
-const char kExample[] = PALPA_DOCS_DIR "/examples/scene_three_cube.json";
 
 std::unique_ptr<ph::Device> OpenSim() {
   ph::DeviceOptions options;
@@ -63,7 +62,7 @@ TEST_GROUP(SceneDevice){};
 
 TEST(SceneDevice, EveryFingerChangesOnTheSameTick) {
   auto device = OpenSim();
-  auto spec = ph::LoadScene(kExample);
+  auto spec = ph::LoadScene(palpa::testing::kThreeCubeScene);
   CHECK_TEXT(spec.ok(), spec.message.c_str());
   spec.value.rule.pneumatic = ph::PneumaticMapping::kDeformation;
   spec.value.rule.value_lo = 0;  // the block itself renders mid-range, so every finger is up
@@ -110,7 +109,7 @@ TEST(SceneDevice, EveryFingerChangesOnTheSameTick) {
 
 TEST(SceneDevice, AFingerTheBoardLacksIsRefused) {
   auto device = OpenSim();
-  auto spec = ph::LoadScene(kExample).value;
+  auto spec = ph::LoadScene(palpa::testing::kThreeCubeScene).value;
   spec.board_fingers = {0, 1, 5};
   const auto scene = ph::Scene::Open(spec, *device);
   CHECK(!scene.ok());

@@ -12,27 +12,20 @@
 #include "palpa/host/scene_file.h"
 
 #include "CppUTest/TestHarness.h"
+#include "scene_examples.h"
+#include "text_checks.h"
 
 namespace ph = palpa::host;
 namespace pp = palpa::protocol;
 
 namespace {
 
-bool StartsWith(const std::string& text, const std::string& head) {
-  return text.rfind(head, 0) == 0;
-}
-
-#define CHECK_STARTS(text, head) \
-  CHECK_TEXT(StartsWith(text, head), (std::string(head) + " <> " + (text)).c_str())
-
-const char kExample[] = PALPA_DOCS_DIR "/examples/scene_three_cube.json";
-
 nlohmann::json Example() {
-  std::ifstream in(kExample);
+  std::ifstream in(palpa::testing::kThreeCubeScene);
   return nlohmann::json::parse(in);
 }
 
-std::string Refused(const nlohmann::json& j) {
+std::string RefusedScene(const nlohmann::json& j) {
   const auto s = ph::ParseScene(j.dump());
   CHECK_TEXT(!s.ok(), "accepted");
   LONGS_EQUAL((int)pp::Status::kInvalidArgument, (int)s.status);
@@ -53,7 +46,7 @@ void RoundTrips(const ph::SceneSpec& spec) {
 TEST_GROUP(SceneFile){};
 
 TEST(SceneFile, TheExampleIsTheThesisTriangleOnTheThreeCubePhantom) {
-  const auto s = ph::LoadScene(kExample);
+  const auto s = ph::LoadScene(palpa::testing::kThreeCubeScene);
   CHECK_TEXT(s.ok(), s.message.c_str());
   CHECK(s.value.source == ph::TissueSource::kPreset);
   STRCMP_EQUAL("thesis-three-cube", s.value.preset.c_str());
@@ -145,7 +138,7 @@ TEST(SceneFile, EveryBadFieldIsNamed) {
   auto broken = [](auto edit) {
     nlohmann::json j = Example();
     edit(j);
-    return Refused(j);
+    return RefusedScene(j);
   };
   CHECK_STARTS(broken([](auto& j) { j["schema"] = "palpa-tissue"; }), "schema: must be");
   CHECK_STARTS(broken([](auto& j) {

@@ -19,14 +19,13 @@
 #include "small_tissue.h"
 
 #include "CppUTest/TestHarness.h"
+#include "scene_examples.h"
 
 namespace ph = palpa::host;
 namespace pp = palpa::protocol;
 using nlohmann::json;
 
 namespace {
-
-const char kExample[] = PALPA_DOCS_DIR "/examples/scene_three_cube.json";
 
 /// A refusal says what is wrong in words: not empty, not the JSON library's message.
 void CheckReason(const ph::Outcome& o, const std::string& text) {
@@ -115,7 +114,8 @@ TEST(SceneHostileFiles, TissueFilesAreRefusedWithAReasonOrRoundTrip) {
 }
 
 TEST(SceneHostileFiles, SceneFilesAreRefusedWithAReasonOrRoundTrip) {
-  const std::string valid = ph::ReadFileWhole(kExample, ph::kSceneFileLimits).value;
+  const std::string valid =
+      ph::ReadFileWhole(palpa::testing::kThreeCubeScene, ph::kSceneFileLimits).value;
   auto check = [&](const std::string& text) {
     const auto s = ph::ParseScene(text);
     if (!s.ok()) return CheckReason(s, text);

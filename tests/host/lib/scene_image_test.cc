@@ -9,21 +9,15 @@
 #include "palpa/host/scene_image.h"
 
 #include "CppUTest/TestHarness.h"
+#include "text_checks.h"
 
 namespace ph = palpa::host;
 
 namespace {
 
-bool StartsWith(const std::string& text, const std::string& head) {
-  return text.rfind(head, 0) == 0;
-}
-
-#define CHECK_STARTS(text, head) \
-  CHECK_TEXT(StartsWith(text, head), (std::string(head) + " <> " + (text)).c_str())
-
 const ph::ImageScale kScale{"img", "kPa", 0.5, 10, 30};
 
-std::string Refused(const std::string& bytes, const ph::ImageScale& scale = kScale) {
+std::string RefusedImage(const std::string& bytes, const ph::ImageScale& scale = kScale) {
   const auto m = ph::ParseTissueImage(bytes, scale, "map.pgm");
   CHECK_TEXT(!m.ok(), "accepted");
   return m.message;
@@ -58,21 +52,23 @@ TEST(SceneImage, GreyBecomesStiffnessWithTheTopRowAtTheLargestY) {
 }
 
 TEST(SceneImage, EveryBadImageIsNamed) {
-  CHECK_STARTS(Refused("P6 3 2 255\n"), "map.pgm: not a greyscale PGM image (it starts \"P6\"");
-  CHECK_STARTS(Refused("\x89PNG"), "map.pgm: not a greyscale PGM image");
-  CHECK_STARTS(Refused("P2 1 2 4\n0\n0\n"), "map.pgm: header: width 1 is not 2 … 1024");
-  CHECK_STARTS(Refused("P2 3 2000 4\n"), "map.pgm: header: height 2000 is not 2 … 1024");
-  CHECK_STARTS(Refused("P2 3 2 0\n"), "map.pgm: header: maxval 0 is not 1 … 65535");
-  CHECK_STARTS(Refused("P2 3 x 4\n"), "map.pgm: header: height -1");
-  CHECK_STARTS(Refused("P2 3 2 4\n0 2 4\n4 9 4\n"),
+  CHECK_STARTS(RefusedImage("P6 3 2 255\n"),
+               "map.pgm: not a greyscale PGM image (it starts \"P6\"");
+  CHECK_STARTS(RefusedImage("\x89PNG"), "map.pgm: not a greyscale PGM image");
+  CHECK_STARTS(RefusedImage("P2 1 2 4\n0\n0\n"), "map.pgm: header: width 1 is not 2 … 1024");
+  CHECK_STARTS(RefusedImage("P2 3 2000 4\n"), "map.pgm: header: height 2000 is not 2 … 1024");
+  CHECK_STARTS(RefusedImage("P2 3 2 0\n"), "map.pgm: header: maxval 0 is not 1 … 65535");
+  CHECK_STARTS(RefusedImage("P2 3 x 4\n"), "map.pgm: header: height -1");
+  CHECK_STARTS(RefusedImage("P2 3 2 4\n0 2 4\n4 9 4\n"),
                "map.pgm: pixel (1, 1): 9 is above the maxval 4");
-  CHECK_STARTS(Refused("P2 3 2 4\n0 2 4\n4 0\n"), "map.pgm: pixel (2, 1): missing or not a number");
-  CHECK_STARTS(Refused("P2 3 2 4\n0 2 4\n4 0 -4\n"), "map.pgm: pixel (2, 1): missing");
-  CHECK_STARTS(Refused(std::string("P5 3 2 4\n") + std::string("\0\2\4\4", 4)),
+  CHECK_STARTS(RefusedImage("P2 3 2 4\n0 2 4\n4 0\n"),
+               "map.pgm: pixel (2, 1): missing or not a number");
+  CHECK_STARTS(RefusedImage("P2 3 2 4\n0 2 4\n4 0 -4\n"), "map.pgm: pixel (2, 1): missing");
+  CHECK_STARTS(RefusedImage(std::string("P5 3 2 4\n") + std::string("\0\2\4\4", 4)),
                "map.pgm: 4 bytes of pixels, expected 6");
-  CHECK_STARTS(Refused(std::string("P5 3 2 4\n") + std::string("\0\2\4\4\5\4", 6)),
+  CHECK_STARTS(RefusedImage(std::string("P5 3 2 4\n") + std::string("\0\2\4\4\5\4", 6)),
                "map.pgm: pixel (1, 1): 5 is above the maxval 4");
-  CHECK_STARTS(Refused("P2 3 2 4\n0 2 4\n4 0 4\n", {"i", "kPa", 0, 10, 30}),
+  CHECK_STARTS(RefusedImage("P2 3 2 4\n0 2 4\n4 0 4\n", {"i", "kPa", 0, 10, 30}),
                "map.pgm: the scale's mm per pixel 0 is not in (0, 1000]");
 }
 

@@ -12,20 +12,14 @@
 #include "palpa/host/scene_render.h"
 
 #include "CppUTest/TestHarness.h"
+#include "text_checks.h"
 
 namespace ph = palpa::host;
 namespace pp = palpa::protocol;
 
 namespace {
 
-bool StartsWith(const std::string& text, const std::string& head) {
-  return text.rfind(head, 0) == 0;
-}
-
-#define CHECK_STARTS(text, head) \
-  CHECK_TEXT(StartsWith(text, head), (std::string(head) + " <> " + (text)).c_str())
-
-std::string Refused(const std::string& text) {
+std::string RefusedTrajectory(const std::string& text) {
   const auto t = ph::ParseTrajectory(text, "pass.csv");
   CHECK_TEXT(!t.ok(), "accepted");
   LONGS_EQUAL((int)pp::Status::kInvalidArgument, (int)t.status);
@@ -62,17 +56,20 @@ TEST(SceneTrajectory, ARecordedPassIsReadSampleBySample) {
 
 TEST(SceneTrajectory, EveryBadLineIsNamed) {
   const std::string h = "time_s,x_mm,y_mm,force_n\n";
-  CHECK_STARTS(Refused("t,x,y,f\n0,1,2,3\n"),
+  CHECK_STARTS(RefusedTrajectory("t,x,y,f\n0,1,2,3\n"),
                "pass.csv: line 1: expected the header time_s,x_mm,y_mm,force_n");
-  CHECK_STARTS(Refused(""), "pass.csv: line 1: expected the header");
-  CHECK_STARTS(Refused(h), "pass.csv: no samples");
-  CHECK_STARTS(Refused(h + "0,1,2\n"), "pass.csv: line 2: 3 values, expected 4");
-  CHECK_STARTS(Refused(h + "0,1,2,3,4\n"), "pass.csv: line 2: more than 4 values");
-  CHECK_STARTS(Refused(h + "0,1,2,1\n\n0,1,y,1\n"), "pass.csv: line 4, value 3: \"y\" is not a");
-  CHECK_STARTS(Refused(h + "0,1,2,1\n0.5,1,2,1\n0.5,1,2,1\n"),
+  CHECK_STARTS(RefusedTrajectory(""), "pass.csv: line 1: expected the header");
+  CHECK_STARTS(RefusedTrajectory(h), "pass.csv: no samples");
+  CHECK_STARTS(RefusedTrajectory(h + "0,1,2\n"), "pass.csv: line 2: 3 values, expected 4");
+  CHECK_STARTS(RefusedTrajectory(h + "0,1,2,3,4\n"), "pass.csv: line 2: more than 4 values");
+  CHECK_STARTS(RefusedTrajectory(h + "0,1,2,1\n\n0,1,y,1\n"),
+               "pass.csv: line 4, value 3: \"y\" is not a");
+  CHECK_STARTS(RefusedTrajectory(h + "0,1,2,1\n0.5,1,2,1\n0.5,1,2,1\n"),
                "pass.csv: line 4: time 0.5 s is not after line 3's 0.5 s");
-  CHECK_STARTS(Refused(h + "0,1,2,-0.1\n"), "pass.csv: line 2: force -0.1 N is outside 0 … 100 N");
-  CHECK_STARTS(Refused(h + "0,1,2,inf\n"), "pass.csv: line 2, value 4: \"inf\" is not a number");
+  CHECK_STARTS(RefusedTrajectory(h + "0,1,2,-0.1\n"),
+               "pass.csv: line 2: force -0.1 N is outside 0 … 100 N");
+  CHECK_STARTS(RefusedTrajectory(h + "0,1,2,inf\n"),
+               "pass.csv: line 2, value 4: \"inf\" is not a number");
 }
 
 TEST(SceneTrajectory, FilesAreReadWithinTheirCap) {

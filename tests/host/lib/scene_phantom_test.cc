@@ -9,23 +9,12 @@
 #include "palpa/host/scene_svg.h"
 
 #include "CppUTest/TestHarness.h"
+#include "scene_examples.h"
+#include "text_checks.h"
 
 namespace ph = palpa::host;
 
 namespace {
-
-bool StartsWith(const std::string& text, const std::string& head) {
-  return text.rfind(head, 0) == 0;
-}
-
-#define CHECK_STARTS(text, head) \
-  CHECK_TEXT(StartsWith(text, head), (std::string(head) + " <> " + (text)).c_str())
-
-ph::TissueMap Three() {
-  const auto m = ph::GeneratePhantom(ph::ThreeCubePhantom());
-  CHECK_TEXT(m.ok(), m.message.c_str());
-  return m.value;
-}
 
 double Point(const ph::TissueMap& m, double x, double y) {
   double v = NAN;
@@ -36,7 +25,7 @@ double Point(const ph::TissueMap& m, double x, double y) {
 /// Series column: H / ((H − t)/Eb + t/Ei).
 double Column(double h, double t, double eb, double ei) { return h / ((h - t) / eb + t / ei); }
 
-std::string Refused(const ph::PhantomSpec& s) {
+std::string RefusedPhantom(const ph::PhantomSpec& s) {
   const auto m = ph::GeneratePhantom(s);
   CHECK_TEXT(!m.ok(), "accepted");
   return m.message;
@@ -48,7 +37,7 @@ TEST_GROUP(ScenePhantom){};
 
 TEST(ScenePhantom, TheThreeCubePresetMatchesItsSpecification) {
   const ph::PhantomSpec spec = ph::ThreeCubePhantom();
-  const ph::TissueMap m = Three();
+  const ph::TissueMap m = palpa::testing::ThreeCubeMap();
   STRCMP_EQUAL("kPa", m.unit.c_str());
   LONGS_EQUAL(241, m.nx);  // 120 mm at 0.5 mm
   LONGS_EQUAL(61, m.ny);
@@ -82,14 +71,14 @@ TEST(ScenePhantom, DepthOnlyHasToFitAndStackedInclusionsAddTheirCompliance) {
   CHECK_TEXT(m.ok(), m.message.c_str());
   DOUBLES_EQUAL(10 / (5.0 / 10 + 2.0 / 100 + 3.0 / 50), Point(m.value, 10, 5), 1e-9);
   s.inclusions[1].depth_mm = 2;  // now it shares volume with the top one
-  CHECK_STARTS(Refused(s), "phantom two: inclusions[1]: overlaps inclusions[0]");
+  CHECK_STARTS(RefusedPhantom(s), "phantom two: inclusions[1]: overlaps inclusions[0]");
 }
 
 TEST(ScenePhantom, EveryBadFieldIsNamed) {
   auto with = [](auto edit) {
     ph::PhantomSpec s = ph::ThreeCubePhantom();
     edit(s);
-    return Refused(s);
+    return RefusedPhantom(s);
   };
   const std::string p = "phantom thesis-three-cube: ";
   CHECK_STARTS(with([](auto& s) { s.size_x_mm = 0; }), p + "size_x_mm: 0 is not in (0, 10000]");
@@ -138,7 +127,7 @@ TEST(SceneFingers, RowsAreCentredAndEachFingerFeelsWhatIsUnderIt) {
   LONGS_EQUAL(2, pair.fingers.size());
   DOUBLES_EQUAL(-10, pair.fingers[0].dx_mm, 1e-12);
   // Over the three-cube phantom: the pair straddling cube B, each finger on the block.
-  const ph::TissueMap m = Three();
+  const ph::TissueMap m = palpa::testing::ThreeCubeMap();
   auto under = ph::SampleFingers(m, pair, 60, 15);
   DOUBLES_EQUAL(14.7, under[0].value, 1e-9);
   DOUBLES_EQUAL(14.7, under[1].value, 1e-9);
@@ -166,7 +155,7 @@ TEST(SceneFingers, BadLayoutsAreNamed) {
 TEST_GROUP(SceneSvg){};
 
 TEST(SceneSvg, TheMapIsDrawnInColourWithEachFingersDiscAndThePath) {
-  const ph::TissueMap m = Three();
+  const ph::TissueMap m = palpa::testing::ThreeCubeMap();
   const std::string svg =
       ph::SceneSvg(m, ph::RightTriangleLayout(15, 4), 60, 12, {{0, 15}, {120, 15}}, "B < C & A");
   CHECK(svg.rfind("<svg ", 0) == 0);

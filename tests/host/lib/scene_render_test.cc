@@ -8,6 +8,8 @@
 #include "palpa/host/scene_render.h"
 
 #include "CppUTest/TestHarness.h"
+#include "scene_examples.h"
+#include "text_checks.h"
 
 namespace ph = palpa::host;
 namespace pp = palpa::protocol;
@@ -22,8 +24,6 @@ ph::RenderFinger Jamming(uint8_t board) {
   return {board, {pp::FingerKind::kJamming, pp::FingerMode::kTarget, board, 7}, {}};
 }
 
-ph::TissueMap Three() { return ph::GeneratePhantom(ph::ThreeCubePhantom()).value; }
-
 ph::SceneRenderer Make(ph::TissueMap t, ph::FingerLayout l, ph::RenderRule rule,
                        std::vector<ph::RenderFinger> f) {
   auto r = ph::SceneRenderer::Make(std::move(t), std::move(l), rule, std::move(f));
@@ -34,16 +34,9 @@ ph::SceneRenderer Make(ph::TissueMap t, ph::FingerLayout l, ph::RenderRule rule,
 /// The triangle over the phantom: finger 1 15 mm to +x of finger 0 (the right angle), finger 2
 /// 15 mm to +y.
 ph::SceneRenderer Triangle(ph::RenderRule rule = {}) {
-  return Make(Three(), ph::RightTriangleLayout(15, 4), rule,
+  return Make(palpa::testing::ThreeCubeMap(), ph::RightTriangleLayout(15, 4), rule,
               {Pneumatic(0), Pneumatic(1), Pneumatic(2)});
 }
-
-bool StartsWith(const std::string& text, const std::string& head) {
-  return text.rfind(head, 0) == 0;
-}
-
-#define CHECK_STARTS(text, head) \
-  CHECK_TEXT(StartsWith(text, head), (std::string(head) + " <> " + (text)).c_str())
 
 }  // namespace
 
@@ -70,7 +63,7 @@ TEST(SceneRender, AFingerOnTheStiffestCubeGetsTheTopOfItsCurveAndTheBlockNothing
 }
 
 TEST(SceneRender, CubeCGetsItsShareOfTheRangeAndContrastStretchesIt) {
-  const ph::TissueMap t = Three();
+  const ph::TissueMap t = palpa::testing::ThreeCubeMap();
   const double lo = t.Range().first, hi = t.Range().second;
   double c = 0;
   CHECK(ph::InterpolateGrid(t, t.values, 90, 15, &c));
@@ -114,17 +107,19 @@ TEST(SceneRender, PneumaticLevelsAndTheFingertipStressLine) {
   // u = 1: the stress of 30 kPa on the line, back to 30 kPa, through Table 5-4's line.
   DOUBLES_EQUAL(0.0458 * 30 - 0.2098, out[0].request.value, 1e-9);
   rule.stress_hi_kpa = 50;  // past the line's 0 … 100 kPa
-  CHECK_STARTS(ph::SceneRenderer::Make(Three(), ph::RightTriangleLayout(20, 4), rule,
-                                       {Pneumatic(0), Pneumatic(1), Pneumatic(2)})
-                   .message,
-               "rule: stress 5.91 … 50 kPa is not a range within");
+  CHECK_STARTS(
+      ph::SceneRenderer::Make(palpa::testing::ThreeCubeMap(), ph::RightTriangleLayout(20, 4), rule,
+                              {Pneumatic(0), Pneumatic(1), Pneumatic(2)})
+          .message,
+      "rule: stress 5.91 … 50 kPa is not a range within");
 }
 
 TEST(SceneRender, JammingFingersRenderNPerMmOverTheirOwnCurve) {
   std::vector<ph::RenderFinger> fingers = {Jamming(3), Jamming(4)};
   fingers[1].curves.stiffness_at_0 = 0.8;  // as a calibration would set it
   fingers[1].curves.stiffness_at_full_vacuum = 1.1;
-  const ph::SceneRenderer r = Make(Three(), ph::JammingPairLayout(20, 4), {}, fingers);
+  const ph::SceneRenderer r =
+      Make(palpa::testing::ThreeCubeMap(), ph::JammingPairLayout(20, 4), {}, fingers);
   auto out = r.Render({0, 50, 15, 1});  // finger 1 on B, finger 0 on the block
   CHECK(out[1].request.kind == ph::TargetKind::kStiffnessNPerMm);
   DOUBLES_EQUAL(1.1, out[1].request.value, 1e-12);
@@ -185,23 +180,28 @@ TEST(SceneRender, BadScenesAreRefusedByName) {
     return r.message;
   };
   const std::vector<ph::RenderFinger> three = {Pneumatic(0), Pneumatic(1), Pneumatic(2)};
-  CHECK_STARTS(refused(Three(), tri, {}, {Pneumatic(0), Pneumatic(1)}),
+  CHECK_STARTS(refused(palpa::testing::ThreeCubeMap(), tri, {}, {Pneumatic(0), Pneumatic(1)}),
                "fingers: 2 board fingers for the 3 places of layout right triangle, 15 mm");
-  CHECK_STARTS(refused(Three(), tri, {}, {Pneumatic(0), Pneumatic(1), Pneumatic(0)}),
-               "fingers[2]: board finger 0 drives another place");
-  ph::TissueMap t = Three();
+  CHECK_STARTS(
+      refused(palpa::testing::ThreeCubeMap(), tri, {}, {Pneumatic(0), Pneumatic(1), Pneumatic(0)}),
+      "fingers[2]: board finger 0 drives another place");
+  ph::TissueMap t = palpa::testing::ThreeCubeMap();
   t.values[7] = NAN;
   CHECK_STARTS(refused(t, tri, {}, three),
                "tissue thesis-three-cube: values: point (7, 0) is not a finite number");
-  CHECK_STARTS(refused(Three(), ph::RowLayout(0, 1, 1), {}, {}), "layout row of 0, 1 mm: fingers");
+  CHECK_STARTS(refused(palpa::testing::ThreeCubeMap(), ph::RowLayout(0, 1, 1), {}, {}),
+               "layout row of 0, 1 mm: fingers");
   ph::RenderRule rule;
   rule.contrast = 0;
-  CHECK_STARTS(refused(Three(), tri, rule, three), "rule: contrast 0 is not within (0, 10]");
+  CHECK_STARTS(refused(palpa::testing::ThreeCubeMap(), tri, rule, three),
+               "rule: contrast 0 is not within (0, 10]");
   rule = {};
   rule.value_lo = 5;
   rule.value_hi = 1;
-  CHECK_STARTS(refused(Three(), tri, rule, three), "rule: value_lo 5 and value_hi 1");
+  CHECK_STARTS(refused(palpa::testing::ThreeCubeMap(), tri, rule, three),
+               "rule: value_lo 5 and value_hi 1");
   rule = {};
   rule.contact_force_n = -1;
-  CHECK_STARTS(refused(Three(), tri, rule, three), "rule: contact_force_n -1");
+  CHECK_STARTS(refused(palpa::testing::ThreeCubeMap(), tri, rule, three),
+               "rule: contact_force_n -1");
 }

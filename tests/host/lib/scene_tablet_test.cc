@@ -14,17 +14,12 @@
 #include "palpa/host/scene_tablet.h"
 
 #include "CppUTest/TestHarness.h"
+#include "text_checks.h"
 
 namespace ph = palpa::host;
 namespace pt = palpa::testing;
 
 namespace {
-
-bool Contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
-#define CHECK_CONTAINS(text, part) \
-  CHECK_TEXT(Contains(text, part), (std::string(part) + " not in: " + (text)).c_str())
 
 std::string FitRefusal(const std::vector<ph::Press>& presses) {
   const auto fit = ph::FitPressureForce(presses);

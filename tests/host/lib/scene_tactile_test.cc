@@ -16,20 +16,15 @@
 #include "palpa/host/scene_tactile.h"
 
 #include "CppUTest/TestHarness.h"
+#include "text_checks.h"
 
 namespace ph = palpa::host;
 namespace pp = palpa::protocol;
 
 namespace {
 
-const char kExample[] = PALPA_DOCS_DIR "/examples/scene_inputs.json";
+const char kInputsScene[] = PALPA_DOCS_DIR "/examples/scene_inputs.json";
 const char kStream[] = PALPA_DOCS_DIR "/examples/tactile_grasper.csv";
-
-bool Contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
-#define CHECK_CONTAINS(text, part) \
-  CHECK_TEXT(Contains(text, part), (std::string(part) + " not in: " + (text)).c_str())
 
 ph::TactileSpec Spec() {
   ph::TactileSpec s;
@@ -100,7 +95,7 @@ TEST(SceneTactile, BadSpecsNamed) {
 }
 
 TEST(SceneTactile, SceneFileInputSectionRoundTrips) {
-  const auto spec = ph::LoadScene(kExample);
+  const auto spec = ph::LoadScene(kInputsScene);
   CHECK_TEXT(spec.ok(), spec.message.c_str());
   CHECK(spec.value.tablet && spec.value.tactile);
   DOUBLES_EQUAL(0.0039, spec.value.tablet->pressure_force.b_per_level, 0);
@@ -199,7 +194,7 @@ TEST(SceneTactile, HoldThenSoftLateDropped) {
 }
 
 TEST(SceneTactile, RecordedStreamReplayedFingersFollowTheGroups) {
-  const auto spec = ph::LoadScene(kExample);
+  const auto spec = ph::LoadScene(kInputsScene);
   CHECK(spec.ok());
   const ph::TactileSpec& t = *spec.value.tactile;
   const auto frames = ph::LoadTactileStream(kStream, t.elements);

@@ -14,6 +14,7 @@
 #include "palpa/host/scene_tissue.h"
 
 #include "CppUTest/TestHarness.h"
+#include "text_checks.h"
 
 namespace ph = palpa::host;
 
@@ -32,14 +33,7 @@ ph::TissueMap Ramp() {
   return m;
 }
 
-bool StartsWith(const std::string& text, const std::string& head) {
-  return text.rfind(head, 0) == 0;
-}
-
-#define CHECK_STARTS(text, head) \
-  CHECK_TEXT(StartsWith(text, head), (std::string(head) + " <> " + (text)).c_str())
-
-std::string Refusal(const std::string& text) {
+std::string RefusedTissue(const std::string& text) {
   const auto m = ph::ParseTissue(text);
   CHECK_TEXT(!m.ok(), "accepted");
   LONGS_EQUAL((int)palpa::protocol::Status::kInvalidArgument, (int)m.status);
@@ -112,7 +106,7 @@ TEST(SceneTissue, EveryBadFieldIsNamedWithWhatWasExpected) {
   auto broken = [](auto edit) {
     nlohmann::json j = ValidDoc();
     edit(j);
-    return Refusal(j.dump());
+    return RefusedTissue(j.dump());
   };
   CHECK_STARTS(broken([](auto& j) { j["schema"] = "palpa-stimuli"; }), "schema: must be");
   CHECK_STARTS(broken([](auto& j) { j["schema_version"] = 2; }), "schema_version: 2 is outside");
@@ -138,9 +132,9 @@ TEST(SceneTissue, EveryBadFieldIsNamedWithWhatWasExpected) {
                "depths[0].force_n: has 3 rows, needs 2");
   CHECK_STARTS(broken([](auto& j) { j["depths"][0]["force_n"][0][1] = nullptr; }),
                "depths[0].force_n[0][1]: must be a number");
-  CHECK_STARTS(Refusal("{\"schema\": \"palpa-tissue\", \"values\": [[1e400"),
+  CHECK_STARTS(RefusedTissue("{\"schema\": \"palpa-tissue\", \"values\": [[1e400"),
                "values[0][0]: the number");
-  CHECK_STARTS(Refusal("[1, 2"), "[2]: not valid JSON");
+  CHECK_STARTS(RefusedTissue("[1, 2"), "[2]: not valid JSON");
 }
 
 TEST_GROUP(SceneForceMatrices) {

@@ -39,7 +39,7 @@ nlohmann::json Valid() {
                 {"levels": ["L1", "L1", "L0"], "tumour": [1, 2]}]})");
 }
 
-std::string Refusal(const nlohmann::json& j) {
+std::string RefusedStimuli(const nlohmann::json& j) {
   const auto set = ph::ParseStimulusSet(j.dump());
   CHECK_TEXT(!set.ok(), "accepted");
   LONGS_EQUAL((int)palpa::protocol::Status::kInvalidArgument, (int)set.status);
@@ -48,7 +48,7 @@ std::string Refusal(const nlohmann::json& j) {
 
 #define CHECK_REFUSED(json, starts)                                                  \
   do {                                                                               \
-    const std::string e = Refusal(json);                                             \
+    const std::string e = RefusedStimuli(json);                                      \
     CHECK_TEXT(e.rfind(starts, 0) == 0, (std::string(starts) + " <> " + e).c_str()); \
   } while (0)
 

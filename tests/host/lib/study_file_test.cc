@@ -39,7 +39,7 @@ const char kCustom[] = R"({
 })";
 
 /// The custom study with one value replaced (a JSON pointer), parsed: its error message.
-std::string Refusal(const std::string& pointer, const nlohmann::json& value) {
+std::string RefusedStudy(const std::string& pointer, const nlohmann::json& value) {
   nlohmann::json j = nlohmann::json::parse(kCustom);
   if (value.is_discarded()) {
     j.erase(pointer.substr(1));
@@ -135,26 +135,29 @@ TEST(StudyFile, ACustomStudyRoundTripsWithItsDefaultsFilledIn) {
 }
 
 TEST(StudyFile, BadFieldsAreNamedWithTheirLine) {
-  Contains(Refusal("/blocks/0/repetitions", 0), "blocks[0].repetitions");
+  Contains(RefusedStudy("/blocks/0/repetitions", 0), "blocks[0].repetitions");
   OnLine("/blocks/0/repetitions", 0, "\"repetitions\": 0");
   OnLine("/conditions/1/values/1", 200, "200");
   OnLine("/blocks/1/staircase/step", -1, "\"step\": -1");
-  Contains(Refusal("/conditions/1/values/1", 200), "conditions[1].values[1]: 200 mm");
-  Contains(Refusal("/conditions/1/values", {0.2, 1.0, 0.5}), "the tumour rule");
-  Contains(Refusal("/conditions/2/tumour", {1}), "conditions[2].tumour: not what the rule gives");
-  Contains(Refusal("/conditions/2", {{"values", {0.2, 0.2, 0.2}}}),
+  Contains(RefusedStudy("/conditions/1/values/1", 200), "conditions[1].values[1]: 200 mm");
+  Contains(RefusedStudy("/conditions/1/values", {0.2, 1.0, 0.5}), "the tumour rule");
+  Contains(RefusedStudy("/conditions/2/tumour", {1}),
+           "conditions[2].tumour: not what the rule gives");
+  Contains(RefusedStudy("/conditions/2", {{"values", {0.2, 0.2, 0.2}}}),
            "conditions[2].values: a condition twice");
-  Contains(Refusal("/unit", "N/mm"), "unit: a pneumatic finger renders mm");
-  Contains(Refusal("/unit", "furlong"), "unit");
-  Contains(Refusal("/blocks/0/mode", "sideways"), "blocks[0].mode");
-  Contains(Refusal("/blocks/1/staircase/start", 0.4), "blocks[1].staircase.start: must be stiffer");
-  Contains(Refusal("/blocks/1/staircase/reversals_used", 7), "blocks[1].staircase.reversals_used");
-  Contains(Refusal("/blocks/1/staircase/fingers", {1, 4}), "blocks[1].staircase.fingers[1]");
-  Contains(Refusal("/blocks/1/name", "a"), "blocks[1].name: \"a\" twice");
-  Contains(Refusal("/blocks/0/colour", "red"), "colour");
-  Contains(Refusal("/schema", "palpa-stimuli"), "schema");
-  Contains(Refusal("/fingers", 9), "fingers");
-  Contains(Refusal("/cap_kpa", nlohmann::json::value_t::discarded), "cap_kpa");
+  Contains(RefusedStudy("/unit", "N/mm"), "unit: a pneumatic finger renders mm");
+  Contains(RefusedStudy("/unit", "furlong"), "unit");
+  Contains(RefusedStudy("/blocks/0/mode", "sideways"), "blocks[0].mode");
+  Contains(RefusedStudy("/blocks/1/staircase/start", 0.4),
+           "blocks[1].staircase.start: must be stiffer");
+  Contains(RefusedStudy("/blocks/1/staircase/reversals_used", 7),
+           "blocks[1].staircase.reversals_used");
+  Contains(RefusedStudy("/blocks/1/staircase/fingers", {1, 4}), "blocks[1].staircase.fingers[1]");
+  Contains(RefusedStudy("/blocks/1/name", "a"), "blocks[1].name: \"a\" twice");
+  Contains(RefusedStudy("/blocks/0/colour", "red"), "colour");
+  Contains(RefusedStudy("/schema", "palpa-stimuli"), "schema");
+  Contains(RefusedStudy("/fingers", 9), "fingers");
+  Contains(RefusedStudy("/cap_kpa", nlohmann::json::value_t::discarded), "cap_kpa");
   // The cap, on values that are pressures.
   nlohmann::json j = nlohmann::json::parse(kCustom);
   j["unit"] = "kPa";

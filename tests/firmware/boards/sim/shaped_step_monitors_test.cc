@@ -17,7 +17,7 @@ namespace ps = palpa::sim;
 
 namespace {
 
-constexpr uint8_t kPneumatic = 0;
+constexpr uint8_t kPneumaticLine = 0;
 
 /// Line 0 shaped as the calibration leaves it (its chamber's lag, 20 kPa overdrive, no slew).
 std::unique_ptr<pb::RawLineSession> ShapedSession() {
@@ -38,10 +38,10 @@ uint32_t BurstsAndHolds(pb::RawLineSession& s, int holds) {
   std::uniform_int_distribution<int> kpa(0, 90), burst_ms(20, 200);
   for (int h = 0; h < holds; ++h) {
     for (int k = 0; k < 8; ++k) {
-      s.Set({{kPneumatic, 1000 * kpa(rng)}});
+      s.Set({{kPneumaticLine, 1000 * kpa(rng)}});
       for (int ms = burst_ms(rng); ms > 0; --ms) s.Tick();
     }
-    s.Set({{kPneumatic, h % 3 == 0 ? 0 : 1000 * (10 + kpa(rng) % 80)}});
+    s.Set({{kPneumaticLine, h % 3 == 0 ? 0 : 1000 * (10 + kpa(rng) % 80)}});
     for (int ms = 0; ms < 6000; ++ms) {
       s.Tick();
       if (s.Faults() != 0) return s.Faults();
@@ -57,12 +57,12 @@ TEST_GROUP(ShapedStepMonitors){};
 TEST(ShapedStepMonitors, QuietThroughShapedStepsHeldLongerThanTheirWindows) {
   auto s = ShapedSession();
   LONGS_EQUAL(0, BurstsAndHolds(*s, 6));
-  CHECK_FALSE(s->ShapingFellBack(kPneumatic));
+  CHECK_FALSE(s->ShapingFellBack(kPneumaticLine));
 }
 
 TEST(ShapedStepMonitors, ALeakingChamberIsStillCaughtThroughShapedSteps) {
   auto s = ShapedSession();
-  s->plant().SetLeak(kPneumatic, 2.0f);
+  s->plant().SetLeak(kPneumaticLine, 2.0f);
   const uint32_t faults = BurstsAndHolds(*s, 6);
   CHECK_TEXT(faults & (1u << static_cast<uint8_t>(pp::Fault::kLeak)),
              "a leaking shaped line went unnoticed");
