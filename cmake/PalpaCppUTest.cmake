@@ -13,6 +13,10 @@ function(palpa_add_cpputest name)
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} PkgConfig::CPPUTEST palpa_development_keys)
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)
   palpa_warnings(${name})
+  # CppUTest's TestHarness.h defines `new` as a macro (file and line for its leak reports), which
+  # breaks standard headers included after it: in a unity batch the next file starts with it
+  # undone. Leaks are still found there, reported without the file and line.
+  set_target_properties(${name} PROPERTIES UNITY_BUILD_CODE_BEFORE_INCLUDE "#undef new")
   set(listing "${CMAKE_CURRENT_BINARY_DIR}/${name}_tests.cmake")
   add_custom_command(TARGET ${name} POST_BUILD
     COMMAND ${CMAKE_COMMAND} -DEXECUTABLE=$<TARGET_FILE:${name}> -DNAME=${name}
