@@ -7,8 +7,9 @@
 #include "palpa/serve/board_methods.h"
 
 namespace palpa::serve {
-
-using Json = rpc::Json;
+namespace {
+using Json = rpc::Json;  // file-local: others of the unity batch alias it in their own
+}  // namespace
 
 /// The answers of one message: sent together once every call has one (a batch as an array).
 struct BatchAnswer {

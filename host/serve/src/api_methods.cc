@@ -3,10 +3,9 @@
 #include "palpa/serve/params.h"
 
 namespace palpa::serve {
+namespace {
 
 using Json = rpc::Json;
-
-namespace {
 
 /// The server's own methods; the groups' follow them in server.info.
 const char* const kServerMethods[] = {"server.info",         "server.connection.identify",

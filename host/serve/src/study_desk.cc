@@ -6,12 +6,12 @@
 #include <chrono>
 
 namespace palpa::serve {
+namespace {
 
+// File-local: other files of the unity batch alias Json in their own.
 using Json = rpc::Json;
 using host::Outcome;
 using host::Status;
-
-namespace {
 
 /// What the participant's page may know of a trial: the question and how to answer it.
 Json PromptJson(const host::TrialPrompt& t, const char* state) {
