@@ -177,8 +177,12 @@ TEST(GuestWatchdog, TheTimeoutIsSetAndReadBackAndABadOneRefused) {
   POINTERS_EQUAL(nullptr, WatchdogDevice::Open(kWatchdog, 3000, &error).get());
   CHECK_TEXT(Contains(error, "/dev/watchdog: the driver refuses a timeout of 3000 s"),
              error.c_str());
-  POINTERS_EQUAL(nullptr, WatchdogDevice::Open(kWatchdog, 0, &error).get());
-  CHECK_TEXT(Contains(error, "timeout 0 s (at least 1 s)"), error.c_str());
+  POINTERS_EQUAL(nullptr, WatchdogDevice::Open(kWatchdog, -1, &error).get());
+  CHECK_TEXT(Contains(error, "timeout -1 s (0: the driver's own)"), error.c_str());
+  dog = WatchdogDevice::Open(kWatchdog, 0, &error);  // the driver's own: 2 s, set above
+  CHECK_TEXT(dog != nullptr, error.c_str());
+  LONGS_EQUAL(2, dog->timeout_s());
+  CHECK_TEXT(dog->Close(), dog->error().c_str());
   POINTERS_EQUAL(nullptr, WatchdogDevice::Open("/dev/nowatchdog", 1, &error).get());
   CHECK_TEXT(Contains(error, "/dev/nowatchdog: cannot open the watchdog"), error.c_str());
 }

@@ -11,6 +11,7 @@
 #include "board_file.h"
 #include "fd_link.h"
 #include "linux_io.h"
+#include "palpa/hal/linux/watchdog_device.h"
 #include "realtime.h"
 
 namespace {
@@ -67,10 +68,15 @@ int main(int argc, char** argv) {
     io->WriteSafe(&error);
     return Failed(error, 1);
   }
-  lb::WatchdogDevice watchdog;
-  if (!file->watchdog.empty() && !watchdog.Open(file->watchdog, file->watchdog_timeout_s, &error)) {
-    io->WriteSafe(&error);
-    return Failed(error, 1);
+  std::unique_ptr<palpa::hal::linux_wdt::WatchdogDevice> watchdog;
+  if (!file->watchdog.empty()) {
+    watchdog = palpa::hal::linux_wdt::WatchdogDevice::Open(file->watchdog, file->watchdog_timeout_s,
+                                                           &error);
+    if (watchdog == nullptr) {
+      std::string ignored;
+      io->WriteSafe(&ignored);
+      return Failed("watchdog.device: " + error, 1);
+    }
   }
   const lb::RealTimeReport rt = lb::EnterRealTime(file->rt_priority);
 
@@ -88,7 +94,10 @@ int main(int argc, char** argv) {
       file->board.c_str(), m.Describe().c_str(), m.module->name, m.output_count, m.input_count,
       io->gpio_lines(), io->gpio_lines() == 0 ? " (none configured)" : "");
   std::printf("palpa-linux-board: real time: %s\n", rt.Describe(file->rt_priority).c_str());
-  if (watchdog.is_open()) std::printf("palpa-linux-board: watchdog %s\n", file->watchdog.c_str());
+  if (watchdog) {
+    std::printf("palpa-linux-board: watchdog %s, %d s\n", file->watchdog.c_str(),
+                watchdog->timeout_s());
+  }
   std::printf("palpa-linux-board: listening on %s\n", link.address().c_str());
   std::fflush(stdout);
 
@@ -98,7 +107,7 @@ int main(int argc, char** argv) {
   while (!g_stop) {
     if (!grid.Sleep()) continue;  // a signal: the loop condition decides
     link.Pump();
-    if (board.Step()) watchdog.Kick();  // only after a tick wrote its outputs
+    if (board.Step() && watchdog) watchdog->Kick();  // only after a tick wrote its outputs
     link.Pump();
     if (!gpio_reported && io->gpio_failed()) {
       gpio_reported = true;
@@ -107,7 +116,8 @@ int main(int argc, char** argv) {
     grid.Advance(lb::MonotonicNs());
   }
   const bool safe = io->WriteSafe(&error);
-  watchdog.Close();  // after the outputs are safe: a failure above still leaves the reset armed
+  // After the outputs are safe: a failure above still leaves the reset armed.
+  if (watchdog && !watchdog->Close()) Failed(watchdog->error(), 1);
   ReportTicks(board.tick_stats());
   if (!safe) return Failed("writing the safe outputs: " + error, 1);
   std::printf("palpa-linux-board: outputs safe, stopped\n");

@@ -1,10 +1,7 @@
-// SCHED_FIFO and mlockall, the absolute-deadline sleep and the watchdog device.
+// SCHED_FIFO and mlockall, and the absolute-deadline sleep.
 #include "realtime.h"
 
-#include <fcntl.h>
-#include <linux/watchdog.h>
 #include <sched.h>
-#include <sys/ioctl.h>
 #include <sys/mman.h>
 #include <sys/resource.h>
 #include <time.h>
@@ -62,33 +59,6 @@ bool DeadlineGrid::Sleep() {
 void DeadlineGrid::Advance(uint64_t now_ns) {
   next_ns_ += period_ns_;
   if (now_ns >= next_ns_) next_ns_ += ((now_ns - next_ns_) / period_ns_ + 1) * period_ns_;
-}
-
-bool WatchdogDevice::Open(const std::string& path, int timeout_s, std::string* error) {
-  fd_ = open(path.c_str(), O_WRONLY | O_CLOEXEC);
-  if (fd_ < 0) {
-    *error = "watchdog.device: " + path + ": " + std::strerror(errno);
-    return false;
-  }
-  if (timeout_s > 0 && ioctl(fd_, WDIOC_SETTIMEOUT, &timeout_s) != 0) {
-    *error = "watchdog.timeout_s: " + path + " refuses " + std::to_string(timeout_s) + " s (" +
-             std::strerror(errno) + ")";
-    Close();
-    return false;
-  }
-  return true;
-}
-
-void WatchdogDevice::Kick() {
-  if (fd_ >= 0 && write(fd_, "k", 1) == 1) ++kicks_;
-}
-
-void WatchdogDevice::Close() {
-  if (fd_ < 0) return;
-  if (write(fd_, "V", 1) != 1) {  // nothing to do: the driver then resets the machine, as a hang
-  }
-  close(fd_);
-  fd_ = -1;
 }
 
 }  // namespace palpa::linux_board

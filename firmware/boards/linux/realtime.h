@@ -1,5 +1,5 @@
 // palpa-linux-board's real-time footing: SCHED_FIFO and locked memory when permitted, a 1 kHz
-// grid of absolute deadlines on CLOCK_MONOTONIC, and the watchdog device kicked after a tick.
+// grid of absolute deadlines on CLOCK_MONOTONIC.
 #pragma once
 
 #include <cstdint>
@@ -34,23 +34,5 @@ class DeadlineGrid {
   uint64_t period_ns_;
 };
 uint64_t MonotonicNs();
-
-/// A Linux watchdog device (/dev/watchdog): opening it starts the timer; Kick after every tick
-/// that wrote its outputs; Close writes the magic 'V' so a clean exit does not reset the machine.
-class WatchdogDevice {
- public:
-  ~WatchdogDevice() { Close(); }
-  /// `timeout_s` > 0 sets the driver's timeout (WDIOC_SETTIMEOUT). False with *error naming the
-  /// field.
-  bool Open(const std::string& path, int timeout_s, std::string* error);
-  void Kick();
-  void Close();
-  bool is_open() const { return fd_ >= 0; }
-  uint64_t kicks() const { return kicks_; }
-
- private:
-  int fd_ = -1;
-  uint64_t kicks_ = 0;
-};
 
 }  // namespace palpa::linux_board

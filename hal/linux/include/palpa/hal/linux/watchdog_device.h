@@ -10,9 +10,11 @@ namespace palpa::hal::linux_wdt {
 
 class WatchdogDevice {
  public:
-  /// Opens `path` (which starts the watchdog) and sets its timeout, read back from the driver.
-  /// nullptr with *error naming the path and the reason; a timeout the driver refuses or changes
-  /// is an error, and the watchdog is then stopped again (magic close) before returning.
+  /// Opens `path` (which starts the watchdog) and sets its timeout, read back from the driver;
+  /// `timeout_s` 0 keeps the driver's own. nullptr with *error naming the path and the reason; a
+  /// timeout the driver refuses or changes is an error, and the watchdog is then stopped again
+  /// (magic close) before returning. A regular file is taken too (with timeout 0): the host tests
+  /// read the kicks ('k') and the magic close ('V') from it.
   static std::unique_ptr<WatchdogDevice> Open(const std::string& path, int timeout_s,
                                               std::string* error);
   /// Without Close(): the device is closed without the magic character and stays armed, so the
@@ -21,12 +23,12 @@ class WatchdogDevice {
   WatchdogDevice(const WatchdogDevice&) = delete;
   WatchdogDevice& operator=(const WatchdogDevice&) = delete;
 
-  /// Restarts the timeout. false, with error() set, when the driver refused.
+  /// Restarts the timeout (writes 'k'). false, with error() set, when the driver refused.
   bool Kick();
   /// Clean stop: writes the magic 'V' and closes, which stops the watchdog (unless the kernel
   /// was built or loaded with nowayout). false, with error() set, when the write failed.
   bool Close();
-  int timeout_s() const { return timeout_s_; }
+  int timeout_s() const { return timeout_s_; }  ///< 0: not known (not a watchdog driver)
   /// The driver reported that the last reset was the watchdog's (WDIOF_CARDRESET at open).
   bool reset_by_watchdog() const { return reset_by_watchdog_; }
   const std::string& error() const { return error_; }
