@@ -160,8 +160,8 @@ std::optional<BoardFile> ParseBoardFile(const std::string& json_text, std::strin
       return std::nullopt;
     }
     if (f.listen.rfind("tcp:", 0) != 0 && f.listen.rfind("pty:", 0) != 0 &&
-        f.listen.rfind("tty:", 0) != 0) {
-      l.Fail("listen", "", "expected tcp:HOST:PORT, pty:PATH or tty:DEVICE");
+        f.listen.rfind("tty:", 0) != 0 && f.listen != "usb" && f.listen.rfind("usb:", 0) != 0) {
+      l.Fail("listen", "", "expected tcp:HOST:PORT, pty:PATH, tty:DEVICE, usb or usb:UDC");
       return std::nullopt;
     }
   }

@@ -15,8 +15,10 @@ struct BoardFile {
   std::string board = "thesis-5finger";  ///< the compiled-in core configuration
   const core::BoardConfig* config = nullptr;
   uint32_t board_id = 1;
-  std::string listen = "tcp:127.0.0.1:5600";  ///< tcp:HOST:PORT, pty:PATH or tty:DEVICE
-  int baud = 115200;                          ///< tty only
+  /// tcp:HOST:PORT, pty:PATH, tty:DEVICE, or usb / usb:UDC (the board as a USB gadget on the
+  /// first or the named device controller: vendor bulk, HID and CDC-ACM, as palpa-gadget)
+  std::string listen = "tcp:127.0.0.1:5600";
+  int baud = 115200;  ///< tty only
   hal::linux_aio::ModbusAioConfig module;
   // GPIO lines as CHIP:LINE; empty: not fitted (the host tests run without GPIO).
   std::string supply_enable, dump_enable, pump_enable;

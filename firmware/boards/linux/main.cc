@@ -1,6 +1,6 @@
 // palpa-linux-board: the firmware core on a Linux computer at 1 kHz, with the regulators and
-// sensors on a Modbus analogue I/O module, valves and the E-stop on GPIO, the host on TCP or
-// serial.
+// sensors on a Modbus analogue I/O module, valves and the E-stop on GPIO, the host on TCP,
+// serial or USB device mode.
 #include <signal.h>
 
 #include <cstdio>
@@ -9,7 +9,7 @@
 #include <string>
 
 #include "board_file.h"
-#include "fd_link.h"
+#include "host_link.h"
 #include "linux_io.h"
 #include "palpa/hal/linux/watchdog_device.h"
 #include "realtime.h"
@@ -63,8 +63,8 @@ int main(int argc, char** argv) {
 
   auto io = lb::LinuxIo::Open(*file, &error);
   if (!io) return Failed(error, 1);
-  palpa::hosted::FdLink link;
-  if (!link.Open(file->listen, &error, "link.listen", file->baud)) {
+  lb::HostLink link;
+  if (!link.Open(file->listen, file->baud, &error)) {
     io->WriteSafe(&error);
     return Failed(error, 1);
   }
@@ -85,7 +85,7 @@ int main(int argc, char** argv) {
   id.board_id = file->board_id;
   id.boot_nonce = std::random_device{}() | 1u;  // each start is a new boot to a host
   id.rx_buffer_bytes = 4096;
-  palpa::core::Board board(*file->config, io->Io(link), id);
+  palpa::core::Board board(*file->config, io->Io(link.link()), id);
   board.Start();
 
   const auto& m = file->module;
@@ -98,6 +98,7 @@ int main(int argc, char** argv) {
     std::printf("palpa-linux-board: watchdog %s, %d s\n", file->watchdog.c_str(),
                 watchdog->timeout_s());
   }
+  if (!link.udc().empty()) std::printf("palpa-linux-board: USB gadget on %s\n", link.udc().c_str());
   std::printf("palpa-linux-board: listening on %s\n", link.address().c_str());
   std::fflush(stdout);
 

@@ -57,6 +57,13 @@ TEST(BoardFile, AFullFileIsReadFieldByField) {
   const auto bare = lb::ParseBoardFile(File(""), &error);
   CHECK_TEXT(bare.has_value(), error.c_str());
   CHECK(bare->valves.empty() && bare->estop.empty() && bare->watchdog.empty());
+  // The USB gadget link, on the first device controller or a named one.
+  for (const char* usb : {"usb", "usb:dummy_udc.0"}) {
+    const auto g =
+        lb::ParseBoardFile(File(std::string(R"("link": {"listen": ")") + usb + "\"}"), &error);
+    CHECK_TEXT(g.has_value(), error.c_str());
+    STRCMP_EQUAL(usb, g->listen.c_str());
+  }
 }
 
 TEST(BoardFile, EachRefusalNamesItsField) {
@@ -66,6 +73,7 @@ TEST(BoardFile, EachRefusalNamesItsField) {
       {R"({"board": "nine-fingers", "analog_module": {}})", "board: unknown board configuration"},
       {R"({"board": "thesis-5finger"})", "analog_module: required"},
       {File(R"("link": {"listen": "udp:1"})"), "link.listen: expected tcp:HOST:PORT"},
+      {File(R"("link": {"listen": "usbx"})"), "or usb:UDC"},
       {File(R"("link": {"baud": 12})"), "link.baud: expected an integer"},
       {File(R"("link": 5)"), "link: expected an object"},
       {File(R"("gpio": {"valves": ["gpiochip0:1", "gpiochip0"]})"),

@@ -1,0 +1,33 @@
+// palpa-linux-board's link to the host: the hosted boards' FdLink (TCP, a pty, a serial device) or
+// the board as a USB gadget (palpa_gadget_link: vendor bulk, HID and CDC-ACM, as palpa-gadget).
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "fd_link.h"
+#include "gadget_link.h"
+#include "palpa/hal/byte_link.h"
+
+namespace palpa::linux_board {
+
+class HostLink {
+ public:
+  /// `spec` as the board file's link.listen: tcp:, pty:, tty: or usb / usb:UDC. False with *error
+  /// naming link.listen.
+  bool Open(const std::string& spec, int baud, std::string* error);
+  /// Services the link; never blocks.
+  void Pump();
+  hal::ByteLink& link();
+  /// Where a host connects: tcp:HOST:PORT, serial:PATH, or usb:VENDOR:PRODUCT.
+  const std::string& address() const { return address_; }
+  /// The USB device controller the gadget is bound to; empty for the other links.
+  std::string udc() const { return usb_ ? usb_->udc() : std::string(); }
+
+ private:
+  std::unique_ptr<hosted::FdLink> fd_;
+  std::unique_ptr<gadget::GadgetLink> usb_;
+  std::string address_;
+};
+
+}  // namespace palpa::linux_board
