@@ -13,11 +13,12 @@ DIR for --kernel is where `./run` unpacked the kernel package (boot/vmlinuz-*, l
 A scenario directory holds scenario.json, guest.sh (run by /init with ARGS; its exit status is
 the guest's) and any files guest.sh reads (in /scenario). scenario.json: {"modules": [...],
 "module_options": {"module": "param=value ..."}, "memory_mb": N, "cpus": N, "qemu": [extra
-arguments], "disk_kb": N, "reboots": N}. disk_kb gives the guest a zeroed virtio disk (/dev/vda)
+arguments], "disk_kb": N, "reboots": N, "icount_sleep": true|false}. disk_kb gives the guest a zeroed virtio disk (/dev/vda)
 that keeps what it writes across a reset; reboots lets the machine reset that many times (a
 watchdog's reset) before the scenario ends, where otherwise a reset ends QEMU and fails the run.
 --icount SHIFT runs the guest on virtual time, 2^SHIFT ns an instruction, idle time skipped: its
-clocks then follow its own work, not the load on the machine running it (benchmarks).
+clocks then follow its own work, not the load on the machine running it (benchmarks); with
+"icount_sleep" its idle time passes in real time (for a peer on this machine).
 """
 
 import argparse
@@ -231,7 +232,10 @@ def run_guest(kernel, initrd, config, append, timeout, work, icount):
             f.write(b"\0" * 1024 * config["disk_kb"])
         command += ["-drive", "file=%s,format=raw,if=virtio" % disk]
     if icount is not None:
-        command += ["-icount", "shift=%d,sleep=off" % icount]
+        # sleep=off skips idle time; a scenario with a peer outside the guest (a Modbus module on
+        # this machine) keeps idle time to real time, so the guest waits for it as a board would.
+        sleep = "on" if config.get("icount_sleep", False) else "off"
+        command += ["-icount", "shift=%d,sleep=%s" % (icount, sleep)]
     started = time.monotonic()
     child = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
                              stderr=subprocess.STDOUT, start_new_session=True)
