@@ -139,7 +139,9 @@ TEST(LinuxBoardGuest, MeetsTheLinkBehaviourThroughUsbAndKillLeavesEverythingSafe
   Pull(kEstopLine, 0);
   pt::SimProcess board;
   StartBoard(board);
-  pt::CheckBoardBehaviour(kUsb, pp::BoardKind::kLinux, /*plant_simulated=*/false);
+  // Host silence at 1 s: the board's ticks run late here (each waits on the module across QEMU's
+  // user network: tens of ms), and 150 ms would cut the session short.
+  pt::CheckBoardBehaviour(kUsb, pp::BoardKind::kLinux, /*plant_simulated=*/false, 1000000);
 
   ModuleProbe module;
   auto opened = palpa::host::Device::Open(kUsb, {});

@@ -34,7 +34,8 @@ class TransportPipe final : public BytePipe {
 
 }  // namespace
 
-void CheckBoardBehaviour(const std::string& uri, pp::BoardKind kind, bool plant_simulated) {
+void CheckBoardBehaviour(const std::string& uri, pp::BoardKind kind, bool plant_simulated,
+                         uint32_t host_timeout_us) {
   auto opened = ph::Device::Open(uri, {});
   CHECK_TEXT(opened.ok(), opened.message.c_str());
   ph::Device& d = *opened.value;
@@ -47,7 +48,7 @@ void CheckBoardBehaviour(const std::string& uri, pp::BoardKind kind, bool plant_
 
   auto board = d.ReadBoard();
   CHECK_TEXT(board.ok(), board.message.c_str());
-  board.value.host_timeout_us = 150000;
+  board.value.host_timeout_us = host_timeout_us;
   CHECK(d.ConfigureBoard(board.value).ok());
 
   const ph::Outcome set = d.SetLines({{0, 40.0}});

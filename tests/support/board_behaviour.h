@@ -3,6 +3,7 @@
 // and ACM drivers).
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "palpa/protocol/enums.h"
@@ -12,7 +13,9 @@ namespace palpa::testing {
 /// Hello with a matching catalog, a configuration change, a setpoint the plant follows in
 /// telemetry, and — watched with a bare protocol client over the same device URI — every line
 /// safe with host_silence latched once the host goes quiet.
+/// `host_timeout_us` is the board's host silence timeout for the check: longer than the board's
+/// ticks can be late (a board whose module answers across a slow network).
 void CheckBoardBehaviour(const std::string& uri, protocol::BoardKind kind,
-                         bool plant_simulated = true);
+                         bool plant_simulated = true, uint32_t host_timeout_us = 150000);
 
 }  // namespace palpa::testing
