@@ -20,6 +20,7 @@
 #include "mini_client.h"
 #include "palpa/calibration/modbus_devices.h"
 #include "palpa/calibration/rig_file.h"
+#include "wait_until.h"
 
 #include "CppUTest/TestHarness.h"
 
@@ -51,20 +52,11 @@ std::string ModbusUri(const std::string& address) {
   return "modbus-tcp://" + address.substr(4) + "/1";
 }
 
-bool WaitUntil(const std::function<bool()>& done, double seconds) {
-  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-  while (std::chrono::steady_clock::now() < end) {
-    if (done()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return false;
-}
-
 /// Short moves through the drivers: up, down into the vented film (a contact force), tare.
 void ExerciseRig(cal::RigDevices& d) {
   CHECK(d.stage->MoveTo(1.0, 5.0).ok());
   bool moving = true;
-  CHECK(WaitUntil([&] { return d.stage->Moving(&moving).ok() && !moving; }, 5));
+  CHECK(pt::WaitUntil([&] { return d.stage->Moving(&moving).ok() && !moving; }, 5));
   double mm = 0;
   CHECK(d.stage->Position(&mm).ok());
   DOUBLES_EQUAL(1.0, mm, 0.002);
@@ -73,13 +65,13 @@ void ExerciseRig(cal::RigDevices& d) {
   CHECK(d.force->Read(&newtons).ok());
   DOUBLES_EQUAL(0, newtons, 0.01);
   CHECK(d.stage->MoveTo(-0.5, 5.0).ok());  // half a millimetre into the soft film
-  CHECK(WaitUntil([&] { return d.stage->Moving(&moving).ok() && !moving; }, 5));
+  CHECK(pt::WaitUntil([&] { return d.stage->Moving(&moving).ok() && !moving; }, 5));
   CHECK(d.force->Read(&newtons).ok());
   DOUBLES_EQUAL(0.15, newtons, 0.03);  // 0.3 N/mm contact
   CHECK(d.stage->MoveTo(3.0, 0.5).ok());
   CHECK(d.stage->Stop().ok());
   CHECK(d.stage->Moving(&moving).ok());
-  CHECK(WaitUntil([&] { return d.stage->Moving(&moving).ok() && !moving; }, 2));
+  CHECK(pt::WaitUntil([&] { return d.stage->Moving(&moving).ok() && !moving; }, 2));
   CHECK(d.stage->Position(&mm).ok());
   CHECK(mm < 0.0);  // stopped before it got anywhere
 }
@@ -195,7 +187,8 @@ TEST(ModbusRig, DriversWorkOverRtuOnAPtyPair) {
            ("pty,raw,echo=0,link=" + b).c_str(), nullptr);
     _exit(127);
   }
-  CHECK(WaitUntil([&] { return access(a.c_str(), F_OK) == 0 && access(b.c_str(), F_OK) == 0; }, 5));
+  CHECK(pt::WaitUntil([&] { return access(a.c_str(), F_OK) == 0 && access(b.c_str(), F_OK) == 0; },
+                      5));
   {
     pt::SimProcess sim;
     CHECK(sim.Start({"--config", "thesis-5finger", "--listen", "tcp:127.0.0.1:0", "--rig-modbus",
@@ -238,7 +231,7 @@ TEST(ModbusRig, DriversSpeakStandardModbusToAnIndependentServer) {
   const auto force_map = cal::ParseRegisterMap(force, "force_sensor", cal::kForceRegisters);
   CHECK_TEXT(stage_map.ok() && force_map.ok(), (stage_map.message + force_map.message).c_str());
   std::unique_ptr<cal::ModbusDevice> stage_device, force_device;
-  CHECK(WaitUntil(
+  CHECK(pt::WaitUntil(
       [&] { return (stage_device = cal::ModbusDevice::Open(stage_map.value).value) != nullptr; },
       10));
   auto force_opened = cal::ModbusDevice::Open(force_map.value);

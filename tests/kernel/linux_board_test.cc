@@ -22,6 +22,7 @@
 #include "palpa/hal/linux/watchdog_device.h"
 #include "palpa/host/device.h"
 #include "palpa/protocol/faults.h"
+#include "wait_until.h"
 
 #include "CppUTest/CommandLineTestRunner.h"
 #include "CppUTest/TestHarness.h"
@@ -56,15 +57,6 @@ std::string ReadAll(const std::string& path) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
-}
-
-template <class Condition>
-bool WaitFor(Condition condition, int timeout_ms) {
-  for (int waited = 0; waited < timeout_ms; waited += 20) {
-    if (condition()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return condition();
 }
 
 /// A second Modbus client on the emulator: what the module's registers hold.
@@ -121,8 +113,9 @@ void StartBoard(pt::SimProcess& board) {
   CHECK_TEXT(board.Start({BoardFile()}, "/bin/palpa-linux-board"), board.output().c_str());
   STRCMP_EQUAL(kUsb, board.address().c_str());
   CHECK_TEXT(
-      WaitFor([] { return access("/dev/hidraw0", F_OK) == 0 && access("/dev/ttyACM0", F_OK) == 0; },
-              15000),
+      pt::WaitUntil(
+          [] { return access("/dev/hidraw0", F_OK) == 0 && access("/dev/ttyACM0", F_OK) == 0; },
+          15),
       "the board's gadget did not enumerate");
 }
 
@@ -153,9 +146,9 @@ TEST(LinuxBoardGuest, MeetsTheLinkBehaviourThroughUsbAndKillLeavesEverythingSafe
   }
   CHECK(opened.value->ClearFault().ok());
   CHECK(opened.value->SetLines({{0, 60.0}, {1, 30.0}}).ok());
-  CHECK_TEXT(WaitFor([&] { return module.Holding(kOutputs) > 0x7FFF / 2; }, 5000),
+  CHECK_TEXT(pt::WaitUntil([&] { return module.Holding(kOutputs) > 0x7FFF / 2; }, 5),
              "line 0's 6 V did not reach the module");
-  CHECK_TEXT(WaitFor([] { return Level(0) == 1 && Level(1) == 1; }, 2000),
+  CHECK_TEXT(pt::WaitUntil([] { return Level(0) == 1 && Level(1) == 1; }, 2),
              "lines 0 and 1's valve drivers are not powered while they are commanded");
   const int fallbacks = module.Holding(kFallbacks);
   STRCMP_EQUAL("active\n", ReadAll("/sys/class/watchdog/watchdog0/state").c_str());
@@ -170,7 +163,7 @@ TEST(LinuxBoardGuest, MeetsTheLinkBehaviourThroughUsbAndKillLeavesEverythingSafe
   auto takeover = palpa::hal::linux_wdt::WatchdogDevice::Open("/dev/watchdog", 0, &error);
   CHECK_TEXT(takeover != nullptr, error.c_str());
   CHECK_TEXT(takeover->Close(), takeover->error().c_str());
-  CHECK_TEXT(WaitFor([&] { return module.Holding(kOutputs) == 0; }, 8000),
+  CHECK_TEXT(pt::WaitUntil([&] { return module.Holding(kOutputs) == 0; }, 8),
              "the module's output 0 did not fall to 0 V after the controller died");
   for (int i = 0; i < 8; ++i) LONGS_EQUAL(0, module.Holding(kOutputs + i));
   LONGS_EQUAL(fallbacks + 1, module.Holding(kFallbacks));      // the module's watchdog, once
@@ -189,17 +182,17 @@ TEST(LinuxBoardGuest, TheEstopLineAndAModbusOutageLatchFaultsReadOverUsb) {
 
   const uint32_t estop = pp::FaultBit(pp::Fault::kEStopPin);
   Pull(kEstopLine, 1);  // pressed
-  CHECK_TEXT(WaitFor([&] { return (Latched(d) & estop) != 0; }, 3000),
+  CHECK_TEXT(pt::WaitUntil([&] { return (Latched(d) & estop) != 0; }, 3),
              "the E-stop line's press was not latched");
-  CHECK_TEXT(WaitFor([] { return Level(0) == 0; }, 2000), "line 0's valve stayed powered");
+  CHECK_TEXT(pt::WaitUntil([] { return Level(0) == 0; }, 2), "line 0's valve stayed powered");
   Pull(kEstopLine, 0);
-  CHECK(WaitFor([&] { return d.ClearFault().ok(); }, 3000));
+  CHECK(pt::WaitUntil([&] { return d.ClearFault().ok(); }, 3));
 
   // The module unreachable (its network gone): the tick's transfers time out.
   const uint32_t output_write = pp::FaultBit(pp::Fault::kOutputWrite);
   CHECK(std::system("ip link set eth0 down") == 0);
   uint32_t latched = 0;
-  WaitFor([&] { return ((latched = Latched(d)) & output_write) != 0; }, 8000);
+  pt::WaitUntil([&] { return ((latched = Latched(d)) & output_write) != 0; }, 8);
   CHECK(std::system("ip link set eth0 up") == 0);
   CHECK_TEXT(latched & output_write, palpa::host::FaultNames(latched).c_str());
   opened.value.reset();

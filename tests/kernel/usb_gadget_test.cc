@@ -19,11 +19,13 @@
 #include "palpa/host/device.h"
 #include "palpa/host/device_list.h"
 #include "palpa/protocol/faults.h"
+#include "wait_until.h"
 
 #include "CppUTest/TestHarness.h"
 
 namespace ph = palpa::host;
 namespace pp = palpa::protocol;
+namespace pt = palpa::testing;
 
 namespace {
 
@@ -43,15 +45,6 @@ void Plug(bool in) {
   const bool written = write(fd, value.data(), value.size()) == static_cast<ssize_t>(value.size());
   close(fd);
   CHECK_TEXT(written, ("cannot write " + path).c_str());
-}
-
-template <class Condition>
-bool WaitFor(Condition condition, int timeout_ms) {
-  for (int waited = 0; waited < timeout_ms; waited += 20) {
-    if (condition()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return condition();
 }
 
 std::string Events(ph::Device& d) {
@@ -75,7 +68,7 @@ void HoldLine(ph::Device& d, double kpa) {
     faults = f.telemetry.fault_bitmap;
   });
   const int32_t target = static_cast<int32_t>(kpa * 1000);
-  const bool reached = WaitFor([&] { return std::abs(measured.load() - target) < 1000; }, 4000);
+  const bool reached = pt::WaitUntil([&] { return std::abs(measured.load() - target) < 1000; }, 4);
   d.Unsubscribe(id);
   CHECK_TEXT(reached, ("line 1 at " + std::to_string(measured.load()) + " Pa, status 0x" +
                        std::to_string(status.load()) + ", faults " + ph::FaultNames(faults.load()))
@@ -94,14 +87,14 @@ void CheckUnplugAndReplug(const std::string& uri) {
   Events(d);
 
   Plug(false);
-  CHECK_TEXT(WaitFor([&] { return !d.link().session_open(); }, 5000), "the loss went unnoticed");
+  CHECK_TEXT(pt::WaitUntil([&] { return !d.link().session_open(); }, 5), "the loss went unnoticed");
   const std::string lost = Events(d);
   CHECK_TEXT(lost.find("was lost") != std::string::npos, lost.c_str());
   const ph::Outcome refused = d.SetLines({{0, 20.0}});
   LONGS_EQUAL((int)pp::Status::kNoSession, (int)refused.status);
 
   Plug(true);
-  CHECK_TEXT(WaitFor([&] { return d.link().session_open(); }, 30000), "not reopened");
+  CHECK_TEXT(pt::WaitUntil([&] { return d.link().session_open(); }, 30), "not reopened");
   const std::string back = Events(d);
   CHECK_TEXT(back.find("reopened " + uri) != std::string::npos, back.c_str());
   CHECK(d.link().counters().reopens >= 1);
@@ -147,7 +140,7 @@ void CheckCloseEndsTheSessionWithoutAFault(const std::string& uri) {
           (t.samples[(t.tick_count - 1) * t.line_count + i].status & pp::line_status::kSafe) != 0;
     safe_lines = safe == t.line_count ? 1 : 0;
   });
-  CHECK_TEXT(WaitFor([&] { return safe_lines.load() >= 0; }, 4000), "no telemetry");
+  CHECK_TEXT(pt::WaitUntil([&] { return safe_lines.load() >= 0; }, 4), "no telemetry");
   next.value->Unsubscribe(id);
   LONGS_EQUAL(1, safe_lines.load());
   std::this_thread::sleep_for(std::chrono::microseconds(3 * timeout_us));

@@ -14,17 +14,9 @@
 
 #include "CppUTest/TestHarness.h"
 #include "mini_client.h"
+#include "wait_until.h"
 
 namespace palpa::testing {
-
-inline bool WaitUntil(const std::function<bool()>& done, double seconds) {
-  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-  while (std::chrono::steady_clock::now() < end) {
-    if (done()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  return false;
-}
 
 class Ek9000Emulator {
  public:
