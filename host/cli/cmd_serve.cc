@@ -10,6 +10,7 @@
 #include "palpa/serve/scene_methods.h"
 #include "palpa/serve/server.h"
 #include "palpa/serve/study_methods.h"
+#include "trigger_line.h"
 
 namespace palpa::cli {
 
@@ -17,8 +18,9 @@ int CmdServe(Context& c, const std::vector<std::string>& args) {
   serve::ServeOptions options;
   std::vector<serve::ServerScene> scenes;
   serve::StudyServeOptions studies;
-  const std::vector<std::string> known = {"--listen", "--device", "--allow-host", "--web",
-                                          "--truth",  "--scene",  "--study",      "--study-dir"};
+  const std::vector<std::string> known = {"--listen", "--device",    "--allow-host",
+                                          "--web",    "--truth",     "--scene",
+                                          "--study",  "--study-dir", "--trigger-gpio"};
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if (std::find(known.begin(), known.end(), a) == known.end()) {
@@ -56,6 +58,8 @@ int CmdServe(Context& c, const std::vector<std::string>& args) {
       studies.server_studies.push_back({study.value.name, study.value});
     } else if (a == "--study-dir") {
       studies.study_dir = value.value;
+    } else if (a == "--trigger-gpio") {
+      studies.trigger_gpio = value.value;
     } else if (a == "--allow-host") {
       options.allowed_hosts.push_back(value.value);
     } else {
@@ -63,6 +67,15 @@ int CmdServe(Context& c, const std::vector<std::string>& args) {
     }
   }
   if (options.web_root.empty()) options.web_root = serve::DefaultWebRoot();
+  // The trigger line is taken before the board starts: a missing or busy line refuses to serve.
+  if (!studies.trigger_gpio.empty()) {
+    if (studies.study_dir.empty())
+      return Usage("serve", "--trigger-gpio pulses at a study's events: it needs --study-dir DIR");
+    std::string error;
+    std::shared_ptr<TriggerLine> line = TriggerLine::Open(studies.trigger_gpio, &error);
+    if (line == nullptr) return Fail("serve", protocol::Status::kIoError, error);
+    studies.on_trigger = [line](const host::TriggerEvent&) { line->Pulse("palpa serve"); };
+  }
   if (!studies.study_dir.empty()) {  // made now: a mistyped path shows before any session
     std::error_code ec;
     std::filesystem::create_directories(studies.study_dir, ec);
@@ -98,7 +111,8 @@ int CmdServe(Context& c, const std::vector<std::string>& args) {
 const Command kServeCommand{
     "serve",
     "serve [--device URI] [--listen ADDRESS:PORT] [--allow-host NAME]... [--scene FILE]... "
-    "[--study-dir DIR] [--study FILE]... [--web DIR] [--truth tcp:HOST:PORT]",
+    "[--study-dir DIR] [--study FILE]... [--trigger-gpio CHIP:LINE] [--web DIR] "
+    "[--truth tcp:HOST:PORT]",
     "Holds the board's session and serves its JSON-RPC 2.0 API over a WebSocket (/websocket)\n"
     "and the page (/), for browsers and scripts (docs/serve.md). One client controls the board,\n"
     "the others watch; a controlling client that goes away (three unanswered pings, 100 ms\n"
@@ -109,7 +123,8 @@ const Command kServeCommand{
     "(its tissue from files beside it) by its name.\n"
     "Studies run in the browser (/study.html for the experimenter, /participant.html for the\n"
     "participant) with --study-dir DIR: each session goes to DIR/STUDY/PARTICIPANT, journalled as\n"
-    "palpa study run journals it; --study FILE offers a study file by its name.\n"
+    "palpa study run journals it; --study FILE offers a study file by its name;\n"
+    "--trigger-gpio CHIP:LINE pulses a GPIO line (libgpiod) for 10 ms at each trigger event.\n"
     "Ctrl-C stops it and closes the session.",
     CmdServe};
 

@@ -3,19 +3,17 @@
 #include <poll.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <memory>
-#include <thread>
 
 #include "cli.h"
-#include "palpa/hal/linux/gpio_output.h"
 #include "palpa/host/file_write.h"
 #include "palpa/host/sim_truth.h"
 #include "palpa/host/study_participant.h"
 #include "palpa/host/study_runner.h"
 #include "palpa/host/transport.h"
+#include "trigger_line.h"
 
 namespace palpa::cli {
 
@@ -146,15 +144,6 @@ host::Result<RunArgs> ParseRun(const std::vector<std::string>& args) {
   return r;
 }
 
-/// One trigger on the GPIO line: high for 10 ms, long enough for a recorder sampling at 500 Hz or
-/// more to see it. Every event is one pulse; --triggers FILE says which event each was.
-void PulseTrigger(hal::linux_gpio::GpioOutput& line) {
-  line.Set(true);
-  std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  line.Set(false);
-  if (!line.ok()) std::fprintf(stderr, "palpa study: the trigger line's write failed\n");
-}
-
 int Run(Context& c, const std::vector<std::string>& args) {
   const std::string cmd = "study run";
   const auto r = ParseRun(args);
@@ -169,11 +158,11 @@ int Run(Context& c, const std::vector<std::string>& args) {
   }
   c.device_uri = uri;  // what the closing message names
   // The trigger line is taken before the board starts: a missing or busy line refuses the run.
-  std::shared_ptr<hal::linux_gpio::GpioOutput> trigger_line;
+  std::shared_ptr<TriggerLine> trigger_line;
   if (!r.value.trigger_gpio.empty()) {
     std::string error;
-    trigger_line = hal::linux_gpio::GpioOutput::Open(r.value.trigger_gpio, false, &error);
-    if (trigger_line == nullptr) return Fail(cmd, Status::kIoError, "--trigger-gpio " + error);
+    trigger_line = TriggerLine::Open(r.value.trigger_gpio, &error);
+    if (trigger_line == nullptr) return Fail(cmd, Status::kIoError, error);
   }
   const bool sim = uri == "sim" || uri.rfind("sim:", 0) == 0;
   if (r.value.simulated >= 0 && !sim)
@@ -216,7 +205,8 @@ int Run(Context& c, const std::vector<std::string>& args) {
   if (!r.value.triggers.empty() || trigger_line != nullptr) {
     const std::string path = r.value.triggers;
     o.on_trigger = [path, trigger_line](const host::TriggerEvent& e) {
-      if (trigger_line != nullptr) PulseTrigger(*trigger_line);  // first: the edge is the moment
+      if (trigger_line != nullptr)
+        trigger_line->Pulse("palpa study");  // first: the edge is the moment
       if (path.empty()) return;
       const nlohmann::ordered_json j = {
           {"event", e.kind}, {"trial", e.trial}, {"board_ms", e.board_ms}};

@@ -131,7 +131,10 @@ Outcome StudyDesk::Start(host::Device& device, const host::Study& study,
   o.sim = options_.sim;
   o.calibration_dir = options_.calibration_dir;
   o.use_calibrations = options_.use_calibrations;
-  o.on_trigger = [this](const host::TriggerEvent& e) { OnTrigger(e); };
+  o.on_trigger = [this](const host::TriggerEvent& e) {
+    if (options_.on_trigger) options_.on_trigger(e);  // first, and unlocked: the edge is the moment
+    OnTrigger(e);
+  };
   o.progress = [this](const std::string& line) { OnProgress(line); };
   o.stopped = [this] { return stop_.load(); };
   o.on_started = [this, out_dir] {

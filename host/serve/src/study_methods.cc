@@ -87,7 +87,9 @@ Json ListJson(const StudyServeOptions& o) {
     if (s.ok()) add(s.value, "built in");
   }
   for (const ServerStudy& s : o.server_studies) add(s.study, "server");
-  return {{"studies", list}, {"sessions_possible", !o.study_dir.empty()}};
+  return {{"studies", list},
+          {"sessions_possible", !o.study_dir.empty()},
+          {"trigger_gpio", o.trigger_gpio.empty() ? Json(nullptr) : Json(o.trigger_gpio)}};
 }
 
 /// The finger flags of an answer: one boolean per finger.

@@ -3,7 +3,7 @@
 // provenance the records carry. Starting needs control of the board (the first click takes it).
 "use strict";
 
-let me = null, controller = null, fileStudy = null;
+let me = null, controller = null, fileStudy = null, triggerLine = null;
 const rows = new Map();
 
 function say(text) { $("e-message").textContent = text || ""; }
@@ -77,7 +77,8 @@ function onStudy(e) {
   else if (e.event === "trial_started") {
     fill(e.trial, [e.block, e.condition + (e.practice ? " (practice)" : ""), "…"]);
   } else if (e.event === "trigger") {
-    $("e-trigger").textContent = `trigger: ${e.kind}, trial ${e.trial + 1}, board ${e.board_ms.toFixed(0)} ms`;
+    $("e-trigger").textContent = `trigger: ${e.kind}, trial ${e.trial + 1}, board ${e.board_ms.toFixed(0)} ms` +
+      (triggerLine ? `, pulsed on ${triggerLine}` : "");
   } else if (e.event === "trial_answered") {
     record(e.record);
     if (current) { current.records.push(e.record); status(current); }
@@ -107,6 +108,8 @@ const rpc = new Rpc(async () => {
   const list = await rpc.call("study.list");
   $("e-study").replaceChildren(...list.studies.map((s) => new Option(`${s.name} (${s.source})`, s.name)));
   if (!list.sessions_possible) say("sessions need palpa serve --study-dir DIR");
+  triggerLine = list.trigger_gpio;
+  if (triggerLine) $("e-trigger").textContent = `trigger line: ${triggerLine}`;
   current = (await rpc.call("study.watch", { view: "experimenter" })).state;
   session(current);
 }, (method, params) => {

@@ -4,10 +4,12 @@ study (two conditions, once each) and a second client, the participant, answers 
 the records on disk equal what the API reported, the triggers come with increasing board times,
 the participant's channel carries nothing of the condition; bad inputs are refused saying what;
 the participant's stop mid-session vents every finger (palpa-sim's truth) and keeps the journal,
-and a resume completes it. Usage: study_test.py PALPA PALPA_SIM"""
+and a resume completes it; a missing trigger line refuses palpa serve before the board.
+Usage: study_test.py PALPA PALPA_SIM"""
 import asyncio
 import json
 import os
+import subprocess
 import sys
 import tempfile
 
@@ -59,6 +61,25 @@ async def answer_all(part, until_state, answers, stop_after=None):
                                              fingers=[False, True, False]))
 
 
+def refused_trigger_line(palpa, tmp):
+    """palpa serve --trigger-gpio with a line that is not there: refused before the board is
+    reached (the board named is a port where nothing listens, which would exit 3) and before the
+    study directory is made; without --study-dir it has nothing to pulse for."""
+    sessions = os.path.join(tmp, "never")
+    r = subprocess.run([palpa, "serve", "--device", "tcp:127.0.0.1:1", "--study-dir", sessions,
+                        "--trigger-gpio", "nochip:0"], capture_output=True, text=True, timeout=20)
+    if r.returncode != 1 or "--trigger-gpio 'nochip:0': no GPIO chip 'nochip'" not in r.stderr:
+        fail(f"a missing trigger line: exit {r.returncode}, {r.stderr!r}")
+    if os.path.exists(sessions):
+        fail("a refused palpa serve made its study directory")
+    r = subprocess.run([palpa, "serve", "--device", "tcp:127.0.0.1:1", "--trigger-gpio",
+                        "nochip:0"], capture_output=True, text=True, timeout=20)
+    if r.returncode != 2 or "it needs --study-dir DIR" not in r.stderr:
+        fail(f"--trigger-gpio without --study-dir: exit {r.returncode}, {r.stderr!r}")
+    print("ok  a missing trigger line refused before the board (exit 1), and one without "
+          "--study-dir (exit 2)")
+
+
 def on_disk(directory):
     with open(os.path.join(directory, "trials.jsonl")) as f:
         trials = [json.loads(line) for line in f if line.strip()]
@@ -80,6 +101,7 @@ async def main(palpa, palpa_sim):
     with open(study_file, "w") as f:
         json.dump(STUDY, f)
     sessions = os.path.join(tmp, "sessions")
+    refused_trigger_line(palpa, tmp)
     sim = Sim(palpa_sim, "thesis-pneumatic-3")
     serve = Serve(palpa, sim.address, extra=["--study-dir", sessions, "--study", study_file])
     exp = await Client.connect(serve.url)

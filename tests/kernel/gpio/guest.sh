@@ -1,7 +1,8 @@
 #!/bin/sh
 # The GPIO and watchdog scenario, in the guest: hal/linux's GPIO classes on gpio-mockup's lines,
-# WatchdogDevice on the i6300esb, the study's trigger line, then a watchdog reset. A phase marker
-# on the virtual disk (/dev/vda, kept across the reset) tells the second boot what the first did.
+# WatchdogDevice on the i6300esb, the study's trigger line (palpa study run and palpa serve), then a
+# watchdog reset. A phase marker on the virtual disk (/dev/vda, kept across the reset) tells the
+# second boot what the first did.
 set -u
 
 fail() { echo "gpio scenario: $*"; exit 1; }
@@ -40,20 +41,44 @@ out=$(palpa study run /scenario/study.json --participant G1 --out /tmp/G1 --trig
 echo "$out" | grep -q "no line 99" || fail "a missing trigger line was refused without naming it: $out"
 [ -d /tmp/G1 ] && fail "a refused run left /tmp/G1 behind"
 mount -t tracefs none /sys/kernel/tracing || fail "cannot mount tracefs"
-gpio=$(( $(sed -n 's/^gpiochip.*: GPIOs \([0-9]*\)-.*gpio-mockup.*/\1/p' /sys/kernel/debug/gpio) + 6 ))
+base=$(sed -n 's/^gpiochip.*: GPIOs \([0-9]*\)-.*gpio-mockup.*/\1/p' /sys/kernel/debug/gpio)
+# levels LINE: each level the kernel's trace shows the mockup's line LINE set to, with its time.
+levels() {
+  sed -n "s/.* \([0-9.]*\): gpio_value: $((base + $1)) set \([01]\)$/\1 \2/p" /sys/kernel/tracing/trace
+}
+# pulsed N: a line taken low by palpa, then pulsed once for each of N events.
+pulsed() { echo 0; for _ in $(seq "$1"); do printf '1\n0\n'; done; }
 echo 1 > /sys/kernel/tracing/events/gpio/gpio_value/enable
 palpa study run /scenario/study.json --participant G1 --out /tmp/G1 --speed 20 \
   --simulated-participant 1 --triggers /tmp/triggers.jsonl --trigger-gpio "$chip:6" ||
   fail "palpa study run with a trigger line failed"
-echo 0 > /sys/kernel/tracing/events/gpio/gpio_value/enable
-sed -n "s/.* \([0-9.]*\): gpio_value: $gpio set \([01]\)$/\1 \2/p" /sys/kernel/tracing/trace > /tmp/levels
 events=$(wc -l < /tmp/triggers.jsonl)
-echo "gpio scenario: $events trigger events, line levels (time, level): $(tr '\n' ' ' < /tmp/levels)"
+echo "gpio scenario: $events trigger events, line levels (time, level): $(levels 6 | tr '\n' ' ')"
 [ "$events" -eq 4 ] || fail "the study wrote $events trigger events, not 4 (two trials)"
-# Low when palpa takes the line, then a pulse for each event.
-expected=$(echo 0; for _ in $(seq "$events"); do printf '1\n0\n'; done)
-[ "$(cut -d' ' -f2 /tmp/levels)" = "$expected" ] ||
+[ "$(levels 6 | cut -d' ' -f2)" = "$(pulsed "$events")" ] ||
   fail "the trigger line did not pulse once per event ($events events)"
+
+# The same study through palpa serve (its board palpa-sim at 20x): the session started and answered
+# over the API, the server's trigger line (line 7) pulsed at each of the two trials' four events.
+palpa-sim --config thesis-pneumatic-3 --listen tcp:127.0.0.1:7100 --speed 20 > /tmp/sim.log 2>&1 &
+sim=$!
+for _ in $(seq 100); do grep -q "listening on" /tmp/sim.log && break; sleep 0.05; done
+palpa serve --device tcp:127.0.0.1:7100 --listen 127.0.0.1:7180 --study-dir /tmp/S \
+  --study /scenario/study.json --trigger-gpio "$chip:7" > /tmp/serve.log 2>&1 &
+serve=$!
+palpa_guest_study_client serve:127.0.0.1:7180 trigger-line S1 > /tmp/client.log ||
+  fail "the study through palpa serve did not complete: $(cat /tmp/client.log /tmp/serve.log)"
+cat /tmp/client.log
+grep -q "trigger line is $chip:7" /tmp/client.log || fail "study.list did not name the trigger line"
+kill "$serve"
+wait "$serve" || fail "palpa serve did not stop cleanly: $(cat /tmp/serve.log)"
+kill "$sim"
+echo 0 > /sys/kernel/tracing/events/gpio/gpio_value/enable
+trials=$(wc -l < /tmp/S/trigger-line/S1/trials.jsonl)
+echo "gpio scenario: palpa serve, $trials trials, line levels (time, level): $(levels 7 | tr '\n' ' ')"
+[ "$trials" -eq 2 ] || fail "the session through palpa serve kept $trials trials, not 2"
+[ "$(levels 7 | cut -d' ' -f2)" = "$(pulsed 4)" ] ||
+  fail "palpa serve's trigger line did not pulse once per event (4 events)"
 
 # The controller dies without the magic close: the watchdog stays armed and must reset the machine
 # (1 s timeout: QEMU's i6300esb runs each of its two stages for half of it); 10 s without one fails.

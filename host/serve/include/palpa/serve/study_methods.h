@@ -3,12 +3,14 @@
 // each trial and may stop it, and two channels tell each view only what it should know.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "palpa/host/study_file.h"
 #include "palpa/host/study_records.h"
+#include "palpa/host/study_runner.h"
 #include "palpa/serve/board_methods.h"
 
 namespace palpa::serve {
@@ -31,6 +33,11 @@ struct StudyServeOptions {
   std::optional<host::SimProvenance> sim;
   std::string calibration_dir;
   bool use_calibrations = true;
+  /// Called on the runner's thread at each trigger event, before the event is published: palpa
+  /// serve --trigger-gpio pulses its line there. Empty: the events are notifications only.
+  std::function<void(const host::TriggerEvent&)> on_trigger;
+  /// The trigger line as the operator named it (CHIP:LINE), for study.list; empty: none.
+  std::string trigger_gpio;
 };
 
 /// study.list, study.start, study.watch, study.answer, study.next and study.stop; channels

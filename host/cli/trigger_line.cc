@@ -1,0 +1,29 @@
+// The study's trigger line: a GPIO output pulsed at each trigger event.
+#include "trigger_line.h"
+
+#include <chrono>
+#include <cstdio>
+#include <thread>
+
+namespace palpa::cli {
+
+std::shared_ptr<TriggerLine> TriggerLine::Open(const std::string& spec, std::string* error) {
+  auto line = hal::linux_gpio::GpioOutput::Open(spec, false, error);
+  if (line == nullptr) {
+    *error = "--trigger-gpio " + *error;
+    return nullptr;
+  }
+  return std::shared_ptr<TriggerLine>(new TriggerLine(std::move(line)));
+}
+
+void TriggerLine::Pulse(const char* who) {
+  line_->Set(true);
+  std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  line_->Set(false);
+  if (!line_->ok() && !said_) {  // said once: a session's every event would repeat it
+    std::fprintf(stderr, "%s: the trigger line's write failed\n", who);
+    said_ = true;
+  }
+}
+
+}  // namespace palpa::cli
