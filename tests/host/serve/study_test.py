@@ -3,15 +3,16 @@
 study (two conditions, once each) and a second client, the participant, answers every trial;
 the records on disk equal what the API reported, the triggers come with increasing board times,
 the participant's channel carries nothing of the condition; bad inputs are refused saying what;
-the participant's stop mid-session vents every finger (palpa-sim's truth) and keeps the journal,
-and a resume completes it; a missing trigger line refuses palpa serve before the board.
-Usage: study_test.py PALPA PALPA_SIM"""
+the participant's stop — while a trial's display settles, and while a trial asks — vents every
+finger (palpa-sim's truth) and keeps only whole trials, and resuming completes the session; a
+missing trigger line refuses palpa serve before the board. Usage: study_test.py PALPA PALPA_SIM"""
 import asyncio
 import json
 import os
 import subprocess
 import sys
 import tempfile
+import time
 
 from harness import Client, Serve, Sim, fail
 
@@ -20,6 +21,9 @@ STUDY = {
     "description": "Two conditions once each, at once: a short study for the API's test.",
     "finger_kind": "pneumatic", "fingers": 3, "unit": "kPa", "cap_kpa": 40,
     "reset": {"hold_ms": 300},
+    # Steady for 200 ms before the runner calls a display settled: the window in which the stop
+    # while settling must land is at least that wide, whatever the machine's load.
+    "settle": {"hold_ms": 200},
     "conditions": [{"values": [0, 30, 0]}, {"values": [10, 10, 10]}],
     "blocks": [{"name": "at-once", "mode": "simultaneous", "repetitions": 1}],
 }
@@ -61,6 +65,41 @@ async def answer_all(part, until_state, answers, stop_after=None):
                                              fingers=[False, True, False]))
 
 
+async def answer_one(part, answers):
+    """Answers the next trial asked (a tumour under finger 2), and returns at once."""
+    n = await participant_state(part, "answer")
+    answers.append(await part.result("study.answer", trial=n["trial"], tumour=True,
+                                     fingers=[False, True, False]))
+
+
+def stimulus_frames(sim, since_us):
+    """The board times at which a trial's stimulus took effect: a line commanded above 5 kPa in
+    the first truth sample after one with every line vented (the reset)."""
+    frames, reset = [], False
+    for s in sim.since(since_us):
+        if all(l["command_pa"] < 500 for l in s["lines"]):
+            reset = True
+        elif reset and any(l["command_pa"] > 5000 for l in s["lines"]):
+            frames.append(s["board_time_us"])
+            reset = False
+    return frames
+
+
+async def stopped_and_released(sim, part, sessions, participant, kept, when):
+    """After study.stop: every line vented and every finger soft within 3 s (truth), the
+    participant told, the session incomplete with `kept` whole trials journalled."""
+    vented = await sim.wait_async(
+        lambda s: all(abs(l["chamber_pa"]) < 500 for l in s["lines"])
+        and all(f["deformation_mm"] < 0.05 for f in s["fingers"]), "every finger vented", 3)
+    await participant_state(part, "stopped")
+    session, trials = on_disk(os.path.join(sessions, "two-web", participant))
+    if session["complete"] or len(trials) != kept:
+        fail(f"after the stop {when}: complete {session['complete']}, {len(trials)} trials")
+    print(f"ok  stopped {when}: every line at "
+          f"{max(abs(l['chamber_pa']) for l in vented['lines']):.0f} Pa or less, "
+          f"{kept} trial kept whole")
+
+
 def refused_trigger_line(palpa, tmp):
     """palpa serve --trigger-gpio with a line that is not there: refused before the board is
     reached (the board named is a port where nothing listens, which would exit 3) and before the
@@ -96,6 +135,7 @@ async def experimenter_events(exp):
 
 
 async def main(palpa, palpa_sim):
+    began = time.monotonic()
     tmp = tempfile.mkdtemp(prefix="palpa-study-web-")
     study_file = os.path.join(tmp, "two-web.json")
     with open(study_file, "w") as f:
@@ -126,6 +166,7 @@ async def main(palpa, palpa_sim):
         await exp.result("study.watch", view="experimenter")
 
         # A whole session, answered by the participant's client.
+        session_began = sim.latest()["board_time_us"]
         started = await exp.result("study.start", study="two-web", participant="P01")
         if started["out_dir"] != "two-web/P01" or started["provenance"] is None:
             fail(f"study.start: {started}")
@@ -150,33 +191,53 @@ async def main(palpa, palpa_sim):
         for t, r in zip(triggers[0::2], trials):
             if round(t["board_ms"]) != r["settled_board_ms"]:
                 fail(f"the settled trigger {t} is not the record's {r['settled_board_ms']}")
+        settle_ms = [round(t["board_ms"] - f / 1000) for t, f in
+                     zip(triggers[0::2], stimulus_frames(sim, session_began))]
         print(f"ok  a session through the API: 2 trials, records on disk as reported, triggers "
               f"at board ms {[round(t) for t in times]}")
         await expect_error(exp, "study.start", "already holds", study="two-web", participant="P01")
 
-        # The participant's stop button mid-session: every finger vented, the journal kept.
+        # The stop while the display settles — after trial 1's answer and reset, once the next
+        # stimulus frame is on the board and before the runner calls it settled: the board
+        # released, no half trial journalled, no settle moment of it published.
         await exp.result("study.start", study="two-web", participant="P02")
         answers = []
-        asked = await answer_all(part, "finished", answers, stop_after=1)
+        await answer_one(part, answers)
+        await sim.wait_async(lambda s: all(l["command_pa"] < 500 for l in s["lines"]),
+                             "trial 1's reset after its answer")
+        frame = await sim.wait_async(lambda s: any(l["command_pa"] > 5000 for l in s["lines"]),
+                                     "the next trial's stimulus frame")
+        await part.result("study.stop")
+        await stopped_and_released(sim, part, sessions, "P02", 1, "while the display settled")
+        events = await experimenter_events(exp)
+        second = [e for e in events if e["event"] in ("trigger", "trial_started", "trial_answered")
+                  and e.get("trial", e.get("record", {}).get("index")) != answers[0]["trial"]]
+        if second:
+            fail(f"the stopped trial was settled or answered: {second}")
+        if "stopped" not in events[-1]["message"] or "--resume continues" not in events[-1]["message"]:
+            fail(f"the session's end after the stop: {events[-1]}")
+        released = next(t for t in sim.since(frame["board_time_us"])
+                        if all(l["command_pa"] < 500 for l in t["lines"]))
+        print(f"    released {(released['board_time_us'] - frame['board_time_us']) / 1000:.0f} ms "
+              f"after the stimulus frame (undisturbed trials settled {settle_ms} ms after theirs); "
+              f"{events[-1]['message']}")
+
+        # Resumed, then stopped in the next trial after its stimulus showed, while it asks.
+        await exp.result("study.start", study="two-web", participant="P02", resume=True)
+        await participant_state(part, "break")  # a resumed session starts with a rest
+        await part.result("study.next")
+        asked = await participant_state(part, "answer")
         await sim.wait_async(lambda s: any(l["chamber_pa"] > 5000 for l in s["lines"]),
                              "a stimulus shown before the stop")
         await part.result("study.stop")
-        vented = await sim.wait_async(
-            lambda s: all(abs(l["chamber_pa"]) < 500 for l in s["lines"])
-            and all(f["deformation_mm"] < 0.05 for f in s["fingers"]), "every finger vented", 3)
-        await participant_state(part, "stopped")
-        session, trials = on_disk(os.path.join(sessions, "two-web", "P02"))
-        if session["complete"] or len(trials) != 1:
-            fail(f"after the stop: complete {session['complete']}, {len(trials)} trials")
-        print(f"ok  stopped at trial {asked['trial']}: every line at "
-              f"{max(abs(l['chamber_pa']) for l in vented['lines']):.0f} Pa or less, 1 trial kept")
+        await stopped_and_released(sim, part, sessions, "P02", 1, f"at trial {asked['trial']}, asking")
         await experimenter_events(exp)
         await exp.result("study.start", study="two-web", participant="P02", resume=True)
         await answer_all(part, "finished", answers)
         session, trials = on_disk(os.path.join(sessions, "two-web", "P02"))
         if not session["complete"] or sorted(t["index"] for t in trials) != [0, 1]:
             fail(f"the resumed session: {session['complete']}, {trials}")
-        print("ok  resumed: the session completed, each trial once")
+        print("ok  resumed twice: the session completed, each trial once")
 
         # Everything the participant's socket got: prompts, never the condition.
         for n in part.notifications:
@@ -211,7 +272,8 @@ async def main(palpa, palpa_sim):
     finally:
         await client.close()
         own.close()
-    print("study_test: a study run, stopped and resumed through the API")
+    print(f"study_test: a study run, stopped and resumed through the API, "
+          f"{time.monotonic() - began:.1f} s")
 
 
 if __name__ == "__main__":
