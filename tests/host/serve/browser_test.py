@@ -10,23 +10,12 @@ import signal
 import sys
 import time
 
-from selenium import webdriver
 from selenium.webdriver.common.by import By
 from selenium.webdriver.common.actions.action_builder import ActionBuilder
 from selenium.webdriver.common.keys import Keys
-from selenium.webdriver.chrome.service import Service
 from selenium.webdriver.support.ui import Select, WebDriverWait
 
-from harness import Serve, Sim, fail
-
-
-def browser():
-    options = webdriver.ChromeOptions()
-    options.binary_location = "/usr/bin/chromium"
-    for arg in ["--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
-                "--window-size=1280,1000"]:
-        options.add_argument(arg)
-    return webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)
+from harness import Serve, Sim, chromium, fail, no_console_errors
 
 
 def descendants(pid):
@@ -95,11 +84,7 @@ def drag_scene(driver, sim, wait, out):
     sim.wait(lambda s: all(f["deformation_mm"] < 0.5 for f in s["fingers"][:3]),
              "every finger soft after the scene stopped")
     print("ok  the scene stopped: every finger soft")
-    # The page broke no rule of its own Content-Security-Policy and threw nothing.
-    errors = [e for e in driver.get_log("browser")
-              if e["level"] == "SEVERE" and "favicon.ico" not in e["message"]]
-    if errors:
-        fail(f"the page logged errors: {errors[:3]}")
+    no_console_errors(driver, "board's")
 
 
 def main():
@@ -107,7 +92,7 @@ def main():
     os.makedirs(out, exist_ok=True)
     sim = Sim(palpa_sim)
     serve = Serve(palpa, sim.address)
-    driver = browser()
+    driver = chromium()
     try:
         driver.get(f"http://{serve.authority}/")
         wait = WebDriverWait(driver, 20)

@@ -1,6 +1,7 @@
 """What the serve tests share: palpa-sim with its truth channel, `palpa serve` in front of it, raw
-HTTP and WebSocket requests (for headers a WebSocket library will not send wrong), and a JSON-RPC
-client over python3-websockets."""
+HTTP and WebSocket requests (for headers a WebSocket library will not send wrong), a JSON-RPC
+client over python3-websockets, a study session's files as written, and Debian's chromium for
+the browser tests."""
 import asyncio
 import base64
 import json
@@ -298,3 +299,35 @@ def settle(sim, seconds=1.0):
     while sim.latest()["board_time_us"] < start + seconds * 1e6:
         time.sleep(0.02)
     return sim.latest()
+
+
+def session_on_disk(directory):
+    """A study session's files: session.json and the journal's trials, each line whole (a torn
+    line fails the caller's test: json.loads raises)."""
+    with open(os.path.join(directory, "trials.jsonl")) as f:
+        trials = [json.loads(line) for line in f if line.strip()]
+    with open(os.path.join(directory, "session.json")) as f:
+        return json.load(f), trials
+
+
+def chromium(window="1280,1000", performance_log=False):
+    """Debian's chromium, headless, through chromium-driver and python3-selenium (imported here:
+    only the browser tests need it). performance_log keeps the WebSocket frames it receives."""
+    from selenium import webdriver
+    from selenium.webdriver.chrome.service import Service
+    options = webdriver.ChromeOptions()
+    options.binary_location = "/usr/bin/chromium"
+    for arg in ["--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
+                f"--window-size={window}"]:
+        options.add_argument(arg)
+    if performance_log:
+        options.set_capability("goog:loggingPrefs", {"performance": "ALL", "browser": "ALL"})
+    return webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)
+
+
+def no_console_errors(driver, whose):
+    """The page broke no rule of its own Content-Security-Policy and threw nothing."""
+    errors = [e for e in driver.get_log("browser")
+              if e["level"] == "SEVERE" and "favicon.ico" not in e["message"]]
+    if errors:
+        fail(f"the {whose} page logged errors: {errors[:3]}")

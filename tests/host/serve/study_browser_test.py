@@ -12,12 +12,10 @@ import sys
 import tempfile
 import time
 
-from selenium import webdriver
-from selenium.webdriver.chrome.service import Service
 from selenium.webdriver.common.by import By
 from selenium.webdriver.support.ui import Select, WebDriverWait
 
-from harness import Serve, Sim, fail
+from harness import Serve, Sim, chromium, fail, no_console_errors, session_on_disk
 
 STUDY = {
     "schema": "palpa-study", "schema_version": 1, "name": "three-web",
@@ -29,16 +27,6 @@ STUDY = {
 }
 SECRETS = ["condition", "stimulus", "expected", "correct", "0-30-0", "10-10-10", "30-30-0",
            "kPa", "at-once"]
-
-
-def browser():
-    options = webdriver.ChromeOptions()
-    options.binary_location = "/usr/bin/chromium"
-    for arg in ["--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
-                "--window-size=1000,800"]:
-        options.add_argument(arg)
-    options.set_capability("goog:loggingPrefs", {"performance": "ALL", "browser": "ALL"})
-    return webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)
 
 
 def visible(driver, element_id):
@@ -64,13 +52,6 @@ def frames_received(driver):
     return frames
 
 
-def console_errors(driver, whose):
-    errors = [e for e in driver.get_log("browser")
-              if e["level"] == "SEVERE" and "favicon.ico" not in e["message"]]
-    if errors:
-        fail(f"the {whose} page logged errors: {errors[:3]}")
-
-
 def main():
     palpa, palpa_sim, out = sys.argv[1], sys.argv[2], sys.argv[3]
     began = time.monotonic()
@@ -82,8 +63,8 @@ def main():
     sessions = os.path.join(tmp, "sessions")
     sim = Sim(palpa_sim, "thesis-pneumatic-3")
     serve = Serve(palpa, sim.address, extra=["--study-dir", sessions, "--study", study_file])
-    driver = browser()
-    experimenter = browser()
+    driver = chromium("1000,800", performance_log=True)
+    experimenter = chromium("1000,800", performance_log=True)
     try:
         wait = WebDriverWait(driver, 20)
         driver.get(f"http://{serve.authority}/participant.html")
@@ -127,11 +108,8 @@ def main():
         check_shown(driver, seen)
         print(f"ok  the stop button vented every line (≤ "
               f"{max(abs(l['chamber_pa']) for l in vented['lines']):.0f} Pa)")
-        directory = os.path.join(sessions, "three-web", "B01")
-        with open(os.path.join(directory, "trials.jsonl")) as f:
-            trials = [json.loads(line) for line in f if line.strip()]
-        with open(os.path.join(directory, "session.json")) as f:
-            complete = json.load(f)["complete"]
+        session, trials = session_on_disk(os.path.join(sessions, "three-web", "B01"))
+        complete = session["complete"]
         if complete or [t["condition"] for t in trials] != ["0-30-0", "10-10-10"]:
             fail(f"the journal after the stop: complete {complete}, {trials}")
         if trials[0]["answer"]["fingers"] != [False, True, False] or trials[1]["answer"]["tumour"]:
@@ -143,7 +121,7 @@ def main():
             for secret in SECRETS:
                 if secret in frame:
                     fail(f"the participant's socket received {secret!r}: {frame}")
-        console_errors(driver, "participant's")
+        no_console_errors(driver, "participant's")
         print(f"ok  {len(seen)} views and {len(frames)} frames received: no condition, stimulus "
               "or score; no console error")
         # The experimenter's view of the stopped session, reloaded: the table, the provenance.
@@ -154,7 +132,7 @@ def main():
         if "firmware" not in experimenter.find_element(By.ID, "e-provenance").text:
             fail("no provenance shown")
         experimenter.save_screenshot(os.path.join(out, "study_experimenter.png"))
-        console_errors(experimenter, "experimenter's")
+        no_console_errors(experimenter, "experimenter's")
         print("ok  the experimenter's view reloaded: the session's trials, its end, its provenance")
     finally:
         driver.quit()

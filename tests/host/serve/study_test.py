@@ -14,7 +14,7 @@ import sys
 import tempfile
 import time
 
-from harness import Client, Serve, Sim, fail
+from harness import Client, Serve, Sim, fail, session_on_disk
 
 STUDY = {
     "schema": "palpa-study", "schema_version": 1, "name": "two-web",
@@ -92,7 +92,7 @@ async def stopped_and_released(sim, part, sessions, participant, kept, when):
         lambda s: all(abs(l["chamber_pa"]) < 500 for l in s["lines"])
         and all(f["deformation_mm"] < 0.05 for f in s["fingers"]), "every finger vented", 3)
     await participant_state(part, "stopped")
-    session, trials = on_disk(os.path.join(sessions, "two-web", participant))
+    session, trials = session_on_disk(os.path.join(sessions, "two-web", participant))
     if session["complete"] or len(trials) != kept:
         fail(f"after the stop {when}: complete {session['complete']}, {len(trials)} trials")
     print(f"ok  stopped {when}: every line at "
@@ -117,13 +117,6 @@ def refused_trigger_line(palpa, tmp):
         fail(f"--trigger-gpio without --study-dir: exit {r.returncode}, {r.stderr!r}")
     print("ok  a missing trigger line refused before the board (exit 1), and one without "
           "--study-dir (exit 2)")
-
-
-def on_disk(directory):
-    with open(os.path.join(directory, "trials.jsonl")) as f:
-        trials = [json.loads(line) for line in f if line.strip()]
-    with open(os.path.join(directory, "session.json")) as f:
-        return json.load(f), trials
 
 
 async def experimenter_events(exp):
@@ -178,7 +171,7 @@ async def main(palpa, palpa_sim):
         done = [e for e in events if e["event"] == "finished"]
         if len(done) != 1 or not done[0]["complete"]:
             fail(f"no complete session: {events[-3:]}")
-        session, trials = on_disk(os.path.join(sessions, "two-web", "P01"))
+        session, trials = session_on_disk(os.path.join(sessions, "two-web", "P01"))
         reported = [e["record"] for e in events if e["event"] == "trial_answered"]
         for r in reported:
             del r["correct"]
@@ -234,7 +227,7 @@ async def main(palpa, palpa_sim):
         await experimenter_events(exp)
         await exp.result("study.start", study="two-web", participant="P02", resume=True)
         await answer_all(part, "finished", answers)
-        session, trials = on_disk(os.path.join(sessions, "two-web", "P02"))
+        session, trials = session_on_disk(os.path.join(sessions, "two-web", "P02"))
         if not session["complete"] or sorted(t["index"] for t in trials) != [0, 1]:
             fail(f"the resumed session: {session['complete']}, {trials}")
         print("ok  resumed twice: the session completed, each trial once")
