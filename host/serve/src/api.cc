@@ -125,6 +125,15 @@ void Api::Dispatch(ClientId id, const rpc::Call& call, const std::shared_ptr<Bat
 
 void Api::GroupMethod(const MethodGroup& group, ClientId id, const rpc::Call& call,
                       const std::shared_ptr<BatchAnswer>& batch) {
+  if (const auto only = group.channel_only.find(call.method); only != group.channel_only.end()) {
+    const auto client = clients_.find(id);
+    if (client == clients_.end() || !client->second.channels.count(only->second)) {
+      const std::string why = call.method + " is taken only from a client in the channel " +
+                              only->second + ", not from this one";
+      return Answer(id, call, batch,
+                    rpc::ErrorAnswer(call.id, rpc::Error{rpc::kNotInChannel, why, nullptr}));
+    }
+  }
   PreparedCall prepared = group.prepare(call.method, call.params);
   if (!prepared.error && prepared.needs_control && !control_.Controls(id)) {
     prepared.error =

@@ -213,6 +213,9 @@ MethodGroup StudyMethods(StudyServeOptions options) {
   g.prefix = "study.";
   g.names = {"study.list",   "study.start", "study.watch",
              "study.answer", "study.next",  "study.stop"};
+  // The participant's own acts: from a client in the participant's view, which has heard nothing
+  // of the conditions, never from the experimenter's page or a bystander. Anyone may stop.
+  g.channel_only = {{"study.answer", "study.participant"}, {"study.next", "study.participant"}};
   g.prepare = [desk](const std::string& method, const Json& params) {
     return Prepare(desk, method, params);
   };

@@ -45,9 +45,10 @@ async def participant_state(part, state, timeout=20):
             return n["params"]
 
 
-async def answer_all(part, until_state, answers, stop_after=None):
+async def answer_all(part, until_state, answers, stop_after=None, bystander=None):
     """Answers each trial asked (a tumour under finger 2), until `until_state`; with stop_after,
-    stops the session once that many trials are answered, while the next is under way."""
+    stops the session once that many trials are answered, while the next is under way. A
+    bystander (a client outside the participant's view) tries each answer first: refused."""
     while True:
         n = (await part.notification("notify_study_participant", 30))["params"]
         if n["state"] == until_state:
@@ -61,6 +62,10 @@ async def answer_all(part, until_state, answers, stop_after=None):
                                trial=n["trial"] + 1, tumour=True, fingers=[False, True, False])
             await expect_error(part, "study.answer", "finger", trial=n["trial"], tumour=True,
                                fingers=[False, True])
+            if bystander is not None:
+                await expect_error(bystander, "study.answer", "only from a client in the channel "
+                                   "study.participant", trial=n["trial"], tumour=False,
+                                   fingers=[False, False, False])
             answers.append(await part.result("study.answer", trial=n["trial"], tumour=True,
                                              fingers=[False, True, False]))
 
@@ -166,7 +171,7 @@ async def main(palpa, palpa_sim):
         if started["provenance"]["sim"] is not None:  # a tcp: board may be any board
             fail(f"a board reached over tcp: recorded as simulated: {started['provenance']}")
         answers = []
-        await answer_all(part, "finished", answers)
+        await answer_all(part, "finished", answers, bystander=exp)
         events = await experimenter_events(exp)
         done = [e for e in events if e["event"] == "finished"]
         if len(done) != 1 or not done[0]["complete"]:
@@ -177,6 +182,8 @@ async def main(palpa, palpa_sim):
             del r["correct"]
         if not session["complete"] or trials != reported or len(trials) != 2:
             fail(f"records on disk {trials} differ from the API's {reported}")
+        if any(t["answer"] != {"tumour": True, "fingers": [False, True, False]} for t in trials):
+            fail(f"an answer kept is not the participant's: {trials}")
         triggers = [e for e in events if e["event"] == "trigger"]
         times = [t["board_ms"] for t in triggers]
         if [t["kind"] for t in triggers] != ["settled", "answered"] * 2 or times != sorted(times):
@@ -218,6 +225,7 @@ async def main(palpa, palpa_sim):
         # Resumed, then stopped in the next trial after its stimulus showed, while it asks.
         await exp.result("study.start", study="two-web", participant="P02", resume=True)
         await participant_state(part, "break")  # a resumed session starts with a rest
+        await expect_error(exp, "study.next", "only from a client in the channel study.participant")
         await part.result("study.next")
         asked = await participant_state(part, "answer")
         await sim.wait_async(lambda s: any(l["chamber_pa"] > 5000 for l in s["lines"]),

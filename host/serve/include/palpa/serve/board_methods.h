@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -57,6 +58,9 @@ struct MethodGroup {
   /// only, and never dropped (a study's events: each one counts, and one view must not see
   /// another's).
   std::function<std::vector<rpc::Json>()> channel_notifications = nullptr;
+  /// Optional: methods only a client in the named channel may call, refused before they are
+  /// prepared (a participant's answers come from the participant's view alone).
+  std::map<std::string, std::string> channel_only = {};
 };
 
 /// The board's methods; `board`: what the device said at Hello.

@@ -24,6 +24,7 @@ enum Code : int {
   kNotController = -32001,  ///< a method that moves the board, from a client that watches
   kControlTaken = -32002,   ///< another client controls the board (take it with force)
   kTooLarge = -32003,       ///< the message exceeded the server's limit; it was dropped unread
+  kNotInChannel = -32004,   ///< a view's own method (a participant's answer) from outside the view
 };
 
 struct Error {
