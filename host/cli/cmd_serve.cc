@@ -71,9 +71,9 @@ int CmdServe(Context& c, const std::vector<std::string>& args) {
   if (!studies.trigger_gpio.empty()) {
     if (studies.study_dir.empty())
       return Usage("serve", "--trigger-gpio pulses at a study's events: it needs --study-dir DIR");
-    std::string error;
-    std::shared_ptr<TriggerLine> line = TriggerLine::Open(studies.trigger_gpio, &error);
-    if (line == nullptr) return Fail("serve", protocol::Status::kIoError, error);
+    auto opened = TriggerLine::Open(studies.trigger_gpio);
+    if (!opened.ok()) return Fail("serve", opened.status, opened.message);
+    std::shared_ptr<TriggerLine> line = opened.value;
     studies.on_trigger = [line](const host::TriggerEvent&) { line->Pulse("palpa serve"); };
   }
   if (!studies.study_dir.empty()) {  // made now: a mistyped path shows before any session

@@ -160,9 +160,9 @@ int Run(Context& c, const std::vector<std::string>& args) {
   // The trigger line is taken before the board starts: a missing or busy line refuses the run.
   std::shared_ptr<TriggerLine> trigger_line;
   if (!r.value.trigger_gpio.empty()) {
-    std::string error;
-    trigger_line = TriggerLine::Open(r.value.trigger_gpio, &error);
-    if (trigger_line == nullptr) return Fail(cmd, Status::kIoError, error);
+    auto opened = TriggerLine::Open(r.value.trigger_gpio);
+    if (!opened.ok()) return Fail(cmd, opened.status, opened.message);
+    trigger_line = opened.value;
   }
   const bool sim = uri == "sim" || uri.rfind("sim:", 0) == 0;
   if (r.value.simulated >= 0 && !sim)

@@ -7,12 +7,10 @@
 
 namespace palpa::cli {
 
-std::shared_ptr<TriggerLine> TriggerLine::Open(const std::string& spec, std::string* error) {
-  auto line = hal::linux_gpio::GpioOutput::Open(spec, false, error);
-  if (line == nullptr) {
-    *error = "--trigger-gpio " + *error;
-    return nullptr;
-  }
+host::Result<std::shared_ptr<TriggerLine>> TriggerLine::Open(const std::string& spec) {
+  std::string why;
+  auto line = hal::linux_gpio::GpioOutput::Open(spec, false, &why);
+  if (line == nullptr) return {host::Status::kIoError, "--trigger-gpio " + why};
   return std::shared_ptr<TriggerLine>(new TriggerLine(std::move(line)));
 }
 

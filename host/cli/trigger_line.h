@@ -6,13 +6,14 @@
 #include <string>
 
 #include "palpa/hal/linux/gpio_output.h"
+#include "palpa/host/outcome.h"
 
 namespace palpa::cli {
 
 class TriggerLine {
  public:
-  /// "CHIP:LINE", requested low now: nullptr with *error naming the option, the line and why.
-  static std::shared_ptr<TriggerLine> Open(const std::string& spec, std::string* error);
+  /// "CHIP:LINE", requested low now; an I/O error naming the option, the line and why.
+  static host::Result<std::shared_ptr<TriggerLine>> Open(const std::string& spec);
 
   /// One trigger: high for 10 ms, long enough for a recorder sampling at 500 Hz or more to see it.
   /// Every event is one pulse; the event's record (a file, a notification) says which it was.
