@@ -42,4 +42,9 @@ std::optional<BoardFile> LoadBoardFile(const std::string& path, std::string* err
 bool FitsTheModule(const core::BoardConfig& config, const std::string& name,
                    const hal::linux_aio::ModbusAioConfig& module, std::string* error);
 
+/// The board's line check (core::BoardIo::line_check), so a host's configuration change is held
+/// to the module's fallback too: why the line is refused, or nullptr when 0 V commands its safe
+/// value.
+const char* SafeValueNotAtZeroVolts(const protocol::ConfigureLine& line);
+
 }  // namespace palpa::linux_board

@@ -60,6 +60,7 @@ core::BoardIo LinuxIo::Io(hal::ByteLink& link) {
                    nullptr,
                    0};
   if (!valves_.valves.empty()) io.line_vents = &valves_;
+  io.line_check = SafeValueNotAtZeroVolts;
   return io;
 }
 

@@ -5,6 +5,14 @@
 
 namespace palpa::linux_board {
 
+const char* SafeValueNotAtZeroVolts(const protocol::ConfigureLine& line) {
+  // The module's fallback is 0 V on every output when the controller dies: a line is safe then
+  // only if its safe value is what 0 V commands.
+  if (core::MakeLineParams(line, core::Board::kTickUs).safe_counts == 0) return nullptr;
+  return "safe value not commanded by 0 V: the module's fallback (0 V on every output) would not "
+         "make the line safe";
+}
+
 bool FitsTheModule(const core::BoardConfig& config, const std::string& name,
                    const hal::linux_aio::ModbusAioConfig& module, std::string* error) {
   // The core writes channels 0..lines-1 in one transfer: a channel the module lacks would fail
@@ -42,8 +50,7 @@ bool FitsTheModule(const core::BoardConfig& config, const std::string& name,
         return false;
       }
     }
-    // The module's fallback is 0 V on every output when the controller dies: a line is safe then
-    // only if its safe value is what 0 V commands.
+    // The same check as SafeValueNotAtZeroVolts, with the code the safe value commands.
     const core::LineParams p = core::MakeLineParams(line, core::Board::kTickUs);
     if (p.safe_counts != 0) {
       *error = which + ": its safe value (" + std::to_string(line.safe_pa) + " Pa) is code " +

@@ -11,7 +11,7 @@ using protocol::Fault;
 Board::Board(const BoardConfig& factory, BoardIo io, BoardIdentity identity)
     : io_(io),
       identity_(identity),
-      config_(factory, io.flash, io.flash_config_base, io.dac),
+      config_(factory, io.flash, io.flash_config_base, io.dac, io.line_check),
       session_(identity.boot_nonce),
       supply_pulse_(io.supply_enable),
       dump_pulse_(io.dump_enable) {}

@@ -8,7 +8,7 @@ namespace palpa::core {
 void LiveConfig::Load() {
   std::memset(&live_, 0, sizeof(live_));  // padding too: the integrity CRC covers raw memory
   is_default_ = store_.Load(factory_, live_) == ConfigStore::Source::kFactory;
-  if (!is_default_ && !DacMatches(live_, nullptr)) {  // saved for other hardware
+  if (!is_default_ && !FitsTheHardware(live_, nullptr)) {  // saved for other hardware
     std::memcpy(&live_, &factory_, sizeof(live_));
     is_default_ = true;
   }
@@ -17,13 +17,18 @@ void LiveConfig::Load() {
   crc_ = ConfigCrc(live_);
 }
 
-bool LiveConfig::DacMatches(const BoardConfig& config, ConfigError* error) const {
+bool LiveConfig::FitsTheHardware(const BoardConfig& config, ConfigError* error) const {
   for (uint8_t i = 0; i < config.line_count; ++i) {
     const hal::AnalogOutputSpec spec = dac_.spec(i);
     if (config.lines[i].dac_bits != spec.bits || config.lines[i].dac_signal != spec.range) {
       if (error != nullptr)
         *error = {protocol::ConfigSection::kLine, i,
                   "DAC resolution or signal range differs from the board's DAC"};
+      return false;
+    }
+    const char* refused = line_check_ != nullptr ? line_check_(config.lines[i]) : nullptr;
+    if (refused != nullptr) {
+      if (error != nullptr) *error = {protocol::ConfigSection::kLine, i, refused};
       return false;
     }
   }
@@ -38,7 +43,7 @@ BoardConfig& LiveConfig::StartCandidate() {
 Status LiveConfig::CommitCandidate(uint32_t& detail) {
   ConfigError error;
   Status status = ValidateConfig(candidate_, &error);
-  if (status == Status::kOk && !DacMatches(candidate_, &error)) status = Status::kBadValue;
+  if (status == Status::kOk && !FitsTheHardware(candidate_, &error)) status = Status::kBadValue;
   if (status != Status::kOk) {
     detail = error.detail();
     return status;

@@ -65,6 +65,31 @@ std::string Run(const std::string& command) {
   return out;
 }
 
+/// A host's configuration change is held to the module's fallback as the board file is: a safe
+/// value 0 V does not command is refused whole, naming the line; one that keeps 0 V is taken.
+void CheckSafeValueAwayFromZeroVoltsRefused(const std::string& address) {
+  auto opened = palpa::host::Device::Open(address, {});
+  CHECK_TEXT(opened.ok(), opened.message.c_str());
+  palpa::host::Device& d = *opened.value;
+  auto config = d.ReadConfig();
+  CHECK_TEXT(config.ok(), config.message.c_str());
+  palpa::host::BoardConfig changed = config.value;
+  changed.lines[1].safe_pa = 20000;  // within line 1's limits: code 819, not 0 V
+  // And a field the refusal must leave as it was.
+  changed.board.telemetry_batch = config.value.board.telemetry_batch == 1 ? 2 : 1;
+  const palpa::host::Outcome refused = d.ApplyConfig(changed);
+  CHECK(refused.status == pp::Status::kBadValue);
+  CHECK_TEXT(refused.message.find("(line ") != std::string::npos, refused.message.c_str());
+  auto after = d.ReadConfig();
+  CHECK_TEXT(after.ok(), after.message.c_str());
+  LONGS_EQUAL(config.value.lines[1].safe_pa, after.value.lines[1].safe_pa);
+  LONGS_EQUAL(config.value.board.telemetry_batch, after.value.board.telemetry_batch);
+  changed.lines[1].safe_pa = config.value.lines[1].safe_pa;
+  const palpa::host::Outcome kept = d.ApplyConfig(changed);
+  CHECK_TEXT(kept.ok(), kept.message.c_str());
+  CHECK(d.ApplyConfig(config.value).ok());
+}
+
 }  // namespace
 
 TEST_GROUP(LinuxBoard){};
@@ -82,6 +107,7 @@ TEST(LinuxBoard, MeetsTheLinkBehaviourAndSigtermLeavesZeroVolts) {
   // Through the host library: Hello, a configuration change, line 0 at 40 kPa read back by its
   // sensor through the module (the closed loop), host silence making every line safe.
   pt::CheckBoardBehaviour(board.address(), pp::BoardKind::kLinux, /*plant_simulated=*/false);
+  CheckSafeValueAwayFromZeroVoltsRefused(board.address());
 
   // The command line through a tcp: device URI.
   const std::string info =

@@ -44,6 +44,9 @@ struct BoardIo {
   /// releases the valve's driver: open is its unpowered, safe position). nullptr: no per-line
   /// valve drivers, the dump valves move only together.
   hal::DigitalPort* line_vents = nullptr;
+  /// The board's own refusal of a line its hardware cannot keep safe, checked with every new
+  /// configuration: the reason, or nullptr to accept. nullptr: no check beyond the core's.
+  LineCheck line_check = nullptr;
 };
 
 struct BoardIdentity {

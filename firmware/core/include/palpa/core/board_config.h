@@ -30,6 +30,10 @@ struct ConfigError {
   uint32_t detail() const { return static_cast<uint32_t>(section) << 8 | index; }
 };
 
+/// A board's own check of a line (BoardIo::line_check): why its hardware refuses the line, or
+/// nullptr.
+using LineCheck = const char* (*)(const protocol::ConfigureLine& line);
+
 /// Checks everything a single record cannot: hard ceilings, limits against each other, monotone
 /// curves, gains within the pressure loop's stable region, line ownership by fingers.
 Status ValidateLine(const protocol::ConfigureLine& line, ConfigError* error);

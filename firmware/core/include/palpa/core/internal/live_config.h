@@ -13,8 +13,8 @@ namespace palpa::core {
 class LiveConfig {
  public:
   LiveConfig(const BoardConfig& factory, hal::Flash* flash, uint32_t flash_base,
-             const hal::AnalogOutput& dac)
-      : factory_(factory), store_(flash, flash_base), dac_(dac) {}
+             const hal::AnalogOutput& dac, LineCheck line_check)
+      : factory_(factory), store_(flash, flash_base), dac_(dac), line_check_(line_check) {}
 
   /// At start: the saved configuration, or the factory one (also when the saved one was made for
   /// other hardware).
@@ -45,13 +45,15 @@ class LiveConfig {
  private:
   /// Every line's DAC resolution and signal range are what the board's DAC reports: a 16-bit
   /// line on a 12-bit DAC, or 4–20 mA on a 0–10 V output, would command the wrong pressure.
-  bool DacMatches(const BoardConfig& config, ConfigError* error) const;
+  /// And the board's own line check (BoardIo::line_check) accepts every line.
+  bool FitsTheHardware(const BoardConfig& config, ConfigError* error) const;
 
   BoardConfig factory_;
   BoardConfig live_{};
   BoardConfig candidate_{};
   ConfigStore store_;
   const hal::AnalogOutput& dac_;
+  LineCheck line_check_;
   bool is_default_ = true;
   bool saved_ = false;
   bool unsaved_ = false;
