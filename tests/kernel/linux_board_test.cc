@@ -5,6 +5,7 @@
 // failure) if the board does not kick it.
 //   PALPA_GPIO_CHIP  the gpio-mockup chip (8 lines: the valves on 0-6, the E-stop on 7)
 //   PALPA_MODULE     the emulator's HOST:PORT (10.0.2.2:PORT over QEMU's user network)
+#include <fcntl.h>
 #include <modbus.h>
 #include <signal.h>
 #include <unistd.h>
@@ -18,6 +19,7 @@
 #include <thread>
 
 #include "board_behaviour.h"
+#include "gadget_link.h"
 #include "mini_client.h"
 #include "palpa/hal/linux/watchdog_device.h"
 #include "palpa/host/device.h"
@@ -119,6 +121,24 @@ void StartBoard(pt::SimProcess& board) {
       "the board's gadget did not enumerate");
 }
 
+/// A second claim on the board's gadget, as a second board or palpa-gadget would make: refused
+/// while its owner runs, naming it; *error says why.
+bool SecondGadgetOpens(std::string* error) {
+  palpa::gadget::GadgetLink second;
+  return second.Open({}, error);
+}
+
+/// The board answers on `address` (Hello and its diagnostics, what palpa info asks); returns the
+/// boot it reports.
+uint32_t CheckAnswers(const std::string& address) {
+  auto opened = palpa::host::Device::Open(address, {});
+  CHECK_TEXT(opened.ok(), opened.message.c_str());  // the message names the address
+  CHECK(opened.value->info().board_kind == pp::BoardKind::kLinux);
+  auto diag = opened.value->Diagnostics();
+  CHECK_TEXT(diag.ok(), (address + ": " + diag.message).c_str());
+  return opened.value->info().boot_nonce;
+}
+
 uint32_t Latched(palpa::host::Device& d) {
   auto diag = d.Diagnostics();
   return diag.ok() ? diag.value.fault_bitmap : 0;
@@ -128,17 +148,23 @@ uint32_t Latched(palpa::host::Device& d) {
 
 TEST_GROUP(LinuxBoardGuest){};
 
-TEST(LinuxBoardGuest, MeetsTheLinkBehaviourThroughUsbAndKillLeavesEverythingSafe) {
+TEST(LinuxBoardGuest, MeetsTheLinkBehaviourThroughUsbKillLeavesEverythingSafeAndARestartServes) {
   Pull(kEstopLine, 0);
   pt::SimProcess board;
   StartBoard(board);
   // Host silence at 1 s: the board's ticks run late here (each waits on the module across QEMU's
   // user network: tens of ms), and 150 ms would cut the session short.
   pt::CheckBoardBehaviour(kUsb, pp::BoardKind::kLinux, /*plant_simulated=*/false, 1000000);
+  std::string refused;
+  CHECK_FALSE(SecondGadgetOpens(&refused));  // the running board's gadget is not taken from it
+  CHECK_TEXT(refused.find("gadget palpa is in use by process " + std::to_string(board.pid())) !=
+                 std::string::npos,
+             refused.c_str());
 
   ModuleProbe module;
   auto opened = palpa::host::Device::Open(kUsb, {});
   CHECK_TEXT(opened.ok(), opened.message.c_str());
+  const uint32_t board_boot = opened.value->info().boot_nonce;
   if (auto loop = opened.value->LoopStats(); loop.ok()) {  // figures for docs/kernel_tests.md
     std::printf("\nlinux board: %llu ticks, %u overruns, jitter max %u us, worst tick %u us\n",
                 static_cast<unsigned long long>(loop.value.ticks), loop.value.overruns,
@@ -168,6 +194,29 @@ TEST(LinuxBoardGuest, MeetsTheLinkBehaviourThroughUsbAndKillLeavesEverythingSafe
   for (int i = 0; i < 8; ++i) LONGS_EQUAL(0, module.Holding(kOutputs + i));
   LONGS_EQUAL(fallbacks + 1, module.Holding(kFallbacks));      // the module's watchdog, once
   for (int i = 0; i < kValves; ++i) LONGS_EQUAL(0, Level(i));  // released: the pull-down
+
+  // The killed board's gadget stays in configfs with its FunctionFS instances mounted. While a
+  // program holds one of them open (one that does not claim the name) it is not taken down...
+  const int ep0 = open("/run/palpa-gadget/palpa_bulk/ep0", O_RDWR);
+  CHECK(ep0 >= 0);
+  CHECK_FALSE(SecondGadgetOpens(&refused));
+  close(ep0);
+  CHECK_TEXT(refused.find("palpa_bulk (/run/palpa-gadget/palpa_bulk) is open in a running") !=
+                 std::string::npos,
+             refused.c_str());
+  // ...and without one, a board started again removes it, makes its own and serves the host on
+  // each of its interfaces: vendor bulk, HID, the ACM port.
+  pt::SimProcess again;
+  StartBoard(again);
+  CHECK_TEXT(again.output().find("removed the USB gadget a program that died left behind") !=
+                 std::string::npos,
+             again.output().c_str());
+  const uint32_t boot = CheckAnswers(kUsb);
+  CHECK(boot != board_boot);  // a new boot to the host
+  LONGS_EQUAL(boot, CheckAnswers("hid:1209:0001"));
+  LONGS_EQUAL(boot, CheckAnswers("serial:/dev/ttyACM0"));
+  LONGS_EQUAL(0, again.Stop());
+  STRCMP_EQUAL("inactive\n", ReadAll("/sys/class/watchdog/watchdog0/state").c_str());
 }
 
 TEST(LinuxBoardGuest, TheEstopLineAndAModbusOutageLatchFaultsReadOverUsb) {

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <vector>
 
 namespace palpa::gadget {
 namespace {
@@ -29,6 +30,19 @@ std::string Hex(uint16_t value) {
   return text;
 }
 
+/// The names in a directory, without "." and "..".
+std::vector<std::string> Entries(const std::string& dir) {
+  std::vector<std::string> names;
+  if (DIR* d = opendir(dir.c_str())) {
+    while (dirent* e = readdir(d)) {
+      if (std::strcmp(e->d_name, ".") != 0 && std::strcmp(e->d_name, "..") != 0)
+        names.push_back(e->d_name);
+    }
+    closedir(d);
+  }
+  return names;
+}
+
 std::string FirstUdc() {
   std::string first;
   if (DIR* dir = opendir("/sys/class/udc")) {
@@ -41,6 +55,32 @@ std::string FirstUdc() {
 }
 
 }  // namespace
+
+std::string GadgetPath(const std::string& name) { return std::string(kGadgetRoot) + "/" + name; }
+
+bool RemoveGadgetTree(const std::string& path, std::string* error) {
+  // configfs takes a gadget apart only in this order: the configurations' links to functions and
+  // their strings, the configurations, the functions, the strings, then the gadget itself (the
+  // kernel removes the attribute files and the groups it made along with their directory).
+  for (const std::string& c : Entries(path + "/configs")) {
+    const std::string config = path + "/configs/" + c;
+    for (const std::string& e : Entries(config)) {
+      struct stat st;
+      if (lstat((config + "/" + e).c_str(), &st) == 0 && S_ISLNK(st.st_mode))
+        unlink((config + "/" + e).c_str());
+    }
+    for (const std::string& lang : Entries(config + "/strings"))
+      rmdir((config + "/strings/" + lang).c_str());
+    rmdir(config.c_str());
+  }
+  for (const std::string& f : Entries(path + "/functions"))
+    rmdir((path + "/functions/" + f).c_str());
+  for (const std::string& lang : Entries(path + "/strings"))
+    rmdir((path + "/strings/" + lang).c_str());
+  if (rmdir(path.c_str()) == 0 || errno == ENOENT) return true;
+  if (error != nullptr) *error = path + ": cannot be removed: " + std::strerror(errno);
+  return false;
+}
 
 bool WriteAttribute(const std::string& path, const std::string& text, std::string* error) {
   const int fd = open(path.c_str(), O_WRONLY | O_CLOEXEC);
@@ -55,7 +95,7 @@ bool WriteAttribute(const std::string& path, const std::string& text, std::strin
 ConfigfsGadget::~ConfigfsGadget() { Remove(); }
 
 bool ConfigfsGadget::Create(const std::string& name, const GadgetIdentity& id, std::string* error) {
-  path_ = std::string(kGadgetRoot) + "/" + name;
+  path_ = GadgetPath(name);
   const std::string strings = path_ + "/strings/0x409", config = path_ + "/configs/c.1";
   return MakeDirectory(path_, error) &&
          WriteAttribute(path_ + "/idVendor", Hex(id.vendor), error) &&
@@ -76,7 +116,6 @@ bool ConfigfsGadget::Create(const std::string& name, const GadgetIdentity& id, s
 bool ConfigfsGadget::AddFunction(const std::string& instance, std::string* error) {
   const std::string function = path_ + "/functions/" + instance;
   if (!MakeDirectory(function, error)) return false;
-  functions_.push_back(instance);
   const std::string link = path_ + "/configs/c.1/" + instance;
   if (symlink(function.c_str(), link.c_str()) != 0 && errno != EEXIST) {
     *error = link + ": " + std::strerror(errno);
@@ -111,15 +150,7 @@ void ConfigfsGadget::Unbind() {
 void ConfigfsGadget::Remove() {
   if (path_.empty()) return;
   Unbind();
-  for (auto it = functions_.rbegin(); it != functions_.rend(); ++it) {
-    unlink((path_ + "/configs/c.1/" + *it).c_str());
-    rmdir((path_ + "/functions/" + *it).c_str());
-  }
-  functions_.clear();
-  rmdir((path_ + "/configs/c.1/strings/0x409").c_str());
-  rmdir((path_ + "/configs/c.1").c_str());
-  rmdir((path_ + "/strings/0x409").c_str());
-  rmdir(path_.c_str());
+  RemoveGadgetTree(path_, nullptr);
   path_.clear();
 }
 

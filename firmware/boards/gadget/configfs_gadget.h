@@ -5,7 +5,6 @@
 
 #include <cstdint>
 #include <string>
-#include <vector>
 
 namespace palpa::gadget {
 
@@ -44,8 +43,13 @@ class ConfigfsGadget {
  private:
   std::string path_;
   std::string udc_;
-  std::vector<std::string> functions_;
 };
+
+/// /sys/kernel/config/usb_gadget/NAME.
+std::string GadgetPath(const std::string& name);
+/// Removes an unbound gadget's configfs tree, whatever configurations and functions it has (a
+/// missing one is no error); false with *error (when not null) if the gadget is still there.
+bool RemoveGadgetTree(const std::string& path, std::string* error);
 
 /// Writes `text` to a sysfs or configfs attribute; false with *error naming it on failure.
 bool WriteAttribute(const std::string& path, const std::string& text, std::string* error);

@@ -15,6 +15,7 @@
 #include "aio.h"
 #include "ffs_endpoints.h"
 #include "ffs_function.h"
+#include "gadget_claim.h"
 #include "usb_descriptors.h"
 
 namespace palpa::gadget {
@@ -92,6 +93,7 @@ const char* ChannelName(Channel channel) {
 }
 
 struct GadgetLink::Impl {
+  GadgetClaim claim;
   ConfigfsGadget gadget;
   AioContext aio;
   FfsFunction bulk, hid;
@@ -111,8 +113,15 @@ GadgetLink::~GadgetLink() { Close(); }
 
 bool GadgetLink::Open(const GadgetLinkOptions& o, std::string* error) {
   Impl& m = *impl_;
-  if (!m.aio.Open(64, error) || !m.gadget.Create(o.name, o.identity, error)) return false;
   mkdir(o.mount_root.c_str(), 0755);
+  // The name is claimed first: a gadget of that name is then one a dead owner left (kill -9 leaves
+  // it in configfs, its FunctionFS instances mounted), taken down before this one is made; a
+  // living owner keeps it and this Open fails.
+  if (!m.aio.Open(64, error) ||
+      !m.claim.Take(o.mount_root + "/" + o.name + ".lock", o.name, error) ||
+      !RemoveStaleGadget(o.name, &stale_removed_, error) ||
+      !m.gadget.Create(o.name, o.identity, error))
+    return false;
   // Each FunctionFS function: its instance in configfs, then its file system and descriptors.
   auto add_ffs = [&](const char* suffix, FfsFunction& f, const std::vector<uint8_t>& descriptors,
                      const char* interface_name) {
@@ -152,6 +161,7 @@ void GadgetLink::Close() {
   m.bulk.Close();
   m.hid.Close();
   m.gadget.Remove();
+  m.claim.Release();
   m.has_bulk = m.has_hid = false;
   active_ = Channel::kNone;
 }

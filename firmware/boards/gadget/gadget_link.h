@@ -42,7 +42,9 @@ class GadgetLink final : public hal::ByteLink {
   GadgetLink(const GadgetLink&) = delete;
   GadgetLink& operator=(const GadgetLink&) = delete;
 
-  /// Makes the gadget, writes the FunctionFS descriptors and binds it to the controller.
+  /// Claims the gadget's name (refused while a running program holds it), takes down a gadget of
+  /// that name a dead program left, makes the gadget, writes the FunctionFS descriptors and binds
+  /// it to the controller.
   bool Open(const GadgetLinkOptions& options, std::string* error);
   /// Unbinds (the host sees the device unplugged) and removes the gadget.
   void Close();
@@ -59,6 +61,8 @@ class GadgetLink final : public hal::ByteLink {
   const std::string& configfs_path() const;
   const std::string& udc() const;
   const std::string& acm_device() const { return acm_device_; }
+  /// Whether Open found a gadget of its name left by a program that died, and removed it.
+  bool stale_removed() const { return stale_removed_; }
 
  private:
   size_t DoRead(uint8_t* out, size_t capacity) override;
@@ -77,6 +81,7 @@ class GadgetLink final : public hal::ByteLink {
   std::vector<uint8_t> rx_, tx_;
   size_t rx_read_ = 0;
   std::string acm_device_;
+  bool stale_removed_ = false;
   GadgetCounters counters_;
 };
 

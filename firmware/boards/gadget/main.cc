@@ -169,6 +169,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   const auto& id = o.link.identity;
+  if (link.stale_removed())
+    std::printf("palpa-gadget: removed the gadget a program that died left behind\n");
   std::printf("palpa-gadget: usb %04x:%04x \"%s\" serial %s on %s (%s)\n", id.vendor, id.product,
               id.product_name.c_str(), id.serial.c_str(), link.udc().c_str(), id.max_speed.c_str());
   std::printf("palpa-gadget: configfs %s\n", link.configfs_path().c_str());

@@ -23,6 +23,8 @@ class HostLink {
   const std::string& address() const { return address_; }
   /// The USB device controller the gadget is bound to; empty for the other links.
   std::string udc() const { return usb_ ? usb_->udc() : std::string(); }
+  /// Whether the USB link found its gadget left by a program that died, and removed it.
+  bool stale_gadget_removed() const { return usb_ && usb_->stale_removed(); }
 
  private:
   std::unique_ptr<hosted::FdLink> fd_;

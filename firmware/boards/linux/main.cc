@@ -98,6 +98,8 @@ int main(int argc, char** argv) {
     std::printf("palpa-linux-board: watchdog %s, %d s\n", file->watchdog.c_str(),
                 watchdog->timeout_s());
   }
+  if (link.stale_gadget_removed())
+    std::printf("palpa-linux-board: removed the USB gadget a program that died left behind\n");
   if (!link.udc().empty()) std::printf("palpa-linux-board: USB gadget on %s\n", link.udc().c_str());
   std::printf("palpa-linux-board: listening on %s\n", link.address().c_str());
   std::fflush(stdout);
