@@ -42,9 +42,12 @@ std::optional<BoardFile> LoadBoardFile(const std::string& path, std::string* err
 bool FitsTheModule(const core::BoardConfig& config, const std::string& name,
                    const hal::linux_aio::ModbusAioConfig& module, std::string* error);
 
-/// The board's line check (core::BoardIo::line_check), so a host's configuration change is held
-/// to the module's fallback too: why the line is refused, or nullptr when 0 V commands its safe
-/// value.
+/// The rule of the module's fallback, in one place: FitsTheModule applies it to the file's board
+/// at start, and it is the board's line check (core::BoardIo::line_check), so a host's
+/// configuration change is held to it too. Why the line is refused, or nullptr when 0 V commands
+/// its safe value.
 const char* SafeValueNotAtZeroVolts(const protocol::ConfigureLine& line);
+/// The DAC code the line's safe value commands (0: 0 V).
+uint32_t SafeValueCode(const protocol::ConfigureLine& line);
 
 }  // namespace palpa::linux_board

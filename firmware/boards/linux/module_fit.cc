@@ -5,10 +5,14 @@
 
 namespace palpa::linux_board {
 
+uint32_t SafeValueCode(const protocol::ConfigureLine& line) {
+  return core::MakeLineParams(line, core::Board::kTickUs).safe_counts;
+}
+
 const char* SafeValueNotAtZeroVolts(const protocol::ConfigureLine& line) {
   // The module's fallback is 0 V on every output when the controller dies: a line is safe then
   // only if its safe value is what 0 V commands.
-  if (core::MakeLineParams(line, core::Board::kTickUs).safe_counts == 0) return nullptr;
+  if (SafeValueCode(line) == 0) return nullptr;
   return "safe value not commanded by 0 V: the module's fallback (0 V on every output) would not "
          "make the line safe";
 }
@@ -50,12 +54,10 @@ bool FitsTheModule(const core::BoardConfig& config, const std::string& name,
         return false;
       }
     }
-    // The same check as SafeValueNotAtZeroVolts, with the code the safe value commands.
-    const core::LineParams p = core::MakeLineParams(line, core::Board::kTickUs);
-    if (p.safe_counts != 0) {
-      *error = which + ": its safe value (" + std::to_string(line.safe_pa) + " Pa) is code " +
-               std::to_string(p.safe_counts) +
-               ", not 0 V: the module's fallback (0 V on every output) would not make it safe";
+    // The rule a host's change meets too (the board's line check), and what it found here.
+    if (const char* why = SafeValueNotAtZeroVolts(line)) {
+      *error = which + ": " + why + " (its safe value, " + std::to_string(line.safe_pa) +
+               " Pa, is code " + std::to_string(SafeValueCode(line)) + ")";
       return false;
     }
   }

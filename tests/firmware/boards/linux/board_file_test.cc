@@ -116,9 +116,18 @@ TEST(BoardFile, ALineWhoseSafeValueIsNotZeroVoltsIsRefused) {
   CHECK_TEXT(lb::FitsTheModule(config, "thesis-5finger", module, &error), error.c_str());
   config.lines[2].safe_pa = 20000;  // within its limits, but 2 V on the regulator's command
   CHECK(!lb::FitsTheModule(config, "edited", module, &error));
-  CHECK_TEXT(error.find("board: edited line 2: its safe value (20000 Pa) is code 819, not 0 V") !=
-                 std::string::npos,
-             error.c_str());
+  // Where (the board, the line), what (the rule a host's change meets too, the value, its code).
+  STRCMP_EQUAL(
+      (std::string("board: edited line 2: ") + lb::SafeValueNotAtZeroVolts(config.lines[2]) +
+       " (its safe value, 20000 Pa, is code 819)")
+          .c_str(),
+      error.c_str());
+  STRCMP_EQUAL(
+      "safe value not commanded by 0 V: the module's fallback (0 V on every output) would not "
+      "make the line safe",
+      lb::SafeValueNotAtZeroVolts(config.lines[2]));
+  CHECK(lb::SafeValueNotAtZeroVolts(palpa::core::FindBoardConfig("thesis-5finger")->lines[2]) ==
+        nullptr);
   config = *palpa::core::FindBoardConfig("thesis-5finger");
   config.lines[1].dac_signal = palpa::protocol::SignalRange::kMilliamp4To20;
   CHECK(!lb::FitsTheModule(config, "edited", module, &error));
