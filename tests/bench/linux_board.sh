@@ -10,11 +10,16 @@ SECONDS_RUN=${1:-20}
 BIN=build/default
 DIR=$(mktemp -d)
 trap 'kill $EMU 2>/dev/null; rm -rf "$DIR"' EXIT
-PORT=$(python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
-/usr/bin/python3 tests/hal/linux/ek9000_emulator.py "$PORT" 1,1,1,1,1,9,9,1 \
-  plant=20:1/0.7736,1/0.7736,1/0.7736,1/0.7736,1/0.7736,9/-0.7736,9/-0.7736,1/0 >/dev/null 2>&1 &
+# The emulator picks a free port and announces it (tests/hal/linux/ek9000_emulator.py).
+/usr/bin/python3 tests/hal/linux/ek9000_emulator.py 0 1,1,1,1,1,9,9,1 \
+  plant=20:1/0.7736,1/0.7736,1/0.7736,1/0.7736,1/0.7736,9/-0.7736,9/-0.7736,1/0 >"$DIR/emulator.log" 2>&1 &
 EMU=$!
-sleep 2
+for _ in $(seq 100); do
+  PORT=$(sed -n 's/^listening on tcp:127.0.0.1://p' "$DIR/emulator.log")
+  [ -n "$PORT" ] && break
+  sleep 0.1
+done
+[ -n "$PORT" ] || { cat "$DIR/emulator.log" >&2; echo "linux_board.sh: the emulator did not start" >&2; exit 1; }
 for PRIORITY in 50 0; do
   cat >"$DIR/board.json" <<JSON
 {"board": "thesis-5finger", "link": {"listen": "tcp:127.0.0.1:0"}, "realtime": {"priority": $PRIORITY},

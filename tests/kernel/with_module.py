@@ -4,10 +4,12 @@ plant serving on this machine, where the guest reaches it over QEMU's user netwo
 
   with_module.py VOLTS PLANT -- GUEST.PY ARGS...
 
-Every "{port}" in the arguments becomes the emulator's port (a free one on 127.0.0.1).
+Every "{port}" in the arguments becomes the emulator's port: the free one it picked on 127.0.0.1
+and announced ("listening on tcp:127.0.0.1:PORT"), as it does for the C++ tests
+(tests/hal/linux/ek9000_process.h).
 """
 import os
-import socket
+import select
 import subprocess
 import sys
 import time
@@ -16,25 +18,22 @@ here = os.path.dirname(os.path.abspath(__file__))
 if len(sys.argv) < 5 or sys.argv[3] != "--":
     print(__doc__, file=sys.stderr)
     sys.exit(2)
-with socket.socket() as s:
-    s.bind(("127.0.0.1", 0))
-    port = s.getsockname()[1]
 emulator = subprocess.Popen([
     sys.executable,
-    os.path.join(here, "..", "hal", "linux", "ek9000_emulator.py"),
-    str(port), sys.argv[1], sys.argv[2]
-])
+    os.path.join(here, "..", "hal", "linux", "ek9000_emulator.py"), "0", sys.argv[1], sys.argv[2]
+], stdout=subprocess.PIPE, text=True)
 try:
-    for _ in range(100):
-        try:
-            socket.create_connection(("127.0.0.1", port), timeout=1).close()
-            break
-        except OSError:
-            if emulator.poll() is not None:
-                sys.exit("with_module.py: the emulator exited (%d)" % emulator.returncode)
-            time.sleep(0.1)
-    else:
-        sys.exit("with_module.py: the emulator did not listen on %d within 10 s" % port)
+    port = None
+    deadline = time.monotonic() + 10  # Python and pymodbus start in well under a second
+    while port is None and time.monotonic() < deadline:
+        if select.select([emulator.stdout], [], [], 0.1)[0]:
+            line = emulator.stdout.readline()
+            if not line:
+                sys.exit("with_module.py: the emulator exited (%s)" % emulator.wait())
+            if line.startswith("listening on tcp:"):
+                port = int(line.rsplit(":", 1)[1])
+    if port is None:
+        sys.exit("with_module.py: the emulator did not announce its port within 10 s")
     args = [a.replace("{port}", str(port)) for a in sys.argv[4:]]
     status = subprocess.call([sys.executable] + args)
 finally:

@@ -173,7 +173,7 @@ int FreeTcpPort() {
   return ntohs(a.sin_port);
 }
 
-bool SimProcess::Start(const std::vector<std::string>& args, const char* program) {
+bool SimProcess::Start(const std::vector<std::string>& args, const char* program, int timeout_ms) {
   // Built before the fork: the child of a process with threads may only call what is
   // async-signal-safe (an allocation can wait forever on a lock another thread held).
   std::vector<char*> argv;
@@ -199,7 +199,7 @@ bool SimProcess::Start(const std::vector<std::string>& args, const char* program
   out_fd_ = out[0];
   std::string& text = output_;
   text.clear();
-  const int64_t deadline = NowMs() + 5000;
+  const int64_t deadline = NowMs() + timeout_ms;
   while (NowMs() < deadline) {
     pollfd p{out_fd_, POLLIN, 0};
     if (poll(&p, 1, 100) <= 0) continue;

@@ -83,9 +83,10 @@ int FreeTcpPort();
 /// palpa-sim as a child process; stopped with SIGTERM when destroyed.
 class SimProcess {
  public:
-  /// Starts PALPA_SIM_PATH (or `program`: another board that announces itself the same way) with
-  /// the arguments and waits for its "listening on" line.
-  bool Start(const std::vector<std::string>& args, const char* program = nullptr);
+  /// Starts PALPA_SIM_PATH (or `program`: another board, or a server, that announces itself the
+  /// same way) with the arguments and waits up to `timeout_ms` for its "listening on" line.
+  bool Start(const std::vector<std::string>& args, const char* program = nullptr,
+             int timeout_ms = 5000);
   ~SimProcess();
   /// Sends SIGTERM and returns the exit status (-1 if it had to be killed).
   int Stop();

@@ -9,17 +9,22 @@ life, type 1 any telegram, type 2 turns the watchdog off. 0x1021 counts the fall
 Usage: ek9000_emulator.py PORT|rtu:DEVICE VOLTS[,VOLTS...] [plant=TAU_MS:A/G[,A/G...]]
   (TCP on 127.0.0.1:PORT, or RTU at 115200 8N1 on DEVICE; the input terminals' voltages, nan: a
   wire break)
+  PORT 0: a free port the system picks. Over TCP, once the server accepts connections, it prints
+  "listening on tcp:127.0.0.1:PORT" (the line palpa-sim announces itself with): callers wait for
+  that line and read the port from it, with no free port to guess and no race for it.
   plant=...: a stand-in for the plant behind the module, so a closed loop can be seen: input i
   follows A + G x (output i's volts), clamped to 0-10 V, through a first-order lag of TAU_MS
   (a regulator and its pressure sensor, linear; not the project's plant model).
 """
+import asyncio
 import math
 import sys
 import threading
 import time
 
 from pymodbus.datastore import ModbusSequentialDataBlock, ModbusServerContext, ModbusSlaveContext
-from pymodbus.server import StartSerialServer, StartTcpServer
+from pymodbus.server import StartSerialServer
+from pymodbus.server.async_io import ModbusTcpServer
 from pymodbus.transaction import ModbusRtuFramer
 
 OUTPUTS, OUTPUT_WORDS = 0x0800, 16
@@ -115,4 +120,13 @@ context = ModbusServerContext(
 if where.startswith("rtu:"):
     StartSerialServer(context=context, framer=ModbusRtuFramer, port=where[4:], baudrate=115200)
 else:
-    StartTcpServer(context=context, address=("127.0.0.1", int(where)))
+
+    async def serve_tcp(port):
+        server = ModbusTcpServer(context, address=("127.0.0.1", port))
+        serving = asyncio.create_task(server.serve_forever())
+        await server.serving  # bound and listening
+        print("listening on tcp:127.0.0.1:%d" % server.server.sockets[0].getsockname()[1],
+              flush=True)
+        await serving
+
+    asyncio.run(serve_tcp(int(where)))

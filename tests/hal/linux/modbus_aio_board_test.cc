@@ -1,14 +1,9 @@
 // The core's supervisor on the Modbus module: an outage latches faults, the board holds safe.
-#include <modbus.h>
-#include <signal.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <memory>
 #include <string>
 
 #include "CppUTest/TestHarness.h"
-#include "mini_client.h"
+#include "ek9000_process.h"
 #include "palpa/core/board.h"
 #include "palpa/core/board_configs.h"
 #include "palpa/hal/fake/fakes.h"
@@ -23,28 +18,16 @@ using palpa::protocol::FaultBit;
 TEST_GROUP(ModbusAioBoard){};
 
 TEST(ModbusAioBoard, AModuleOutageLatchesOutputAndSensorFaults) {
-  const int port = palpa::testing::FreeTcpPort();
-  const pid_t emulator = fork();
-  if (emulator == 0) {  // eight inputs at 1 V: the thesis sensors' zero (1638 of 14 bits)
-    execl("/usr/bin/python3", "python3", PALPA_SOURCE_DIR "/tests/hal/linux/ek9000_emulator.py",
-          std::to_string(port).c_str(), "1,1,1,1,1,1,1,1", nullptr);
-    _exit(127);
-  }
-  struct Reaper {
-    pid_t pid;
-    ~Reaper() { kill(pid, SIGKILL), waitpid(pid, nullptr, 0); }
-  } reaper{emulator};
+  // Eight inputs at 1 V: the thesis sensors' zero (1638 of 14 bits).
+  palpa::testing::Ek9000Emulator emulator("1,1,1,1,1,1,1,1");
+  CHECK_TEXT(emulator.up(), emulator.output().c_str());
   aio::ModbusAioConfig config;
-  config.port = port;
+  config.port = emulator.port();
   config.output_count = config.input_count = 8;
   config.input_bits = 14;
   config.response_timeout_ms = 50;
-  std::unique_ptr<aio::ModbusAioModule> module;
   std::string error;
-  for (int i = 0; i < 500 && module == nullptr; ++i) {
-    module = aio::ModbusAioModule::Open(config, &error);
-    if (module == nullptr) usleep(20000);
-  }
+  std::unique_ptr<aio::ModbusAioModule> module = aio::ModbusAioModule::Open(config, &error);
   CHECK_TEXT(module != nullptr, error.c_str());
 
   const pc::BoardConfig* board_config = pc::FindBoardConfig("thesis-5finger");
@@ -65,7 +48,7 @@ TEST(ModbusAioBoard, AModuleOutageLatchesOutputAndSensorFaults) {
   };
   run(20);
   LONGS_EQUAL(0, board.latched_faults());
-  kill(emulator, SIGSTOP);  // the module falls silent
+  emulator.Pause();  // the module falls silent
   run(2);
   CHECK(board.latched_faults() & FaultBit(Fault::kOutputWrite));
   CHECK(board.latched_faults() & FaultBit(Fault::kImplausibleSensor));

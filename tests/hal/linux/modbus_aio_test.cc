@@ -14,6 +14,7 @@
 #include "ek9000_process.h"
 #include "mini_client.h"
 #include "palpa/hal/linux/modbus_aio.h"
+#include "wait_until.h"
 
 #include "CppUTest/TestHarness.h"
 

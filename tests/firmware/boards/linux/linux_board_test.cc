@@ -16,6 +16,7 @@
 // Last: both define CppUTest's allocation macros.
 #include "CppUTest/TestHarness.h"
 #include "ek9000_process.h"
+#include "wait_until.h"
 
 namespace pp = palpa::protocol;
 namespace pt = palpa::testing;
