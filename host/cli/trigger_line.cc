@@ -15,10 +15,10 @@ host::Result<std::shared_ptr<TriggerLine>> TriggerLine::Open(const std::string& 
 }
 
 void TriggerLine::Pulse(const char* who) {
-  line_->Set(true);
+  const bool up = line_->Set(true) == hal::Status::kOk;
   std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  line_->Set(false);
-  if (!line_->ok() && !said_) {  // said once: a session's every event would repeat it
+  const bool down = line_->Set(false) == hal::Status::kOk;
+  if (!(up && down) && !said_) {  // said once: a session's every event would repeat it
     std::fprintf(stderr, "%s: the trigger line's write failed\n", who);
     said_ = true;
   }

@@ -36,7 +36,7 @@ namespace {
 namespace hal_mps2 = palpa::hal::mps2;
 
 class NullPin final : public hal::DigitalOutput {
-  void DoSet(bool) override {}
+  hal::Status DoSet(bool) override { return hal::Status::kOk; }
 };
 
 // Valve drivers on the MPS2 are modelled: the plant vents unless both enables keep toggling.
@@ -45,9 +45,10 @@ class PulsePin final : public hal::DigitalOutput {
   bool toggled = false;
 
  private:
-  void DoSet(bool level) override {
+  hal::Status DoSet(bool level) override {
     toggled |= level != level_;
     level_ = level;
+    return hal::Status::kOk;
   }
   bool level_ = false;
 };
@@ -85,7 +86,10 @@ class VentPort final : public hal::DigitalPort {
   uint32_t bits = ~0u;
 
  private:
-  void DoWrite(uint32_t value) override { bits = value; }
+  uint8_t DoWrite(uint32_t value) override {
+    bits = value;
+    return kAllWritten;
+  }
 };
 VentPort g_vents;
 alignas(core::Board) unsigned char g_board_storage[sizeof(core::Board)];

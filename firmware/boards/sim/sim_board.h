@@ -37,12 +37,13 @@ class PulsedValve final : public hal::DigitalOutput {
   void set_now(uint64_t now_us) { now_us_ = now_us; }
 
  private:
-  void DoSet(bool level) override {
+  hal::Status DoSet(bool level) override {
     if (level != level_) {
       toggled_ = true;
       last_toggle_us_ = now_us_;
     }
     level_ = level;
+    return hal::Status::kOk;
   }
   bool level_ = false;
   bool toggled_ = false;
@@ -107,7 +108,10 @@ class SimBoard {
     bool level = false;
 
    private:
-    void DoSet(bool value) override { level = value; }
+    hal::Status DoSet(bool value) override {
+      level = value;
+      return hal::Status::kOk;
+    }
   };
   /// The lines' dump valve drivers: a set bit releases the line's valve (open).
   class VentPort final : public hal::DigitalPort {
@@ -115,7 +119,10 @@ class SimBoard {
     uint32_t bits = ~0u;
 
    private:
-    void DoWrite(uint32_t value) override { bits = value; }
+    uint8_t DoWrite(uint32_t value) override {
+      bits = value;
+      return kAllWritten;
+    }
   };
 
   SimBoard() = default;

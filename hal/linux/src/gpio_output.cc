@@ -29,8 +29,8 @@ GpioOutput::~GpioOutput() {
   gpiod_chip_close(chip_);
 }
 
-void GpioOutput::DoSet(bool level) {
-  if (gpiod_line_set_value(line_, level ? 1 : 0) != 0) ok_ = false;
+Status GpioOutput::DoSet(bool level) {
+  return gpiod_line_set_value(line_, level ? 1 : 0) == 0 ? Status::kOk : Status::kIoError;
 }
 
 }  // namespace palpa::hal::linux_gpio

@@ -90,7 +90,11 @@ void GpioOutput::Init(bool initial_level) {
   ConfigurePin(port_, pin_, PinMode::kOutput);
 }
 
-void GpioOutput::DoSet(bool level) { port_->BSRR = level ? (1u << pin_) : (1u << (pin_ + 16u)); }
+// A write to BSRR cannot fail: the pin's driver takes the level.
+Status GpioOutput::DoSet(bool level) {
+  port_->BSRR = level ? (1u << pin_) : (1u << (pin_ + 16u));
+  return Status::kOk;
+}
 
 void GpioInput::Init() { ConfigurePin(port_, pin_, PinMode::kInput, Pull::kUp); }
 

@@ -23,7 +23,7 @@ struct Dac final : hal::AnalogOutput {
   hal::AnalogOutputSpec DoSpec(uint8_t) const override { return {}; }
 };
 struct Pin final : hal::DigitalOutput {
-  void DoSet(bool) override {}
+  palpa::protocol::Status DoSet(bool) override { return palpa::protocol::Status::kOk; }
 };
 struct Link final : hal::ByteLink {
   size_t DoRead(uint8_t*, size_t) override { return 0; }

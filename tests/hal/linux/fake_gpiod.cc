@@ -16,6 +16,7 @@ State& state() {
   return s;
 }
 void Reset() { state() = State{}; }
+volatile std::sig_atomic_t unwritable_armed = 1;
 }  // namespace palpa::testing::fake_gpiod
 
 namespace fg = palpa::testing::fake_gpiod;
@@ -75,6 +76,11 @@ int gpiod_line_request_output(gpiod_line* line, const char*, int default_val) {
 }
 
 int gpiod_line_set_value(gpiod_line* line, int value) {
+  if (fg::unwritable_armed && fg::state().unwritable.count(line->Name())) {
+    fg::state().log.push_back("failed set " + line->Name() + "=" + std::to_string(value));
+    errno = EIO;
+    return -1;
+  }
   fg::state().log.push_back("set " + line->Name() + "=" + std::to_string(value));
   return 0;
 }

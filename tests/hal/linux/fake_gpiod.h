@@ -3,6 +3,7 @@
 // by name.
 #pragma once
 
+#include <csignal>
 #include <deque>
 #include <map>
 #include <set>
@@ -24,9 +25,14 @@ struct State {
   std::map<std::string, int> levels;
   std::map<std::string, std::deque<bool>> edges;
   std::set<std::string> broken;          ///< reads of these lines fail (EIO)
+  std::set<std::string> unwritable;      ///< writes to these lines fail (EIO), the level kept
   std::vector<gpiod_line*> event_lines;  ///< every line got from an open chip (fd to line)
 };
 State& state();
 void Reset();
+
+/// The `unwritable` lines fail only while this is set (it is unless a test clears it): a process
+/// driven from outside arms the failure from a signal handler (fake_gpiod_process.cc).
+extern volatile std::sig_atomic_t unwritable_armed;
 
 }  // namespace palpa::testing::fake_gpiod

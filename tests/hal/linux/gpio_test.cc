@@ -41,11 +41,16 @@ TEST(Gpio, ALineIsRequestedDrivenAndReleased) {
   {
     auto line = GpioOutput::Open("1:5", true, &error);  // a chip by number
     CHECK_TEXT(line != nullptr, error.c_str());
-    line->Set(false);
-    line->Set(true);
+    CHECK(line->Set(false) == palpa::hal::Status::kOk);
+    // A value the kernel refuses is reported, not taken for written.
+    fg::state().unwritable = {"gpiochip1:5"};
+    CHECK(line->Set(true) == palpa::hal::Status::kIoError);
+    fg::state().unwritable.clear();
+    CHECK(line->Set(true) == palpa::hal::Status::kOk);
   }
   const std::vector<std::string> expected = {"request gpiochip1:5=1", "set gpiochip1:5=0",
-                                             "set gpiochip1:5=1", "release gpiochip1:5"};
+                                             "failed set gpiochip1:5=1", "set gpiochip1:5=1",
+                                             "release gpiochip1:5"};
   CHECK(fg::state().log == expected);
   LONGS_EQUAL(0, fg::state().open_chips);
 }

@@ -3,30 +3,41 @@
 
 #include <cstdint>
 
+#include "palpa/protocol/status.h"
+
 namespace palpa::hal {
 
+using protocol::Status;
+
+/// One output. Writing it may fail (a GPIO line the kernel refuses), as a DAC's write may: the
+/// caller decides what a failed write means for safety.
 class DigitalOutput {
  public:
-  void Set(bool level) { DoSet(level); }
+  /// kOk once the output holds `level`; an error when the write did not take effect.
+  Status Set(bool level) { return DoSet(level); }
 
  protected:
   ~DigitalOutput() = default;
 
  private:
-  virtual void DoSet(bool level) = 0;
+  virtual Status DoSet(bool level) = 0;
 };
 
 /// Outputs of one bit each, written together (a GPIO port's set/reset register): bit i drives
 /// output i.
 class DigitalPort {
  public:
-  void Write(uint32_t bits) { DoWrite(bits); }
+  /// In Write's answer: every output took its bit.
+  static constexpr uint8_t kAllWritten = 0xFF;
+
+  /// Every output is attempted; returns the first output whose write failed, or kAllWritten.
+  uint8_t Write(uint32_t bits) { return DoWrite(bits); }
 
  protected:
   ~DigitalPort() = default;
 
  private:
-  virtual void DoWrite(uint32_t bits) = 0;
+  virtual uint8_t DoWrite(uint32_t bits) = 0;
 };
 
 class DigitalInput {
@@ -47,10 +58,10 @@ class PulsingEnable {
  public:
   explicit PulsingEnable(DigitalOutput& output) : output_(output) {}
 
-  /// Call once per tick. enable=true toggles the line; false holds it low.
-  void Tick(bool enable) {
+  /// Call once per tick. enable=true toggles the line; false holds it low. The output's answer.
+  Status Tick(bool enable) {
     level_ = enable ? !level_ : false;
-    output_.Set(level_);
+    return output_.Set(level_);
   }
   bool level() const { return level_; }
 

@@ -50,15 +50,39 @@ class FakeAnalogInput final : public AnalogInput {
   uint8_t DoBits() const override { return resolution; }
 };
 
+/// An output whose writes fail (the level kept) while `fail` is set.
 class FakeDigitalOutput final : public DigitalOutput {
  public:
   bool level = false;
   uint32_t changes = 0;
+  bool fail = false;
 
  private:
-  void DoSet(bool value) override {
+  Status DoSet(bool value) override {
+    if (fail) return Status::kIoError;
     changes += value != level;
     level = value;
+    return Status::kOk;
+  }
+};
+
+/// A port of one bit per output; writing output `fail_bit` fails (its bit kept) while it is set.
+class FakeDigitalPort final : public DigitalPort {
+ public:
+  uint32_t bits = 0;
+  uint32_t writes = 0;
+  uint8_t fail_bit = kAllWritten;
+
+ private:
+  uint8_t DoWrite(uint32_t value) override {
+    ++writes;
+    if (fail_bit == kAllWritten) {
+      bits = value;
+      return kAllWritten;
+    }
+    const uint32_t kept = 1u << fail_bit;
+    bits = (value & ~kept) | (bits & kept);
+    return fail_bit;
   }
 };
 

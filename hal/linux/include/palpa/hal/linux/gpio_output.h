@@ -23,14 +23,12 @@ class GpioOutput final : public DigitalOutput {
   GpioOutput(const GpioOutput&) = delete;
   GpioOutput& operator=(const GpioOutput&) = delete;
 
-  bool ok() const { return ok_; }  ///< false once a write has failed
-
  private:
   GpioOutput(gpiod_chip* chip, gpiod_line* line) : chip_(chip), line_(line) {}
-  void DoSet(bool level) override;
+  /// kIoError when the kernel refused the value (the line keeps its level).
+  Status DoSet(bool level) override;
   gpiod_chip* chip_;
   gpiod_line* line_;
-  bool ok_ = true;
 };
 
 }  // namespace palpa::hal::linux_gpio

@@ -45,7 +45,7 @@ class GpioOutput final : public DigitalOutput {
   void Init(bool initial_level);
 
  private:
-  void DoSet(bool level) override;
+  Status DoSet(bool level) override;
   GpioRegs* port_;
   uint8_t pin_;
 };
