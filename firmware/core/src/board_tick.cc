@@ -50,21 +50,36 @@ void Board::Tick(uint64_t now_us) {
 }
 
 void Board::WriteOutputs() {
-  // The supervisor judges a failed write on the next tick.
-  supervisor_input_.failed_output = lines_.WriteDac(io_.dac);
+  using protocol::OutputKind;
+  using protocol::OutputWriteDetail;
+  // The supervisor judges a failed write on the next tick: the first output that failed.
+  int32_t failed = kNoFailedOutput;
+  auto note = [&failed](bool written, int32_t detail) {
+    if (!written && failed == kNoFailedOutput) failed = detail;
+  };
+  const uint8_t dac = lines_.WriteDac(io_.dac);
+  note(dac == protocol::kNoLine, OutputWriteDetail(OutputKind::kDac, dac));
   // Critical for safety: valves and pump are held only while the board is not safe (read once:
   // the calls between could change it, for all the compiler knows).
   const bool hold = !safe_;
-  supply_pulse_.Tick(hold);
-  dump_pulse_.Tick(hold);
+  note(supply_pulse_.Tick(hold) == Status::kOk, OutputWriteDetail(OutputKind::kSupplyEnable));
+  note(dump_pulse_.Tick(hold) == Status::kOk, OutputWriteDetail(OutputKind::kDumpEnable));
   // The lines' own dump valves: open where a line vents toward atmosphere, every one while safe
-  // (BoardLines::vents); written when that changes.
+  // (BoardLines::vents); written when that changes, and again each tick after a failed write.
   const uint32_t vents = lines_.vents();
   if (vents != vents_written_) {
     vents_written_ = vents;
-    if (io_.line_vents != nullptr) io_.line_vents->Write(vents);
+    if (io_.line_vents != nullptr) {
+      const uint8_t valve = io_.line_vents->Write(vents);
+      if (valve != hal::DigitalPort::kAllWritten) {
+        vents_written_ = ~0u;
+        note(false, OutputWriteDetail(OutputKind::kLineValve, valve));
+      }
+    }
   }
-  io_.pump_enable.Set(hold && supervisor_.pump_on);
+  note(io_.pump_enable.Set(hold && supervisor_.pump_on) == Status::kOk,
+       OutputWriteDetail(OutputKind::kPumpEnable));
+  supervisor_input_.failed_output = failed;
 }
 
 }  // namespace palpa::core

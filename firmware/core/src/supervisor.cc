@@ -63,9 +63,9 @@ uint32_t Supervise(const SupervisorSettings& settings, SupervisorState& s,
   }
   if (in.estop_pin) raise(Fault::kEStopPin, 0);
   if (!in.config_intact) raise(Fault::kConfigCrc, 0);
-  // The regulator keeps its last code: only the valves (they fall back when the board is safe)
-  // can take the pressure away.
-  if (in.failed_output != protocol::kNoLine) raise(Fault::kOutputWrite, in.failed_output);
+  // A regulator keeps its last code, a valve or enable its last level: the outputs that still
+  // answer (the valves fall back as their enables stop toggling) take the pressure away.
+  if (in.failed_output != kNoFailedOutput) raise(Fault::kOutputWrite, in.failed_output);
 
   // Every tick, every line: a reading that is no pressure, or one beyond the limits.
   if (in.readings.first_invalid != protocol::kNoLine)

@@ -42,8 +42,15 @@ std::string FaultDetail(uint8_t fault, int32_t detail, int number_from) {
       return "reading " + std::to_string(detail) + " Pa";
     case pp::Fault::kImplausibleSensor:
     case pp::Fault::kLeak:
-    case pp::Fault::kOutputWrite:
       return "line " + std::to_string(detail + number_from);
+    case pp::Fault::kOutputWrite: {
+      // Bits 0-7 the line (kNoLine: an output every line shares), 8-15 the output's kind.
+      const uint32_t kind = static_cast<uint32_t>(detail) >> 8, line = detail & 0xFFu;
+      if (detail < 0 || kind >= static_cast<uint32_t>(pp::OutputKind::kCount)) return "";
+      const std::string name = pp::kOutputKindNames[kind];
+      if (line == pp::kNoLine) return name;
+      return "line " + std::to_string(static_cast<int>(line) + number_from) + "'s " + name;
+    }
     case pp::Fault::kPumpRunTime:
       return "pump on for " + std::to_string(detail) + " s";
     case pp::Fault::kUnexpectedReset:

@@ -34,7 +34,8 @@ std::string FaultRemedy(uint8_t fault) {
     case Fault::kPumpRunTime:
       return "the vacuum pump ran longer than allowed — check the vacuum circuit for leaks";
     case Fault::kOutputWrite:
-      return "an analogue output could not be written — check the DAC and its wiring";
+      return "an output could not be written (a DAC channel, a valve or an enable; palpa diag says "
+             "which) — check its driver and wiring";
     default:
       return "a fault this host has no description for (a newer board) — see palpa diag";
   }

@@ -8,6 +8,7 @@ BoardHarness::BoardHarness(const char* config_name, pp::ResetCause reset_cause,
     : flash(shared_flash != nullptr ? shared_flash : &own_flash) {
   const pc::BoardConfig* config = pc::FindBoardConfig(config_name);
   pc::BoardIo io{clock, dac, &adc, supply, dump, pump, &estop, link, flash, 0, update};
+  io.line_vents = &vents;
   pc::BoardIdentity id;
   id.boot_nonce = 0xB0075EED;
   id.reset_cause = reset_cause;

@@ -33,6 +33,7 @@ struct BoardHarness {
   fake::FakeAnalogOutput dac;
   fake::FakeAnalogInput adc;
   fake::FakeDigitalOutput supply, dump, pump;
+  fake::FakeDigitalPort vents;  ///< the lines' own dump valve drivers (BoardIo::line_vents)
   fake::FakeDigitalInput estop;
   fake::FakeByteLink link;
   fake::SimulatedNorFlash own_flash{64 * 1024, 8 * 1024};

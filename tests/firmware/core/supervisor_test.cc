@@ -201,7 +201,7 @@ TEST(Supervisor, AFailedOutputWriteLatchesAndPersistsWhileWritesFail) {
   f.in.failed_output = 3;
   LONGS_EQUAL(FaultBit(Fault::kOutputWrite), f.Tick(1000));
   LONGS_EQUAL((int)pp::Status::kConditionPersists, (int)pc::ClearFaults(f.state, pp::kAllFaults));
-  f.in.failed_output = pp::kNoLine;
+  f.in.failed_output = pc::kNoFailedOutput;
   f.Tick(2000);
   LONGS_EQUAL((int)pp::Status::kOk, (int)pc::ClearFaults(f.state, pp::kAllFaults));
   pp::FaultRecord records[pp::kMaxFaultRecords];

@@ -204,7 +204,8 @@ class Board {
   bool reboot_requested_ = false;
   hal::PulsingEnable supply_pulse_;
   hal::PulsingEnable dump_pulse_;
-  uint32_t vents_written_ = ~0u;  ///< the line vents last written (none yet: no line mask)
+  /// The line vents last written (none yet, or the write failed: no line mask).
+  uint32_t vents_written_ = ~0u;
 };
 
 }  // namespace palpa::core

@@ -61,6 +61,9 @@ inline void NoteReading(ReadingSummary& summary, uint8_t line, LineReading readi
   }
 }
 
+/// SupervisorInput::failed_output when every output took its write.
+inline constexpr int32_t kNoFailedOutput = -1;
+
 struct SupervisorInput {
   uint64_t now_us = 0;
   bool session_open = false;
@@ -72,8 +75,10 @@ struct SupervisorInput {
   bool config_intact = true;   ///< the periodic CRC of the live configuration matched
   bool safe = false;           ///< outputs are in the safe state this tick
   bool vacuum_demand = false;  ///< a line commanded vacuum beyond its regulator's minimum
-  uint8_t failed_output = protocol::kNoLine;  ///< first DAC channel whose last write failed
-  ReadingSummary readings;                    ///< every sensor line's reading this tick
+  /// The first output whose last write failed (output_write's detail, protocol::OutputKind), or
+  /// kNoFailedOutput.
+  int32_t failed_output = kNoFailedOutput;
+  ReadingSummary readings;  ///< every sensor line's reading this tick
   std::array<LineObservation, protocol::kMaxLines> lines{};
 };
 
