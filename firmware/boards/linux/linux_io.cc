@@ -68,18 +68,25 @@ bool LinuxIo::WriteSafe(std::string* error) {
   // The module first: the regulators vent on 0 V whatever the valves do.
   const bool module_ok = module_->WriteSafe() == protocol::Status::kOk;
   if (!module_ok) *error = module_->last_error();
-  supply_.Set(false);
-  dump_.Set(false);
-  pump_.Set(false);
-  valves_.Write(~0u);  // every valve driver released
-  return module_ok;
-}
-
-bool LinuxIo::gpio_failed() const {
-  bool failed = false;
-  for (const OptionalOutput* o : {&supply_, &dump_, &pump_}) failed |= o->line && !o->line->ok();
-  for (const auto& v : valves_.valves) failed |= !v->ok();
-  return failed || (estop_ && !estop_->error().empty());
+  // Each line once, every one tried: a line that refuses is named, not retried.
+  std::string refused;
+  auto low = [&refused](hal::DigitalOutput& output, const char* name) {
+    if (output.Set(false) == protocol::Status::kOk) return;
+    refused += (refused.empty() ? "" : ", ") + std::string(name);
+  };
+  low(supply_, "gpio.supply_enable");
+  low(dump_, "gpio.dump_enable");
+  low(pump_, "gpio.pump_enable");
+  const uint8_t valve = valves_.Write(~0u);  // every valve driver released
+  if (valve != hal::DigitalPort::kAllWritten) {
+    refused +=
+        (refused.empty() ? "" : ", ") + std::string("gpio.valves[") + std::to_string(valve) + "]";
+  }
+  if (!refused.empty()) {
+    const std::string gpio = "GPIO lines not set low: " + refused;
+    *error = module_ok ? gpio : *error + "; " + gpio;
+  }
+  return module_ok && refused.empty();
 }
 
 size_t LinuxIo::gpio_lines() const {

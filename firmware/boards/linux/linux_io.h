@@ -28,20 +28,24 @@ class OptionalOutput final : public hal::DigitalOutput {
   std::unique_ptr<hal::linux_gpio::GpioOutput> line;
 
  private:
-  void DoSet(bool level) override {
-    if (line) line->Set(level);
-  }
+  hal::Status DoSet(bool level) override { return line ? line->Set(level) : hal::Status::kOk; }
 };
 
 /// The lines' dump valve drivers: bit i set releases line i's valve (unpowered: open), so the
-/// GPIO line is low; clear powers it shut.
+/// GPIO line is low; clear powers it shut. Every valve is written; the first that failed is
+/// reported.
 class ValvePort final : public hal::DigitalPort {
  public:
   std::vector<std::unique_ptr<hal::linux_gpio::GpioOutput>> valves;
 
  private:
-  void DoWrite(uint32_t bits) override {
-    for (size_t i = 0; i < valves.size(); ++i) valves[i]->Set((bits >> i & 1u) == 0);
+  uint8_t DoWrite(uint32_t bits) override {
+    uint8_t failed = kAllWritten;
+    for (size_t i = 0; i < valves.size(); ++i) {
+      if (valves[i]->Set((bits >> i & 1u) == 0) != hal::Status::kOk && failed == kAllWritten)
+        failed = static_cast<uint8_t>(i);
+    }
+    return failed;
   }
 };
 
@@ -54,10 +58,9 @@ class LinuxIo {
   /// The board's hardware; `link` carries the host's bytes.
   core::BoardIo Io(hal::ByteLink& link);
   /// Everything to its safe value: 0 V on every module output, every GPIO line low. False when
-  /// the module could not be written (its own watchdog then zeroes the outputs).
+  /// the module could not be written (its own watchdog then zeroes the outputs) or a GPIO line
+  /// refused its level, *error saying which.
   bool WriteSafe(std::string* error);
-  /// A GPIO write failed (the tick cannot see it through DigitalOutput): reported, not hidden.
-  bool gpio_failed() const;
 
   hal::linux_aio::ModbusAioModule& module() { return *module_; }
   size_t gpio_lines() const;

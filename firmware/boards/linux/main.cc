@@ -65,7 +65,8 @@ int main(int argc, char** argv) {
   if (!io) return Failed(error, 1);
   lb::HostLink link;
   if (!link.Open(file->listen, file->baud, &error)) {
-    io->WriteSafe(&error);
+    std::string ignored;
+    io->WriteSafe(&ignored);
     return Failed(error, 1);
   }
   std::unique_ptr<palpa::hal::linux_wdt::WatchdogDevice> watchdog;
@@ -106,16 +107,11 @@ int main(int argc, char** argv) {
 
   // The grid starts where the core's tick pacer did (Board::Start read the same clock just now).
   lb::DeadlineGrid grid(lb::MonotonicNs(), palpa::core::Board::kTickUs * 1000u);
-  bool gpio_reported = false;
   while (!g_stop) {
     if (!grid.Sleep()) continue;  // a signal: the loop condition decides
     link.Pump();
     if (board.Step() && watchdog) watchdog->Kick();  // only after a tick wrote its outputs
     link.Pump();
-    if (!gpio_reported && io->gpio_failed()) {
-      gpio_reported = true;
-      std::fprintf(stderr, "palpa-linux-board: a GPIO line could not be written or read\n");
-    }
     grid.Advance(lb::MonotonicNs());
   }
   const bool safe = io->WriteSafe(&error);

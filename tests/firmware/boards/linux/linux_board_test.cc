@@ -1,6 +1,7 @@
 // palpa-linux-board as a process, with the EK9000 emulator and a stand-in plant behind it: the
 // link behaviour every board meets, safe outputs on SIGTERM, the module's watchdog after kill -9,
-// a Modbus outage latched and reported over the link, refusals at start.
+// a Modbus outage and a failed GPIO write (a fake libgpiod linked in) latched and reported over
+// the link, refusals at start.
 #include <unistd.h>
 
 #include <cstdio>
@@ -171,6 +172,59 @@ TEST(LinuxBoard, AnOutageIsLatchedOverThePtyAndKillLeavesTheModuleToItsWatchdog)
   LONGS_EQUAL(-1, board.WaitExit(5000));
   CHECK(pt::WaitUntil([&] { return emulator.Holding(kOutputs + 1) == 0; }, 3));
   LONGS_EQUAL(fallbacks + 1, emulator.Holding(kFallbacks));
+  unlink(file.c_str());
+}
+
+TEST(LinuxBoard, AGpioWriteThatFailsIsLatchedOverTheLinkAndTheBoardGoesSafe) {
+  // The fake libgpiod in place of the real one: the supply enable's line refuses its values from
+  // SIGUSR1 on, as a line whose chip went away does.
+  pt::Ek9000Emulator emulator(kVolts, kPlant);
+  CHECK(emulator.up());
+  const std::string file = WriteBoardFile(emulator.port(), "tcp:127.0.0.1:0", R"("gpio": {
+      "supply_enable": "gpiochip0:17", "dump_enable": "gpiochip0:18",
+      "pump_enable": "gpiochip0:27", "valves": ["gpiochip0:5", "gpiochip0:6"]})");
+  setenv("PALPA_FAKE_GPIOD_CHIPS", "gpiochip0", 1);
+  setenv("PALPA_FAKE_GPIOD_FAIL_ON_SIGUSR1", "gpiochip0:17", 1);
+  pt::SimProcess board;
+  const bool started = board.Start({file}, PALPA_LINUX_BOARD_FAKE_GPIO_PATH);
+  unsetenv("PALPA_FAKE_GPIOD_CHIPS");
+  unsetenv("PALPA_FAKE_GPIOD_FAIL_ON_SIGUSR1");
+  CHECK_TEXT(started, board.output().c_str());
+  CHECK_TEXT(board.output().find(", 5 GPIO lines") != std::string::npos, board.output().c_str());
+  auto opened = palpa::host::Device::Open(board.address(), {});
+  CHECK_TEXT(opened.ok(), opened.message.c_str());
+  palpa::host::Device& d = *opened.value;
+  CHECK(d.SetLines({{1, 30.0}}).ok());
+  CHECK(pt::WaitUntil([&] { return emulator.Holding(kOutputs + 1) > 0; }, 3));
+  auto before = d.Diagnostics();
+  CHECK_TEXT(before.ok(), before.message.c_str());
+  LONGS_EQUAL(0, before.value.fault_bitmap);
+
+  kill(board.pid(), SIGUSR1);
+  pp::Diagnostics diag{};
+  pt::WaitUntil(
+      [&] {
+        auto read = d.Diagnostics();
+        if (read.ok()) diag = read.value;
+        return (diag.fault_bitmap & pp::FaultBit(pp::Fault::kOutputWrite)) != 0;
+      },
+      5);
+  CHECK_TEXT(diag.fault_bitmap & pp::FaultBit(pp::Fault::kOutputWrite),
+             palpa::host::FaultNames(diag.fault_bitmap).c_str());
+  CHECK(diag.history_count >= 1);
+  const pp::FaultRecord& record = diag.history[diag.history_count - 1];
+  LONGS_EQUAL(static_cast<int>(pp::Fault::kOutputWrite), record.fault);
+  LONGS_EQUAL(pp::OutputWriteDetail(pp::OutputKind::kSupplyEnable), record.detail);
+  // Safe: line 1's regulator at 0 V; the host is refused new setpoints while the line fails.
+  CHECK(pt::WaitUntil([&] { return emulator.Holding(kOutputs + 1) == 0; }, 3));
+  CHECK(d.SetLines({{1, 30.0}}).status == pp::Status::kFaulted);
+  CHECK(d.ClearFault().status == pp::Status::kConditionPersists);
+
+  // The exit's safe writes meet the same line: the module is at 0 V, the line is named.
+  opened.value.reset();
+  kill(board.pid(), SIGTERM);
+  LONGS_EQUAL(1, board.WaitExit(5000));
+  for (int i = 0; i < 8; ++i) LONGS_EQUAL(0, emulator.Holding(kOutputs + i));
   unlink(file.c_str());
 }
 
