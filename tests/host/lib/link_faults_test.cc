@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "board_transport.h"
+#include "palpa/host/bit_names.h"
 #include "palpa/host/fault_transport.h"
 #include "palpa/host/link.h"
 #include "palpa/protocol/faults.h"
@@ -280,4 +281,19 @@ TEST(LinkFaults, FaultNamesShowEveryFaultIncludingOnesThisHostDoesNotKnow) {
   STRCMP_EQUAL("output_write",
                ph::FaultName(static_cast<uint8_t>(pp::Fault::kOutputWrite)).c_str());
   STRCMP_EQUAL("fault_10", ph::FaultName(static_cast<uint8_t>(pp::Fault::kCount)).c_str());
+}
+
+TEST(LinkFaults, AnOutputWriteDetailNamesTheOutput) {
+  using pp::OutputKind;
+  using pp::OutputWriteDetail;
+  const auto f = static_cast<uint8_t>(pp::Fault::kOutputWrite);
+  STRCMP_EQUAL("line 3's DAC channel",
+               ph::FaultDetail(f, OutputWriteDetail(OutputKind::kDac, 2), 1).c_str());
+  STRCMP_EQUAL("line 0's valve",
+               ph::FaultDetail(f, OutputWriteDetail(OutputKind::kLineValve, 0), 0).c_str());
+  STRCMP_EQUAL("supply enable",
+               ph::FaultDetail(f, OutputWriteDetail(OutputKind::kSupplyEnable), 1).c_str());
+  STRCMP_EQUAL("pump enable",
+               ph::FaultDetail(f, OutputWriteDetail(OutputKind::kPumpEnable), 1).c_str());
+  STRCMP_EQUAL("", ph::FaultDetail(f, 0x7FF, 1).c_str());  // a kind a newer board may send
 }
