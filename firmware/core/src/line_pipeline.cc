@@ -77,12 +77,17 @@ LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us)
   // Step shaping: a model of the chamber's lag, inverted (line_step.h).
   const float chamber_tau = static_cast<float>(line.chamber_tau_us) * 1e-6f;
   p.shaping = line.chamber_tau_us > 0 && line.overdrive_pa > 0;
-  p.regulator_gain = 1.0f / p.model_alpha;
   p.chamber_alpha = p.shaping ? dt / (chamber_tau + dt) : 1.0f;
   // A chamber slower than the regulator reaches the target without overshoot when the regulator
   // leads it by this much per Pa it is short (two lags in series: the slow mode then vanishes).
-  const float lead = (chamber_tau - tau) / (tau + dt);
-  p.chamber_lead = p.shaping && lead > 0 ? lead : 0.0f;
+  const float lead_or_none = (chamber_tau - tau) / (tau + dt);
+  const float lead = p.shaping && lead_or_none > 0 ? lead_or_none : 0.0f;
+  // The regulator model's lag inverted: command = R + (target + lead (target − C) − R) / α,
+  // its products taken here, once, instead of every tick.
+  const float gain = 1.0f / p.model_alpha;
+  p.shape_target = gain * (1.0f + lead);
+  p.shape_chamber = gain * lead;
+  p.shape_regulator = 1.0f - gain;
   // An overdrive within the trim's dead band would only ever command the target (line_step.h).
   const float overdrive = static_cast<float>(line.overdrive_pa);
   p.overdrive_pa = p.shaping && overdrive > p.dead_band_pa ? overdrive : 0.0f;

@@ -55,8 +55,9 @@ float FeedForward(const LineParams& p, LineState& s, float previous, float now, 
 [[gnu::always_inline]] inline float Shape(const LineParams& p, LineState& s, float target,
                                           uint8_t& status) {
   const float regulator = s.regulator_pa, chamber = s.chamber_pa;
-  const float wanted = target + p.chamber_lead * (target - chamber);
-  float command = regulator + (wanted - regulator) * p.regulator_gain;
+  // regulator + (target + lead × (target − chamber) − regulator) / α (MakeLineParams).
+  float command =
+      p.shape_target * target - p.shape_chamber * chamber + p.shape_regulator * regulator;
   // Held within the overdrive, then within the line's limits (meeting them: `saturated`, the
   // step takes longer than the model asked for). The target is within the limits, so a command
   // held below it can only meet the lower one, above it the upper one. The overdrive is beyond

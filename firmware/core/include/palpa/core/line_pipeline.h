@@ -52,13 +52,14 @@ struct LineParams {
   float model_alpha = 1;  ///< regulator-model lag per tick
   /// The regulator model's dead time in ticks (at most kMaxDeadTicks - 1).
   uint8_t delay_ticks = 0;
-  /// Step shaping, on when the chamber's lag is known and an overdrive allowed: the regulator
-  /// model's lag inverted, the chamber model's lag per tick, how far beyond the target the
-  /// regulator is led while a chamber slower than it closes in (per Pa the chamber is short), how
-  /// far beyond the target the command may go, and how many ticks the trim holds after the command
-  /// last left the target (dead time + settling).
+  /// Step shaping, on when the chamber's lag is known and an overdrive allowed: the command that
+  /// brings the regulator model in one tick to the target led by the chamber's lead, as
+  /// shape_target × target − shape_chamber × chamber model + shape_regulator × regulator model
+  /// (line_step.h; one product and two multiply-adds a tick), the chamber model's lag per tick,
+  /// how far beyond the target the command may go, and how many ticks the trim holds after the
+  /// command last left the target (dead time + settling).
   bool shaping = false;
-  float regulator_gain = 1, chamber_alpha = 1, chamber_lead = 0;
+  float shape_target = 1, shape_chamber = 0, shape_regulator = 0, chamber_alpha = 1;
   float overdrive_pa = 0;
   uint16_t shape_hold_ticks = 0;
   uint8_t correction_count = 0;
