@@ -1,56 +1,37 @@
-// palpa serve's API from C++: the WebSocket handshake and frames by hand on a TCP socket (the
-// host library has no WebSocket dependency), calls answered by id, notifications queued.
+// palpa serve's API from C++: Boost.Beast's WebSocket client (the upgrade verified, frames masked
+// and bounded, pings answered) on a thread of its own; calls answered by id, notifications queued.
 #include "palpa/host/serve_client.h"
 
-#include <netdb.h>
-#include <sys/socket.h>
-#include <unistd.h>
-
+#include <cctype>
 #include <chrono>
-#include <cstring>
-#include <random>
+#include <deque>
+#include <future>
+#include <optional>
+#include <thread>
+#include <utility>
+
+#include <boost/asio/executor_work_guard.hpp>
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/post.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/websocket.hpp>
 
 namespace palpa::host {
 namespace {
 
 using nlohmann::json;
+namespace net = boost::asio;
+namespace beast = boost::beast;
+namespace websocket = beast::websocket;
 
 /// Notifications kept for a reader that does not take them (telemetry it did not ask for).
 constexpr size_t kMaxQueuedNotifications = 4096;
-
-std::string Base64(const std::string& in) {
-  static const char* const kAlphabet =
-      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (size_t i = 0; i < in.size(); i += 3) {
-    uint32_t v = static_cast<uint8_t>(in[i]) << 16;
-    if (i + 1 < in.size()) v |= static_cast<uint32_t>(static_cast<uint8_t>(in[i + 1])) << 8;
-    if (i + 2 < in.size()) v |= static_cast<uint8_t>(in[i + 2]);
-    out += kAlphabet[(v >> 18) & 63];
-    out += kAlphabet[(v >> 12) & 63];
-    out += i + 1 < in.size() ? kAlphabet[(v >> 6) & 63] : '=';
-    out += i + 2 < in.size() ? kAlphabet[v & 63] : '=';
-  }
-  return out;
-}
-
-std::string RandomBytes(size_t n) {
-  static std::random_device device;
-  std::string out(n, '\0');
-  for (char& c : out) c = static_cast<char>(device() & 0xff);
-  return out;
-}
-
-bool ReadExactly(int fd, void* data, size_t n) {
-  auto* p = static_cast<uint8_t*>(data);
-  while (n > 0) {
-    const ssize_t got = ::recv(fd, p, n, 0);
-    if (got <= 0) return false;
-    p += got;
-    n -= static_cast<size_t>(got);
-  }
-  return true;
-}
+/// Beyond anything the server sends (a study's report is the largest answer): a bigger message
+/// closes the connection instead of growing without bound.
+constexpr size_t kMaxMessageBytes = 64u << 20;
+/// Connecting, the upgrade and the closing handshake each get this long.
+constexpr auto kHandshakeTimeout = std::chrono::seconds(10);
 
 Status StatusNamed(const std::string& name) {
   for (unsigned i = 0; i < static_cast<unsigned>(Status::kCount); ++i) {
@@ -90,120 +71,159 @@ Result<ServeAddress> ParseServeUri(const std::string& uri) {
   return a;
 }
 
+/// Every operation on the socket runs on the io_context's one thread, as Beast requires; other
+/// threads hand it writes and wait for their outcome.
+struct ServeClient::Impl {
+  explicit Impl(ServeClient& client) : owner(client) {}
+
+  /// Reads messages until the connection ends; Beast answers pings and close frames meanwhile.
+  void ReadNext() {
+    ws.async_read(incoming, [this](beast::error_code ec, size_t) {
+      if (ec) {
+        open = false;
+        owner.Ended();
+        return;
+      }
+      if (ws.got_text()) owner.Arrived(beast::buffers_to_string(incoming.data()));
+      incoming.consume(incoming.size());
+      ReadNext();
+    });
+  }
+
+  /// One write in flight at a time (Beast's rule); the rest wait in order.
+  void Queue(std::string text, std::promise<bool> sent) {
+    if (!open) return sent.set_value(false);
+    outgoing.emplace_back(std::move(text), std::move(sent));
+    if (outgoing.size() == 1) WriteFront();
+  }
+
+  void WriteFront() {
+    ws.async_write(net::buffer(outgoing.front().first), [this](beast::error_code ec, size_t) {
+      outgoing.front().second.set_value(!ec);
+      outgoing.pop_front();
+      if (ec) open = false;
+      for (; !open && !outgoing.empty(); outgoing.pop_front())
+        outgoing.front().second.set_value(false);
+      if (!outgoing.empty()) WriteFront();
+    });
+  }
+
+  ServeClient& owner;
+  net::io_context io;
+  std::optional<net::executor_work_guard<net::io_context::executor_type>> work;
+  websocket::stream<beast::tcp_stream> ws{io};
+  beast::flat_buffer incoming;
+  std::deque<std::pair<std::string, std::promise<bool>>> outgoing;
+  bool open = false;
+  std::thread thread;
+};
+
 Result<std::unique_ptr<ServeClient>> ServeClient::Connect(const std::string& uri) {
   const auto address = ParseServeUri(uri);
   if (!address.ok()) return address.outcome();
   const ServeAddress& a = address.value;
-  addrinfo hints{};
-  hints.ai_socktype = SOCK_STREAM;
-  addrinfo* found = nullptr;
+  std::unique_ptr<ServeClient> client(new ServeClient());
+  Impl& s = *client->impl_;
   const std::string port = std::to_string(a.port);
-  if (const int e = ::getaddrinfo(a.host.c_str(), port.c_str(), &hints, &found); e != 0)
-    return {Status::kNotFound, uri + ": " + ::gai_strerror(e)};
-  int fd = -1;
-  for (addrinfo* p = found; p != nullptr && fd < 0; p = p->ai_next) {
-    fd = ::socket(p->ai_family, p->ai_socktype, p->ai_protocol);
-    if (fd >= 0 && ::connect(fd, p->ai_addr, p->ai_addrlen) != 0) {
-      ::close(fd);
-      fd = -1;
-    }
-  }
-  ::freeaddrinfo(found);
-  if (fd < 0)
-    return {Status::kUnavailable, uri + ": nothing listens there (is palpa serve running?)"};
+  beast::error_code ec;
+  const auto endpoints = net::ip::tcp::resolver(s.io).resolve(a.host, port, ec);
+  if (ec) return {Status::kNotFound, uri + ": " + ec.message()};
+
   const std::string authority =
       (a.host.find(':') != std::string::npos ? "[" + a.host + "]" : a.host) + ":" + port;
-  const std::string request =
-      "GET /websocket" + (a.token.empty() ? "" : "?token=" + a.token) +
-      " HTTP/1.1\r\nHost: " + authority +
-      "\r\nUpgrade: websocket\r\nConnection: Upgrade\r\nSec-WebSocket-Key: " +
-      Base64(RandomBytes(16)) + "\r\nSec-WebSocket-Version: 13\r\n\r\n";
-  std::string head;
-  bool sent = ::send(fd, request.data(), request.size(), MSG_NOSIGNAL) ==
-              static_cast<ssize_t>(request.size());
-  for (char c = 0; sent && head.find("\r\n\r\n") == std::string::npos && head.size() < 16384;) {
-    if (!ReadExactly(fd, &c, 1)) break;
-    head += c;
+  const std::string target = "/websocket" + (a.token.empty() ? "" : "?token=" + a.token);
+  websocket::stream_base::timeout timeouts =
+      websocket::stream_base::timeout::suggested(beast::role_type::client);
+  timeouts.handshake_timeout = kHandshakeTimeout;  // the server's pings watch an open connection
+  s.ws.set_option(timeouts);
+  s.ws.read_message_max(kMaxMessageBytes);
+  websocket::response_type response;
+  bool connected = false, done = false;
+  s.ws.next_layer().expires_after(kHandshakeTimeout);
+  s.ws.next_layer().async_connect(endpoints, [&](beast::error_code e, const auto&) {
+    ec = e;
+    done = static_cast<bool>(e);
+    if (e) return;
+    connected = true;
+    s.ws.next_layer().expires_never();  // the handshake has its own timeout from here
+    s.ws.async_handshake(response, authority, target, [&](beast::error_code h) {
+      ec = h;
+      done = true;
+    });
+  });
+  // Until the upgrade's outcome, not until the io_context runs dry: a refused upgrade leaves
+  // Beast's handshake timer to expire on its own.
+  while (!done && s.io.run_one() > 0) {
   }
-  const std::string status_line = head.substr(0, head.find("\r\n"));
-  if (status_line.find(" 101 ") == std::string::npos) {
-    ::close(fd);
+  s.io.restart();
+  if (!connected) {
+    return {
+        Status::kUnavailable,
+        uri + (ec == beast::error::timeout ? ": no answer to connecting within 10 s"
+                                           : ": nothing listens there (is palpa serve running?)")};
+  }
+  if (ec == websocket::error::upgrade_declined) {
+    return {Status::kUnavailable, uri + ": palpa serve refused the connection (HTTP/" +
+                                      std::to_string(response.version() / 10) + "." +
+                                      std::to_string(response.version() % 10) + " " +
+                                      std::to_string(response.result_int()) + " " +
+                                      std::string(response.reason()) + ")"};
+  }
+  if (ec == beast::error::timeout)
+    return {Status::kTimeout, uri + ": no answer to the WebSocket upgrade within 10 s"};
+  if (ec) {
     return {Status::kUnavailable,
-            uri + ": palpa serve refused the connection (" +
-                (status_line.empty() ? std::string("no answer") : status_line) + ")"};
+            uri + ": not a WebSocket upgrade (is palpa serve listening there?): " + ec.message()};
   }
-  std::unique_ptr<ServeClient> client(new ServeClient(fd));
-  client->reader_ = std::thread([c = client.get()] { c->Read(); });
+  s.ws.text(true);  // JSON-RPC's messages are text
+  s.open = true;
+  s.work.emplace(s.io.get_executor());
+  s.ReadNext();
+  s.thread = std::thread([&s] { s.io.run(); });
   return client;
 }
 
-ServeClient::ServeClient(int fd) : fd_(fd) {}
+ServeClient::ServeClient() : impl_(std::make_unique<Impl>(*this)) {}
 
 ServeClient::~ServeClient() {
-  Send(0x8, std::string("\x03\xe8", 2));  // close: normal
-  ::shutdown(fd_, SHUT_RDWR);             // wakes the reader
-  if (reader_.joinable()) reader_.join();
-  ::close(fd_);
+  Impl& s = *impl_;
+  if (!s.thread.joinable()) return;
+  net::post(s.io, [&s] {
+    // The closing handshake, then the socket closed whatever its outcome; the reader ends too.
+    if (s.open) {
+      s.ws.async_close(websocket::close_code::normal, [&s](beast::error_code) {
+        beast::error_code ignored;
+        s.ws.next_layer().socket().close(ignored);
+      });
+    }
+    s.work.reset();
+  });
+  s.thread.join();
 }
 
-bool ServeClient::Send(uint8_t opcode, const std::string& payload) {
-  std::string frame(1, static_cast<char>(0x80 | opcode));
-  const size_t n = payload.size();
-  if (n < 126) {
-    frame += static_cast<char>(0x80 | n);
-  } else if (n < 65536) {
-    frame += static_cast<char>(0x80 | 126);
-    frame += static_cast<char>(n >> 8);
-    frame += static_cast<char>(n & 0xff);
+bool ServeClient::Send(std::string text) {
+  std::promise<bool> sent;
+  std::future<bool> outcome = sent.get_future();
+  net::post(impl_->io, [&s = *impl_, text = std::move(text), sent = std::move(sent)]() mutable {
+    s.Queue(std::move(text), std::move(sent));
+  });
+  return outcome.get();
+}
+
+void ServeClient::Arrived(const std::string& text) {
+  json m = json::parse(text, nullptr, false);
+  if (!m.is_object()) return;
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (m.contains("id")) {
+    answers_.push_back(std::move(m));
   } else {
-    frame += static_cast<char>(0x80 | 127);
-    for (int shift = 56; shift >= 0; shift -= 8) frame += static_cast<char>((n >> shift) & 0xff);
+    if (notifications_.size() >= kMaxQueuedNotifications) notifications_.pop_front();
+    notifications_.push_back(std::move(m));
   }
-  const std::string mask = RandomBytes(4);
-  frame += mask;
-  for (size_t i = 0; i < n; ++i) frame += static_cast<char>(payload[i] ^ mask[i % 4]);
-  std::lock_guard<std::mutex> lock(send_mutex_);
-  return ::send(fd_, frame.data(), frame.size(), MSG_NOSIGNAL) ==
-         static_cast<ssize_t>(frame.size());
+  arrived_.notify_all();
 }
 
-void ServeClient::Read() {
-  std::string message;
-  for (;;) {
-    uint8_t head[2];
-    if (!ReadExactly(fd_, head, 2)) break;
-    uint64_t n = head[1] & 0x7f;
-    if (n >= 126) {
-      uint8_t ext[8];
-      const size_t bytes = n == 126 ? 2 : 8;
-      if (!ReadExactly(fd_, ext, bytes)) break;
-      n = 0;
-      for (size_t i = 0; i < bytes; ++i) n = (n << 8) | ext[i];
-    }
-    if (n > (64u << 20)) break;  // beyond anything the server sends
-    std::string payload(n, '\0');
-    if (n > 0 && !ReadExactly(fd_, payload.data(), n)) break;
-    const uint8_t opcode = head[0] & 0x0f;
-    if (opcode == 0x9) {
-      Send(0xA, payload);  // pong at once: three missed and the server counts us gone
-      continue;
-    }
-    if (opcode == 0x8) break;
-    if (opcode != 0x1 && opcode != 0x0) continue;
-    message += payload;
-    if (!(head[0] & 0x80)) continue;  // more fragments follow
-    json m = json::parse(message, nullptr, false);
-    message.clear();
-    if (!m.is_object()) continue;
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (m.contains("id")) {
-      answers_.push_back(std::move(m));
-    } else {
-      if (notifications_.size() >= kMaxQueuedNotifications) notifications_.pop_front();
-      notifications_.push_back(std::move(m));
-    }
-    arrived_.notify_all();
-  }
+void ServeClient::Ended() {
   std::lock_guard<std::mutex> lock(mutex_);
   closed_ = true;
   arrived_.notify_all();
@@ -221,7 +241,7 @@ Result<json> ServeClient::Call(const std::string& method, const json& params, do
     id = next_id_++;
   }
   const json request = {{"jsonrpc", "2.0"}, {"id", id}, {"method", method}, {"params", params}};
-  if (!Send(0x1, request.dump())) return {Status::kIoError, method + ": palpa serve went away"};
+  if (!Send(request.dump())) return {Status::kIoError, method + ": palpa serve went away"};
   std::unique_lock<std::mutex> lock(mutex_);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
   for (;;) {

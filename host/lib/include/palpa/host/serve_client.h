@@ -1,7 +1,8 @@
 // A client of a running `palpa serve` (docs/serve.md): its JSON-RPC 2.0 API over a WebSocket
-// (RFC 6455: text frames, masked, on a plain TCP socket), as the command line uses it for
-// --device serve:HOST:PORT. A thread of its own reads every frame and answers the server's pings
-// at once, so a client that waits (palpa set --hold) is never counted gone.
+// (RFC 6455 on a plain TCP socket, Boost.Beast's client: the upgrade's answer is verified, frames
+// are masked and bounded), as the command line uses it for --device serve:HOST:PORT. A thread of
+// its own reads every frame and answers the server's pings at once, so a client that waits
+// (palpa set --hold) is never counted gone.
 #pragma once
 
 #include <condition_variable>
@@ -10,7 +11,6 @@
 #include <memory>
 #include <mutex>
 #include <string>
-#include <thread>
 
 #include <nlohmann/json.hpp>
 
@@ -29,7 +29,8 @@ Result<ServeAddress> ParseServeUri(const std::string& uri);
 class ServeClient {
  public:
   /// Connects and upgrades to the WebSocket; a refusal (a wrong token, a foreign Host) says the
-  /// server's status line.
+  /// server's status line, an answer that is not a WebSocket upgrade (no 101, no Upgrade or
+  /// Connection header, a wrong Sec-WebSocket-Accept) says what was wrong with it.
   static Result<std::unique_ptr<ServeClient>> Connect(const std::string& uri);
   ~ServeClient();
   ServeClient(const ServeClient&) = delete;
@@ -46,18 +47,18 @@ class ServeClient {
   bool closed();
 
  private:
-  explicit ServeClient(int fd);
-  void Read();
-  bool Send(uint8_t opcode, const std::string& payload);
+  struct Impl;  ///< the socket and its thread, on Boost.Beast (which stays out of this header)
+  ServeClient();
+  bool Send(std::string text);
+  void Arrived(const std::string& text);
+  void Ended();
 
-  int fd_;
-  std::mutex send_mutex_;
+  std::unique_ptr<Impl> impl_;
   std::mutex mutex_;  ///< guards what follows
   std::condition_variable arrived_;
   std::deque<nlohmann::json> answers_, notifications_;
   bool closed_ = false;
   int64_t next_id_ = 1;
-  std::thread reader_;
 };
 
 }  // namespace palpa::host
