@@ -12,7 +12,7 @@ import subprocess
 import sys
 import threading
 
-from harness import fail
+from harness import fail, read_head
 
 GUID = "258EAFA5-E914-47DA-95CA-C5AB0DC85B11"
 
@@ -48,14 +48,8 @@ class FakeServer:
         while True:
             conn, _ = self.listener.accept()
             with conn:
-                head = b""
-                while b"\r\n\r\n" not in head:
-                    chunk = conn.recv(4096)
-                    if not chunk:
-                        break
-                    head += chunk
                 key = ""
-                for line in head.decode("latin-1").split("\r\n"):
+                for line in read_head(conn).decode("latin-1").split("\r\n"):
                     name, _, value = line.partition(":")
                     if name.strip().lower() == "sec-websocket-key":
                         key = value.strip()

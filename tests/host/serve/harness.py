@@ -128,17 +128,23 @@ class Serve:
             fail(f"palpa serve exited with {rc}: {self.log()}")
 
 
+def read_head(sock, step=65536):
+    """Bytes up to an HTTP head's blank line and beyond it what came with it (none when step is 1:
+    a WebSocket's frames follow), or what came before the connection closed."""
+    data = b""
+    while b"\r\n\r\n" not in data:
+        chunk = sock.recv(step)
+        if not chunk:
+            break
+        data += chunk
+    return data
+
+
 def http(port, request_lines, body=b""):
     """One raw HTTP request; (status, headers, body)."""
     with socket.create_connection(("127.0.0.1", port), timeout=5) as s:
         s.sendall(("\r\n".join(request_lines) + "\r\n\r\n").encode() + body)
-        data = b""
-        while b"\r\n\r\n" not in data:
-            chunk = s.recv(65536)
-            if not chunk:
-                break
-            data += chunk
-        head, _, rest = data.partition(b"\r\n\r\n")
+        head, _, rest = read_head(s).partition(b"\r\n\r\n")
         lines = head.decode("latin-1").split("\r\n")
         status = int(lines[0].split()[1]) if lines and len(lines[0].split()) > 1 else 0
         headers = {}
@@ -164,9 +170,7 @@ class RawClient:
     def __init__(self, port):
         self.sock = socket.create_connection(("127.0.0.1", port), timeout=10)
         self.sock.sendall(("\r\n".join(upgrade_lines(f"127.0.0.1:{port}")) + "\r\n\r\n").encode())
-        data = b""
-        while b"\r\n\r\n" not in data:
-            data += self.sock.recv(1)
+        data = read_head(self.sock, step=1)
         if b" 101 " not in data.split(b"\r\n")[0]:
             fail(f"upgrade refused: {data!r}")
         self.messages = []
