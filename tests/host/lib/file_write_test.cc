@@ -18,15 +18,6 @@
 namespace fs = std::filesystem;
 namespace ph = palpa::host;
 
-namespace {
-
-std::string ReadAll(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-}  // namespace
-
 TEST_GROUP(FileWrite) {
   fs::path dir;
   void setup() override {
@@ -44,10 +35,10 @@ TEST(FileWrite, WritesANewFileAndReplacesAnOldOneWhole) {
   const fs::path file = dir / "out.bin";
   const std::string first("first\0with a zero byte", 22);
   CHECK(ph::WriteFileWhole(file.string(), first).ok());
-  CHECK(ReadAll(file) == first);
+  CHECK(ReadTestFile(file) == first);
   const std::string second(100000, 'x');
   CHECK(ph::WriteFileWhole(file.string(), second).ok());
-  CHECK(ReadAll(file) == second);
+  CHECK(ReadTestFile(file) == second);
   CHECK(ph::WriteFileWhole(file.string(), "").ok());
   LONGS_EQUAL(0, fs::file_size(file));
   LONGS_EQUAL(1, Entries());  // no temporary left beside it
@@ -83,8 +74,8 @@ TEST(FileWrite, ASymlinkPlantedWhereTheTemporaryMightGoIsNeverFollowed) {
   }
   const ph::Outcome written = ph::WriteFileWhole(out.string(), "package");
   CHECK_TEXT(written.ok(), written.message.c_str());
-  STRCMP_EQUAL("precious", ReadAll(victim).c_str());
-  STRCMP_EQUAL("package", ReadAll(out).c_str());
+  STRCMP_EQUAL("precious", ReadTestFile(victim).c_str());
+  STRCMP_EQUAL("package", ReadTestFile(out).c_str());
   CHECK(fs::is_symlink(dir / "out.pkg.part"));  // planted links are left as they were
 }
 
@@ -96,7 +87,7 @@ TEST(FileWrite, ASymlinkAtTheTargetIsRefusedNotFollowedOrReplaced) {
   const ph::Outcome written = ph::WriteFileWhole(out.string(), "{}");
   CHECK_FALSE(written.ok());
   CHECK_TEXT(written.message.find("symbolic link") != std::string::npos, written.message.c_str());
-  STRCMP_EQUAL("precious", ReadAll(victim).c_str());
+  STRCMP_EQUAL("precious", ReadTestFile(victim).c_str());
   CHECK(fs::is_symlink(out));
   LONGS_EQUAL(2, Entries());
 }

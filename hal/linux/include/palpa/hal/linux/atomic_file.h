@@ -16,8 +16,12 @@ namespace palpa::hal::linux_files {
 /// permissions (a new file: 0666 less the umask). Commit writes what is buffered, flushes the
 /// file to disk, renames it over the target and flushes the directory, so the new name survives
 /// a power cut. Until Commit succeeds the old file is untouched; an AtomicFile destroyed or
-/// abandoned before then removes its temporary. Writes are buffered; the first failure is kept
-/// and reported by Commit. Not thread-safe: callers that write from several threads lock.
+/// abandoned before then removes its temporary. A process killed meanwhile cannot: its writer
+/// holds an exclusive flock on the temporary until the rename, the kernel drops it with the
+/// process, and the next Open of the same target removes the temporaries of its name whose lock
+/// it can take (this user's regular files only, never a link), so a live writer's, in any
+/// process, is never touched. Writes are buffered; the first failure is kept and reported by
+/// Commit. Not thread-safe: callers that write from several threads lock.
 class AtomicFile {
  public:
   AtomicFile() = default;
