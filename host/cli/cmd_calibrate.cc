@@ -9,6 +9,7 @@
 #include "cli.h"
 #include "palpa/calibration/board_rig.h"
 #include "palpa/calibration/session.h"
+#include "progress_bar.h"
 #include "sim_options.h"
 
 namespace palpa::cli {
@@ -16,20 +17,19 @@ namespace {
 
 namespace cal = calibration;
 
-void ProgressBar(const cal::Progress& p, std::chrono::steady_clock::time_point start) {
+void ShowProgress(ProgressBar& bar, const cal::Progress& p,
+                  std::chrono::steady_clock::time_point start) {
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double left = p.done > 0 ? elapsed * (p.total - p.done) / p.done : 0;
-  const int width = 30, filled = p.total > 0 ? width * p.done / p.total : 0;
-  std::fprintf(stderr, "\r[%s%s] %3d/%d  %s left  %-48.48s",
-               std::string(static_cast<size_t>(filled), '#').c_str(),
-               std::string(static_cast<size_t>(width - filled), '.').c_str(), p.done, p.total,
-               p.done > 0 ? (std::to_string(static_cast<int>(left / 60)) + "m" +
-                             std::to_string(static_cast<int>(left) % 60) + "s")
-                                .c_str()
-                          : "--",
-               p.step.c_str());
-  std::fflush(stderr);
+  char text[96];
+  std::snprintf(text, sizeof(text), "%3d/%d  %s left  %-48.48s", p.done, p.total,
+                p.done > 0 ? (std::to_string(static_cast<int>(left / 60)) + "m" +
+                              std::to_string(static_cast<int>(left) % 60) + "s")
+                                 .c_str()
+                           : "--",
+                p.step.c_str());
+  bar.Show(p.done, p.total, text);
 }
 
 /// The board and the rig on it: palpa-sim serving both, or a rig file and --device.
@@ -145,8 +145,10 @@ int PrepareSession(const CalibrateArgs& a, cal::Session& session) {
 int RunSession(cal::Session& session) {
   const std::string journal = session.base() + ".journal.json";
   const auto start = std::chrono::steady_clock::now();
-  const host::Outcome run = session.Run([&](const cal::Progress& p) { ProgressBar(p, start); });
-  std::fprintf(stderr, "\n");
+  ProgressBar bar;
+  const host::Outcome run =
+      session.Run([&](const cal::Progress& p) { ShowProgress(bar, p, start); });
+  bar.End();
   if (session.stopped()) {
     return Fail("calibrate", run.status,
                 "stopped: " + run.message +

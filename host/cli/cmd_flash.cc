@@ -12,6 +12,7 @@
 #include "palpa/host/file_write.h"
 #include "palpa/host/flasher.h"
 #include "palpa/host/signing_key.h"
+#include "progress_bar.h"
 
 namespace palpa::cli {
 namespace {
@@ -27,22 +28,20 @@ host::Result<std::vector<uint8_t>> ReadBytes(const std::string& path,
 }
 
 void Progress(const host::FlashProgress& p) {
-  static int shown = -1;  // the bar is redrawn when a whole per cent has passed
+  static ProgressBar bar;  // the write's; the steps after it get a line each
   if (p.step != "write") {
-    if (p.done == p.total) std::fprintf(stderr, "%s  %s\n", shown >= 0 ? "\n" : "", p.step.c_str());
-    shown = -1;
+    if (p.done == p.total) {
+      bar.End();
+      std::fprintf(stderr, "  %s\n", p.step.c_str());
+    }
     return;
   }
   const int percent = p.total > 0 ? static_cast<int>(100.0 * p.done / p.total) : 100;
-  if (percent == shown) return;
-  shown = percent;
-  const int width = 30, filled = percent * width / 100;
   const double rate = p.seconds > 0 ? p.done / p.seconds / 1024 : 0;
-  std::fprintf(stderr, "\r[%s%s] %3d %%  %u/%u bytes  %.1f KiB/s",
-               std::string(static_cast<size_t>(filled), '#').c_str(),
-               std::string(static_cast<size_t>(width - filled), '.').c_str(), percent, p.done,
-               p.total, rate);
-  std::fflush(stderr);
+  char text[96];
+  std::snprintf(text, sizeof(text), "%3d %%  %u/%u bytes  %.1f KiB/s", percent, p.done, p.total,
+                rate);
+  bar.Show(p.done, p.total, text);
 }
 
 /// "1.2.3" into its parts; false when malformed.

@@ -98,6 +98,9 @@ TEST(CliCalibrateUnits, ACalibrationOfSimulatedUnit12IsOfUnit12AndSaysSo) {
   LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
   CHECK_TEXT(Has(r, "calibrated PN-1 (finger 1, simulated unit 12, seed 3, plant level 3)"),
              r.output.c_str());
+  // Its progress went to a pipe: lines, not a bar redrawn with carriage returns.
+  CHECK_TEXT(r.output.find('\r') == std::string::npos, r.output.c_str());
+  CHECK_TEXT(Has(r, "] "), r.output.c_str());
   std::ifstream file(dir + "/PN-1.json");
   const nlohmann::json j = nlohmann::json::parse(file);
   CHECK(j["simulation"] ==

@@ -83,6 +83,14 @@ TEST(CliFlash, PackagesAreMadeCheckedAndFlashedOverTheLink) {
   r = Palpa(device + "flash " + dir + "/new.palpa");
   LONGS_EQUAL_TEXT(0, r.code, r.output.c_str());
   CHECK(Has(r, "updated 0.1.0 → 0.3.0 (slot 1), confirmed"));
+  // Its stderr is a pipe here, as in a log: the bar is a line a tenth of the way (100 redraws
+  // joined by carriage returns on a terminal).
+  CHECK_TEXT(r.output.find('\r') == std::string::npos, r.output.c_str());
+  CHECK_TEXT(Has(r, "] 100 %  "), r.output.c_str());
+  size_t bars = 0;
+  for (size_t at = r.output.find("] "); at != std::string::npos; at = r.output.find("] ", at + 1))
+    bars += r.output.compare(at + 5, 3, " % ") == 0;
+  CHECK_TEXT(bars >= 2 && bars <= 11, r.output.c_str());
   r = Palpa(device + "info");
   CHECK(Has(r, "firmware      0.3.0"));
   CHECK(Has(r, "image slot    1, anti-rollback counter 2"));
