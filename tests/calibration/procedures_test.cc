@@ -49,6 +49,39 @@ TEST(Procedures, ZeroAndSurfaceHeightsFollowTheFilm) {
   CHECK_TEXT(sd > 0.3 * r && sd < 2.5 * r, std::to_string(sd).c_str());
 }
 
+TEST(Procedures, AnIndenterLiftedClearOfTheFilmDoesNotTouchItAgain) {
+  // Each touch reads the film off by the rig's repeatability, drawn anew once the indenter has
+  // gone 0.1 mm clear. Were the new error in force at once, the surface (3.4 mm up, each draw
+  // moving it by 0.1 mm) could jump onto the indenter still rising: a touch no motion made, one
+  // draw more, and whether it came would turn on a fraction of a micrometre of travel (two hosts
+  // reading late and on time then calibrated with different draws from there on).
+  pt::SimRig sim({"thesis-5finger", 0, 1, 3});
+  CHECK(sim.SetDrive(0, 80, 0).ok());
+  sim.Wait(3);
+  const palpa::sim::Plant& plant = sim.board().sim().plant();
+  auto travel = [&](double mm, const std::function<void(float)>& each) {
+    CHECK(sim.MoveTo(mm, 2.0).ok());
+    for (bool moving = true; moving;) {
+      sim.Wait(0.001);
+      each(sim.model().true_force_n());
+      CHECK(sim.Moving(&moving).ok());
+    }
+  };
+  int touches = 0, untouched = 0;
+  for (int k = 0; k < 20; ++k) {
+    const double surface = plant.Truth().fingers[0].deformation_mm;
+    travel(surface - 0.4, [&](float) {});
+    touches += sim.model().true_force_n() > 0;
+    bool clear = false;
+    travel(surface + 0.5, [&](float force) {
+      untouched += clear && force > 0;
+      clear = clear || force <= 0;
+    });
+  }
+  LONGS_EQUAL(20, touches);
+  LONGS_EQUAL(0, untouched);
+}
+
 TEST(Procedures, AFastApproachFindsTheSurfaceAsASlowOneDoesWhenReadingsArriveLate) {
   // The quick protocol's 1 mm/s approach, with each force reading arriving 30 ms late (a busy
   // host): the stage is 30 µm deeper by the time the host sees contact, and with the position read

@@ -38,15 +38,24 @@ void RigModel::Step(float dt_s) {
   } else {
     // The film's bump rises to the deformation; the soft contact pushes back linearly. Each
     // touch finds it off by the rig's repeatability (thesis: 2.82 % per point), relative.
-    const float surface = plant_.Truth().fingers[finger_].deformation_mm * (1.0f + touch_error_);
+    const float deformation = plant_.Truth().fingers[finger_].deformation_mm;
+    const float surface = deformation * (1.0f + touch_error_);
     true_force_n_ = p::kRigContactStiffnessNPerMm * std::max(0.0f, surface - tip);
     if (true_force_n_ > 0) touched_ = true;
     if (touched_ && tip - surface > kNewTouchMm && plant_.options().level >= 3) {
       // The indenter went well clear: the next touch is another reading. Backing off a little
       // to creep onto the surface again is the same touch (the reading does not jump under it).
       std::normal_distribution<float> repeat(0.0f, p::kRigRepeatability);
-      touch_error_ = repeat(repeat_rng_);
+      next_error_ = repeat(repeat_rng_);
+      next_pending_ = true;
       touched_ = false;
+    }
+    // The next touch's error takes over once the indenter is clear of the surface it puts: at
+    // once, a surface moved up by it could land on the indenter just gone clear, a touch no
+    // motion made, and whether it did would turn on a fraction of a micrometre of travel.
+    if (next_pending_ && tip > deformation * (1.0f + next_error_)) {
+      touch_error_ = next_error_;
+      next_pending_ = false;
     }
   }
   // The controller reads its load cell every step, armed or not, so its readings follow the

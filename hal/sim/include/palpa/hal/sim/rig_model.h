@@ -57,6 +57,8 @@ class RigModel {
   /// A pneumatic film's reading is off by the rig's repeatability, relative, drawn per touch.
   std::mt19937 repeat_rng_;
   float touch_error_ = 0;
+  float next_error_ = 0;  ///< drawn when a touch ended, in force once the indenter is clear of it
+  bool next_pending_ = false;
   bool touched_ = false;
   /// A touch ends when the indenter is this far above the surface (a new approach).
   static constexpr float kNewTouchMm = 0.1f;
