@@ -125,7 +125,10 @@ RigStatus Run::Sweep() {
       rig_.board.MeasuredKpa(rig_.board.driven_line(finger_), &measured);
       one.push_back({-measured * 1000, cycle.stiffness_n_per_mm * 1000});
     } else {
-      s = DeformationSweep(rig_, finger_, {kpa}, o_.dwell_s, zero_, o_.contact, &one);
+      // From the last point's surface: from the zero, the indenter would first be driven into
+      // the inflated film (4 mm at the top) and back off in steps until clear.
+      const double expected = sweep_.empty() ? zero_ : zero_ + sweep_.back().output / 1000;
+      s = DeformationSweep(rig_, finger_, {kpa}, o_.dwell_s, zero_, o_.contact, &one, expected);
       if (!s.ok()) return s;
     }
     sweep_.push_back(one.front());

@@ -271,9 +271,10 @@ RigStatus RegulatorCorrection(Rig& rig, uint8_t finger, uint8_t line, int points
 }
 
 RigStatus DeformationSweep(Rig& rig, uint8_t finger, const std::vector<double>& kpa, double dwell_s,
-                           double zero_mm, const ContactOptions& o, std::vector<SweepSample>* out) {
+                           double zero_mm, const ContactOptions& o, std::vector<SweepSample>* out,
+                           double expected_mm) {
   const uint8_t line = rig.board.driven_line(finger);
-  double expected = zero_mm;
+  double expected = std::isnan(expected_mm) ? zero_mm : expected_mm;
   for (double drive : kpa) {
     RigStatus s = rig.board.SetDrive(finger, drive, 0);
     if (!s.ok()) return AbortSafe(rig, s.status, "board: " + s.message);

@@ -1,6 +1,7 @@
 // The in-process calibration rig.
 #include "sim_rig.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace palpa::testing {
@@ -13,7 +14,10 @@ SimRig::SimRig(const SimRigOptions& options)
       noise_rng_(options.seed * 31u + 7u) {
   model_ = std::make_unique<sim::RigModel>(board_.sim().plant(), options.finger,
                                            options.seed * 17u + 5u);
-  board_.sim().OnStep([this](uint64_t) { model_->Step(0.001f); });
+  board_.sim().OnStep([this](uint64_t) {
+    model_->Step(0.001f);
+    peak_force_n = std::max(peak_force_n, model_->true_force_n());
+  });
   configured_ = board_.config().lines;
   for (uint8_t f = 0; f < board_.config().finger_count; ++f)
     board_.Send(pp::SetFingerMode{f, pp::FingerMode::kRaw});

@@ -45,6 +45,9 @@ class SimRig final : public calibration::RigTime,
   /// stop_force register does not): off by default, as the host's polling on free-running
   /// virtual time is never late unless force_latency_s says so.
   bool force_stop = false;
+  /// The largest true contact force (N) since it was last reset: what the indenter pressed the
+  /// finger with, which no reading of the host's may miss.
+  float peak_force_n = 0;
   /// The actuator under the indenter changed by this factor since its last calibration.
   void ScaleActuator(float factor);
   /// A line of the board leaks (RegulatorLine::set_leak).

@@ -4,6 +4,7 @@
 // device stops the stage, retracts, vents the board and returns the reason.
 #pragma once
 
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -52,9 +53,13 @@ RigStatus RegulatorCorrection(Rig& rig, uint8_t finger, uint8_t line, int points
                               std::vector<protocol::CorrectionPoint>* out);
 
 /// Pneumatic: each drive (kPa) held for dwell_s, the surface found by contact detection; samples
-/// of (measured drive in Pa, deformation in µm above `zero_mm`).
+/// of (measured drive in Pa, deformation in µm above `zero_mm`). Each drive's search starts from
+/// the surface found at the one before; the first's from `expected_mm` (the zero if NaN), so a
+/// sweep resumed point by point starts from its last point's surface, not from the vented film's,
+/// which a film inflated by millimetres would put the indenter that deep into.
 RigStatus DeformationSweep(Rig& rig, uint8_t finger, const std::vector<double>& kpa, double dwell_s,
-                           double zero_mm, const ContactOptions& o, std::vector<SweepSample>* out);
+                           double zero_mm, const ContactOptions& o, std::vector<SweepSample>* out,
+                           double expected_mm = std::numeric_limits<double>::quiet_NaN());
 
 /// One press of a jamming finger: down to `depth_mm` below the surface and back at `speed`.
 struct PressCycle {
