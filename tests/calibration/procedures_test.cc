@@ -152,6 +152,13 @@ TEST(Procedures, RegulatorCorrectionShowsTheStaticErrorAndTheBoardTakesIt) {
     largest = std::max<double>(largest, std::abs(p.rising_pa - p.command_pa));
   }
   CHECK(largest > 100);  // feed-forward alone shows the regulator's own error
+  // The falling branch is measured coming down from above the top point, so the top's falling
+  // reading is a falling one (the regulator's hysteresis above the rising one), as at the points
+  // below it; straight after the rising sweep it would be the rising reading again.
+  const auto gap = [](const pp::CorrectionPoint& p) { return p.falling_pa - p.rising_pa; };
+  const double middle = gap(points[points.size() / 2]);
+  CHECK_TEXT(middle > 100, std::to_string(middle).c_str());
+  CHECK_TEXT(gap(points.back()) > 0.5 * middle, std::to_string(gap(points.back())).c_str());
   pp::ConfigureLine line = sim.board().config().lines[0];
   line.correction_count = static_cast<uint8_t>(points.size());
   std::copy(points.begin(), points.end(), line.correction.begin());
