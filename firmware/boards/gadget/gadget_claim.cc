@@ -1,9 +1,7 @@
-// The gadget name's lock and the teardown of a gadget whose owner died.
+// The teardown of a gadget whose owner died.
 #include "gadget_claim.h"
 
-#include <fcntl.h>
 #include <mntent.h>
-#include <sys/file.h>
 #include <sys/mount.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -16,40 +14,6 @@
 #include "configfs_gadget.h"
 
 namespace palpa::gadget {
-
-bool GadgetClaim::Take(const std::string& lock_path, const std::string& name, std::string* error) {
-  Release();
-  fd_ = open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd_ < 0) {
-    *error = lock_path + ": " + std::strerror(errno);
-    return false;
-  }
-  // An flock belongs to the open file: the kernel drops it when the last descriptor closes, which
-  // a process's death does too. So a held lock is a living owner, whatever its pid says.
-  if (flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-    const int saved = errno;
-    char pid[16] = {};
-    const ssize_t n = pread(fd_, pid, sizeof(pid) - 1, 0);
-    *error = "gadget " + name + " is in use" +
-             (n > 0 ? " by process " + std::string(pid, static_cast<size_t>(n)) : std::string()) +
-             " (" + lock_path + " is locked" +
-             (saved == EWOULDBLOCK ? "" : ": " + std::string(std::strerror(saved))) + ")";
-    Release();
-    return false;
-  }
-  const std::string pid = std::to_string(getpid());
-  if (ftruncate(fd_, 0) != 0 || pwrite(fd_, pid.data(), pid.size(), 0) < 0) {
-    *error = lock_path + ": " + std::strerror(errno);
-    Release();
-    return false;
-  }
-  return true;
-}
-
-void GadgetClaim::Release() {
-  if (fd_ >= 0) close(fd_);  // drops the lock
-  fd_ = -1;
-}
 
 bool RemoveStaleGadget(const std::string& name, bool* found, std::string* error) {
   const std::string path = GadgetPath(name);

@@ -16,6 +16,7 @@
 #include "ffs_endpoints.h"
 #include "ffs_function.h"
 #include "gadget_claim.h"
+#include "process_claim.h"
 #include "usb_descriptors.h"
 
 namespace palpa::gadget {
@@ -93,7 +94,7 @@ const char* ChannelName(Channel channel) {
 }
 
 struct GadgetLink::Impl {
-  GadgetClaim claim;
+  hosted::ProcessClaim claim;
   ConfigfsGadget gadget;
   AioContext aio;
   FfsFunction bulk, hid;
@@ -118,7 +119,7 @@ bool GadgetLink::Open(const GadgetLinkOptions& o, std::string* error) {
   // it in configfs, its FunctionFS instances mounted), taken down before this one is made; a
   // living owner keeps it and this Open fails.
   if (!m.aio.Open(64, error) ||
-      !m.claim.Take(o.mount_root + "/" + o.name + ".lock", o.name, error) ||
+      !m.claim.Take(o.mount_root + "/" + o.name + ".lock", "gadget " + o.name, error) ||
       !RemoveStaleGadget(o.name, &stale_removed_, error) ||
       !m.gadget.Create(o.name, o.identity, error))
     return false;

@@ -4,6 +4,7 @@
 #include <signal.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <random>
 #include <string>
@@ -12,6 +13,7 @@
 #include "host_link.h"
 #include "linux_io.h"
 #include "palpa/hal/linux/watchdog_device.h"
+#include "process_claim.h"
 #include "realtime.h"
 
 namespace {
@@ -31,6 +33,21 @@ void OnSignal(int) { g_stop = 1; }
 int Failed(const std::string& why, int code) {
   std::fprintf(stderr, "palpa-linux-board: %s\n", why.c_str());
   return code;
+}
+
+/// The lock file for the analogue I/O module: a serial bus is one program's whatever the unit
+/// (the device's real path, so that two names of one port are one), a Modbus TCP module its host,
+/// port and unit.
+std::string ModuleClaimPath(const palpa::hal::linux_aio::ModbusAioConfig& m) {
+  std::string key =
+      "tcp:" + m.host + ":" + std::to_string(m.port) + " unit " + std::to_string(m.unit);
+  if (!m.tcp) {
+    char* real = realpath(m.host.c_str(), nullptr);
+    key = "rtu:" + std::string(real != nullptr ? real : m.host.c_str());
+    std::free(real);
+  }
+  return palpa::hosted::RunDirectory("palpa-linux-board") + "/" + palpa::hosted::LockFileName(key) +
+         ".lock";
 }
 
 /// The tick statistics the core keeps (also reported over the link by GetLoopStats).
@@ -61,6 +78,13 @@ int main(int argc, char** argv) {
   sigaction(SIGTERM, &action, nullptr);
   signal(SIGPIPE, SIG_IGN);
 
+  // The module is claimed before anything is opened: a second board started on the same module
+  // (its GPIO lines different or none) is refused here, before it writes 0 V to the outputs the
+  // first one drives or rewrites its watchdog. Held until exit; the kernel drops it on any death.
+  palpa::hosted::ProcessClaim module_claim;
+  if (!module_claim.Take(ModuleClaimPath(file->module), "analog_module " + file->module.Describe(),
+                         &error))
+    return Failed(error, 1);
   auto io = lb::LinuxIo::Open(*file, &error);
   if (!io) return Failed(error, 1);
   lb::HostLink link;

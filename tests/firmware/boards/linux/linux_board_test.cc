@@ -25,6 +25,8 @@ namespace pt = palpa::testing;
 namespace {
 
 constexpr int kOutputs = 0x0800, kFallbacks = 0x1021;
+// The module's settings a board writes when it opens it: watchdog time and type, fallback.
+constexpr int kSettings[] = {0x1120, 0x1122, 0x1123};
 // thesis-5finger's lines: a sensor reads 1 V at 0 Pa and 9 V at ±103.4 kPa; a regulator commands
 // 0 to ±100 kPa with 0-10 V. Pressure lines 0-4 rise, vacuum lines 5-6 fall; channel 7 is spare.
 constexpr const char* kVolts = "1,1,1,1,1,9,9,1";
@@ -225,6 +227,56 @@ TEST(LinuxBoard, AGpioWriteThatFailsIsLatchedOverTheLinkAndTheBoardGoesSafe) {
   kill(board.pid(), SIGTERM);
   LONGS_EQUAL(1, board.WaitExit(5000));
   for (int i = 0; i < 8; ++i) LONGS_EQUAL(0, emulator.Holding(kOutputs + i));
+  unlink(file.c_str());
+}
+
+TEST(LinuxBoard, ASecondBoardOnTheSameModuleIsRefusedBeforeItWritesToIt) {
+  pt::Ek9000Emulator emulator(kVolts, kPlant);
+  CHECK(emulator.up());
+  const std::string file = WriteBoardFile(emulator.port(), "tcp:127.0.0.1:0", "");
+  pt::SimProcess a;
+  CHECK_TEXT(a.Start({file}, PALPA_LINUX_BOARD_PATH), a.output().c_str());
+  auto opened = palpa::host::Device::Open(a.address(), {});
+  CHECK_TEXT(opened.ok(), opened.message.c_str());
+  CHECK(opened.value->SetLines({{0, 60.0}}).ok());
+  CHECK(pt::WaitUntil([&] { return emulator.Holding(kOutputs) > 0x7FFF / 2; }, 3));
+  // A held still, so that whatever lands on the module now is B's: its watchdog off meanwhile,
+  // and settings of values no board writes, which B's opening would overwrite.
+  kill(a.pid(), SIGSTOP);
+  usleep(50000);  // a transfer A had under way is answered
+  uint16_t settings[3], marked[3] = {4321, 2, 1};
+  for (int i = 0; i < 3; ++i) settings[i] = emulator.Holding(kSettings[i]);
+  for (int i = 0; i < 3; ++i) emulator.SetHolding(kSettings[i], marked[i]);
+  uint16_t outputs[8];
+  for (int i = 0; i < 8; ++i) outputs[i] = emulator.Holding(kOutputs + i);
+
+  // B: the same file, so the same module, no GPIO lines, and a TCP port of its own to bind.
+  pt::SimProcess b;
+  const bool b_started = b.Start({file}, PALPA_LINUX_BOARD_PATH);
+  uint16_t settings_after[3], outputs_after[8];
+  for (int i = 0; i < 3; ++i) settings_after[i] = emulator.Holding(kSettings[i]);
+  for (int i = 0; i < 8; ++i) outputs_after[i] = emulator.Holding(kOutputs + i);
+  const int b_exit = b.Stop();
+  kill(a.pid(), SIGCONT);
+  usleep(100000);  // A writes its outputs again before its module's watchdog is back on
+  for (int i = 0; i < 3; ++i) emulator.SetHolding(kSettings[i], settings[i]);
+  CHECK_TEXT(!b_started, b.output().c_str());
+  LONGS_EQUAL(1, b_exit);
+  const std::string refusal = "analog_module tcp:127.0.0.1:" + std::to_string(emulator.port()) +
+                              " unit 1 is in use by process " + std::to_string(a.pid());
+  CHECK_TEXT(b.output().find(refusal) != std::string::npos, b.output().c_str());
+  for (int i = 0; i < 3; ++i) LONGS_EQUAL(marked[i], settings_after[i]);
+  for (int i = 0; i < 8; ++i) LONGS_EQUAL(outputs[i], outputs_after[i]);
+
+  // A serves its link and drives the module as before.
+  auto config = opened.value->ReadConfig();
+  CHECK_TEXT(config.ok(), config.message.c_str());
+  CHECK(opened.value->SetLines({{0, 30.0}}).ok());
+  CHECK(pt::WaitUntil(
+      [&] { return emulator.Holding(kOutputs) < outputs[0] && emulator.Holding(kOutputs) > 0; },
+      3));
+  opened.value.reset();
+  LONGS_EQUAL(0, a.Stop());
   unlink(file.c_str());
 }
 
