@@ -14,9 +14,12 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
+#include <mutex>
+#include <thread>
 
 namespace palpa::testing {
 namespace {
@@ -173,6 +176,51 @@ int FreeTcpPort() {
   return ntohs(a.sin_port);
 }
 
+/// Reads the child's output until it closes it or the SimProcess goes, keeping the tail.
+struct SimProcess::Drain {
+  static constexpr size_t kKept = 64 * 1024;
+  explicit Drain(int fd) : fd_(fd) {
+    if (pipe2(wake_, O_CLOEXEC) != 0) wake_[0] = wake_[1] = -1;
+    thread_ = std::thread([this] { Run(); });
+  }
+  ~Drain() {
+    if (wake_[1] >= 0) (void)!write(wake_[1], "x", 1);
+    thread_.join();
+    for (int fd : wake_)
+      if (fd >= 0) close(fd);
+  }
+  void Run() {
+    char buffer[4096];
+    for (;;) {
+      pollfd p[2] = {{fd_, POLLIN, 0}, {wake_[0], POLLIN, 0}};
+      if (poll(p, wake_[0] >= 0 ? 2 : 1, -1) < 0) {
+        if (errno == EINTR) continue;
+        return;
+      }
+      if (p[1].revents != 0) return;  // the SimProcess is going
+      const ssize_t n = read(fd_, buffer, sizeof(buffer));
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) return;  // every writer closed it: the child and what it started are gone
+      std::lock_guard<std::mutex> hold(mutex);
+      tail.append(buffer, static_cast<size_t>(n));
+      if (tail.size() > kKept) tail.erase(0, tail.size() - kKept);
+    }
+  }
+  int fd_;
+  int wake_[2];
+  std::thread thread_;
+  std::mutex mutex;
+  std::string tail;
+};
+
+SimProcess::SimProcess() = default;
+
+std::string SimProcess::later_output() const {
+  if (!drain_) return {};
+  std::lock_guard<std::mutex> hold(drain_->mutex);
+  return drain_->tail;
+}
+
 bool SimProcess::Start(const std::vector<std::string>& args, const char* program, int timeout_ms) {
   // Built before the fork: the child of a process with threads may only call what is
   // async-signal-safe (an allocation can wait forever on a lock another thread held).
@@ -184,6 +232,9 @@ bool SimProcess::Start(const std::vector<std::string>& args, const char* program
   argv.push_back(const_cast<char*>(path));
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
+  drain_.reset();  // a SimProcess started again reads only its new child
+  if (out_fd_ >= 0) close(out_fd_);
+  out_fd_ = -1;
   int out[2];
   if (pipe(out) != 0) return false;
   pid_ = fork();
@@ -197,6 +248,12 @@ bool SimProcess::Start(const std::vector<std::string>& args, const char* program
   }
   close(out[1]);
   out_fd_ = out[0];
+  // From here on the output is read whatever Start answers: a child that did not announce itself
+  // in time may still be running and writing.
+  struct DrainAfter {
+    SimProcess& p;
+    ~DrainAfter() { p.drain_ = std::make_unique<Drain>(p.out_fd_); }
+  } drain_after{*this};
   std::string& text = output_;
   text.clear();
   const int64_t deadline = NowMs() + timeout_ms;
@@ -261,6 +318,7 @@ int SimProcess::WaitExit(int timeout_ms) {
 
 SimProcess::~SimProcess() {
   Stop();
+  drain_.reset();
   if (out_fd_ >= 0) close(out_fd_);
 }
 

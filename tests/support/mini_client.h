@@ -80,9 +80,11 @@ class MiniClient {
 /// A TCP port on 127.0.0.1 that was free a moment ago (for servers that cannot pick their own).
 int FreeTcpPort();
 
-/// palpa-sim as a child process; stopped with SIGTERM when destroyed.
+/// palpa-sim as a child process; stopped with SIGTERM when destroyed. Its output is read for its
+/// whole life (a thread after Start), so a child that writes much never blocks on a full pipe.
 class SimProcess {
  public:
+  SimProcess();
   /// Starts PALPA_SIM_PATH (or `program`: another board, or a server, that announces itself the
   /// same way) with the arguments and waits up to `timeout_ms` for its "listening on" line.
   bool Start(const std::vector<std::string>& args, const char* program = nullptr,
@@ -105,8 +107,12 @@ class SimProcess {
   /// What it printed (stdout and stderr) until Start returned: its addresses, its warnings, or
   /// why it refused to start.
   const std::string& output() const { return output_; }
+  /// What it printed after Start returned, the last 64 KiB of it: for a failure's message.
+  std::string later_output() const;
 
  private:
+  struct Drain;
+  std::unique_ptr<Drain> drain_;
   int pid_ = -1;
   int out_fd_ = -1;
   std::string address_;
