@@ -11,22 +11,22 @@
 #include <cstring>
 
 namespace palpa::hosted {
-namespace {
-
-bool UsableDirectory(const std::string& path) {
-  mkdir(path.c_str(), 0755);  // EEXIST is fine; whether it is usable is asked next
-  return access(path.c_str(), W_OK | X_OK) == 0;
+bool PrivateDirectory(const std::string& path) {
+  mkdir(path.c_str(), 0755);  // EEXIST is fine; whose it is is asked next
+  // A directory another user made (or made writable to others) would let that user plant the
+  // lock file as a link to any file this program may write, or hold the claim: refused.
+  struct stat st {};
+  return lstat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode) && st.st_uid == geteuid() &&
+         (st.st_mode & (S_IWGRP | S_IWOTH)) == 0 && access(path.c_str(), W_OK | X_OK) == 0;
 }
 
-}  // namespace
-
 std::string RunDirectory(const std::string& name) {
-  if (UsableDirectory("/run/" + name)) return "/run/" + name;
+  if (PrivateDirectory("/run/" + name)) return "/run/" + name;
   const char* runtime = std::getenv("XDG_RUNTIME_DIR");
-  if (runtime != nullptr && *runtime == '/' && UsableDirectory(std::string(runtime) + "/" + name))
+  if (runtime != nullptr && *runtime == '/' && PrivateDirectory(std::string(runtime) + "/" + name))
     return std::string(runtime) + "/" + name;
   const std::string tmp = "/tmp/" + name + "-" + std::to_string(getuid());
-  UsableDirectory(tmp);  // when even this fails, the claim's open names the path and why
+  PrivateDirectory(tmp);  // when even this fails, ProcessClaim::Take refuses a planted lock file
   return tmp;
 }
 
@@ -42,9 +42,18 @@ std::string LockFileName(const std::string& key) {
 
 bool ProcessClaim::Take(const std::string& lock_path, const std::string& what, std::string* error) {
   Release();
-  fd_ = open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  // Never through a link: the pid is written into the file, which must be the lock itself.
+  fd_ = open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
   if (fd_ < 0) {
     *error = what + ": " + lock_path + ": " + std::strerror(errno);
+    return false;
+  }
+  // A lock file a neighbour planted (in a directory others may write) is refused before anything
+  // is written into it.
+  struct stat st {};
+  if (fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode) || st.st_uid != geteuid()) {
+    *error = what + ": " + lock_path + " is not a file of this user; remove it";
+    Release();
     return false;
   }
   // An flock belongs to the open file: the kernel drops it when the last descriptor closes, which
