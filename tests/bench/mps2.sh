@@ -13,7 +13,8 @@ IMAGES=${PALPA_MPS2_IMAGES:-build/mps2/firmware/boards/mps2}
 QEMU=${QEMU:-qemu-system-arm}
 [ -f "$PLUGIN" ] || { echo "mps2.sh: $PLUGIN is missing (build the default preset)" >&2; exit 1; }
 [ $# -gt 0 ] || set -- "$IMAGES/palpa-mps2-bench-5finger.elf" "$IMAGES/palpa-mps2-bench-full8.elf" \
-  "$IMAGES/palpa-mps2-bench-5finger-pi16.elf" "$IMAGES/palpa-mps2-bench-5finger-pi16-shaped.elf"
+  "$IMAGES/palpa-mps2-bench-5finger-pi16.elf" "$IMAGES/palpa-mps2-bench-5finger-pi16-shaped.elf" \
+  "$IMAGES/palpa-mps2-bench-5finger-pi16-calibrated.elf"
 
 . tests/bench/qemu_spans.inc
 
@@ -26,7 +27,7 @@ for image in "$@"; do
   args="$args,$(span config_check palpa::core::ConfigCheck::Step "$image")"
   args="$args,$(span supervisor palpa::core::Supervise "$image")"
   args="$args,$(span fingers palpa::core::BoardFingers::Step "$image")"
-  case "$image" in *-pi16.elf|*-pi16-shaped.elf) pi16=1 ;; *) pi16= ;; esac
+  case "$image" in *-pi16.elf|*-pi16-shaped.elf|*-pi16-calibrated.elf) pi16=1 ;; *) pi16= ;; esac
   if [ -n "$pi16" ]; then  # the images with a PI(16) compensator on every finger
     args="$args,$(span play_passes palpa_play_pairs_v7em "$image")"
   fi

@@ -4,7 +4,10 @@
 //   PALPA_HANG_AFTER_MS  hang inside a tick after that long (the watchdog test); with SELFTEST, a
 //                        boot after a watchdog reset reports the cause and exits
 //   PALPA_BENCH          an in-image host: a session, every finger following a target, heartbeats;
-//                        runs 3 000 ticks and exits (instruction counting under QEMU)
+//                        runs 3 000 ticks and exits (instruction counting under QEMU); with
+//                        PALPA_BENCH_PI16 a PI(16) compensator on every finger, PALPA_BENCH_SHAPED
+//                        shaped steps on every line, PALPA_BENCH_CORRECTED a regulator correction
+//                        on every line
 #include <cstdio>
 #include <new>
 
@@ -300,6 +303,26 @@ const palpa::core::BoardConfig* WithPi16OnEveryFinger(const palpa::core::BoardCo
     g_pi16_config.lines[i].chamber_tau_us = 40000;
     g_pi16_config.lines[i].overdrive_pa = 20000;
     g_pi16_config.lines[i].slew_pa_per_s = 0;
+  }
+#endif
+#ifdef PALPA_BENCH_CORRECTED
+  // A regulator correction on every line, as calibration measures one (8 points, commands from 10
+  // to 90 % of the range; the regulator short of its command a little more towards the top, and
+  // further short rising than falling): a calibrated line's feed-forward looks it up every tick.
+  constexpr int kPoints = 8;
+  for (uint8_t i = 0; i < g_pi16_config.line_count; ++i) {
+    palpa::protocol::ConfigureLine& line = g_pi16_config.lines[i];
+    const float low = static_cast<float>(line.command_min_pa);
+    const float span = static_cast<float>(line.command_max_pa - line.command_min_pa);
+    const float toward = span > 0 ? 1.0f : -1.0f;
+    line.correction_count = kPoints;
+    for (int k = 0; k < kPoints; ++k) {
+      const float u = static_cast<float>(k) / static_cast<float>(kPoints - 1);
+      const float command = low + span * (0.1f + 0.8f * u);
+      line.correction[k] = {static_cast<int32_t>(command),
+                            static_cast<int32_t>(command * (0.96f - 0.03f * u) - 400 * toward),
+                            static_cast<int32_t>(command * (0.99f - 0.02f * u) + 300 * toward)};
+    }
   }
 #endif
   return &g_pi16_config;
