@@ -4,29 +4,10 @@
 #include "float_ops.h"
 #include "line_step.h"
 #include "palpa/core/ceilings.h"
-#include "palpa/core/curve.h"
 #include "palpa/protocol/enums.h"
 
 namespace palpa::core {
 namespace ls = protocol::line_status;
-
-float line_step::FeedForward(const LineParams& p, LineState& s, float previous, float now,
-                             float slewed) {
-  const float grown = Abs(now) - Abs(previous);
-  if (grown > 0) s.rising = true;
-  if (grown < 0) s.rising = false;
-  const float* produced = s.rising ? p.correction_rising.data() : p.correction_falling.data();
-  // Beyond the measured points (a correction covers 10-90 % of the range) the nearest end's
-  // offset holds: the end's command itself would ask a 3 kPa target for what made 10 kPa.
-  const uint8_t last = static_cast<uint8_t>(p.correction_count - 1);
-  const bool up = produced[last] > produced[0];
-  const float low = up ? produced[0] : produced[last], high = up ? produced[last] : produced[0];
-  if (slewed < low || slewed > high) {
-    const uint8_t end = (slewed < low) == up ? 0 : last;
-    return slewed + (p.correction_command[end] - produced[end]);
-  }
-  return Interpolate(produced, p.correction_command.data(), p.correction_count, slewed);
-}
 
 LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us) {
   LineParams p;
@@ -104,10 +85,18 @@ LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us)
   const bool holds_atmosphere = p.limit_min_pa <= 0 && p.limit_max_pa >= 0;
   p.vent_bit = p.shaping && holds_atmosphere && p.regulator_min_pa > 0 ? 1u << line.line : 0u;
   p.correction_count = line.correction_count;
+  float rising[protocol::kMaxCorrectionPoints], falling[protocol::kMaxCorrectionPoints];
   for (uint8_t i = 0; i < line.correction_count; ++i) {
     p.correction_command[i] = static_cast<float>(line.correction[i].command_pa);
-    p.correction_rising[i] = static_cast<float>(line.correction[i].rising_pa);
-    p.correction_falling[i] = static_cast<float>(line.correction[i].falling_pa);
+    rising[i] = static_cast<float>(line.correction[i].rising_pa);
+    falling[i] = static_cast<float>(line.correction[i].falling_pa);
+  }
+  if (line.correction_count >= 2) {  // a line with fewer has none (validation refuses one point)
+    p.correction_command[line.correction_count] = p.correction_command[line.correction_count - 1];
+    MakeCorrectionBranch(p.correction_command.data(), rising, line.correction_count,
+                         p.correction_rising);
+    MakeCorrectionBranch(p.correction_command.data(), falling, line.correction_count,
+                         p.correction_falling);
   }
   p.safe_counts = CountsFor(p, p.safe_pa);
   p.zero_counts = CountsFor(p, 0);

@@ -18,8 +18,15 @@ namespace line_step {
 /// branch while the command's magnitude grows (from `previous` to `now`: the slewed setpoint, or
 /// a shaped step's command, which comes back to the target from beyond it), the falling one
 /// while it shrinks (kept while steady). Only lines with a correction track the direction; it is
-/// read nowhere else.
-float FeedForward(const LineParams& p, LineState& s, float previous, float now, float slewed);
+/// read nowhere else. Inlined: with the lookup in constant time, the call was a sixth of it.
+inline float FeedForward(const LineParams& p, LineState& s, float previous, float now,
+                         float slewed) {
+  const float grown = Abs(now) - Abs(previous);
+  if (grown > 0) s.rising = true;
+  if (grown < 0) s.rising = false;
+  const CorrectionBranch& branch = s.rising ? p.correction_rising : p.correction_falling;
+  return CorrectionCommand(branch, p.correction_command.data(), slewed);
+}
 
 /// In a shaped step's hold, after the overdrive: the chamber model closes in on the target from
 /// the side the step came from. An outlet on the far side of the target, beyond where the
