@@ -84,20 +84,7 @@ LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us)
   // command is 0 already).
   const bool holds_atmosphere = p.limit_min_pa <= 0 && p.limit_max_pa >= 0;
   p.vent_bit = p.shaping && holds_atmosphere && p.regulator_min_pa > 0 ? 1u << line.line : 0u;
-  p.correction_count = line.correction_count;
-  float rising[protocol::kMaxCorrectionPoints], falling[protocol::kMaxCorrectionPoints];
-  for (uint8_t i = 0; i < line.correction_count; ++i) {
-    p.correction_command[i] = static_cast<float>(line.correction[i].command_pa);
-    rising[i] = static_cast<float>(line.correction[i].rising_pa);
-    falling[i] = static_cast<float>(line.correction[i].falling_pa);
-  }
-  if (line.correction_count >= 2) {  // a line with fewer has none (validation refuses one point)
-    p.correction_command[line.correction_count] = p.correction_command[line.correction_count - 1];
-    MakeCorrectionBranch(p.correction_command.data(), rising, line.correction_count,
-                         p.correction_rising);
-    MakeCorrectionBranch(p.correction_command.data(), falling, line.correction_count,
-                         p.correction_falling);
-  }
+  MakeCorrection(line.correction.data(), line.correction_count, p.correction);
   p.safe_counts = CountsFor(p, p.safe_pa);
   p.zero_counts = CountsFor(p, 0);
   return p;

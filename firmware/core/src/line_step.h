@@ -24,8 +24,8 @@ inline float FeedForward(const LineParams& p, LineState& s, float previous, floa
   const float grown = Abs(now) - Abs(previous);
   if (grown > 0) s.rising = true;
   if (grown < 0) s.rising = false;
-  const CorrectionBranch& branch = s.rising ? p.correction_rising : p.correction_falling;
-  return CorrectionCommand(branch, p.correction_command.data(), slewed);
+  return CorrectionCommand(p.correction, s.rising ? p.correction.rising : p.correction.falling,
+                           slewed);
 }
 
 /// In a shaped step's hold, after the overdrive: the chamber model closes in on the target from
@@ -177,7 +177,7 @@ template <bool kShaping>
   // A shaped step's overdrive rides on the target's corrected command (the correction's points
   // need not reach beyond the target).
   float command =
-      p.correction_count >= 2
+      p.correction.count >= 2
           ? line_step::FeedForward(p, s, direction_from, wanted, slewed) + (wanted - slewed)
           : wanted;
   float integrator = s.integrator_pa;

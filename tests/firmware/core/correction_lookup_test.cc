@@ -39,8 +39,8 @@ uint32_t Bits(float v) {
 
 /// Every input worth asking about: the points and their neighbouring floats, the middles, each
 /// bucket's edge and its neighbours, the ends and beyond them, and random ones across the range.
-std::vector<float> Probes(const pc::CorrectionBranch& b, const std::vector<float>& produced,
-                          std::mt19937& rng) {
+std::vector<float> Probes(float sign, const pc::CorrectionBranch& b,
+                          const std::vector<float>& produced, std::mt19937& rng) {
   std::vector<float> probes;
   auto around = [&probes](float v) {
     probes.push_back(v);
@@ -52,7 +52,7 @@ std::vector<float> Probes(const pc::CorrectionBranch& b, const std::vector<float
     if (i > 0) around(0.5f * (produced[i - 1] + produced[i]));
   }
   for (int k = 0; k <= pc::kCorrectionBuckets; ++k)
-    around(b.sign * (b.point[0] + static_cast<float>(k) / b.per_bucket));
+    around(sign * (b.point[0] + static_cast<float>(k) / b.per_bucket));
   const float low = std::min(produced.front(), produced.back());
   const float high = std::max(produced.front(), produced.back());
   const float span = high - low;
@@ -77,27 +77,44 @@ TEST(CorrectionLookup, GivesTheSearchsCommandToTheBitForEveryInput) {
         for (int trial = 0; trial < 8; ++trial) {
           // Commands 10-90 % of 100 kPa as calibration takes them; produced a little short of
           // them, unevenly, or (bunched) with most points crowded into a few kPa.
-          std::vector<float> command, produced;
+          std::vector<pp::CorrectionPoint> points;
           float at = 10000 + 2000 * unit(rng);
+          const float hysteresis = 300 + 700 * unit(rng);  // falling above rising
           for (int i = 0; i < count; ++i) {
-            command.push_back(sign * std::round(10000 + 80000.0f * static_cast<float>(i) /
-                                                            static_cast<float>(count - 1)));
-            produced.push_back(sign * std::round(at));
+            const float command =
+                10000 + 80000.0f * static_cast<float>(i) / static_cast<float>(count - 1);
+            const float falling = at + hysteresis;
+            points.push_back({static_cast<int32_t>(sign * std::round(command)),
+                              static_cast<int32_t>(sign * std::round(at)),
+                              static_cast<int32_t>(sign * std::round(falling))});
             at += bunched && i % 5 != 4 ? 1 + 300 * unit(rng) : 2000 + 12000 * unit(rng);
           }
-          pc::CorrectionBranch b;
-          pc::MakeCorrectionBranch(command.data(), produced.data(), static_cast<uint8_t>(count), b);
-          std::vector<float> padded(command);  // the lookup's command past the last point
-          padded.push_back(command.back());
-          for (float probe : Probes(b, produced, rng)) {
-            const float expected = Searched(command, produced, probe);
-            const float got = pc::CorrectionCommand(b, padded.data(), probe);
-            if (Bits(expected) != Bits(got)) {
-              FAIL(("points " + std::to_string(count) + ", input " + std::to_string(probe) +
-                    ": searched " + std::to_string(expected) + ", looked up " + std::to_string(got))
-                       .c_str());
+          pc::Correction c;
+          pc::MakeCorrection(points.data(), static_cast<uint8_t>(count), c);
+          std::vector<float> command, rising, falling;
+          for (const pp::CorrectionPoint& p : points) {
+            command.push_back(static_cast<float>(p.command_pa));
+            rising.push_back(static_cast<float>(p.rising_pa));
+            falling.push_back(static_cast<float>(p.falling_pa));
+          }
+          for (const bool on_rising : {true, false}) {
+            const std::vector<float>& produced = on_rising ? rising : falling;
+            const pc::CorrectionBranch& b = on_rising ? c.rising : c.falling;
+            for (float probe : Probes(c.sign, b, produced, rng)) {
+              const float expected = Searched(command, produced, probe);
+              const float got = pc::CorrectionCommand(c, b, probe);
+              if (Bits(expected) != Bits(got)) {
+                std::string where;
+                for (const pp::CorrectionPoint& p : points)
+                  where += " {" + std::to_string(p.command_pa) + ", " +
+                           std::to_string(p.rising_pa) + ", " + std::to_string(p.falling_pa) + "}";
+                FAIL(("points" + where + (on_rising ? ", rising" : ", falling") + ", input " +
+                      std::to_string(probe) + ": searched " + std::to_string(expected) +
+                      ", looked up " + std::to_string(got))
+                         .c_str());
+              }
+              ++probed;
             }
-            ++probed;
           }
         }
       }
@@ -110,14 +127,16 @@ TEST(CorrectionLookup, EvenlySpacedPointsLieOneToABucketAtMost) {
   // Calibration's points (commands evenly over 10-90 %, the regulator's output 4 % short at the
   // bottom, 7 % at the top): a lookup steps past one point at most.
   for (int count = 2; count <= pp::kMaxCorrectionPoints; ++count) {
-    std::vector<float> command, produced;
+    std::vector<pp::CorrectionPoint> points;
     for (int i = 0; i < count; ++i) {
       const float u = static_cast<float>(i) / static_cast<float>(count - 1);
-      command.push_back(10000 + 80000 * u);
-      produced.push_back(command.back() * (0.96f - 0.03f * u));
+      const float command = 10000 + 80000 * u;
+      const auto produced = static_cast<int32_t>(command * (0.96f - 0.03f * u));
+      points.push_back({static_cast<int32_t>(command), produced, produced + 500});
     }
-    pc::CorrectionBranch b;
-    pc::MakeCorrectionBranch(command.data(), produced.data(), static_cast<uint8_t>(count), b);
+    pc::Correction c;
+    pc::MakeCorrection(points.data(), static_cast<uint8_t>(count), c);
+    const pc::CorrectionBranch& b = c.rising;
     LONGS_EQUAL(1, b.first[0]);
     for (int k = 1; k < pc::kCorrectionBuckets; ++k) CHECK(b.first[k] - b.first[k - 1] <= 1);
     LONGS_EQUAL(count - 1, b.first[pc::kCorrectionBuckets - 1]);

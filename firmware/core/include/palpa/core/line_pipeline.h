@@ -63,12 +63,7 @@ struct LineParams {
   float shape_target = 1, shape_chamber = 0, shape_regulator = 0, chamber_alpha = 1;
   float overdrive_pa = 0;
   uint16_t shape_hold_ticks = 0;
-  /// The regulator correction: its commands (the last repeated once past it, for the lookup), and
-  /// what they produced rising and falling, each branch with its lookup table
-  /// (correction_lookup.h).
-  uint8_t correction_count = 0;
-  std::array<float, protocol::kMaxCorrectionPoints + 1> correction_command{};
-  CorrectionBranch correction_rising{}, correction_falling{};
+  Correction correction{};  ///< the regulator correction, with its lookup tables
   /// Venting (last: the fields the step reads on every tick keep their offsets): this line's bit in
   /// the board's vent outputs when it may open its dump valve (a shaped line whose limits hold
   /// atmosphere), else 0. A target below the regulator's minimum opens it: the regulator's exhaust
