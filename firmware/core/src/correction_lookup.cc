@@ -11,8 +11,6 @@ void MakeBranch(const Correction& c, const float* produced, CorrectionBranch& b)
   const uint8_t last = static_cast<uint8_t>(c.count - 1);
   for (uint8_t i = 0; i < c.count; ++i) b.point[i] = produced[i] * c.sign;
   b.point[c.count] = std::numeric_limits<float>::infinity();
-  b.first_offset = c.command[0] - produced[0];
-  b.last_offset = c.command[last] - produced[last];
   b.per_bucket = static_cast<float>(kCorrectionBuckets) / (b.point[last] - b.point[0]);
   // The inner points' buckets rise with the index (the bucket is monotone): each bucket starts
   // past the points of the buckets before it.

@@ -17,9 +17,6 @@ inline constexpr uint8_t kCorrectionBuckets = protocol::kMaxCorrectionPoints;
 /// One branch of a regulator correction: what the regulator produced, its commands rising (or
 /// falling), with what the lookup needs precomputed.
 struct CorrectionBranch {
-  /// Beyond the points the nearest end's offset holds: command − produced at the first point and
-  /// at the last.
-  float first_offset = 0, last_offset = 0;
   /// An input's bucket: (input × sign − point[0]) × per_bucket, truncated, the last bucket at most.
   float per_bucket = 0;
   /// Per bucket, the first point that can lie beyond an input of the bucket (1 + the inner points
@@ -60,8 +57,11 @@ inline uint32_t CorrectionBucket(const CorrectionBranch& b, float signed_at) {
 inline float CorrectionCommand(const Correction& c, const CorrectionBranch& b, float at) {
   const float u = at * c.sign;
   const float* x = b.point.data();
-  if (u < x[0]) return at + b.first_offset;
-  if (u > x[c.count - 1]) return at + b.last_offset;
+  // Beyond the points the nearest end's offset holds, command − produced there (the produced
+  // pressure is the point times the sign, exactly; not kept: 16 bytes a line).
+  const uint32_t last = c.count - 1u;
+  if (u < x[0]) return at + (c.command[0] - x[0] * c.sign);
+  if (u > x[last]) return at + (c.command[last] - x[last] * c.sign);
   // The first point beyond `u`, as Interpolate finds it (on the last point: past it, the
   // infinity, whose segment gives the last command exactly, as Interpolate returns it).
   uint32_t i = b.first[CorrectionBucket(b, u)];
