@@ -33,7 +33,6 @@ void MakeCorrection(const protocol::CorrectionPoint* points, uint8_t count, Corr
     rising[i] = static_cast<float>(points[i].rising_pa);
     falling[i] = static_cast<float>(points[i].falling_pa);
   }
-  c.command[count] = c.command[count - 1];
   c.sign = rising[count - 1] > rising[0] ? 1.0f : -1.0f;
   MakeBranch(c, rising, c.rising);
   MakeBranch(c, falling, c.falling);

@@ -33,8 +33,7 @@ struct CorrectionBranch {
 struct Correction {
   uint8_t count = 0;  ///< points; fewer than 2: none
   float sign = 1;     ///< +1 where the pressures rise with the index, else −1
-  /// The commands, the last once more past it (a lookup on the last point reads it).
-  std::array<float, protocol::kMaxCorrectionPoints + 1> command{};
+  std::array<float, protocol::kMaxCorrectionPoints> command{};  ///< the points' commands
   CorrectionBranch rising{}, falling{};
 };
 
@@ -57,18 +56,23 @@ inline uint32_t CorrectionBucket(const CorrectionBranch& b, float signed_at) {
 inline float CorrectionCommand(const Correction& c, const CorrectionBranch& b, float at) {
   const float u = at * c.sign;
   const float* x = b.point.data();
-  // Beyond the points the nearest end's offset holds, command − produced there (the produced
+  const float* y = c.command.data();
+  // Below the points the first point's offset holds, command − produced there (the produced
   // pressure is the point times the sign, exactly; not kept: 16 bytes a line).
-  const uint32_t last = c.count - 1u;
-  if (u < x[0]) return at + (c.command[0] - x[0] * c.sign);
-  if (u > x[last]) return at + (c.command[last] - x[last] * c.sign);
-  // The first point beyond `u`, as Interpolate finds it (on the last point: past it, the
-  // infinity, whose segment gives the last command exactly, as Interpolate returns it).
+  if (u < x[0]) return at + (y[0] - x[0] * c.sign);
+  // The first point beyond `u`, as Interpolate finds it: past the last one, the infinity.
   uint32_t i = b.first[CorrectionBucket(b, u)];
   while (x[i] <= u) ++i;
-  // Interpolate's segment, its span never 0 here (the points are strictly monotone).
-  const float* y = c.command.data();
-  return y[i - 1] + (u - x[i - 1]) / (x[i] - x[i - 1]) * (y[i] - y[i - 1]);
+  const uint32_t count = c.count;
+  if (i >= count) {  // on the last point (Interpolate's last command) or beyond it (its offset)
+    const float end = x[count - 1];
+    return u > end ? at + (y[count - 1] - end * c.sign) : y[count - 1];
+  }
+  // Interpolate's segment, its span never 0 here (the points are strictly monotone), read
+  // through one pointer per array (the tick computes each address once).
+  const float* px = x + (i - 1);
+  const float* py = y + (i - 1);
+  return py[0] + (u - px[0]) / (px[1] - px[0]) * (py[1] - py[0]);
 }
 
 }  // namespace palpa::core
