@@ -70,9 +70,9 @@ inline float CorrectionCommand(const Correction& c, const CorrectionBranch& b, f
   }
   // Interpolate's segment, its span never 0 here (the points are strictly monotone), read
   // through one pointer per array (the tick computes each address once).
-  const float* px = x + (i - 1);
-  const float* py = y + (i - 1);
-  return py[0] + (u - px[0]) / (px[1] - px[0]) * (py[1] - py[0]);
+  const float* px = x + i;
+  const float* py = y + i;
+  return py[-1] + (u - px[-1]) / (px[0] - px[-1]) * (py[0] - py[-1]);
 }
 
 }  // namespace palpa::core
