@@ -16,6 +16,7 @@
 #include "ffs_endpoints.h"
 #include "ffs_function.h"
 #include "gadget_claim.h"
+#include "hid_requests.h"
 #include "process_claim.h"
 #include "usb_descriptors.h"
 
@@ -42,56 +43,7 @@ int64_t NowNs() {
   return static_cast<int64_t>(t.tv_sec) * 1000000000 + t.tv_nsec;
 }
 
-/// HID class requests and descriptors for the HID interface; everything else stalls.
-bool HidSetup(const usb_ctrlrequest& r, std::vector<uint8_t>* reply) {
-  constexpr uint8_t kGetReport = 0x01, kGetIdle = 0x02, kGetProtocol = 0x03, kSetIdle = 0x0A,
-                    kSetProtocol = 0x0B;
-  const uint8_t type = r.bRequestType & USB_TYPE_MASK;
-  if (type == USB_TYPE_STANDARD && r.bRequest == USB_REQ_GET_DESCRIPTOR) {
-    const uint8_t descriptor = static_cast<uint8_t>(r.wValue >> 8);
-    if (descriptor == kHidReportDescriptorType) {
-      *reply = HidReportDescriptor();
-      return true;
-    }
-    if (descriptor == kHidClassDescriptor) {
-      *reply = HidClassDescriptor();
-      return true;
-    }
-    return false;
-  }
-  if (type != USB_TYPE_CLASS) return false;
-  switch (r.bRequest) {
-    case kSetIdle:
-    case kSetProtocol:
-      return true;
-    case kGetIdle:
-      *reply = {0};
-      return true;
-    case kGetProtocol:
-      *reply = {1};  // report protocol
-      return true;
-    case kGetReport:
-      reply->assign(kHidReportBytes, 0);  // zeros read as empty frames
-      return true;
-    default:
-      return false;
-  }
-}
-
 }  // namespace
-
-const char* ChannelName(Channel channel) {
-  switch (channel) {
-    case Channel::kBulk:
-      return "bulk";
-    case Channel::kHid:
-      return "hid";
-    case Channel::kAcm:
-      return "acm";
-    default:
-      return "none";
-  }
-}
 
 struct GadgetLink::Impl {
   hosted::ProcessClaim claim;

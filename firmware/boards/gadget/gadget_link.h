@@ -12,12 +12,10 @@
 #include <vector>
 
 #include "configfs_gadget.h"
+#include "gadget_channel.h"
 #include "palpa/hal/byte_link.h"
 
 namespace palpa::gadget {
-
-enum class Channel : uint8_t { kNone, kBulk, kHid, kAcm };
-const char* ChannelName(Channel channel);
 
 struct GadgetLinkOptions {
   std::string name =
