@@ -23,6 +23,7 @@
 #include "generation_stamps.h"
 #include "mini_client.h"
 #include "palpa/host/device.h"
+#include "sim_process.h"
 
 namespace pb = palpa::bench;
 namespace pp = palpa::protocol;

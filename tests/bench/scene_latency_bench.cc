@@ -16,9 +16,9 @@
 #include <thread>
 
 #include "generation_stamps.h"
-#include "mini_client.h"
 #include "palpa/host/device.h"
 #include "palpa/host/scene.h"
+#include "sim_process.h"
 
 namespace pb = palpa::bench;
 namespace ph = palpa::host;

@@ -14,8 +14,8 @@
 #include <string>
 #include <thread>
 
-#include "mini_client.h"
 #include "palpa/host/device.h"
+#include "sim_process.h"
 
 namespace {
 

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "doc_block.h"
-#include "mini_client.h"
 #include "palpa/host/flasher.h"
+#include "sim_process.h"
 #include "update_scenario.h"
 
 namespace pt = palpa::testing;

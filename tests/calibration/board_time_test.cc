@@ -8,9 +8,9 @@
 #include <string>
 #include <thread>
 
-#include "mini_client.h"
 #include "palpa/calibration/device_rig.h"
 #include "palpa/host/device.h"
+#include "sim_process.h"
 
 #include "CppUTest/TestHarness.h"
 

@@ -17,9 +17,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "mini_client.h"
 #include "palpa/calibration/modbus_devices.h"
 #include "palpa/calibration/rig_file.h"
+#include "sim_process.h"
 #include "wait_until.h"
 
 #include "CppUTest/TestHarness.h"

@@ -24,6 +24,7 @@
 #include "palpa/hal/linux/watchdog_device.h"
 #include "palpa/host/device.h"
 #include "palpa/protocol/faults.h"
+#include "sim_process.h"
 #include "wait_until.h"
 
 #include "CppUTest/CommandLineTestRunner.h"

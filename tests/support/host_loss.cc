@@ -15,6 +15,7 @@
 
 #include "mini_client.h"
 #include "palpa/host/device.h"
+#include "sim_process.h"
 
 namespace palpa::testing {
 namespace {

@@ -11,7 +11,7 @@
 #include <chrono>
 #include <thread>
 
-#include "mini_client.h"
+#include "sim_process.h"
 
 namespace palpa::testing {
 

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "mini_client.h"
+#include "sim_process.h"
 
 #include "CppUTest/TestHarness.h"
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "CppUTest/TestHarness.h"
-#include "mini_client.h"
+#include "sim_process.h"
 
 namespace palpa::testing {
 

@@ -12,8 +12,8 @@
 #include <thread>
 
 #include "ek9000_process.h"
-#include "mini_client.h"
 #include "palpa/hal/linux/modbus_aio.h"
+#include "sim_process.h"
 #include "wait_until.h"
 
 #include "CppUTest/TestHarness.h"

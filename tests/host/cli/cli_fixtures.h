@@ -11,7 +11,7 @@
 #include <system_error>
 
 #include "cli_run.h"
-#include "mini_client.h"
+#include "sim_process.h"
 #include "temp_dir.h"
 
 #include "CppUTest/TestHarness.h"

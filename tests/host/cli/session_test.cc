@@ -22,6 +22,7 @@
 #include "palpa/protocol/faults.h"
 #include "qemu_process.h"
 #include "shared_line.h"
+#include "sim_process.h"
 
 #include "CppUTest/TestHarness.h"
 

@@ -8,6 +8,7 @@
 #include "mini_client.h"
 #include "palpa/host/flasher.h"
 #include "palpa/host/link.h"
+#include "sim_process.h"
 #include "update_scenario.h"
 
 #include "CppUTest/TestHarness.h"

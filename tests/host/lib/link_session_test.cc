@@ -11,6 +11,7 @@
 #include "palpa/host/device.h"
 #include "palpa/host/link.h"
 #include "palpa/protocol/faults.h"
+#include "sim_process.h"
 
 #include "CppUTest/TestHarness.h"
 

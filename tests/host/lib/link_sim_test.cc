@@ -16,6 +16,7 @@
 #include "palpa/host/device.h"
 #include "palpa/host/fault_transport.h"
 #include "palpa/host/link.h"
+#include "sim_process.h"
 
 #include "CppUTest/TestHarness.h"
 

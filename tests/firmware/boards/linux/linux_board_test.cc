@@ -13,6 +13,7 @@
 #include "mini_client.h"
 #include "palpa/host/device.h"
 #include "palpa/protocol/faults.h"
+#include "sim_process.h"
 
 // Last: both define CppUTest's allocation macros.
 #include "CppUTest/TestHarness.h"

@@ -16,6 +16,7 @@
 #include "palpa/host/device.h"
 #include "palpa/protocol/faults.h"
 #include "qemu_process.h"
+#include "sim_process.h"
 
 #include "CppUTest/TestHarness.h"
 

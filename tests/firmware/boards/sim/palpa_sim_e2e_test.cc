@@ -14,6 +14,7 @@
 
 #include "mini_client.h"
 #include "palpa/protocol/faults.h"
+#include "sim_process.h"
 
 #include "CppUTest/TestHarness.h"
 

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "mini_client.h"
+#include "sim_process.h"
 
 #include "CppUTest/TestHarness.h"
 
