@@ -10,13 +10,12 @@
 
 #include <chrono>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <thread>
 
 #include <nlohmann/json.hpp>
 
+#include "file_text.h"
 #include "palpa/calibration/modbus_devices.h"
 #include "palpa/calibration/rig_file.h"
 #include "sim_process.h"
@@ -30,16 +29,9 @@ using nlohmann::json;
 
 namespace {
 
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 /// The shipped sim rig description with both devices pointed at `uri`.
 cal::RigDescription SimRig(const std::string& uri) {
-  json j = json::parse(ReadText(std::string(PALPA_SOURCE_DIR) + "/calibration/rigs/sim.json"));
+  json j = json::parse(pt::FileText(std::string(PALPA_SOURCE_DIR) + "/calibration/rigs/sim.json"));
   j["stage"]["address"] = uri;
   j["force_sensor"]["address"] = uri;
   const auto rig = cal::ParseRigDescription(j.dump());
@@ -82,7 +74,7 @@ TEST_GROUP(RegisterMap){};
 
 TEST(RegisterMap, EveryBadFieldIsNamed) {
   const json good =
-      json::parse(ReadText(std::string(PALPA_SOURCE_DIR) + "/calibration/rigs/sim.json"));
+      json::parse(pt::FileText(std::string(PALPA_SOURCE_DIR) + "/calibration/rigs/sim.json"));
   struct Case {
     std::function<void(json&)> edit;
     const char* names;
@@ -161,7 +153,7 @@ TEST(ModbusRig, TheForceCanComeFromASimulatedNetFtOverRdt) {
   pt::SimProcess sim;
   CHECK(sim.Start({"--config", "thesis-5finger", "--listen", "tcp:127.0.0.1:0", "--rig-modbus",
                    "tcp:127.0.0.1:0", "--rig-netft", "udp:127.0.0.1:0", "--speed", "10"}));
-  json j = json::parse(ReadText(std::string(PALPA_SOURCE_DIR) + "/calibration/rigs/sim.json"));
+  json j = json::parse(pt::FileText(std::string(PALPA_SOURCE_DIR) + "/calibration/rigs/sim.json"));
   j["stage"]["address"] = ModbusUri(sim.rig_address());
   j["force_sensor"] = {
       {"driver", "netft"}, {"address", "netft://" + sim.netft_address().substr(4)}, {"axis", "fz"}};
@@ -252,7 +244,7 @@ TEST(ModbusRig, DriversSpeakStandardModbusToAnIndependentServer) {
   CHECK(stage.MoveTo(7.5, 0.25).ok());
   kill(server, SIGTERM);
   waitpid(server, nullptr, 0);
-  const std::string written = ReadText(log);
+  const std::string written = pt::FileText(log);
   // Speed first (250 µm/s), then the target low word first (7500, 0), then the move command.
   CHECK_TEXT(written.find("write 112 250\nwrite 110 7500 0\nwrite 113 5\n") != std::string::npos,
              written.c_str());

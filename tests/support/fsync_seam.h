@@ -10,8 +10,6 @@
 
 #include <cstddef>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
 
 /// What fsync was called on while recording: 'f' a regular file, 'd' a directory (a plain array:
@@ -35,12 +33,6 @@ inline std::filesystem::path MakeTestDir(const char* prefix) {
   std::string pattern = (std::filesystem::temp_directory_path() / prefix).string() + "-XXXXXX";
   return mkdtemp(pattern.data()) != nullptr ? std::filesystem::path(pattern)
                                             : std::filesystem::path();
-}
-
-/// A fixture file's bytes (empty when it cannot be read).
-inline std::string ReadTestFile(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 /// The directory removed with everything in it, and the fsync record reset.

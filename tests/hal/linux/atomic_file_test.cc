@@ -12,6 +12,7 @@
 #include <string>
 
 #include "CppUTest/TestHarness.h"
+#include "file_text.h"
 #include "fsync_seam.h"
 
 namespace fs = std::filesystem;
@@ -53,7 +54,7 @@ TEST(StaleTemporaries, AKilledWritersTemporaryIsRemovedByTheNextWriter) {
   std::string error;
   CHECK_TEXT(WriteFileWhole(out.string(), "whole", &error), error.c_str());
   LONGS_EQUAL(0, Temporaries());
-  STRCMP_EQUAL("whole", ReadTestFile(out).c_str());
+  STRCMP_EQUAL("whole", palpa::testing::FileText(out).c_str());
 }
 
 TEST(StaleTemporaries, ALiveWritersTemporaryInAnotherProcessIsKept) {
@@ -86,7 +87,7 @@ TEST(StaleTemporaries, ALiveWritersTemporaryInAnotherProcessIsKept) {
   close(go[1]);
   CHECK(WIFEXITED(status));
   LONGS_EQUAL(0, WEXITSTATUS(status));
-  STRCMP_EQUAL("the child's", ReadTestFile(out).c_str());
+  STRCMP_EQUAL("the child's", palpa::testing::FileText(out).c_str());
   LONGS_EQUAL(0, Temporaries());
 }
 
@@ -104,6 +105,6 @@ TEST(StaleTemporaries, OnlyExactlyThatNameShapeIsRemovedAndNeverALink) {
   CHECK_TEXT(WriteFileWhole(out.string(), "new", &error), error.c_str());
   CHECK_FALSE(fs::exists(dir / ".stamps.json.zyxwvu.part"));
   CHECK(fs::is_symlink(dir / ".stamps.json.abcdef.part"));
-  STRCMP_EQUAL("precious", ReadTestFile(victim).c_str());
+  STRCMP_EQUAL("precious", palpa::testing::FileText(victim).c_str());
   LONGS_EQUAL(9, std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
 }

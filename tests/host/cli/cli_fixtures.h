@@ -5,12 +5,11 @@
 #include <stdlib.h>
 
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <system_error>
 
 #include "cli_run.h"
+#include "file_text.h"
 #include "sim_process.h"
 #include "temp_dir.h"
 
@@ -22,12 +21,6 @@ namespace palpa::testing {
 inline const std::string kNowhere = "--device tcp:127.0.0.1:1 ";
 
 inline const std::string kDevelopmentKey = PALPA_DEVELOPMENT_KEY;  // DEVELOPMENT ONLY
-
-/// Everything in the file at `path` ("" when it cannot be read).
-inline std::string FileText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
 
 /// A test group's board (TEST_GROUP_BASE): palpa-sim with thesis-5finger on a TCP port, `device`
 /// the option that names it, and `dir`, a scratch directory; both go when each test ends.

@@ -2,8 +2,8 @@
 // 12-participant study end to end, and every refusal as exit 2 naming what and where.
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 
+#include "file_text.h"
 #include "palpa/host/file_write.h"
 #include "study_fixture.h"
 // CppUTest's checks after the standard headers (its leak checker redefines new).
@@ -13,15 +13,6 @@
 namespace fs = std::filesystem;
 namespace ph = palpa::host;
 namespace pt = palpa::testing;
-
-namespace {
-
-std::string ReadAll(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-}  // namespace
 
 TEST_GROUP(CliStudyReport) {
   fs::path root;
@@ -61,10 +52,10 @@ TEST(CliStudyReport, ReportsTheThesisShapedStudy) {
                         "participants.csv", "comparisons.csv", "times.csv", "staircases.csv"})
     CHECK_TEXT(fs::is_regular_file(out / f), f);
   STRCMP_CONTAINS("one-finger,sequential,168,504,138,21,327,18,",
-                  ReadAll(out / "blocks.csv").c_str());
-  STRCMP_CONTAINS("P1,jnd,kPa,8,4,4,true,5.5,30,", ReadAll(out / "staircases.csv").c_str());
+                  pt::FileText(out / "blocks.csv").c_str());
+  STRCMP_CONTAINS("P1,jnd,kPa,8,4,4,true,5.5,30,", pt::FileText(out / "staircases.csv").c_str());
   // Every session's provenance is listed.
-  const std::string provenance = ReadAll(out / "sessions.csv");
+  const std::string provenance = pt::FileText(out / "sessions.csv");
   for (int p = 1; p <= 12; ++p)
     STRCMP_CONTAINS((root / ("P" + std::to_string(p))).c_str(), provenance.c_str());
   STRCMP_CONTAINS("1.4.0,c0ffee12,0x5eed,sim,7,12,finger1.json=", provenance.c_str());

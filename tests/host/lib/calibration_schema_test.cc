@@ -2,16 +2,15 @@
 // unit per quantity across the file, docs/calibration.md's table is the code's, and files of
 // schema version 1 (written before, in kPa, mm, N/mm and N) still read, converted.
 #include <cmath>
-#include <fstream>
 #include <functional>
 #include <map>
 #include <set>
-#include <sstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
 #include "example_calibration.h"
+#include "file_text.h"
 #include "palpa/host/calibration_file.h"
 #include "palpa/host/calibration_units.h"
 
@@ -22,13 +21,6 @@ namespace pp = palpa::protocol;
 using nlohmann::json;
 
 namespace {
-
-std::string ReadFile(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 /// Every numeric leaf of a document, by its path with `[]` for array elements, and the unit the
 /// schema declares for it ("" when it declares none). Parameters and check figures have units by
@@ -148,7 +140,7 @@ TEST(CalibrationSchema, TheDocumentedTableIsTheCodesTable) {
     table += std::string("| `") + f.path + "` | " + f.pneumatic + " | " + f.jamming + " | " +
              f.meaning + " |\n";
   }
-  const std::string doc = ReadFile(std::string(PALPA_DOCS_DIR) + "/calibration.md");
+  const std::string doc = palpa::testing::FileText(std::string(PALPA_DOCS_DIR) + "/calibration.md");
   const std::string begin = "<!-- calibration-units:begin -->\n",
                     end = "<!-- calibration-units:end -->";
   const size_t b = doc.find(begin), e = doc.find(end);
@@ -160,7 +152,8 @@ TEST(CalibrationSchema, TheDocumentedTableIsTheCodesTable) {
 TEST(CalibrationSchema, Version1FilesAreReadInTheBoardsUnits) {
   // Files as the calibrate command wrote them before version 2 (a quick run of each kind).
   for (const char* name : {"calibration_v1_pneumatic.json", "calibration_v1_jamming.json"}) {
-    const std::string text = ReadFile(std::string(PALPA_TEST_DATA_DIR) + "/" + name);
+    const std::string text =
+        palpa::testing::FileText(std::string(PALPA_TEST_DATA_DIR) + "/" + name);
     const json old = json::parse(text);
     LONGS_EQUAL(1, old["schema_version"].get<int>());
     const auto parsed = ph::ParseCalibration(text);
@@ -215,8 +208,8 @@ TEST(CalibrationSchema, Version1FilesAreReadInTheBoardsUnits) {
     DOUBLES_EQUAL(old["curve"][1]["output"].get<double>(), curves.calibrated[1].second, 1e-9);
   }
   // A version 1 file with a version 2 field is refused, naming it.
-  json old =
-      json::parse(ReadFile(std::string(PALPA_TEST_DATA_DIR) + "/calibration_v1_pneumatic.json"));
+  json old = json::parse(palpa::testing::FileText(std::string(PALPA_TEST_DATA_DIR) +
+                                                  "/calibration_v1_pneumatic.json"));
   old["conditions"]["speed_um_s"] = 100;
   const auto refused = ph::ParseCalibration(old.dump());
   CHECK_FALSE(refused.ok());

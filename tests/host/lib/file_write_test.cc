@@ -13,6 +13,7 @@
 #include <string>
 
 #include "CppUTest/TestHarness.h"
+#include "file_text.h"
 #include "fsync_seam.h"
 
 namespace fs = std::filesystem;
@@ -35,10 +36,10 @@ TEST(FileWrite, WritesANewFileAndReplacesAnOldOneWhole) {
   const fs::path file = dir / "out.bin";
   const std::string first("first\0with a zero byte", 22);
   CHECK(ph::WriteFileWhole(file.string(), first).ok());
-  CHECK(ReadTestFile(file) == first);
+  CHECK(palpa::testing::FileText(file) == first);
   const std::string second(100000, 'x');
   CHECK(ph::WriteFileWhole(file.string(), second).ok());
-  CHECK(ReadTestFile(file) == second);
+  CHECK(palpa::testing::FileText(file) == second);
   CHECK(ph::WriteFileWhole(file.string(), "").ok());
   LONGS_EQUAL(0, fs::file_size(file));
   LONGS_EQUAL(1, Entries());  // no temporary left beside it
@@ -74,8 +75,8 @@ TEST(FileWrite, ASymlinkPlantedWhereTheTemporaryMightGoIsNeverFollowed) {
   }
   const ph::Outcome written = ph::WriteFileWhole(out.string(), "package");
   CHECK_TEXT(written.ok(), written.message.c_str());
-  STRCMP_EQUAL("precious", ReadTestFile(victim).c_str());
-  STRCMP_EQUAL("package", ReadTestFile(out).c_str());
+  STRCMP_EQUAL("precious", palpa::testing::FileText(victim).c_str());
+  STRCMP_EQUAL("package", palpa::testing::FileText(out).c_str());
   CHECK(fs::is_symlink(dir / "out.pkg.part"));  // planted links are left as they were
 }
 
@@ -87,7 +88,7 @@ TEST(FileWrite, ASymlinkAtTheTargetIsRefusedNotFollowedOrReplaced) {
   const ph::Outcome written = ph::WriteFileWhole(out.string(), "{}");
   CHECK_FALSE(written.ok());
   CHECK_TEXT(written.message.find("symbolic link") != std::string::npos, written.message.c_str());
-  STRCMP_EQUAL("precious", ReadTestFile(victim).c_str());
+  STRCMP_EQUAL("precious", palpa::testing::FileText(victim).c_str());
   CHECK(fs::is_symlink(out));
   LONGS_EQUAL(2, Entries());
 }

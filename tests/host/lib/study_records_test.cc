@@ -9,9 +9,9 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <iterator>
 
 #include "CppUTest/TestHarness.h"
+#include "file_text.h"
 #include "fsync_seam.h"
 
 namespace fs = std::filesystem;
@@ -23,11 +23,6 @@ using nlohmann::json;
   STRCMP_EQUAL((expected).dump().c_str(), (actual).dump().c_str())
 
 namespace {
-
-std::string ReadAll(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 void WriteRaw(const fs::path& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;
@@ -149,7 +144,7 @@ TEST(StudyRecords, SessionAndTrialsRoundTripThroughTheirFiles) {
   for (size_t i = 0; i < trials.size(); ++i)
     JSON_EQUAL(ph::TrialToJson(trials[i]), ph::TrialToJson(r.value.trials[i]));
   // The journal is one line per trial, each ended by its newline.
-  const std::string text = ReadAll(Trials());
+  const std::string text = palpa::testing::FileText(Trials());
   CHECK_EQUAL(trials.size(), static_cast<size_t>(std::count(text.begin(), text.end(), '\n')));
   CHECK_EQUAL('\n', text.back());
   // A real board: no simulator provenance, written as null.
@@ -219,7 +214,7 @@ TEST(StudyRecords, MissingSessionFileAndLinkedJournalAreRefusedByName) {
   const ph::Outcome linked = ph::AppendTrial(dir, Detection(0, "10-30-10", true));
   CHECK_FALSE(linked.ok());
   STRCMP_CONTAINS("symbolic link", linked.message.c_str());
-  CHECK_EQUAL("", ReadAll(dir / "elsewhere"));
+  CHECK_EQUAL("", palpa::testing::FileText(dir / "elsewhere"));
 }
 
 TEST(StudyRecords, MalformedTrialLinesAreRefusedNamingFileLineAndField) {

@@ -6,24 +6,13 @@
 #include <unistd.h>
 
 #include <fstream>
-#include <sstream>
 #include <string>
 
 #include "CppUTest/TestHarness.h"
+#include "file_text.h"
 #include "temp_dir.h"
 
 namespace hosted = palpa::hosted;
-
-namespace {
-
-std::string Contents(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-}  // namespace
 
 TEST_GROUP(ProcessClaim){};
 
@@ -50,7 +39,7 @@ TEST(ProcessClaim, ALockFileThatIsALinkIsRefusedAndItsTargetUntouched) {
   std::string error;
   CHECK(!claim.Take(lock, "analog_module tcp:h:502 unit 1", &error));
   CHECK_TEXT(error.find(lock) != std::string::npos, error.c_str());
-  STRCMP_EQUAL("precious contents\n", Contents(victim).c_str());
+  STRCMP_EQUAL("precious contents\n", palpa::testing::FileText(victim).c_str());
 }
 
 TEST(ProcessClaim, AHeldClaimIsRefusedNamingItsHolder) {
@@ -58,7 +47,7 @@ TEST(ProcessClaim, AHeldClaimIsRefusedNamingItsHolder) {
   hosted::ProcessClaim first, second;
   std::string error;
   CHECK_TEXT(first.Take(lock, "analog_module m", &error), error.c_str());
-  STRCMP_EQUAL(std::to_string(getpid()).c_str(), Contents(lock).c_str());
+  STRCMP_EQUAL(std::to_string(getpid()).c_str(), palpa::testing::FileText(lock).c_str());
   CHECK(!second.Take(lock, "analog_module m", &error));
   CHECK_TEXT(error.find("in use by process " + std::to_string(getpid())) != std::string::npos,
              error.c_str());
@@ -76,5 +65,5 @@ TEST(ProcessClaim, ALockFileOfAnotherUserIsRefused) {
   std::string error;
   CHECK(!claim.Take(lock, "analog_module m", &error));
   CHECK_TEXT(error.find("not a file of this user") != std::string::npos, error.c_str());
-  STRCMP_EQUAL("4242", Contents(lock).c_str());
+  STRCMP_EQUAL("4242", palpa::testing::FileText(lock).c_str());
 }
