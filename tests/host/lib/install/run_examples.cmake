@@ -57,6 +57,9 @@ endif()
 # LD_LIBRARY_PATH.
 run("Python example" ${clean_env} PYTHONPATH=${prefix}/${PYTHON_DIR} /usr/bin/python3
     ${EXAMPLES}/python_example.py)
+# Every module of the package is installed: serve: loads its own only when a script names one.
+run("Python modules" ${clean_env} PYTHONPATH=${prefix}/${PYTHON_DIR} /usr/bin/python3 -c
+    "import palpa.scene, palpa.serve")
 
 # The command line from the prefix's bin, with a simulated board kept across commands.
 run("CLI example" ${clean_env} PATH=${prefix}/bin:$ENV{PATH} sh -e ${EXAMPLES}/cli.sh ${WORK})
