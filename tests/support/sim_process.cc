@@ -22,8 +22,11 @@
 
 namespace palpa::testing {
 
-int FreeTcpPort() {
-  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+namespace {
+
+/// A port of this socket type that the kernel gave out on 127.0.0.1 and took back.
+int FreeLoopbackPort(int type) {
+  const int fd = socket(AF_INET, type, 0);
   sockaddr_in a{};
   a.sin_family = AF_INET;
   a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
@@ -33,6 +36,12 @@ int FreeTcpPort() {
   close(fd);
   return ntohs(a.sin_port);
 }
+
+}  // namespace
+
+int FreeTcpPort() { return FreeLoopbackPort(SOCK_STREAM); }
+
+int FreeUdpPort() { return FreeLoopbackPort(SOCK_DGRAM); }
 
 /// Reads the child's output until it closes it or the SimProcess goes, keeping the tail.
 struct SimProcess::Drain {

@@ -1,5 +1,5 @@
 // palpa-sim (or another program that announces its addresses the same way) as a child process of
-// a test, and a free TCP port for servers that cannot pick their own.
+// a test, and free ports on the loopback for servers that cannot pick their own.
 #pragma once
 
 #include <memory>
@@ -8,8 +8,10 @@
 
 namespace palpa::testing {
 
-/// A TCP port on 127.0.0.1 that was free a moment ago (for servers that cannot pick their own).
+/// A TCP or UDP port on 127.0.0.1 that was free a moment ago (for servers that cannot pick their
+/// own, and for a test's datagrams).
 int FreeTcpPort();
+int FreeUdpPort();
 
 /// palpa-sim as a child process; stopped with SIGTERM when destroyed. Its output is read for its
 /// whole life (a thread after Start), so a child that writes much never blocks on a full pipe.

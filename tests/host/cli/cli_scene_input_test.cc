@@ -18,10 +18,12 @@
 #include "palpa/host/scene_tactile.h"
 // After the library headers: CppUTest's allocation macros break the standard library ones.
 #include "cli_run.h"
+#include "sim_process.h"
 
 #include "CppUTest/TestHarness.h"
 
 using palpa::testing::ExpectUsage;
+using palpa::testing::FreeUdpPort;
 using palpa::testing::Has;
 using palpa::testing::OwnTempPath;
 using palpa::testing::Palpa;
@@ -32,19 +34,6 @@ const std::string kDocs = PALPA_DOCS_DIR;
 const std::string kInputs = kDocs + "/examples/scene_inputs.json";
 const std::string kStream = kDocs + "/examples/tactile_grasper.csv";
 const std::string kSim = std::string("PALPA_SIM=") + PALPA_SIM_PATH;
-
-/// A UDP port free a moment ago.
-uint16_t FreePort() {
-  const int s = socket(AF_INET, SOCK_DGRAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  bind(s, reinterpret_cast<sockaddr*>(&a), sizeof(a));
-  socklen_t len = sizeof(a);
-  getsockname(s, reinterpret_cast<sockaddr*>(&a), &len);
-  close(s);
-  return ntohs(a.sin_port);
-}
 
 }  // namespace
 
@@ -81,7 +70,7 @@ TEST(CliSceneInput, ARecordedTactileStreamIsPlayedAndGoesSoftInAStall) {
 }
 
 TEST(CliSceneInput, TactileFramesOverUdpMalformedOnesCounted) {
-  const uint16_t port = FreePort();
+  const uint16_t port = static_cast<uint16_t>(FreeUdpPort());
   std::atomic<bool> done{false};
   std::thread sender([&] {
     const int s = socket(AF_INET, SOCK_DGRAM, 0);
