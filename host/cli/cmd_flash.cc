@@ -90,15 +90,16 @@ int CmdFlash(Context& c, const std::vector<std::string>& args) {
   if (!package.ok()) return Usage("flash", package_path + ": " + package.message);
 
   // Boards whose application cannot take the update: their bootloader, by the pins.
-  std::string error;
   std::unique_ptr<hal::linux_gpio::GpioOutput> reset_pin, boot_pin;
   if (!reset_spec.empty()) {
-    reset_pin = hal::linux_gpio::GpioOutput::Open(reset_spec, true, &error);
-    if (!reset_pin) return Usage("flash", "--reset-line " + error);
+    auto opened = hal::linux_gpio::GpioOutput::Open(reset_spec, true);
+    if (!opened.ok()) return Usage("flash", "--reset-line " + opened.message);
+    reset_pin = std::move(opened.value);
   }
   if (!boot_spec.empty()) {
-    boot_pin = hal::linux_gpio::GpioOutput::Open(boot_spec, false, &error);
-    if (!boot_pin) return Usage("flash", "--boot-line " + error);
+    auto opened = hal::linux_gpio::GpioOutput::Open(boot_spec, false);
+    if (!opened.ok()) return Usage("flash", "--boot-line " + opened.message);
+    boot_pin = std::move(opened.value);
   }
   host::BootPins pins(reset_pin.get(), boot_pin.get(),
                       [](int ms) { std::this_thread::sleep_for(std::chrono::milliseconds(ms)); });

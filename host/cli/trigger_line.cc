@@ -8,10 +8,10 @@
 namespace palpa::cli {
 
 host::Result<std::shared_ptr<TriggerLine>> TriggerLine::Open(const std::string& spec) {
-  std::string why;
-  auto line = hal::linux_gpio::GpioOutput::Open(spec, false, &why);
-  if (line == nullptr) return {host::Status::kIoError, "--trigger-gpio " + why};
-  return std::shared_ptr<TriggerLine>(new TriggerLine(std::move(line)));
+  auto line = hal::linux_gpio::GpioOutput::Open(spec, false);
+  // Every failure an I/O error, as the option has always reported it (its exit status).
+  if (!line.ok()) return {host::Status::kIoError, "--trigger-gpio " + line.message};
+  return std::shared_ptr<TriggerLine>(new TriggerLine(std::move(line.value)));
 }
 
 void TriggerLine::Pulse(const char* who) {

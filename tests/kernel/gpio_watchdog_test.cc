@@ -70,11 +70,12 @@ bool Contains(const std::string& text, const std::string& part) {
 TEST_GROUP(GuestGpioOutput){};
 
 TEST(GuestGpioOutput, TheLineStartsAtItsInitialValueAndFollowsSet) {
-  std::string error;
-  auto high = GpioOutput::Open(Spec(0), true, &error);
-  CHECK_TEXT(high != nullptr, error.c_str());
-  auto low = GpioOutput::Open(Spec(1), false, &error);
-  CHECK_TEXT(low != nullptr, error.c_str());
+  auto opened_high = GpioOutput::Open(Spec(0), true);
+  CHECK_TEXT(opened_high.ok(), opened_high.message.c_str());
+  auto opened_low = GpioOutput::Open(Spec(1), false);
+  CHECK_TEXT(opened_low.ok(), opened_low.message.c_str());
+  auto& high = opened_high.value;
+  auto& low = opened_low.value;
   LONGS_EQUAL(1, ReadLevel(0));
   LONGS_EQUAL(0, ReadLevel(1));
   CHECK(high->Set(false) == palpa::hal::Status::kOk);
@@ -86,16 +87,17 @@ TEST(GuestGpioOutput, TheLineStartsAtItsInitialValueAndFollowsSet) {
 }
 
 TEST(GuestGpioOutput, AMissingChipOrLineOrABusyLineIsRefusedByName) {
-  std::string error;
-  POINTERS_EQUAL(nullptr, GpioOutput::Open("nochip:0", false, &error).get());
+  std::string error = GpioOutput::Open("nochip:0", false).message;
   CHECK_TEXT(Contains(error, "'nochip:0': no GPIO chip 'nochip'"), error.c_str());
-  POINTERS_EQUAL(nullptr, GpioOutput::Open(Spec(8), false, &error).get());
+  error = GpioOutput::Open(Spec(8), false).message;
   CHECK_TEXT(Contains(error, "chip " + Chip() + " has no line 8"), error.c_str());
-  POINTERS_EQUAL(nullptr, GpioOutput::Open(Chip() + ":x", false, &error).get());
+  error = GpioOutput::Open(Chip() + ":x", false).message;
   CHECK_TEXT(Contains(error, "line 'x' is not a line number"), error.c_str());
-  auto held = GpioOutput::Open(Spec(2), false, &error);
-  CHECK_TEXT(held != nullptr, error.c_str());
-  POINTERS_EQUAL(nullptr, GpioOutput::Open(Spec(2), true, &error).get());
+  auto held = GpioOutput::Open(Spec(2), false);
+  CHECK_TEXT(held.ok(), held.message.c_str());
+  auto busy = GpioOutput::Open(Spec(2), true);
+  POINTERS_EQUAL(nullptr, busy.value.get());
+  error = busy.message;
   CHECK_TEXT(Contains(error, "'" + Spec(2) + "': cannot drive the line (Device or resource busy"),
              error.c_str());
   LONGS_EQUAL(0, ReadLevel(2));  // the refused request changed nothing

@@ -3,6 +3,9 @@
 
 #include <time.h>
 
+#include <cstdio>
+#include <utility>
+
 namespace palpa::linux_board {
 
 uint64_t MonotonicClock::DoNowMicros() {
@@ -17,9 +20,13 @@ std::unique_ptr<LinuxIo> LinuxIo::Open(const BoardFile& file, std::string* error
   auto output = [&](const char* field, const std::string& spec,
                     std::unique_ptr<hal::linux_gpio::GpioOutput>* out) {
     if (spec.empty()) return true;
-    *out = hal::linux_gpio::GpioOutput::Open(spec, false, error);
-    if (*out == nullptr) *error = std::string("gpio.") + field + ": " + *error;
-    return *out != nullptr;
+    auto opened = hal::linux_gpio::GpioOutput::Open(spec, false);
+    if (!opened.ok()) {
+      *error = std::string("gpio.") + field + ": " + opened.message;
+      return false;
+    }
+    *out = std::move(opened.value);
+    return true;
   };
   if (!output("supply_enable", file.supply_enable, &io->supply_.line) ||
       !output("dump_enable", file.dump_enable, &io->dump_.line) ||

@@ -13,9 +13,13 @@ namespace palpa::hal::linux_gpio {
 
 std::unique_ptr<GpioEdgeInput> GpioEdgeInput::Open(const std::string& spec, bool active_low,
                                                    std::string* error) {
-  gpiod_chip* chip = nullptr;
-  gpiod_line* line = FindGpioLine(spec, &chip, error);
-  if (line == nullptr) return nullptr;
+  auto found = FindGpioLine(spec);
+  if (!found.ok()) {
+    *error = found.message;
+    return nullptr;
+  }
+  gpiod_chip* chip = found.value.chip;
+  gpiod_line* line = found.value.line;
   // The flag makes the kernel report levels and edges as asserted/released, not as high/low.
   const int flags = active_low ? GPIOD_LINE_REQUEST_FLAG_ACTIVE_LOW : 0;
   if (gpiod_line_request_both_edges_events_flags(line, "palpa", flags) != 0) {

@@ -3,13 +3,21 @@
 
 #include <string>
 
+#include "palpa/hal/linux/opened.h"
+
 struct gpiod_chip;
 struct gpiod_line;
 
 namespace palpa::hal::linux_gpio {
 
-/// Opens the chip (by name, label, path or number) and gets the line, not yet requested. nullptr
-/// with *error naming the spec, the chip or line and the reason; on success *chip is open.
-gpiod_line* FindGpioLine(const std::string& spec, gpiod_chip** chip, std::string* error);
+struct FoundLine {
+  gpiod_chip* chip = nullptr;  ///< open: the caller closes it
+  gpiod_line* line = nullptr;  ///< not yet requested
+};
+
+/// Opens the chip (by name, label, path or number) and gets the line. A failure names the spec,
+/// the chip or line and the reason: kBadValue for a spec that is not CHIP:LINE, kNotFound for a
+/// chip or line that is not there; nothing is left open.
+Opened<FoundLine> FindGpioLine(const std::string& spec);
 
 }  // namespace palpa::hal::linux_gpio

@@ -10,18 +10,16 @@
 
 namespace palpa::hal::linux_gpio {
 
-std::unique_ptr<GpioOutput> GpioOutput::Open(const std::string& spec, bool initial,
-                                             std::string* error) {
-  gpiod_chip* chip = nullptr;
-  gpiod_line* line = FindGpioLine(spec, &chip, error);
-  if (line == nullptr) return nullptr;
-  if (gpiod_line_request_output(line, "palpa", initial ? 1 : 0) != 0) {
-    *error = "'" + spec + "': cannot drive the line (" + std::strerror(errno) +
-             "; is it used by another program?)";
-    gpiod_chip_close(chip);
-    return nullptr;
+Opened<std::unique_ptr<GpioOutput>> GpioOutput::Open(const std::string& spec, bool initial) {
+  auto found = FindGpioLine(spec);
+  if (!found.ok()) return {found.status, found.message};
+  if (gpiod_line_request_output(found.value.line, "palpa", initial ? 1 : 0) != 0) {
+    const std::string why = "'" + spec + "': cannot drive the line (" + std::strerror(errno) +
+                            "; is it used by another program?)";
+    gpiod_chip_close(found.value.chip);
+    return {Status::kIoError, why};
   }
-  return std::unique_ptr<GpioOutput>(new GpioOutput(chip, line));
+  return std::unique_ptr<GpioOutput>(new GpioOutput(found.value.chip, found.value.line));
 }
 
 GpioOutput::~GpioOutput() {

@@ -20,27 +20,33 @@ void teardown() override { fg::Reset(); }  // the fake's log is freed inside the
 }
 ;
 
+namespace {
+
+/// Whether GpioOutput::Open refuses SPEC with `status` and a message that has `part`.
+bool Refused(const std::string& spec, palpa::hal::Status status, const std::string& part) {
+  auto opened = GpioOutput::Open(spec, false);
+  return opened.status == status && opened.value == nullptr &&
+         opened.message.find(part) != std::string::npos;
+}
+
+}  // namespace
+
 TEST(Gpio, SpecsAreCheckedAndEveryFailureSaysWhy) {
-  std::string error;
-  CHECK(GpioOutput::Open("gpiochip0", false, &error) == nullptr);
-  CHECK(error.find("expected CHIP:LINE") != std::string::npos);
-  CHECK(GpioOutput::Open("gpiochip0:x", false, &error) == nullptr);
-  CHECK(error.find("not a line number") != std::string::npos);
-  CHECK(GpioOutput::Open("gpiochip7:3", false, &error) == nullptr);
-  CHECK(error.find("no GPIO chip 'gpiochip7'") != std::string::npos);
-  CHECK(GpioOutput::Open("gpiochip0:40", false, &error) == nullptr);
-  CHECK(error.find("has no line 40") != std::string::npos);
+  using palpa::hal::Status;
+  CHECK(Refused("gpiochip0", Status::kBadValue, "'gpiochip0': expected CHIP:LINE"));
+  CHECK(Refused("gpiochip0:x", Status::kBadValue, "line 'x' is not a line number"));
+  CHECK(Refused("gpiochip7:3", Status::kNotFound, "no GPIO chip 'gpiochip7'"));
+  CHECK(Refused("gpiochip0:40", Status::kNotFound, "has no line 40"));
   fg::state().busy = {"gpiochip1:4"};
-  CHECK(GpioOutput::Open("gpiochip1:4", false, &error) == nullptr);
-  CHECK(error.find("another program") != std::string::npos);
+  CHECK(Refused("gpiochip1:4", Status::kIoError, "another program"));
   LONGS_EQUAL(0, fg::state().open_chips);  // nothing left open after a failure
 }
 
 TEST(Gpio, ALineIsRequestedDrivenAndReleased) {
-  std::string error;
   {
-    auto line = GpioOutput::Open("1:5", true, &error);  // a chip by number
-    CHECK_TEXT(line != nullptr, error.c_str());
+    auto opened = GpioOutput::Open("1:5", true);  // a chip by number
+    CHECK_TEXT(opened.ok(), opened.message.c_str());
+    auto& line = opened.value;
     CHECK(line->Set(false) == palpa::hal::Status::kOk);
     // A value the kernel refuses is reported, not taken for written.
     fg::state().unwritable = {"gpiochip1:5"};
@@ -56,9 +62,8 @@ TEST(Gpio, ALineIsRequestedDrivenAndReleased) {
 }
 
 TEST(Gpio, BootPinsHoldBootWhileResetPulsesAndReleaseItBeforeTheReboot) {
-  std::string error;
-  auto reset = GpioOutput::Open("gpiochip0:1", true, &error);
-  auto boot = GpioOutput::Open("gpiochip0:2", false, &error);
+  auto reset = GpioOutput::Open("gpiochip0:1", true).value;
+  auto boot = GpioOutput::Open("gpiochip0:2", false).value;
   std::vector<int> waits;
   palpa::host::BootPins pins(reset.get(), boot.get(), [&](int ms) { waits.push_back(ms); });
   pins.ResetIntoBootloader();

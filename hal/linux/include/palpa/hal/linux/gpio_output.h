@@ -7,6 +7,7 @@
 #include <string>
 
 #include "palpa/hal/digital_io.h"
+#include "palpa/hal/linux/opened.h"
 
 struct gpiod_chip;
 struct gpiod_line;
@@ -16,9 +17,10 @@ namespace palpa::hal::linux_gpio {
 class GpioOutput final : public DigitalOutput {
  public:
   /// "CHIP:LINE" (gpiochip0:17, or a chip's label or number: 0:17). Requests the line as an
-  /// output at `initial`; nullptr with *error naming the chip, the line and the reason.
-  static std::unique_ptr<GpioOutput> Open(const std::string& spec, bool initial,
-                                          std::string* error);
+  /// output at `initial`. A failure names the chip, the line and the reason: kBadValue (not
+  /// CHIP:LINE), kNotFound (no such chip or line), kIoError (the kernel refused the request: a
+  /// line another program holds).
+  static Opened<std::unique_ptr<GpioOutput>> Open(const std::string& spec, bool initial);
   ~GpioOutput();
   GpioOutput(const GpioOutput&) = delete;
   GpioOutput& operator=(const GpioOutput&) = delete;
