@@ -59,6 +59,16 @@ std::string WriteBoardFile(int module_port, const std::string& listen, const std
   return path;
 }
 
+/// A copy of board file FILE named NAME with the module's `host` set to HOST.
+std::string WithModuleHost(const std::string& file, const std::string& host,
+                           const std::string& name) {
+  std::string text = ReadAll(file);
+  const std::string section = "\"analog_module\": {";
+  text.replace(text.find(section), section.size(), section + "\"host\": \"" + host + "\", ");
+  std::ofstream(Temp(name)) << text;
+  return Temp(name);
+}
+
 /// What a command printed on stdout.
 std::string Run(const std::string& command) {
   std::string out;
@@ -281,6 +291,28 @@ TEST(LinuxBoard, ASecondBoardOnTheSameModuleIsRefusedBeforeItWritesToIt) {
   unlink(file.c_str());
 }
 
+TEST(LinuxBoard, TwoNamesOfOneModuleAreOneClaim) {
+  // A configured with a name of the module (which it connects to), B with its address: B is
+  // refused as a board with the same file is, naming A.
+  pt::Ek9000Emulator emulator(kVolts, kPlant);
+  CHECK(emulator.up());
+  const std::string file = WriteBoardFile(emulator.port(), "tcp:127.0.0.1:0", "");
+  const std::string named = WithModuleHost(file, "localhost", "named.json");
+  pt::SimProcess a;
+  const bool a_started = a.Start({named}, PALPA_LINUX_BOARD_PATH);
+  CHECK_TEXT(a_started, a.output().c_str());
+  pt::SimProcess b;
+  const bool b_started = b.Start({file}, PALPA_LINUX_BOARD_PATH);
+  CHECK_TEXT(!b_started, b.output().c_str());
+  LONGS_EQUAL(1, b.WaitExit(5000));
+  const std::string refusal = "analog_module tcp:127.0.0.1:" + std::to_string(emulator.port()) +
+                              " unit 1 is in use by process " + std::to_string(a.pid());
+  CHECK_TEXT(b.output().find(refusal) != std::string::npos, b.output().c_str());
+  LONGS_EQUAL(0, a.Stop());
+  unlink(named.c_str());
+  unlink(file.c_str());
+}
+
 TEST(LinuxBoard, RefusesABadFileOrAMissingModuleAndSaysWhy) {
   pt::SimProcess board;
   const std::string file = WriteBoardFile(1, "tcp:127.0.0.1:0", R"("gpio": {"valves": [3]})");
@@ -295,5 +327,14 @@ TEST(LinuxBoard, RefusesABadFileOrAMissingModuleAndSaysWhy) {
   CHECK_TEXT(none.output().find("analog_module: tcp:127.0.0.1:") != std::string::npos,
              none.output().c_str());
   LONGS_EQUAL(1, none.WaitExit(5000));
+  // A host name that does not resolve: refused before anything is claimed, naming it and its key.
+  const std::string unknown = WithModuleHost(nothing, "no-such-module.invalid", "unknown.json");
+  pt::SimProcess unnamed;
+  CHECK(!unnamed.Start({unknown}, PALPA_LINUX_BOARD_PATH));
+  CHECK_TEXT(unnamed.output().find(unknown + ": analog_module.host: 'no-such-module.invalid' does "
+                                             "not resolve") != std::string::npos,
+             unnamed.output().c_str());
+  LONGS_EQUAL(1, unnamed.WaitExit(5000));
+  unlink(unknown.c_str());
   unlink(file.c_str());
 }
