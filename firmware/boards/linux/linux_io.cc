@@ -14,6 +14,18 @@ uint64_t MonotonicClock::DoNowMicros() {
   return static_cast<uint64_t>(now.tv_sec) * 1000000u + static_cast<uint64_t>(now.tv_nsec) / 1000u;
 }
 
+bool EstopInput::DoRead() {
+  const bool asserted = line->Read();
+  if (!said_ && !line->error().empty()) {
+    std::fprintf(
+        stderr,
+        "palpa-linux-board: gpio.estop %s; the E-stop counts as pressed (estop_pin) from now on\n",
+        line->error().c_str());
+    said_ = true;
+  }
+  return asserted;
+}
+
 std::unique_ptr<LinuxIo> LinuxIo::Open(const BoardFile& file, std::string* error) {
   std::unique_ptr<LinuxIo> io(new LinuxIo());
   // GPIO first, every line low: nothing is powered while the module is reached.
@@ -40,9 +52,9 @@ std::unique_ptr<LinuxIo> LinuxIo::Open(const BoardFile& file, std::string* error
   }
   if (!file.estop.empty()) {
     // The file names the level that asserts the E-stop; the line is requested in that sense.
-    io->estop_ = hal::linux_gpio::GpioEdgeInput::Open(
+    io->estop_.line = hal::linux_gpio::GpioEdgeInput::Open(
         file.estop, /*active_low=*/!file.estop_active_high, error);
-    if (io->estop_ == nullptr) {
+    if (io->estop_.line == nullptr) {
       *error = "gpio.estop: " + *error;
       return nullptr;
     }
@@ -62,7 +74,7 @@ core::BoardIo LinuxIo::Io(hal::ByteLink& link) {
                    supply_,
                    dump_,
                    pump_,
-                   estop_.get(),
+                   estop_.line ? &estop_ : nullptr,
                    link,
                    nullptr,
                    0};
@@ -97,7 +109,7 @@ bool LinuxIo::WriteSafe(std::string* error) {
 }
 
 size_t LinuxIo::gpio_lines() const {
-  size_t n = valves_.valves.size() + (estop_ ? 1 : 0);
+  size_t n = valves_.valves.size() + (estop_.line ? 1 : 0);
   for (const OptionalOutput* o : {&supply_, &dump_, &pump_}) n += o->line ? 1 : 0;
   return n;
 }

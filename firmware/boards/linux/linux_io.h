@@ -49,6 +49,18 @@ class ValvePort final : public hal::DigitalPort {
   }
 };
 
+/// The E-stop line as the tick reads it (GpioEdgeInput's latch), saying on stderr, once, why the
+/// line could not be read: the fault the core latches (estop_pin) names no reason, and a line that
+/// failed once stays asserted, so every later tick would repeat the same words.
+class EstopInput final : public hal::DigitalInput {
+ public:
+  std::unique_ptr<hal::linux_gpio::GpioEdgeInput> line;
+
+ private:
+  bool DoRead() override;
+  bool said_ = false;
+};
+
 class LinuxIo {
  public:
   /// Opens the module (its watchdog armed, 0 V written) and every GPIO line at its safe level
@@ -71,7 +83,7 @@ class LinuxIo {
   std::unique_ptr<hal::linux_aio::ModbusAioModule> module_;
   OptionalOutput supply_, dump_, pump_;
   ValvePort valves_;
-  std::unique_ptr<hal::linux_gpio::GpioEdgeInput> estop_;
+  EstopInput estop_;
 };
 
 }  // namespace palpa::linux_board

@@ -1,6 +1,7 @@
 // The fake libgpiod in a palpa-linux-board process the test drives from outside: the chips it
 // declares come from PALPA_FAKE_GPIOD_CHIPS ("gpiochip0,gpiochip1"), and writes to the line
-// PALPA_FAKE_GPIOD_FAIL_ON_SIGUSR1 names ("gpiochip0:17") fail from the first SIGUSR1 on.
+// PALPA_FAKE_GPIOD_FAIL_ON_SIGUSR1 names ("gpiochip0:17") fail from the first SIGUSR1 on, and
+// reads of the line PALPA_FAKE_GPIOD_UNREADABLE names fail from the start.
 #include <csignal>
 #include <cstdlib>
 #include <sstream>
@@ -19,6 +20,8 @@ void Arm(int) { fg::unwritable_armed = 1; }
     std::stringstream list(chips);
     for (std::string chip; std::getline(list, chip, ',');) fg::state().chips.insert(chip);
   }
+  if (const char* line = std::getenv("PALPA_FAKE_GPIOD_UNREADABLE"))
+    fg::state().broken.insert(line);
   if (const char* line = std::getenv("PALPA_FAKE_GPIOD_FAIL_ON_SIGUSR1")) {
     fg::state().unwritable.insert(line);
     fg::unwritable_armed = 0;

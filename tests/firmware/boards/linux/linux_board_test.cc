@@ -80,6 +80,18 @@ std::string Run(const std::string& command) {
   return out;
 }
 
+/// palpa-linux-board linked against the fake libgpiod, its chip gpiochip0 declared, and the
+/// environment variable `fault` (fake_gpiod_process.cc: which line fails, and how) naming `line`.
+bool StartWithFakeGpio(pt::SimProcess& board, const std::string& file, const char* fault,
+                       const char* line) {
+  setenv("PALPA_FAKE_GPIOD_CHIPS", "gpiochip0", 1);
+  setenv(fault, line, 1);
+  const bool started = board.Start({file}, PALPA_LINUX_BOARD_FAKE_GPIO_PATH);
+  unsetenv("PALPA_FAKE_GPIOD_CHIPS");
+  unsetenv(fault);
+  return started;
+}
+
 /// A host's configuration change is held to the module's fallback as the board file is: a safe
 /// value 0 V does not command is refused whole, naming the line; one that keeps 0 V is taken.
 void CheckSafeValueAwayFromZeroVoltsRefused(const std::string& address) {
@@ -196,12 +208,9 @@ TEST(LinuxBoard, AGpioWriteThatFailsIsLatchedOverTheLinkAndTheBoardGoesSafe) {
   const std::string file = WriteBoardFile(emulator.port(), "tcp:127.0.0.1:0", R"("gpio": {
       "supply_enable": "gpiochip0:17", "dump_enable": "gpiochip0:18",
       "pump_enable": "gpiochip0:27", "valves": ["gpiochip0:5", "gpiochip0:6"]})");
-  setenv("PALPA_FAKE_GPIOD_CHIPS", "gpiochip0", 1);
-  setenv("PALPA_FAKE_GPIOD_FAIL_ON_SIGUSR1", "gpiochip0:17", 1);
   pt::SimProcess board;
-  const bool started = board.Start({file}, PALPA_LINUX_BOARD_FAKE_GPIO_PATH);
-  unsetenv("PALPA_FAKE_GPIOD_CHIPS");
-  unsetenv("PALPA_FAKE_GPIOD_FAIL_ON_SIGUSR1");
+  const bool started =
+      StartWithFakeGpio(board, file, "PALPA_FAKE_GPIOD_FAIL_ON_SIGUSR1", "gpiochip0:17");
   CHECK_TEXT(started, board.output().c_str());
   CHECK_TEXT(board.output().find(", 5 GPIO lines") != std::string::npos, board.output().c_str());
   auto opened = palpa::host::Device::Open(board.address(), {});
@@ -238,6 +247,34 @@ TEST(LinuxBoard, AGpioWriteThatFailsIsLatchedOverTheLinkAndTheBoardGoesSafe) {
   kill(board.pid(), SIGTERM);
   LONGS_EQUAL(1, board.WaitExit(5000));
   for (int i = 0; i < 8; ++i) LONGS_EQUAL(0, emulator.Holding(kOutputs + i));
+  unlink(file.c_str());
+}
+
+TEST(LinuxBoard, AnUnreadableEStopLineIsLatchedAndItsReasonSaidOnce) {
+  pt::Ek9000Emulator emulator(kVolts, kPlant);
+  CHECK(emulator.up());
+  const std::string file =
+      WriteBoardFile(emulator.port(), "tcp:127.0.0.1:0", R"("gpio": {"estop": "gpiochip0:22"})");
+  pt::SimProcess board;
+  const bool started =
+      StartWithFakeGpio(board, file, "PALPA_FAKE_GPIOD_UNREADABLE", "gpiochip0:22");
+  CHECK_TEXT(started, board.output().c_str());
+  // Said on stderr with the read's error, and only once: many ticks read the line after it.
+  const std::string said =
+      "palpa-linux-board: gpio.estop 'gpiochip0:22': reading the line's edges failed (Input/output "
+      "error); the E-stop counts as pressed (estop_pin) from now on";
+  CHECK(pt::WaitUntil(
+      [&] { return (board.output() + board.later_output()).find(said) != std::string::npos; }, 3));
+  auto opened = palpa::host::Device::Open(board.address(), {});
+  CHECK_TEXT(opened.ok(), opened.message.c_str());
+  auto diag = opened.value->Diagnostics();
+  CHECK_TEXT(diag.ok(), diag.message.c_str());
+  CHECK(diag.value.fault_bitmap & pp::FaultBit(pp::Fault::kEStopPin));
+  usleep(200000);
+  const std::string all = board.output() + board.later_output();
+  CHECK_TEXT(all.find(said) == all.rfind(said), all.c_str());
+  opened.value.reset();
+  LONGS_EQUAL(0, board.Stop());
   unlink(file.c_str());
 }
 
