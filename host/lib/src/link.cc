@@ -1,5 +1,5 @@
-// The link: commands, streams and the heartbeat and dispatcher threads around protocol/'s state
-// machines; what the reader thread does with the board's frames is in link_receive.cc.
+// The link's session: opened by Hello, kept by heartbeats, ended by Close, EStop and Release;
+// commands, streams, telemetry and the reader thread have files of their own (link_*.cc).
 #include "palpa/host/link.h"
 
 #include <algorithm>
@@ -151,108 +151,6 @@ void Link::SendHello() {  // mutex_ held
   SendUnsequenced(pp::Hello{hello_nonce_, initial_seq});
 }
 
-CommandResult Link::CommandPacket(uint8_t type, const uint8_t* body, size_t size, int timeout_ms) {
-  return Await(SubmitPacket(type, body, size, timeout_ms), timeout_ms);
-}
-
-uint32_t Link::SubmitPacket(uint8_t type, const uint8_t* body, size_t size, int timeout_ms) {
-  std::unique_lock<std::mutex> lock(mutex_);
-  const auto deadline =
-      std::chrono::steady_clock::now() +
-      std::chrono::milliseconds(timeout_ms < 0 ? options_.command_timeout_ms : timeout_ms);
-  const uint32_t cookie = next_cookie_++;
-  auto fail = [&](CommandResult r) {  // answered at once: Await returns it
-    host_timeout_.OnRefused(cookie);  // never sent: changed nothing
-    pending_[cookie] = Pending{true, std::move(r)};
-    return cookie;
-  };
-  // Waits for a session being opened; none is when this host closed it or lost the board.
-  if (!changed_.wait_until(lock, deadline,
-                           [&] { return session_.open() || stop_ || !hello_wanted_; }) ||
-      !session_.open()) {
-    return fail(CommandResult{
-        Status::kNoSession,
-        0,
-        0,
-        {},
-        "no session with the board" + (session_end_.empty() ? "" : " (" + session_end_ + ")")});
-  }
-  const Status admitted = session_.Admit(type);
-  if (admitted != Status::kOk) {
-    char text[200];
-    session_.DescribeVersions(text, sizeof(text));
-    return fail(CommandResult{admitted, 0, 0, {}, std::string("refused: ") + text});
-  }
-  pending_[cookie] = Pending{};
-  // Heartbeats fit a new timeout before it applies, whether it comes alone or in a staged blob.
-  if (const auto carried = carried_.Carried(type, body, size)) {
-    host_timeout_.OnSent(cookie, *carried);
-    changed_.notify_all();
-  }
-  for (;;) {
-    const auto seq = sender_.SubmitEncoded(type, body, size, cookie);
-    if (seq.ok()) break;
-    if (seq.status != Status::kWindowFull)
-      return fail(CommandResult{seq.status, 0, 0, {}, "cannot queue the command"});
-    // Until answers make room (by count and by bytes in flight: the board's receive buffer).
-    if (!changed_.wait_until(lock, deadline, [&] { return sender_.HasRoomFor(size) || stop_; })) {
-      return fail(
-          CommandResult{Status::kWindowFull, 0, 0, {}, "the board does not take more commands"});
-    }
-  }
-  sender_.Transmit(Micros(SteadySeconds()),
-                   [this](const uint8_t* f, size_t n) { WriteFrame(f, n); });
-  return cookie;
-}
-
-uint32_t Link::FailedTicket(CommandResult result) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  const uint32_t cookie = next_cookie_++;
-  pending_[cookie] = Pending{true, std::move(result)};
-  return cookie;
-}
-
-CommandResult Link::Await(uint32_t ticket, int timeout_ms) {
-  std::unique_lock<std::mutex> lock(mutex_);
-  const auto deadline =
-      std::chrono::steady_clock::now() +
-      std::chrono::milliseconds(timeout_ms < 0 ? options_.command_timeout_ms : timeout_ms);
-  changed_.wait_until(lock, deadline, [&] { return pending_[ticket].done || stop_; });
-  CommandResult result =
-      pending_[ticket].done
-          ? pending_[ticket].result
-          : CommandResult{Status::kTimeout,
-                          0,
-                          0,
-                          {},
-                          "no answer from the board in time (the command may still be applied)"};
-  if (!pending_[ticket].done) host_timeout_.OnUnknown(ticket);
-  pending_.erase(ticket);
-  return result;
-}
-
-void Link::DispatchLoop() {
-  std::unique_lock<std::mutex> lock(mutex_);
-  while (true) {
-    queue_changed_.wait(lock, [&] { return stop_ || !queue_.empty(); });
-    if (stop_) return;
-    const TelemetryFrame frame = queue_.front();
-    queue_.pop_front();
-    // One subscriber at a time, looked up afresh: one that unsubscribed meanwhile is not called.
-    for (auto it = subscribers_.begin(); it != subscribers_.end() && !stop_;) {
-      const int id = it->first;
-      const auto callback = it->second;
-      running_subscriber_ = id;
-      lock.unlock();
-      (*callback)(frame);  // outside the lock: may take its time
-      lock.lock();
-      running_subscriber_ = 0;
-      callback_returned_.notify_all();
-      it = subscribers_.upper_bound(id);
-    }
-  }
-}
-
 void Link::HeartbeatLoop() {
   std::unique_lock<std::mutex> lock(mutex_);
   while (!stop_) {
@@ -275,70 +173,6 @@ void Link::SetHostTimeout(uint32_t host_timeout_us) {
   std::lock_guard<std::mutex> lock(mutex_);
   host_timeout_.Set(host_timeout_us);
   changed_.notify_all();
-}
-
-template <class M>
-uint32_t Link::StreamLatest(Stream& stream, M m) {
-  std::unique_lock<std::mutex> lock(mutex_);
-  // A value asked for while the link opens a new session (the board reset, or ended a session
-  // this host let go silent) goes into that session: a stream is never replayed into a new
-  // session by itself, but this one the application asks for now.
-  changed_.wait_for(lock, std::chrono::milliseconds(options_.command_timeout_ms),
-                    [&] { return session_.open() || stop_ || !hello_wanted_; });
-  m.session = session_.session_tag();
-  m.generation = ++stream.generation;
-  uint8_t frame[pp::kMaxFrameSize];
-  const auto n = pp::EncodeMessageFrame(m, 0, 0, frame, sizeof(frame));
-  if (!n.ok() || !session_.open()) {  // nothing goes out without a session to carry it
-    stream.refused = n.ok() ? Status::kNoSession : n.status;
-    stream.refused_detail = 0;
-    stream.refused_generation = m.generation;
-    return m.generation;
-  }
-  stream.frame.assign(frame, frame + n.value);
-  stream.active = true;
-  stream.sent_s = SteadySeconds();
-  WriteFrame(frame, n.value);
-  return m.generation;
-}
-
-uint32_t Link::StreamSetpoints(pp::SetLineSetpoints m) { return StreamLatest(setpoints_, m); }
-
-uint32_t Link::StreamTargets(pp::SetFingerTargets m) { return StreamLatest(targets_, m); }
-
-uint32_t Link::targets_generation() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return targets_.generation;
-}
-
-Status Link::WaitApplied(bool setpoints, uint32_t generation, int timeout_ms, uint32_t* detail) {
-  std::unique_lock<std::mutex> lock(mutex_);
-  Stream& s = setpoints ? setpoints_ : targets_;
-  Status result = Status::kTimeout;
-  changed_.wait_for(lock, std::chrono::milliseconds(timeout_ms), [&] {
-    if (s.refused_generation == generation) {
-      result = s.refused;
-      if (detail != nullptr) *detail = s.refused_detail;
-      return true;
-    }
-    if (s.applied == generation || pp::GenerationNewer(s.applied, generation)) {
-      result = Status::kOk;
-      return true;
-    }
-    if (stop_ || !session_.open()) {
-      result = Status::kNoSession;
-      return true;
-    }
-    return false;
-  });
-  return result;
-}
-
-Status Link::WaitSetpointsApplied(uint32_t generation, int timeout_ms, uint32_t* detail) {
-  return WaitApplied(true, generation, timeout_ms, detail);
-}
-Status Link::WaitTargetsApplied(uint32_t generation, int timeout_ms, uint32_t* detail) {
-  return WaitApplied(false, generation, timeout_ms, detail);
 }
 
 Status Link::EStop() {
@@ -413,30 +247,9 @@ Status Link::Release() {
   return release_status_;
 }
 
-int Link::Subscribe(std::function<void(const TelemetryFrame&)> callback) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  const int id = next_subscriber_++;
-  subscribers_[id] =
-      std::make_shared<std::function<void(const TelemetryFrame&)>>(std::move(callback));
-  return id;
-}
-
-void Link::Unsubscribe(int id) {
-  std::unique_lock<std::mutex> lock(mutex_);
-  subscribers_.erase(id);
-  if (std::this_thread::get_id() == dispatcher_.get_id()) return;  // from its own callback
-  callback_returned_.wait(lock, [&] { return running_subscriber_ != id; });
-}
-
 LinkCounters Link::counters() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return counters_;
-}
-
-double Link::BoardToHostSeconds(uint64_t board_us) const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  const double scale = session_.board().time_scale > 0 ? session_.board().time_scale : 1.0;
-  return min_offset_s_ + static_cast<double>(board_us) / 1e6 / scale;
 }
 
 std::vector<std::string> Link::TakeEvents() {

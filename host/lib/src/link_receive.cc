@@ -163,36 +163,10 @@ void Link::OnFrame(const pp::Frame& frame, double now) {  // mutex_ held
   pp::DispatchFrame(frame, [&](const auto& m, const pp::Header& h) {
     using M = std::decay_t<decltype(m)>;
     if constexpr (std::is_same_v<M, pp::HelloReply>) {
-      if (session_.TakenOverBy(m)) {  // our board gave another host a session: ours is over
-        EndSession("another host opened a session with the board (Hello nonce " +
-                       std::to_string(m.host_nonce) + "): this host no longer holds it",
-                   false);
-        return;
-      }
-      if (session_.OnHelloReply(m) == Status::kStale) return;
-      busy_since_s_ = -1;
-      hello_wanted_ = false;
-      host_timeout_.OnSession(m.host_timeout_us, m.time_scale);
-      // The board answers within a few ticks: cap the back-off at 0.5 s so a command that lost
-      // several retransmissions in a row still completes well inside the command timeout.
-      sender_.Configure(pp::SenderConfig{pp::kMaxWindow, m.rx_buffer_bytes, 50000, 2000, 500000});
-      if (!session_.catalog_matches()) {
-        char text[200];
-        session_.DescribeVersions(text, sizeof(text));
-        events_.push_back(std::string("catalog mismatch, only flashing is possible: ") + text);
-      }
-      changed_.notify_all();
+      OnHelloReply(m);
     } else if constexpr (requires { m.boot_nonce; }) {
       if constexpr (std::is_same_v<M, pp::Nack>) {
-        // Our Hello refused: another host's session is alive. Retried until it has been busy
-        // for longer than a silent host's session lasts (Open).
-        if (m.refused_type == static_cast<uint8_t>(pp::MessageType::kHello) &&
-            m.status == Status::kBusy && !session_.open() && hello_wanted_) {
-          if (busy_since_s_ < 0) busy_since_s_ = now;
-          busy_timeout_us_ = m.detail;
-          changed_.notify_all();
-          return;
-        }
+        if (OnHelloBusy(m, now)) return;
       }
       if (!session_.open()) return;
       if (session_.CheckBootNonce(m.boot_nonce) == pp::HostSession::BootCheck::kReset) {
@@ -203,50 +177,9 @@ void Link::OnFrame(const pp::Frame& frame, double now) {  // mutex_ held
         OnTelemetry(m, now);
         return;
       }
-      if constexpr (std::is_same_v<M, pp::Ack>) {
-        if (m.acked_type == static_cast<uint8_t>(pp::MessageType::kEStop)) estop_acked_ = true;
-        if (m.acked_type == static_cast<uint8_t>(pp::MessageType::kClose)) close_answered_ = true;
-        if (m.acked_type == static_cast<uint8_t>(pp::MessageType::kRelease)) {
-          release_status_ = Status::kOk;
-          release_answered_ = true;
-        }
-        changed_.notify_all();
-      }
+      if constexpr (std::is_same_v<M, pp::Ack>) OnUnsequencedAck(m);
       if constexpr (std::is_same_v<M, pp::Nack>) {
-        // A Close is heard whatever the answer: no_session (already over) or a bootloader's
-        // unsupported (it keeps no session to end). So is a Release refused by a bootloader,
-        // whose lines are always safe.
-        if (m.refused_type == static_cast<uint8_t>(pp::MessageType::kClose)) {
-          close_answered_ = true;
-          changed_.notify_all();
-          return;
-        }
-        if (m.refused_type == static_cast<uint8_t>(pp::MessageType::kRelease)) {
-          release_status_ = m.status == Status::kUnsupported ? Status::kOk : m.status;
-          release_answered_ = true;
-          changed_.notify_all();
-        }
-        if (m.status == Status::kNoSession) {  // the board holds no session of ours any more
-          EndSession(
-              "the board ended the session: it heard nothing fresh from this host within its "
-              "host-silence timeout",
-              true);
-          return;
-        }
-        if ((h.flags & pp::flags::kReliable) == 0) {  // a refused stream message
-          Stream* s = m.refused_type == static_cast<uint8_t>(pp::MessageType::kSetLineSetpoints)
-                          ? &setpoints_
-                      : m.refused_type == static_cast<uint8_t>(pp::MessageType::kSetFingerTargets)
-                          ? &targets_
-                          : nullptr;
-          if (s != nullptr) {
-            s->refused = m.status;
-            s->refused_detail = m.detail;
-            s->refused_generation = s->generation;
-            changed_.notify_all();
-          }
-          return;
-        }
+        if (OnSessionNack(m, h)) return;
       }
       if ((h.flags & pp::flags::kReliable) == 0) return;
       Status status = Status::kOk;
@@ -256,60 +189,109 @@ void Link::OnFrame(const pp::Frame& frame, double now) {  // mutex_ held
         detail = m.detail;
       }
       const bool report = !std::is_same_v<M, pp::Ack> && !std::is_same_v<M, pp::Nack>;
-      sender_.OnAnswer(h.seq, status, detail, Micros(now), [&](const pp::CommandOutcome& o) {
-        auto it = pending_.find(o.cookie);
-        if (it == pending_.end()) return;
-        it->second.done = true;
-        it->second.result = CommandResult{o.status, o.detail, 0, {}, {}};
-        if (o.status == Status::kOk)
-          host_timeout_.OnApplied(o.cookie);
-        else
-          host_timeout_.OnRefused(o.cookie);
-        if (report && o.seq == h.seq) {
-          it->second.result.reply_type = frame.header.type;
-          it->second.result.reply_body.assign(frame.body, frame.body + frame.body_size);
-        }
-      });
-      changed_.notify_all();
+      OnCommandAnswer(frame, h.seq, status, detail, report, now);
     }
   });
 }
 
-void Link::OnTelemetry(const pp::Telemetry& t, double now) {  // mutex_ held
-  ++counters_.telemetry_frames;
-  const uint64_t span = static_cast<uint64_t>(t.tick_count) * t.sample_interval_us;
-  if (expected_next_sample_us_ != 0 && t.first_sample_us > expected_next_sample_us_ && span > 0) {
-    counters_.telemetry_lost += (t.first_sample_us - expected_next_sample_us_ + span / 2) / span;
+void Link::OnHelloReply(const pp::HelloReply& m) {  // mutex_ held
+  if (session_.TakenOverBy(m)) {  // our board gave another host a session: ours is over
+    EndSession("another host opened a session with the board (Hello nonce " +
+                   std::to_string(m.host_nonce) + "): this host no longer holds it",
+               false);
+    return;
   }
-  expected_next_sample_us_ = t.first_sample_us + span;
-  // Clock mapping: the smallest host-minus-board offset seen is the least delayed frame.
-  const double scale = session_.board().time_scale;
-  const double board_end_s =
-      static_cast<double>(t.first_sample_us + (t.tick_count ? span - t.sample_interval_us : 0)) /
-      1e6 / scale;
-  const double offset = now - board_end_s;
-  if (offset < window_min_offset_s_) window_min_offset_s_ = offset;
-  if (now - offset_window_start_s_ > 10.0 || min_offset_s_ > 1e299) {  // follow slow drift
-    min_offset_s_ = window_min_offset_s_;
-    window_min_offset_s_ = 1e300;
-    offset_window_start_s_ = now;
+  if (session_.OnHelloReply(m) == Status::kStale) return;
+  busy_since_s_ = -1;
+  hello_wanted_ = false;
+  host_timeout_.OnSession(m.host_timeout_us, m.time_scale);
+  // The board answers within a few ticks: cap the back-off at 0.5 s so a command that lost
+  // several retransmissions in a row still completes well inside the command timeout.
+  sender_.Configure(pp::SenderConfig{pp::kMaxWindow, m.rx_buffer_bytes, 50000, 2000, 500000});
+  if (!session_.catalog_matches()) {
+    char text[200];
+    session_.DescribeVersions(text, sizeof(text));
+    events_.push_back(std::string("catalog mismatch, only flashing is possible: ") + text);
   }
-  if (offset < min_offset_s_) min_offset_s_ = offset;
-  // Of what waiters on changed_ wait for, telemetry moves only the applied generations: waking
-  // every waiter (heartbeats, commands) for each frame cost thousands of wake-ups a second.
-  if (setpoints_.applied != t.setpoint_generation || targets_.applied != t.target_generation) {
-    setpoints_.applied = t.setpoint_generation;
-    targets_.applied = t.target_generation;
+  changed_.notify_all();
+}
+
+bool Link::OnHelloBusy(const pp::Nack& m, double now) {  // mutex_ held
+  // Our Hello refused: another host's session is alive. Retried until it has been busy for
+  // longer than a silent host's session lasts (Open).
+  if (m.refused_type != static_cast<uint8_t>(pp::MessageType::kHello) ||
+      m.status != Status::kBusy || session_.open() || !hello_wanted_) {
+    return false;
+  }
+  if (busy_since_s_ < 0) busy_since_s_ = now;
+  busy_timeout_us_ = m.detail;
+  changed_.notify_all();
+  return true;
+}
+
+void Link::OnUnsequencedAck(const pp::Ack& m) {  // mutex_ held
+  if (m.acked_type == static_cast<uint8_t>(pp::MessageType::kEStop)) estop_acked_ = true;
+  if (m.acked_type == static_cast<uint8_t>(pp::MessageType::kClose)) close_answered_ = true;
+  if (m.acked_type == static_cast<uint8_t>(pp::MessageType::kRelease)) {
+    release_status_ = Status::kOk;
+    release_answered_ = true;
+  }
+  changed_.notify_all();
+}
+
+bool Link::OnSessionNack(const pp::Nack& m, const pp::Header& h) {  // mutex_ held
+  // A Close is heard whatever the answer: no_session (already over) or a bootloader's
+  // unsupported (it keeps no session to end). So is a Release refused by a bootloader, whose
+  // lines are always safe.
+  if (m.refused_type == static_cast<uint8_t>(pp::MessageType::kClose)) {
+    close_answered_ = true;
+    changed_.notify_all();
+    return true;
+  }
+  if (m.refused_type == static_cast<uint8_t>(pp::MessageType::kRelease)) {
+    release_status_ = m.status == Status::kUnsupported ? Status::kOk : m.status;
+    release_answered_ = true;
     changed_.notify_all();
   }
-  if (subscribers_.empty()) return;
-  if (queue_.size() >= options_.subscriber_queue) {
-    queue_.pop_front();
-    ++counters_.subscriber_dropped;
+  if (m.status == Status::kNoSession) {  // the board holds no session of ours any more
+    EndSession(
+        "the board ended the session: it heard nothing fresh from this host within its "
+        "host-silence timeout",
+        true);
+    return true;
   }
-  queue_.push_back(
-      TelemetryFrame{t, min_offset_s_ + static_cast<double>(t.first_sample_us) / 1e6 / scale});
-  queue_changed_.notify_one();
+  if ((h.flags & pp::flags::kReliable) != 0) return false;
+  // A refused stream message.
+  Stream* s =
+      m.refused_type == static_cast<uint8_t>(pp::MessageType::kSetLineSetpoints)   ? &setpoints_
+      : m.refused_type == static_cast<uint8_t>(pp::MessageType::kSetFingerTargets) ? &targets_
+                                                                                   : nullptr;
+  if (s != nullptr) {
+    s->refused = m.status;
+    s->refused_detail = m.detail;
+    s->refused_generation = s->generation;
+    changed_.notify_all();
+  }
+  return true;
+}
+
+void Link::OnCommandAnswer(const pp::Frame& frame, uint8_t seq, Status status, uint32_t detail,
+                           bool report, double now) {  // mutex_ held
+  sender_.OnAnswer(seq, status, detail, Micros(now), [&](const pp::CommandOutcome& o) {
+    auto it = pending_.find(o.cookie);
+    if (it == pending_.end()) return;
+    it->second.done = true;
+    it->second.result = CommandResult{o.status, o.detail, 0, {}, {}};
+    if (o.status == Status::kOk)
+      host_timeout_.OnApplied(o.cookie);
+    else
+      host_timeout_.OnRefused(o.cookie);
+    if (report && o.seq == seq) {
+      it->second.result.reply_type = frame.header.type;
+      it->second.result.reply_body.assign(frame.body, frame.body + frame.body_size);
+    }
+  });
+  changed_.notify_all();
 }
 
 }  // namespace palpa::host

@@ -15,7 +15,9 @@
 #include <thread>
 #include <vector>
 
+#include "palpa/host/command_result.h"
 #include "palpa/host/host_timeout.h"
+#include "palpa/host/link_options.h"
 #include "palpa/host/transport.h"
 #include "palpa/protocol/codec.h"
 #include "palpa/protocol/reliable_sender.h"
@@ -24,31 +26,6 @@
 namespace palpa::host {
 
 namespace pp = palpa::protocol;
-
-struct LinkOptions {
-  int hello_timeout_ms = 50;  ///< Hello is resent this often until answered
-  int hello_attempts = 60;
-  int command_timeout_ms = 3000;
-  bool reconnect = true;           ///< open a new session after a board reset
-  size_t subscriber_queue = 8192;  ///< telemetry frames queued before the slowest drops some
-  int stream_resend_ms = 50;       ///< resend a stream value not yet shown applied
-  /// Close and Release are repeated until the board answers: once per retransmission timeout of
-  /// the reliable commands (their measured round trip; 50 ms before the first), never more often
-  /// than close_resend_ms. They are waited for while the board is heard (what was sent before
-  /// them is still queued ahead: on a slow line, up to the board's receive buffer), and given
-  /// up on after close_attempts resends of silence from the board or close_wait_max_ms in all.
-  /// An unanswered Close leaves the board to its host-silence timeout, which ends the session as
-  /// safely.
-  int close_resend_ms = 20;
-  int close_attempts = 10;
-  int close_wait_max_ms = 2000;
-  /// Opens the transport again after it was lost (a USB board unplugged and plugged back in):
-  /// tried every reopen_interval_ms until it succeeds or the link is closed, then a new session
-  /// opens as after a board reset. Empty: a lost transport ends the link. Device::Open sets it
-  /// for usb:, hid: and serial: devices.
-  std::function<Result<std::unique_ptr<Transport>>()> reopen;
-  int reopen_interval_ms = 250;
-};
 
 /// One fault id in words: "leak"; an id this build has no name for (a newer board) as "fault_N".
 std::string FaultName(uint8_t fault);
@@ -61,20 +38,6 @@ std::string FaultNames(uint32_t bitmap);
 struct TelemetryFrame {
   pp::Telemetry telemetry;
   double host_time_s = 0;  ///< host steady-clock time of the first sample
-};
-
-/// The answer to one reliable command.
-struct CommandResult {
-  Status status = Status::kOk;
-  uint32_t detail = 0;
-  uint8_t reply_type = 0;           ///< a report (ConfigReport, Diagnostics, ...) or 0 for Ack/Nack
-  std::vector<uint8_t> reply_body;  ///< the report's body
-  std::string message;              ///< extra text (versions on a catalog mismatch)
-  template <class M>
-  bool Reply(M& m) const {
-    return reply_type == static_cast<uint8_t>(M::kInfo.type) &&
-           pp::DecodeBody(reply_body.data(), reply_body.size(), m) == Status::kOk;
-  }
 };
 
 struct LinkCounters {
@@ -220,6 +183,17 @@ class Link {
   void HeartbeatLoop();
   void DispatchLoop();
   void OnFrame(const pp::Frame& frame, double now_s);
+  void OnHelloReply(const pp::HelloReply& m);
+  /// Our Hello refused because another host's session is alive: true when `m` was that refusal.
+  bool OnHelloBusy(const pp::Nack& m, double now_s);
+  /// The answer to an EStop, Close or Release (which are sent outside the sender's window).
+  void OnUnsequencedAck(const pp::Ack& m);
+  /// What a Nack means for the session and the streams: true when nothing more is to be done
+  /// with it, false when it answers a reliable command (OnCommandAnswer).
+  bool OnSessionNack(const pp::Nack& m, const pp::Header& h);
+  /// An Ack, Nack or report answering the reliable command sent as `seq`: its ticket completes.
+  void OnCommandAnswer(const pp::Frame& frame, uint8_t seq, Status status, uint32_t detail,
+                       bool report, double now_s);
   void OnTelemetry(const pp::Telemetry& t, double now_s);
   void OnBoardReset(const std::string& why);
   /// The session ended without a board reset (the board ended it, another host holds the board,
