@@ -50,6 +50,9 @@ class SimTransport final : public FdTransport {
   pid_t child_;
 };
 
+/// A connected TCP socket with Nagle off, or why not (not_found, unavailable).
+Result<int> ConnectTcp(const DeviceUri& uri);
+
 Result<std::unique_ptr<Transport>> OpenSerial(const DeviceUri& uri);
 Result<std::unique_ptr<Transport>> OpenTcp(const DeviceUri& uri);
 Result<std::unique_ptr<Transport>> OpenSim(const DeviceUri& uri,
