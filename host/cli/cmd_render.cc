@@ -17,6 +17,7 @@
 #include "palpa/host/scene_svg.h"
 #include "render_inputs.h"
 #include "render_record.h"
+#include "render_summary.h"
 
 namespace palpa::cli {
 namespace {
@@ -240,49 +241,13 @@ int CmdRender(Context& c, const std::vector<std::string>& args) {
         return Fail(cmd, w.status, w.message);
     }
   }
-  const host::MotionPredictor* p = scene.value->predictor();
-  if (JsonOutput()) {
-    nlohmann::ordered_json j = {
-        {"scene", spec.value.name},
-        {"input", o.input},
-        {"samples", rec.fed},
-        {"of", total},
-        {"record", o.record.empty() ? nullptr : nlohmann::ordered_json(o.record)}};
-    if (p != nullptr) {
-      nlohmann::ordered_json not_predicted;
-      for (auto k :
-           {host::Prediction::kTooFewSamples, host::Prediction::kErratic,
-            host::Prediction::kReversing, host::Prediction::kStopped, host::Prediction::kLifted})
-        not_predicted[host::PredictionName(k)] = p->count(k);
-      j["prediction"] = {{"horizon_s", horizon_s},
-                         {"predicted", p->count(host::Prediction::kPredicted)},
-                         {"not_predicted", not_predicted}};
-    }
-    if (hold) j["tactile"] = {{"late", hold->late()}, {"missing", hold->missing()}};
-    if (udp) j["tactile"]["malformed"] = udp->malformed();
-    if (tablet)
-      j["tablet"] = {{"device", host::DescribePad(tablet->mapping().pad)},
-                     {"resyncs", tablet->resyncs()}};
-    PrintJson(j);
-  } else {
-    std::fprintf(TextOut(), "%s: %zu of %zu %s rendered%s%s\n", spec.value.name.c_str(),
-                 tactile ? taken : rec.fed, in.kind == InputSource::kTactileUdp ? taken : total,
-                 tactile ? "frames" : "samples", o.record.empty() ? "" : "; recorded in ",
-                 o.record.empty() ? ""
-                 : rec.hand       ? (o.record + " and " + SvgPath(o.record)).c_str()
-                                  : o.record.c_str());
-    if (p != nullptr)
-      std::fprintf(TextOut(),
-                   "prediction: %.1f ms ahead (the fingers' calibrated delay); %zu of %zu "
-                   "samples predicted\n",
-                   horizon_s * 1e3, p->count(host::Prediction::kPredicted), rec.fed);
-    if (hold && (hold->late() > 0 || hold->missing() > 0))
-      std::fprintf(TextOut(), "tactile: %zu frames missing, %zu late (dropped)\n", hold->missing(),
-                   hold->late());
-    if (udp && udp->malformed() > 0)
-      std::fprintf(TextOut(), "tactile: %zu malformed datagrams ignored (last: %s)\n",
-                   udp->malformed(), udp->last_problem().c_str());
-  }
+  RenderSummary summary{spec.value.name, o.input, o.record, tactile,  rec.hand,
+                        rec.fed,         total,   taken,    horizon_s};
+  summary.predictor = scene.value->predictor();
+  summary.hold = hold ? &*hold : nullptr;
+  summary.udp = udp.get();
+  summary.tablet = tablet.get();
+  PrintRenderSummary(summary);
   if (live) return kExitOk;
   return (tactile ? taken : rec.fed) == total ? kExitOk : kExitFailed;
 }
