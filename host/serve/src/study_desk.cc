@@ -1,9 +1,9 @@
-// A served study session: the runner's participant is the page (each callback waits on the API),
-// its triggers and records become notifications, and what the participant's view is told is
-// built here from the prompt alone — never a condition, a stimulus or a correctness.
+// A served study session: the runner on a thread of its own, its triggers and records become
+// notifications, the experimenter's view of the session; the participant is the page
+// (study_desk_participant.cc).
 #include "study_desk.h"
 
-#include <chrono>
+#include "study_desk_participant.h"
 
 namespace palpa::serve {
 namespace {
@@ -13,18 +13,6 @@ using Json = rpc::Json;
 using host::Outcome;
 using host::Status;
 
-/// What the participant's page may know of a trial: the question and how to answer it.
-Json PromptJson(const host::TrialPrompt& t, const char* state) {
-  return {{"state", state},
-          {"trial", t.index},
-          {"question", t.question},
-          {"kind", t.kind == host::BlockKind::kStaircase ? "staircase" : "detection"},
-          {"mode", t.mode == host::StudyMode::kSequential ? "sequential" : "simultaneous"},
-          {"fingers", t.fingers},
-          {"compared", t.compared},
-          {"practice", t.practice}};
-}
-
 /// Whether the participant's answer matched the condition (every finger position, as scored).
 bool Correct(const Json& record) {
   if (record.value("kind", "") == "staircase") return record["staircase"].value("correct", false);
@@ -32,65 +20,6 @@ bool Correct(const Json& record) {
 }
 
 }  // namespace
-
-class StudyDesk::Participant final : public host::StudyParticipant {
- public:
-  explicit Participant(StudyDesk& d) : d_(d) {}
-
-  void Feel(const host::TrialPrompt& t, int finger, host::BoardClock& clock,
-            double until_s) override {
-    std::unique_lock<std::mutex> lock(d_.mutex_);
-    d_.waiting_ = Waiting::kFeel;
-    d_.prompt_ = t;
-    d_.next_ = false;
-    Json state = PromptJson(t, "feel");
-    state["finger"] = finger;
-    d_.PublishParticipant(std::move(state));
-    while (!d_.next_ && !d_.stop_) {
-      lock.unlock();
-      const double now = clock.now_s();
-      lock.lock();
-      if (now >= until_s) break;
-      d_.changed_.wait_for(lock, std::chrono::milliseconds(20));
-    }
-    d_.waiting_ = Waiting::kNone;
-    d_.PublishParticipant({{"state", "wait"}});
-  }
-
-  host::Result<host::StudyAnswer> Answer(const host::TrialPrompt& t, host::BoardClock&) override {
-    std::unique_lock<std::mutex> lock(d_.mutex_);
-    d_.waiting_ = Waiting::kAnswer;
-    d_.prompt_ = t;
-    d_.answer_.reset();
-    d_.PublishParticipant(PromptJson(t, "answer"));
-    d_.changed_.wait(lock, [&] { return d_.answer_ || d_.stop_; });
-    d_.waiting_ = Waiting::kNone;
-    if (!d_.answer_) return {Status::kUnavailable, "stopped"};
-    host::StudyAnswer a = *d_.answer_;
-    d_.answer_.reset();
-    d_.PublishParticipant({{"state", "wait"}});
-    return a;
-  }
-
-  void Refused(const std::string& why) override {
-    std::lock_guard<std::mutex> lock(d_.mutex_);
-    d_.PublishExperimenter({{"event", "refused"}, {"message", why}});
-  }
-
-  bool Break(int done, int total) override {
-    std::unique_lock<std::mutex> lock(d_.mutex_);
-    d_.waiting_ = Waiting::kBreak;
-    d_.next_ = false;
-    d_.PublishParticipant({{"state", "break"}, {"trials_done", done}, {"total", total}});
-    d_.changed_.wait(lock, [&] { return d_.next_ || d_.stop_; });
-    d_.waiting_ = Waiting::kNone;
-    d_.PublishParticipant({{"state", "wait"}});
-    return !d_.stop_;
-  }
-
- private:
-  StudyDesk& d_;
-};
 
 StudyDesk::~StudyDesk() {
   {
