@@ -1,6 +1,8 @@
 // A calibration run's results from what it measured: the static inverse, the deformation
-// branches and the compensator fitted, the calibration file filled in, the failure detectors run.
+// branches and the compensator fitted, the calibration file filled in, the failure detectors run
+// (force_zero also before a step that needs the zero, where a walked one stops the run).
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "calibration_run.h"
@@ -89,20 +91,38 @@ void Run::Fits() {
   if (jamming_) f.quality.map_error = out_->map_estimate.map_error;
 }
 
-/// 6. The failure detectors; a static inverse that could not be fitted ends the run here.
-RigStatus Run::Detectors() {
-  host::CalibrationFile& f = out_->file;
+CheckInputs Run::Inputs() const {
   CheckInputs in;
   in.jamming = jamming_;
   in.force_noise_class_n = rig_.force_noise_n;
   in.tare_noise_n = tare_noise_;
   in.map = out_->map;
-  in.free_readings = {end_free_};
+  in.free_readings = free_;
   in.sweep_points = static_cast<int>(sweep_.size());
   in.corrections = corrections_;
   in.box = o_.adaptive.box;
   in.previous = info_.previous;
-  f.quality.checks = RunQualityChecks(in, f);
+  return in;
+}
+
+RigStatus Run::ZeroStillClear() {
+  double clear = 0;
+  const RigStatus s = CheckZeroBefore(rig_, o_.contact, p_.step, &clear);
+  if (!std::isnan(clear)) free_.push_back(clear);
+  if (!s.ok() && !std::isnan(clear) && ZeroPastThreshold(o_.contact, clear)) {
+    // Stopped by the zero: the file's quality says so as the finished run's detectors would.
+    host::CalibrationFile& f = out_->file;
+    f.quality.checks = {CheckForceZero(Inputs())};
+    if (!f.quality.checks[0].passed)
+      f.quality.flags.push_back("force_zero: " + f.quality.checks[0].detail);
+  }
+  return s;
+}
+
+/// 6. The failure detectors; a static inverse that could not be fitted ends the run here.
+RigStatus Run::Detectors() {
+  host::CalibrationFile& f = out_->file;
+  f.quality.checks = RunQualityChecks(Inputs(), f);
   for (const host::QualityCheck& c : f.quality.checks) {
     if (!c.passed) f.quality.flags.push_back(c.name + ": " + c.detail);
   }

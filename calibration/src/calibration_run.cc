@@ -137,9 +137,10 @@ RigStatus Run::Sweep() {
   }
   rig_.board.SetDrive(finger_, 0, 0);
   s = Chamber();
-  if (s.ok()) s = GuardedMove(rig_, rig_.limits.retract_mm, 2.0);
-  if (s.ok()) s = ReadForceMean(rig_, 10, &end_free_);  // clear of everything: the end's zero
+  double end_free = 0;
+  if (s.ok()) s = ReadClearForce(rig_, 2.0, &end_free);  // the end's zero
   if (!s.ok()) return s;
+  free_.push_back(end_free);
   for (size_t k = 0; k < sweep_.size(); ++k) {
     out_->csv.push_back(Csv({drives_[k], sweep_[k].drive_pa, sweep_[k].output, 0, 0}, "sweep"));
   }
@@ -154,9 +155,10 @@ RigStatus Run::Chamber() {
   const uint8_t line = rig_.board.driven_line(finger_);
   if (!st_.contains("chamber")) {
     Step("chamber step response, line " + std::to_string(line + 1));
+    RigStatus s = ZeroStillClear();  // its surface search reads contact by the threshold
+    if (!s.ok()) return s;
     ChamberStep step;
-    const RigStatus s =
-        MeasureChamberStep(rig_, finger_, zero_, o_.contact, ChamberStepFor(jamming_), &step);
+    s = MeasureChamberStep(rig_, finger_, zero_, o_.contact, ChamberStepFor(jamming_), &step);
     if (!s.ok()) return s;
     st_["chamber"] = json::array();
     if (step.fit.ok) {

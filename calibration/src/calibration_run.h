@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "palpa/calibration/calibration_protocol.h"
+#include "palpa/calibration/quality_checks.h"
 
 namespace palpa::calibration::run_internal {
 
@@ -52,6 +53,11 @@ class Run {
   RigStatus Detectors();
 
  private:
+  /// Before a step that finds a surface by the contact threshold: the zero read clear of
+  /// everything; past the threshold the run stops, force_zero failing in the file's quality.
+  RigStatus ZeroStillClear();
+  /// What the detectors judge, from what the run has measured so far.
+  CheckInputs Inputs() const;
   void Step(const std::string& what) {
     p_.step = what;
     if (progress_) progress_(p_);
@@ -75,7 +81,8 @@ class Run {
   const std::vector<double> drives_;  // Pa
   const double started_, earlier_;
   Progress p_;
-  double zero_ = 0, tare_noise_ = 0, end_free_ = 0;
+  double zero_ = 0, tare_noise_ = 0;
+  std::vector<double> free_;  // readings clear of everything: before the chamber step, at the end
   std::vector<host::RegulatorCorrection> corrections_;
   std::optional<host::ChamberModel> chamber_;
   double bias_ = 0;

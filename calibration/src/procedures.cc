@@ -140,9 +140,17 @@ RigStatus FindSurface(Rig& rig, double expected_mm, const ContactOptions& o, dou
     s = rig.force.Read(&force);
     if (!s.ok()) return AbortSafe(rig, s.status, "force sensor lost: " + s.message);
     if (force < o.threshold_n) break;
+    if (start + 0.5 > rig.limits.max_position_mm) {
+      // Far above any surface: unless something touches the indenter, the reading is its zero.
+      return AbortSafe(rig, Status::kUnavailable,
+                       "still in contact at the stage's upper limit: the force sensor reads " +
+                           Num(1000 * force) + " mN at " + Num(start) + " mm, " +
+                           Num(start - expected_mm) +
+                           " mm above the surface expected; if nothing touches the indenter "
+                           "there, the sensor's zero has walked past the contact threshold (" +
+                           Num(1000 * o.threshold_n) + " mN)");
+    }
     start += 0.5;
-    if (start > rig.limits.max_position_mm)
-      return AbortSafe(rig, Status::kUnavailable, "still in contact at the stage's upper limit");
     s = GuardedMove(rig, start, o.fast_mm_s);
     if (!s.ok()) return s;
   }
@@ -201,6 +209,29 @@ RigStatus ReadForceMean(Rig& rig, int count, double* mean_n, double* rms_n) {
   *mean_n = mean;
   if (rms_n != nullptr) *rms_n = std::sqrt(square);
   return {};
+}
+
+RigStatus ReadClearForce(Rig& rig, double fast_mm_s, double* force_n) {
+  const RigStatus s = GuardedMove(rig, rig.limits.retract_mm, fast_mm_s);
+  return s.ok() ? ReadForceMean(rig, 10, force_n) : s;
+}
+
+RigStatus CheckZeroBefore(Rig& rig, const ContactOptions& o, const std::string& before,
+                          double* clear_n) {
+  *clear_n = std::numeric_limits<double>::quiet_NaN();
+  double clear = 0;
+  const RigStatus s = ReadClearForce(rig, o.fast_mm_s, &clear);
+  if (!s.ok()) return s;
+  *clear_n = clear;
+  if (!ZeroPastThreshold(o, clear)) return {};
+  // Named as the force_zero check names its failures: the stop is that check, come early.
+  return AbortSafe(rig, Status::kUnavailable,
+                   "force_zero: the force sensor's zero has walked: it reads " + Num(1000 * clear) +
+                       " mN clear of everything (the indenter retracted to " +
+                       Num(rig.limits.retract_mm) + " mm), at or over the contact threshold of " +
+                       Num(1000 * o.threshold_n) + " mN, before the " + before +
+                       "; a surface search would read contact anywhere. Let the sensor settle: "
+                       "a resumed run takes the zero again");
 }
 
 RigStatus ZeroOnVentedSurface(Rig& rig, uint8_t finger, const ContactOptions& o, double* zero_mm,

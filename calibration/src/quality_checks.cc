@@ -71,17 +71,6 @@ QualityCheck Noise(const CheckInputs& in) {
   return Check("noise", value, limit, value <= limit, detail);
 }
 
-QualityCheck ForceZero(const CheckInputs& in) {
-  double worst = 0;
-  for (const MapPress& p : in.map) worst = std::max(worst, std::fabs(p.free_force_n));
-  for (double f : in.free_readings) worst = std::max(worst, std::fabs(f));
-  const double worst_mn = 1000 * worst,
-               limit_mn = 1000 * kZeroLimitClasses * in.force_noise_class_n;
-  return Check("force_zero", worst_mn, limit_mn, worst_mn <= limit_mn,
-               "readings clear of the finger stray up to " + Num(worst_mn) +
-                   " mN from the tare (limit " + Num(limit_mn) + " mN)");
-}
-
 QualityCheck Leak(const CheckInputs& in) {
   double worst = 0;
   std::string detail = "every line holds its commands within the regulator's class";
@@ -198,6 +187,17 @@ std::optional<QualityCheck> Previous(const CheckInputs& in, const host::Calibrat
 
 }  // namespace
 
+QualityCheck CheckForceZero(const CheckInputs& in) {
+  double worst = 0;
+  for (const MapPress& p : in.map) worst = std::max(worst, std::fabs(p.free_force_n));
+  for (double f : in.free_readings) worst = std::max(worst, std::fabs(f));
+  const double worst_mn = 1000 * worst,
+               limit_mn = 1000 * kZeroLimitClasses * in.force_noise_class_n;
+  return Check("force_zero", worst_mn, limit_mn, worst_mn <= limit_mn,
+               "readings clear of the finger stray up to " + Num(worst_mn) +
+                   " mN from the tare (limit " + Num(limit_mn) + " mN)");
+}
+
 double RegulatorClass::AllowedDeficitKpa(double command_kpa) const {
   return gain * command_kpa + (linearity_fs + repeatability_fs) * full_scale_kpa +
          sensor_fss * sensor_span_kpa;
@@ -205,7 +205,7 @@ double RegulatorClass::AllowedDeficitKpa(double command_kpa) const {
 
 std::vector<QualityCheck> RunQualityChecks(const CheckInputs& in,
                                            const host::CalibrationFile& fresh) {
-  std::vector<QualityCheck> out = {Points(in), Noise(in), ForceZero(in), Leak(in)};
+  std::vector<QualityCheck> out = {Points(in), Noise(in), CheckForceZero(in), Leak(in)};
   if (auto p = Previous(in, fresh)) out.push_back(*p);
   return out;
 }

@@ -104,6 +104,23 @@ TEST(Procedures, AFastApproachFindsTheSurfaceAsASlowOneDoesWhenReadingsArriveLat
   for (double kpa : {0.0, 40.0}) DOUBLES_EQUAL(surface(0, kpa), surface(0.03, kpa), 0.02);
 }
 
+TEST(Procedures, ASearchClimbingToTheUpperLimitSaysTheZeroMayHaveWalked) {
+  // A zero walking 20 mN a second from its tare reads as contact at every height: the search
+  // backs off to the stage's upper limit and says what the sensor reads there, far above the film.
+  pt::SimRig sim({"thesis-5finger", 0, 1, 3});
+  cal::Rig rig = sim.rig();
+  const cal::ContactOptions o;
+  double zero = 0, found = 0;
+  CHECK(cal::ZeroOnVentedSurface(rig, 0, o, &zero).ok());
+  sim.force_drift_n_per_s = 0.02;
+  const cal::RigStatus s = cal::FindSurface(rig, zero, o, &found);
+  CHECK_FALSE(s.ok());
+  STRCMP_CONTAINS("still in contact at the stage's upper limit: the force sensor reads",
+                  s.message.c_str());
+  STRCMP_CONTAINS("if nothing touches the indenter there, the sensor's zero has walked",
+                  s.message.c_str());
+}
+
 TEST(Procedures, AStageThatStopsOnForceFindsTheSameSurfaceHoweverLateTheHostReads) {
   // A loaded machine: each force reading reaches the host 0.1 or 0.3 s of board time late (25 or
   // 75 ms at the demo's 4x). Polled, the stage is then deeper when the host sees contact — tens

@@ -4,6 +4,7 @@
 // device stops the stage, retracts, vents the board and returns the reason.
 #pragma once
 
+#include <cmath>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -45,6 +46,22 @@ RigStatus ZeroOnVentedSurface(Rig& rig, uint8_t finger, const ContactOptions& o,
 
 /// The mean of `count` readings 10 ms apart (and their RMS spread), wherever the indenter is.
 RigStatus ReadForceMean(Rig& rig, int count, double* mean_n, double* rms_n = nullptr);
+
+/// The force clear of everything, the sensor's zero as the end of a run reads it: the indenter
+/// at the retract height, the mean of 10 readings.
+RigStatus ReadClearForce(Rig& rig, double fast_mm_s, double* force_n);
+
+/// A zero that reads at or over the contact threshold clear of everything: a surface search reads
+/// contact wherever the indenter is, so nothing that finds a surface can run on it.
+inline bool ZeroPastThreshold(const ContactOptions& o, double clear_n) {
+  return std::fabs(clear_n) >= o.threshold_n;
+}
+
+/// Before a measurement that finds a surface by the contact threshold (`before`, the run's step):
+/// reads the zero clear of everything into `clear_n` (NaN if it could not be read) and stops the
+/// run (AbortSafe) when it is past the threshold, naming the zero, its reading and the limit.
+RigStatus CheckZeroBefore(Rig& rig, const ContactOptions& o, const std::string& before,
+                          double* clear_n);
 
 /// Regulator static correction of one of the finger's lines: trim off, commands up and down in
 /// `points` steps over 10–90 % of the line's range, the settled sensor reading at each (the other

@@ -49,6 +49,9 @@ inline constexpr double kHeldToleranceKpa = 1.0;  ///< trim on: the supervisor's
 inline constexpr double kSpreadFloor = 0.015;     ///< a calibration's relative spread, at least
 inline constexpr double kPreviousLimitSigmas = 3;
 
+/// The force_zero detector alone: the largest reading clear of the surface against its limit.
+host::QualityCheck CheckForceZero(const CheckInputs& in);
+
 /// Runs every detector that applies; `fresh` is the new calibration (its curve and map).
 std::vector<host::QualityCheck> RunQualityChecks(const CheckInputs& in,
                                                  const host::CalibrationFile& fresh);
