@@ -107,9 +107,10 @@ CheckInputs Run::Inputs() const {
 
 RigStatus Run::ZeroStillClear() {
   double clear = 0;
-  const RigStatus s = CheckZeroBefore(rig_, o_.contact, p_.step, &clear);
+  bool walked = false;
+  const RigStatus s = CheckZeroBefore(rig_, o_.contact, p_.step, &clear, &walked);
   if (!std::isnan(clear)) free_.push_back(clear);
-  if (!s.ok() && !std::isnan(clear) && ZeroPastThreshold(o_.contact, clear)) {
+  if (walked) {
     // Stopped by the zero: the file's quality says so as the finished run's detectors would.
     host::CalibrationFile& f = out_->file;
     f.quality.checks = {CheckForceZero(Inputs())};

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "palpa/calibration/quality_checks.h"
 #include "palpa/host/link.h"
 
 namespace palpa::calibration {
@@ -211,19 +212,21 @@ RigStatus ReadForceMean(Rig& rig, int count, double* mean_n, double* rms_n) {
   return {};
 }
 
-RigStatus ReadClearForce(Rig& rig, double fast_mm_s, double* force_n) {
+RigStatus ReadClearForce(Rig& rig, double fast_mm_s, double* force_n, double* rms_n) {
   const RigStatus s = GuardedMove(rig, rig.limits.retract_mm, fast_mm_s);
-  return s.ok() ? ReadForceMean(rig, 10, force_n) : s;
+  return s.ok() ? ReadForceMean(rig, 10, force_n, rms_n) : s;
 }
 
 RigStatus CheckZeroBefore(Rig& rig, const ContactOptions& o, const std::string& before,
-                          double* clear_n) {
+                          double* clear_n, bool* walked) {
   *clear_n = std::numeric_limits<double>::quiet_NaN();
-  double clear = 0;
-  const RigStatus s = ReadClearForce(rig, o.fast_mm_s, &clear);
+  *walked = false;
+  double clear = 0, rms = 0;
+  const RigStatus s = ReadClearForce(rig, o.fast_mm_s, &clear, &rms);
   if (!s.ok()) return s;
   *clear_n = clear;
-  if (!ZeroPastThreshold(o, clear)) return {};
+  *walked = std::fabs(clear) >= o.threshold_n && rms <= kNoiseLimitClasses * rig.force_noise_n;
+  if (!*walked) return {};
   // Named as the force_zero check names its failures: the stop is that check, come early.
   return AbortSafe(rig, Status::kUnavailable,
                    "force_zero: the force sensor's zero has walked: it reads " + Num(1000 * clear) +

@@ -4,7 +4,6 @@
 // device stops the stage, retracts, vents the board and returns the reason.
 #pragma once
 
-#include <cmath>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -49,19 +48,15 @@ RigStatus ReadForceMean(Rig& rig, int count, double* mean_n, double* rms_n = nul
 
 /// The force clear of everything, the sensor's zero as the end of a run reads it: the indenter
 /// at the retract height, the mean of 10 readings.
-RigStatus ReadClearForce(Rig& rig, double fast_mm_s, double* force_n);
-
-/// A zero that reads at or over the contact threshold clear of everything: a surface search reads
-/// contact wherever the indenter is, so nothing that finds a surface can run on it.
-inline bool ZeroPastThreshold(const ContactOptions& o, double clear_n) {
-  return std::fabs(clear_n) >= o.threshold_n;
-}
+RigStatus ReadClearForce(Rig& rig, double fast_mm_s, double* force_n, double* rms_n = nullptr);
 
 /// Before a measurement that finds a surface by the contact threshold (`before`, the run's step):
-/// reads the zero clear of everything into `clear_n` (NaN if it could not be read) and stops the
-/// run (AbortSafe) when it is past the threshold, naming the zero, its reading and the limit.
+/// reads the zero clear of everything into `clear_n` (NaN if it could not be read). At or over
+/// the threshold a surface search reads contact wherever the indenter is: the run stops
+/// (AbortSafe, `walked` set) naming the zero, its reading and the limit — unless the readings
+/// spread beyond the noise check's limit, where the mean may be noise (that check's to report).
 RigStatus CheckZeroBefore(Rig& rig, const ContactOptions& o, const std::string& before,
-                          double* clear_n);
+                          double* clear_n, bool* walked);
 
 /// Regulator static correction of one of the finger's lines: trim off, commands up and down in
 /// `points` steps over 10–90 % of the line's range, the settled sensor reading at each (the other
