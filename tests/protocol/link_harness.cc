@@ -110,6 +110,14 @@ void TestBoard::Handle(const pp::Frame& frame, std::vector<std::vector<uint8_t>>
     } else if constexpr (std::is_same_v<M, pp::SetLineSetpoints> ||
                          std::is_same_v<M, pp::SetFingerTargets>) {
       ++stream_frames;
+      if constexpr (std::is_same_v<M, pp::SetLineSetpoints>) {
+        for (uint8_t i = 0; i < m.entry_count; ++i) {  // Nacked unsequenced, detail the entry
+          if (m.entries[i].line >= kLines) {
+            Reply(pp::Nack{boot_nonce, type, pp::Status::kNotFound, i}, seq, 0, out);
+            return;
+          }
+        }
+      }
     } else if constexpr (std::is_same_v<M, pp::Close> || std::is_same_v<M, pp::Release>) {
       if (recovery) {
         Reply(pp::Nack{boot_nonce, type, pp::Status::kUnsupported, 0}, seq, 0, out);

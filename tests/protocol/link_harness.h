@@ -45,7 +45,8 @@ class LossyChannel {
 };
 
 /// A board that keeps sessions, applies ClearFault(mask) commands in order and logs the masks,
-/// answers UpdateQuery, gates Heartbeats by generation, and can reboot.
+/// answers UpdateQuery, gates Heartbeats by generation, refuses setpoints for lines it lacks, and
+/// can reboot.
 class TestBoard {
  public:
   TestBoard(uint32_t catalog_hash, uint16_t rx_buffer_bytes, uint32_t seed);
@@ -65,6 +66,8 @@ class TestBoard {
   uint32_t applied_heartbeat() const { return session_.heartbeat().applied(); }
   uint32_t sessions = 0;
   uint32_t closes = 0;  ///< sessions ended by their host's Close
+  /// Lines the board has: a setpoint for any other is refused, as the firmware refuses it.
+  static constexpr uint8_t kLines = 4;
   /// SetLineSetpoints and SetFingerTargets received (read by tests while a link runs).
   std::atomic<uint32_t> stream_frames{0};
   /// Answers Close and Release unsupported, as a bootloader in recovery mode does.

@@ -1,6 +1,6 @@
 // The link against a test board behind a fault-injecting transport: exactly-once commands under
-// loss and corruption, board restarts, an unplugged cable, heartbeats, catalog mismatch, fault
-// names.
+// loss and corruption, board restarts, an unplugged cable, a refused stream, heartbeats, catalog
+// mismatch, fault names.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -237,6 +237,24 @@ TEST(LinkFaults, WithoutAWayToReopenALostTransportEndsTheLink) {
   std::this_thread::sleep_for(std::chrono::milliseconds(50));
   CHECK(!link->session_open());
   LONGS_EQUAL(1, cable.opened.load());
+}
+
+TEST(LinkFaults, AStreamedValueTheBoardRefusesIsReportedAtOnceAndNotResent) {
+  TestBoard board(pp::kCatalogHash, 1024, 15);
+  auto link = OpenLink(std::make_unique<BoardTransport>(board));
+  pp::SetLineSetpoints m{};
+  m.entry_count = 2;
+  m.entries[0] = {0, 30000};
+  m.entries[1] = {TestBoard::kLines, 30000};  // a line the board does not have
+  const uint32_t generation = link->StreamSetpoints(m);
+  uint32_t detail = 99;
+  // The refusal answers the wait: unrecorded, the wait runs out as if nothing had been heard.
+  LONGS_EQUAL((int)pp::Status::kNotFound,
+              (int)link->WaitSetpointsApplied(generation, 2000, &detail));
+  LONGS_EQUAL(1, detail);  // the entry naming the missing line
+  // A refused value is not resent every stream_resend_ms (50) to be refused again.
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  LONGS_EQUAL(1, board.stream_frames);
 }
 
 TEST(LinkFaults, ABoardThatReportsNoHostTimeoutGetsHeartbeatsAtTheDefaultRate) {
