@@ -119,6 +119,7 @@ void TestBoard::Handle(const pp::Frame& frame, std::vector<std::vector<uint8_t>>
         }
       }
     } else if constexpr (std::is_same_v<M, pp::Close> || std::is_same_v<M, pp::Release>) {
+      if constexpr (std::is_same_v<M, pp::Release>) ++releases;
       if (recovery) {
         Reply(pp::Nack{boot_nonce, type, pp::Status::kUnsupported, 0}, seq, 0, out);
         return;

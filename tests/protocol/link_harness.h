@@ -65,7 +65,8 @@ class TestBoard {
   uint32_t boot_nonce() const { return session_.boot_nonce(); }
   uint32_t applied_heartbeat() const { return session_.heartbeat().applied(); }
   uint32_t sessions = 0;
-  uint32_t closes = 0;  ///< sessions ended by their host's Close
+  uint32_t closes = 0;                ///< sessions ended by their host's Close
+  std::atomic<uint32_t> releases{0};  ///< Release frames received
   /// Lines the board has: a setpoint for any other is refused, as the firmware refuses it.
   static constexpr uint8_t kLines = 4;
   /// SetLineSetpoints and SetFingerTargets received (read by tests while a link runs).

@@ -150,6 +150,16 @@ TEST(LinkSession, AReleaseStopsResendingWhatWasStreamed) {
   LONGS_EQUAL(after_release, board.stream_frames);
 }
 
+TEST(LinkSession, AReleaseIsSentOnceWhenTheBoardAcksIt) {
+  TestBoard board(pp::kCatalogHash, 1024, 26);
+  auto link = ph::Link::Open(std::make_unique<BoardTransport>(board), {});
+  CHECK_TEXT(link.ok(), link.message.c_str());
+  LONGS_EQUAL((int)pp::Status::kOk, (int)link.value->Release());
+  // Its Ack ends the wait: an unheard Ack repeats the Release until the board falls silent, which
+  // a board answering each one never does (seconds of Releases). A slow machine may resend once.
+  CHECK_TEXT(board.releases <= 2, std::to_string(board.releases.load()).c_str());
+}
+
 TEST(LinkSession, NoCloseIsSentToABoardWithAnotherCatalog) {
   TestBoard board(0x12345678, 1024, 23);
   auto link = ph::Link::Open(std::make_unique<BoardTransport>(board), {});
