@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 
 #include "palpa/protocol/messages_config.h"
 
@@ -60,18 +61,19 @@ inline float CorrectionCommand(const Correction& c, const CorrectionBranch& b, f
   // Below the points the first point's offset holds, command − produced there (the produced
   // pressure is the point times the sign, exactly; not kept: 16 bytes a line).
   if (u < x[0]) return at + (y[0] - x[0] * c.sign);
-  // The first point beyond `u`, as Interpolate finds it: past the last one, the infinity.
-  uint32_t i = b.first[CorrectionBucket(b, u)];
-  while (x[i] <= u) ++i;
-  const uint32_t count = c.count;
-  if (i >= count) {  // on the last point (Interpolate's last command) or beyond it (its offset)
-    const float end = x[count - 1];
-    return u > end ? at + (y[count - 1] - end * c.sign) : y[count - 1];
+  // The first point beyond `u`, as Interpolate finds it: past the last one, the infinity. Walked
+  // by pointer, the commands' pointer alongside (an index and a pointer both, otherwise).
+  const uint32_t first = b.first[CorrectionBucket(b, u)];
+  const float* px = x + first;
+  const float* py = y + first;
+  while (*px <= u) ++px, ++py;
+  // Past the last point: the walk stopped on the infinity (the points are finite), which it has
+  // just read, so no count is needed to tell.
+  if (*px == std::numeric_limits<float>::infinity()) {
+    // On the last point (Interpolate's last command) or beyond it (its offset).
+    return u > px[-1] ? at + (py[-1] - px[-1] * c.sign) : py[-1];
   }
-  // Interpolate's segment, its span never 0 here (the points are strictly monotone), read
-  // through one pointer per array (the tick computes each address once).
-  const float* px = x + i;
-  const float* py = y + i;
+  // Interpolate's segment, its span never 0 here (the points are strictly monotone).
   return py[-1] + (u - px[-1]) / (px[0] - px[-1]) * (py[0] - py[-1]);
 }
 
