@@ -7,9 +7,9 @@
 #include <cstring>
 
 #include "check_random.h"
-#include "float_ops.h"
 #include "palpa/core/compensator.h"
 #include "palpa/core/internal/compensator_tables.h"
+#include "palpa/core/internal/float_ops.h"
 #include "play_lanes.h"
 #include "play_pairs.h"
 #include "semihosting.h"

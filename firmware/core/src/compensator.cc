@@ -2,8 +2,8 @@
 #include "palpa/core/compensator.h"
 
 #include "compensator_step.h"
-#include "float_ops.h"
 #include "palpa/core/curve.h"
+#include "palpa/core/internal/float_ops.h"
 #include "play_lanes.h"
 
 namespace palpa::core {

@@ -2,8 +2,8 @@
 // struct return per finger per tick otherwise); the branch model's stays in compensator.cc.
 #pragma once
 
-#include "float_ops.h"
 #include "palpa/core/compensator.h"
+#include "palpa/core/internal/float_ops.h"
 #include "play_lanes.h"
 #include "play_pairs.h"
 

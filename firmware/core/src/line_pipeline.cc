@@ -1,9 +1,9 @@
 // The line pipeline: the only code between a setpoint and a DAC code.
 #include "palpa/core/line_pipeline.h"
 
-#include "float_ops.h"
 #include "line_step.h"
 #include "palpa/core/ceilings.h"
+#include "palpa/core/internal/float_ops.h"
 #include "palpa/protocol/enums.h"
 
 namespace palpa::core {

@@ -2,7 +2,7 @@
 // otherwise); StepLine (line_pipeline.cc) is the same step for everyone else.
 #pragma once
 
-#include "float_ops.h"
+#include "palpa/core/internal/float_ops.h"
 #include "palpa/core/line_pipeline.h"
 #include "palpa/protocol/enums.h"
 

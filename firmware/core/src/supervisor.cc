@@ -2,7 +2,7 @@
 // leak, E-stop pin, pump run time, output write. Every one latches into the same bitmap.
 #include "palpa/core/supervisor.h"
 
-#include "float_ops.h"
+#include "palpa/core/internal/float_ops.h"
 
 namespace palpa::core {
 namespace {

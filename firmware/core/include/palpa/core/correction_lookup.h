@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "palpa/core/internal/float_ops.h"
 #include "palpa/protocol/messages_config.h"
 
 namespace palpa::core {
@@ -41,13 +42,14 @@ struct Correction {
 /// The correction of a line's `count` points (validated: none, or at least 2 strictly monotone).
 void MakeCorrection(const protocol::CorrectionPoint* points, uint8_t count, Correction& c);
 
-/// An input's bucket (the input times the sign), the same function when the table is built and
-/// when it is read: monotone in the input, so every inner point in an earlier bucket lies before
-/// it.
+/// An input's bucket (the input times the sign, at least the first point), the same function when
+/// the table is built and when it is read: monotone in the input, so every inner point in an
+/// earlier bucket lies before it. Truncated with saturation (one VCVT on the Cortex-M4F), then
+/// held to the last bucket in integers: an input far beyond the points needs no float compare.
 inline uint32_t CorrectionBucket(const CorrectionBranch& b, float signed_at) {
-  constexpr uint32_t kLastBucket = kCorrectionBuckets - 1;
-  const float f = (signed_at - b.point[0]) * b.per_bucket;
-  return f < static_cast<float>(kLastBucket) ? static_cast<uint32_t>(f) : kLastBucket;
+  constexpr int32_t kLastBucket = kCorrectionBuckets - 1;
+  const int32_t k = TruncateSaturating((signed_at - b.point[0]) * b.per_bucket);  // 0 or more
+  return static_cast<uint32_t>(k < kLastBucket ? k : kLastBucket);
 }
 
 /// The command that makes the regulator produce `at` on a branch: to the bit what Interpolate
