@@ -18,8 +18,10 @@ void BoardLines::Apply(const BoardConfig& live, uint32_t tick_us, bool has_adc, 
   count_ = live.line_count;
   ParkDroppedChannels(dac);
   const float tolerance = static_cast<float>(live.board.sensor_tolerance_pa);
+  corrected_ = false;
   for (uint8_t i = 0; i < live.line_count; ++i) {
     const LineParams& p = params_[i] = MakeLineParams(live.lines[i], tick_us);
+    corrected_ = corrected_ || p.correction.count >= 2;
     state_[i].shaping_fell_back = false;  // a new chamber model gets its chance
     ResetLineState(p, state_[i], p.safe_pa);
     setpoint_pa_[i] = p.safe_pa;

@@ -6,6 +6,27 @@ namespace palpa::core {
 
 using protocol::kMaxLines;
 
+namespace {
+
+/// The stepping loop, in two copies: with the correction's lookup, and without it for boards
+/// whose lines have none (the lookup's registers cost the loop a spill on every line). Returns
+/// whether a vacuum line needs the pump.
+template <bool kCorrection>
+[[gnu::always_inline]] inline bool StepLines(const LineParams* p, const LineParams* const end,
+                                             LineState* state, LineOutput* out,
+                                             const LineObservation* o, const float* setpoint,
+                                             const uint8_t* flags, uint32_t* code,
+                                             uint32_t& vents) {
+  bool vacuum = false;
+  for (; p != end; ++p, ++state, ++out, ++o, ++setpoint, ++flags, ++code) {
+    *code = StepLineEither<kCorrection>(*p, *state, *setpoint, o->reading, *out, vents, *flags);
+    vacuum |= out->command_pa < p->pump_below_pa;
+  }
+  return vacuum;
+}
+
+}  // namespace
+
 void BoardLines::Sense(hal::AnalogInput& adc, SupervisorInput& in) {
   uint32_t scan[kMaxLines];  // one scan of every configured line's channel
   const uint8_t count = count_;
@@ -59,10 +80,8 @@ void BoardLines::Step(bool safe, SupervisorInput& in) {
     }
   } else {
     vents = 0u;
-    for (; p != end; ++p, ++state, ++out, ++o, ++setpoint, ++flags, ++code) {
-      *code = StepLineEither(*p, *state, *setpoint, o->reading, *out, vents, *flags);
-      vacuum |= out->command_pa < p->pump_below_pa;
-    }
+    vacuum = corrected_ ? StepLines<true>(p, end, state, out, o, setpoint, flags, code, vents)
+                        : StepLines<false>(p, end, state, out, o, setpoint, flags, code, vents);
   }
   in.vacuum_demand = vacuum;  // the pump follows on the next tick's supervision
 }

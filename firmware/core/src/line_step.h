@@ -98,8 +98,9 @@ inline float FeedForward(const LineParams& p, LineState& s, float previous, floa
 }  // namespace line_step
 
 /// StepLine's body (line_pipeline.h has the contract), for lines with step shaping (kShaping,
-/// p.shaping) or without: two copies, so a line that shapes nothing pays nothing for it.
-template <bool kShaping>
+/// p.shaping) or without: two copies, so a line that shapes nothing pays nothing for it. Without
+/// kCorrection the regulator correction is not looked up (for boards whose lines have none).
+template <bool kShaping, bool kCorrection = true>
 [[gnu::always_inline]] inline uint32_t StepLineInline(const LineParams& __restrict p,
                                                       LineState& __restrict s, float setpoint_pa,
                                                       const LineReading& __restrict reading,
@@ -177,7 +178,7 @@ template <bool kShaping>
   // A shaped step's overdrive rides on the target's corrected command (the correction's points
   // need not reach beyond the target).
   float command =
-      p.correction.count >= 2
+      kCorrection && p.correction.count >= 2
           ? line_step::FeedForward(p, s, direction_from, wanted, slewed) + (wanted - slewed)
           : wanted;
   float integrator = s.integrator_pa;
@@ -220,13 +221,16 @@ template <bool kShaping>
 }
 
 /// StepLineInline for the line's kind of step; `flags` are status bits the caller adds (ORed in
-/// with the step's own, so the status is stored once).
+/// with the step's own, so the status is stored once). Without kCorrection, for lines without a
+/// regulator correction only.
+template <bool kCorrection = true>
 [[gnu::always_inline]] inline uint32_t StepLineEither(const LineParams& p, LineState& s,
                                                       float setpoint_pa, const LineReading& reading,
                                                       LineOutput& out, uint32_t& vents,
                                                       uint8_t flags = 0) {
-  return p.shaping ? StepLineInline<true>(p, s, setpoint_pa, reading, out, vents, flags)
-                   : StepLineInline<false>(p, s, setpoint_pa, reading, out, vents, flags);
+  return p.shaping
+             ? StepLineInline<true, kCorrection>(p, s, setpoint_pa, reading, out, vents, flags)
+             : StepLineInline<false, kCorrection>(p, s, setpoint_pa, reading, out, vents, flags);
 }
 
 }  // namespace palpa::core

@@ -114,6 +114,29 @@ TEST(BoardSetpoints, RawSetpointReachesTheDacAfterTheSlew) {
   CHECK_FALSE(h.board->safe());
 }
 
+TEST(BoardSetpoints, ALinesRegulatorCorrectionSetsItsCommandInTheTick) {
+  // Open loop (no sensor), so the steady command is the feed-forward alone: the correction's
+  // command for the setpoint (the line stage has a loop without the lookup for boards whose lines
+  // have no correction; this board has one).
+  pp::ConfigureLine c = h.board->config().lines[0];
+  c.sensor = pp::SensorKind::kNone;
+  c.correction_count = 3;
+  c.correction[0] = {10000, 9000, 9500};
+  c.correction[1] = {50000, 48000, 49000};
+  c.correction[2] = {90000, 88000, 89000};
+  h.Send(c);
+  LONGS_EQUAL((int)pp::Status::kOk,
+              (int)BoardHarness::AnswerFor(h.Drain(), pp::MessageType::kConfigureLine));
+  h.Send(Setpoints(1, {{0, 30000}}));
+  h.Run(400, true);
+  CHECK_FALSE(h.board->safe());
+  DOUBLES_EQUAL(30000, h.board->line_state(0).slewed_pa, 0);
+  const pc::LineParams p = pc::MakeLineParams(c, pc::Board::kTickUs);
+  const float corrected = pc::CorrectionCommand(p.correction, p.correction.rising, 30000);
+  CHECK(corrected > 30500);  // the regulator falls short of its command: asked for more
+  DOUBLES_EQUAL(corrected, h.board->line_output(0).command_pa, 0);
+}
+
 TEST(BoardSetpoints, OutOfLimitSetpointIsNackedNeverClamped) {
   h.Send(Setpoints(1, {{0, 10000}, {3, 30000}}));  // line 3 is a bias line: 20 kPa at most
   const auto frames = h.Drain();

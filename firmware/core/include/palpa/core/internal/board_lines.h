@@ -75,6 +75,9 @@ class BoardLines {
   uint8_t ParkDroppedChannels(hal::AnalogOutput& dac);
 
   uint8_t count_ = 0;  ///< the live configuration's lines: DAC channels the tick writes
+  /// A line has a regulator correction: the line stage runs the loop that looks corrections up
+  /// (the lookup holds registers the loop without it keeps its pointers in).
+  bool corrected_ = false;
   std::array<LineParams, protocol::kMaxLines> params_{};
   std::array<LineState, protocol::kMaxLines> state_{};
   std::array<LineOutput, protocol::kMaxLines> out_{};
