@@ -6,16 +6,12 @@
 #include <set>
 #include <string>
 
+#include "procedure_support.h"
+
 namespace palpa::calibration {
 namespace {
 
 using host::QualityCheck;
-
-std::string Num(double v, int digits = 3) {
-  char b[32];
-  std::snprintf(b, sizeof(b), "%.*g", digits, v);
-  return b;
-}
 
 QualityCheck Check(const char* name, double value, double limit, bool passed, std::string detail) {
   return QualityCheck{name, value, limit, passed, std::move(detail)};
