@@ -101,7 +101,9 @@ TEST(GuestGpioOutput, AMissingChipOrLineOrABusyLineIsRefusedByName) {
   CHECK_TEXT(Contains(error, "'" + Spec(2) + "': cannot drive the line (Device or resource busy"),
              error.c_str());
   LONGS_EQUAL(0, ReadLevel(2));  // the refused request changed nothing
-  POINTERS_EQUAL(nullptr, GpioEdgeInput::Open(Spec(2), false, &error).get());
+  const auto watched = GpioEdgeInput::Open(Spec(2), false);
+  POINTERS_EQUAL(nullptr, watched.value.get());
+  error = watched.message;
   CHECK_TEXT(Contains(error, "cannot watch the line's edges (Device or resource busy"),
              error.c_str());
 }
@@ -109,13 +111,14 @@ TEST(GuestGpioOutput, AMissingChipOrLineOrABusyLineIsRefusedByName) {
 TEST_GROUP(GuestGpioEdgeInput){};
 
 TEST(GuestGpioEdgeInput, TheLevelFollowsThePullActiveHighOrActiveLow) {
-  std::string error;
   Pull(3, 0);
   Pull(4, 0);
-  auto high = GpioEdgeInput::Open(Spec(3), false, &error);
-  CHECK_TEXT(high != nullptr, error.c_str());
-  auto low = GpioEdgeInput::Open(Spec(4), true, &error);
-  CHECK_TEXT(low != nullptr, error.c_str());
+  auto high_opened = GpioEdgeInput::Open(Spec(3), false);
+  CHECK_TEXT(high_opened.ok(), high_opened.message.c_str());
+  auto high = std::move(high_opened.value);
+  auto low_opened = GpioEdgeInput::Open(Spec(4), true);
+  CHECK_TEXT(low_opened.ok(), low_opened.message.c_str());
+  auto low = std::move(low_opened.value);
   CHECK_FALSE(high->active());
   CHECK_TRUE(low->active());  // an active-low E-stop with its contact open is pressed
   Pull(3, 1);
@@ -136,10 +139,10 @@ TEST(GuestGpioEdgeInput, TheLevelFollowsThePullActiveHighOrActiveLow) {
 }
 
 TEST(GuestGpioEdgeInput, EdgesComeInOrderWithTheirTimesAndNoneIsLostAcrossReads) {
-  std::string error;
   Pull(5, 0);
-  auto input = GpioEdgeInput::Open(Spec(5), true, &error);
-  CHECK_TEXT(input != nullptr, error.c_str());
+  auto input_opened = GpioEdgeInput::Open(Spec(5), true);
+  CHECK_TEXT(input_opened.ok(), input_opened.message.c_str());
+  auto input = std::move(input_opened.value);
   GpioEdge edges[8];
   LONGS_EQUAL(0, input->ReadEvents(edges, 8));  // nothing queued: returns at once
   // Six edges, each given time to be handled: the kernel's v1 line events take their direction
@@ -169,31 +172,39 @@ TEST_GROUP(GuestWatchdog){};
 
 TEST(GuestWatchdog, TheTimeoutIsSetAndReadBackAndABadOneRefused) {
   std::string error;
-  auto dog = WatchdogDevice::Open(kWatchdog, 2, &error);
-  CHECK_TEXT(dog != nullptr, error.c_str());
+  auto dog_opened = WatchdogDevice::Open(kWatchdog, 2);
+  CHECK_TEXT(dog_opened.ok(), dog_opened.message.c_str());
+  auto dog = std::move(dog_opened.value);
   LONGS_EQUAL(2, dog->timeout_s());
   CHECK_FALSE(dog->reset_by_watchdog());  // this boot was not a watchdog's reset
   CHECK_TEXT(dog->Kick(), dog->error().c_str());
   CHECK_TEXT(dog->Close(), dog->error().c_str());
-  POINTERS_EQUAL(nullptr, WatchdogDevice::Open(kWatchdog, 3000, &error).get());
+  auto refused = WatchdogDevice::Open(kWatchdog, 3000);
+  POINTERS_EQUAL(nullptr, refused.value.get());
+  error = refused.message;
   CHECK_TEXT(Contains(error, "/dev/watchdog: the driver refuses a timeout of 3000 s"),
              error.c_str());
-  POINTERS_EQUAL(nullptr, WatchdogDevice::Open(kWatchdog, -1, &error).get());
+  refused = WatchdogDevice::Open(kWatchdog, -1);
+  POINTERS_EQUAL(nullptr, refused.value.get());
+  error = refused.message;
   CHECK_TEXT(Contains(error, "timeout -1 s (0: the driver's own)"), error.c_str());
-  dog = WatchdogDevice::Open(kWatchdog, 0, &error);  // the driver's own: 2 s, set above
-  CHECK_TEXT(dog != nullptr, error.c_str());
+  dog_opened = WatchdogDevice::Open(kWatchdog, 0);  // the driver's own: 2 s, set above
+  CHECK_TEXT(dog_opened.ok(), dog_opened.message.c_str());
+  dog = std::move(dog_opened.value);
   LONGS_EQUAL(2, dog->timeout_s());
   CHECK_TEXT(dog->Close(), dog->error().c_str());
-  POINTERS_EQUAL(nullptr, WatchdogDevice::Open("/dev/nowatchdog", 1, &error).get());
+  refused = WatchdogDevice::Open("/dev/nowatchdog", 1);
+  POINTERS_EQUAL(nullptr, refused.value.get());
+  error = refused.message;
   CHECK_TEXT(Contains(error, "/dev/nowatchdog: cannot open the watchdog"), error.c_str());
 }
 
 // A reset here ends the guest's first boot early; the next boot finds the phase marker at "tests"
 // and fails the scenario.
 TEST(GuestWatchdog, KicksKeepTheMachineUpAndTheMagicCloseStopsTheWatchdog) {
-  std::string error;
-  auto dog = WatchdogDevice::Open(kWatchdog, 1, &error);
-  CHECK_TEXT(dog != nullptr, error.c_str());
+  auto dog_opened = WatchdogDevice::Open(kWatchdog, 1);
+  CHECK_TEXT(dog_opened.ok(), dog_opened.message.c_str());
+  auto dog = std::move(dog_opened.value);
   for (int i = 0; i < 25; ++i) {  // 5 s of kicks: unkicked, the i6300esb resets in about 1 s
     CHECK_TEXT(dog->Kick(), dog->error().c_str());
     SleepMs(200);
@@ -204,11 +215,12 @@ TEST(GuestWatchdog, KicksKeepTheMachineUpAndTheMagicCloseStopsTheWatchdog) {
 }
 
 int main(int argc, char** argv) {
-  std::string error;
   if (argc == 2 && std::strcmp(argv[1], "unclean-close") == 0) {
-    auto dog = WatchdogDevice::Open(kWatchdog, 1, &error);
+    auto opened = WatchdogDevice::Open(kWatchdog, 1);
+    auto& dog = opened.value;
     if (dog == nullptr || !dog->Kick()) {
-      std::fprintf(stderr, "unclean-close: %s\n", dog ? dog->error().c_str() : error.c_str());
+      std::fprintf(stderr, "unclean-close: %s\n",
+                   dog ? dog->error().c_str() : opened.message.c_str());
       return 1;
     }
     std::printf("unclean-close: armed for %d s, exiting without the magic close\n",
@@ -216,9 +228,10 @@ int main(int argc, char** argv) {
     return 0;  // the destructor closes without 'V'
   }
   if (argc == 2 && std::strcmp(argv[1], "after-reset") == 0) {
-    auto dog = WatchdogDevice::Open(kWatchdog, 1, &error);
+    auto opened = WatchdogDevice::Open(kWatchdog, 1);
+    auto& dog = opened.value;
     if (dog == nullptr) {
-      std::fprintf(stderr, "after-reset: %s\n", error.c_str());
+      std::fprintf(stderr, "after-reset: %s\n", opened.message.c_str());
       return 1;
     }
     const bool reset = dog->reset_by_watchdog();

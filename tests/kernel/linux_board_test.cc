@@ -186,9 +186,9 @@ TEST(LinuxBoardGuest, MeetsTheLinkBehaviourThroughUsbKillLeavesEverythingSafeAnd
   // Closed without the magic character, the watchdog stays armed and would reset the machine in
   // 2 s (which ends the scenario): a controller taking over now stops it.
   STRCMP_EQUAL("active\n", ReadAll("/sys/class/watchdog/watchdog0/state").c_str());
-  std::string error;
-  auto takeover = palpa::hal::linux_wdt::WatchdogDevice::Open("/dev/watchdog", 0, &error);
-  CHECK_TEXT(takeover != nullptr, error.c_str());
+  auto takeover_opened = palpa::hal::linux_wdt::WatchdogDevice::Open("/dev/watchdog", 0);
+  CHECK_TEXT(takeover_opened.ok(), takeover_opened.message.c_str());
+  auto takeover = std::move(takeover_opened.value);
   CHECK_TEXT(takeover->Close(), takeover->error().c_str());
   CHECK_TEXT(pt::WaitUntil([&] { return module.Holding(kOutputs) == 0; }, 8),
              "the module's output 0 did not fall to 0 V after the controller died");

@@ -149,10 +149,13 @@ std::optional<BoardFile> ParseBoardFile(const std::string& json_text, std::strin
     return std::nullopt;
   }
   // The module's own parser, on its object alone: its refusals name analog_module's fields.
-  auto module = hal::linux_aio::ParseModbusAioConfig(
-      json{{"analog_module", root["analog_module"]}}.dump(), error);
-  if (!module) return std::nullopt;
-  f.module = *module;
+  auto module =
+      hal::linux_aio::ParseModbusAioConfig(json{{"analog_module", root["analog_module"]}}.dump());
+  if (!module.ok()) {
+    *error = module.message;
+    return std::nullopt;
+  }
+  f.module = module.value;
   if (const json* link = o.Child("link")) {
     Object l(*link, "link", error);
     if (!l.OnlyKnown({"listen", "baud"}) || !l.Text("listen", &f.listen) ||

@@ -52,18 +52,20 @@ std::unique_ptr<LinuxIo> LinuxIo::Open(const BoardFile& file, std::string* error
   }
   if (!file.estop.empty()) {
     // The file names the level that asserts the E-stop; the line is requested in that sense.
-    io->estop_.line = hal::linux_gpio::GpioEdgeInput::Open(
-        file.estop, /*active_low=*/!file.estop_active_high, error);
-    if (io->estop_.line == nullptr) {
-      *error = "gpio.estop: " + *error;
+    auto estop = hal::linux_gpio::GpioEdgeInput::Open(file.estop,
+                                                      /*active_low=*/!file.estop_active_high);
+    if (!estop.ok()) {
+      *error = "gpio.estop: " + estop.message;
       return nullptr;
     }
+    io->estop_.line = std::move(estop.value);
   }
-  io->module_ = hal::linux_aio::ModbusAioModule::Open(file.module, error);
-  if (io->module_ == nullptr) {
-    *error = "analog_module: " + *error;
+  auto module = hal::linux_aio::ModbusAioModule::Open(file.module);
+  if (!module.ok()) {
+    *error = "analog_module: " + module.message;
     return nullptr;
   }
+  io->module_ = std::move(module.value);
   return io;
 }
 

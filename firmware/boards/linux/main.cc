@@ -127,13 +127,14 @@ int main(int argc, char** argv) {
   }
   std::unique_ptr<palpa::hal::linux_wdt::WatchdogDevice> watchdog;
   if (!file->watchdog.empty()) {
-    watchdog = palpa::hal::linux_wdt::WatchdogDevice::Open(file->watchdog, file->watchdog_timeout_s,
-                                                           &error);
-    if (watchdog == nullptr) {
+    auto opened =
+        palpa::hal::linux_wdt::WatchdogDevice::Open(file->watchdog, file->watchdog_timeout_s);
+    if (!opened.ok()) {
       std::string ignored;
       io->WriteSafe(&ignored);
-      return Failed("watchdog.device: " + error, 1);
+      return Failed("watchdog.device: " + opened.message, 1);
     }
+    watchdog = std::move(opened.value);
   }
   const lb::RealTimeReport rt = lb::EnterRealTime(file->rt_priority);
 

@@ -64,8 +64,8 @@ int OpenBoard(Sim& s) {
 /// host and simulator): "setpoints|targets GENERATION applied|dac NS" lines.
 int OpenStamps(Sim& s) {
   if (s.cmd.stamp_file.empty()) return 0;
-  std::string error;
-  if (!s.stamps.Open(s.cmd.stamp_file, &error)) return Failed("--stamp " + error, 1);
+  const palpa::hal::Done opened = s.stamps.Open(s.cmd.stamp_file);
+  if (!opened.ok()) return Failed("--stamp " + opened.message, 1);
   using Stream = palpa::sim::SimBoard::Stream;
   s.board->OnGeneration([&stamps = s.stamps](Stream stream, uint32_t generation, bool dac) {
     timespec now;
@@ -204,7 +204,10 @@ void Serve(Sim& s) {
 int Finish(Sim& s) {
   std::string error;
   int status = 0;
-  if (s.stamps.is_open() && !s.stamps.Commit(&error)) status = Failed("--stamp " + error, 1);
+  if (s.stamps.is_open()) {
+    const palpa::hal::Done committed = s.stamps.Commit();
+    if (!committed.ok()) status = Failed("--stamp " + committed.message, 1);
+  }
   if (!s.truth.Close(&error)) status = Failed(error, 1);
   std::printf("palpa-sim: stopped\n");
   return status;

@@ -19,9 +19,9 @@ TruthStream::~TruthStream() {
 
 bool TruthStream::Open(const std::string& spec, std::string* error) {
   if (spec.rfind("file:", 0) == 0) {
-    std::string why;
-    if (!file_.Open(spec.substr(5), &why)) {
-      *error = "--truth " + why;
+    const hal::Done opened = file_.Open(spec.substr(5));
+    if (!opened.ok()) {
+      *error = "--truth " + opened.message;
       return false;
     }
     address_ = spec;
@@ -33,9 +33,9 @@ bool TruthStream::Open(const std::string& spec, std::string* error) {
 
 bool TruthStream::Close(std::string* error) {
   if (!file_.is_open()) return true;
-  std::string why;
-  if (file_.Commit(&why)) return true;
-  *error = "--truth " + why;
+  const hal::Done committed = file_.Commit();
+  if (committed.ok()) return true;
+  *error = "--truth " + committed.message;
   return false;
 }
 

@@ -19,9 +19,8 @@ struct Fd {
   }
 };
 
-bool Fail(std::string* error, const std::string& path, const char* what) {
-  if (error != nullptr) *error = path + ": " + what + ": " + std::strerror(errno);
-  return false;
+Done Fail(const std::string& path, const char* what) {
+  return {Status::kIoError, path + ": " + what + ": " + std::strerror(errno)};
 }
 
 /// The length of the file up to and including its last newline (0 when it has none).
@@ -47,32 +46,28 @@ bool WholeLinesEnd(int fd, off_t size, off_t* end) {
 
 }  // namespace
 
-bool AppendLine(const std::string& path, std::string_view line, std::string* error,
-                bool* repaired) {
+Done AppendLine(const std::string& path, std::string_view line, bool* repaired) {
   if (repaired != nullptr) *repaired = false;
   if (line.empty() || line.back() != '\n' || line.find('\n') != line.size() - 1) {
-    if (error != nullptr) *error = path + ": a journal line must end in its only newline";
-    return false;
+    return {Status::kBadValue, path + ": a journal line must end in its only newline"};
   }
   struct stat st;
   const bool existed = lstat(path.c_str(), &st) == 0;
   if (existed && !S_ISREG(st.st_mode)) {
-    if (error != nullptr)
-      *error = path + (S_ISLNK(st.st_mode)
-                           ? ": is a symbolic link (palpa neither follows nor replaces links)"
-                           : ": is not a regular file");
-    return false;
+    return {Status::kIoError,
+            path + (S_ISLNK(st.st_mode)
+                        ? ": is a symbolic link (palpa neither follows nor replaces links)"
+                        : ": is not a regular file")};
   }
   Fd f{open(path.c_str(), O_RDWR | O_APPEND | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0666)};
-  if (f.fd < 0) return Fail(error, path, "cannot be opened to append");
+  if (f.fd < 0) return Fail(path, "cannot be opened to append");
   if (fstat(f.fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-    if (error != nullptr) *error = path + ": is not a regular file";
-    return false;
+    return {Status::kIoError, path + ": is not a regular file"};
   }
   off_t end = 0;
-  if (!WholeLinesEnd(f.fd, st.st_size, &end)) return Fail(error, path, "cannot be read");
+  if (!WholeLinesEnd(f.fd, st.st_size, &end)) return Fail(path, "cannot be read");
   if (end != st.st_size) {
-    if (ftruncate(f.fd, end) != 0) return Fail(error, path, "cannot cut its torn last line");
+    if (ftruncate(f.fd, end) != 0) return Fail(path, "cannot cut its torn last line");
     if (repaired != nullptr) *repaired = true;
   }
   size_t done = 0;
@@ -83,18 +78,18 @@ bool AppendLine(const std::string& path, std::string_view line, std::string* err
       const int why = errno;
       const bool cut = ftruncate(f.fd, end) == 0;  // leave no part of this line behind
       errno = why;
-      return Fail(error, path, cut ? "cannot be written" : "cannot be written (a part is left)");
+      return Fail(path, cut ? "cannot be written" : "cannot be written (a part is left)");
     }
     done += static_cast<size_t>(n);
   }
-  if (fsync(f.fd) != 0) return Fail(error, path, "cannot be flushed to disk");
+  if (fsync(f.fd) != 0) return Fail(path, "cannot be flushed to disk");
   if (!existed) {
     const size_t slash = path.rfind('/');
     const std::string dir = slash == std::string::npos ? "." : path.substr(0, slash + 1);
     Fd d{open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)};
-    if (d.fd < 0 || fsync(d.fd) != 0) return Fail(error, path, "its directory cannot be flushed");
+    if (d.fd < 0 || fsync(d.fd) != 0) return Fail(path, "its directory cannot be flushed");
   }
-  return true;
+  return {};
 }
 
 }  // namespace palpa::hal::linux_files

@@ -87,15 +87,14 @@ const char* Kind(mode_t mode) {
 
 AtomicFile::~AtomicFile() { Abandon(); }
 
-bool AtomicFile::Open(const std::string& path, std::string* error) {
+Done AtomicFile::Open(const std::string& path) {
   Abandon();
   path_ = path;
   failure_.clear();
   struct stat old;
   const bool replacing = lstat(path.c_str(), &old) == 0;
   if (replacing && !S_ISREG(old.st_mode)) {
-    if (error != nullptr) *error = path + ": " + Kind(old.st_mode);
-    return false;
+    return {Status::kIoError, path + ": " + Kind(old.st_mode)};
   }
   const size_t slash = path.rfind('/');
   const std::string dir = slash == std::string::npos ? "" : path.substr(0, slash + 1);
@@ -119,16 +118,15 @@ bool AtomicFile::Open(const std::string& path, std::string* error) {
     }
   }
   if (fd_ < 0) {
-    if (error != nullptr) *error = path + ": cannot be created: " + Reason();
     temporary_.clear();
-    return false;
+    return {Status::kIoError, path + ": cannot be created: " + Reason()};
   }
   if (replacing && fchmod(fd_, old.st_mode & 0777) != 0) {
-    if (error != nullptr) *error = path + ": cannot keep its mode: " + Reason();
+    const std::string why = path + ": cannot keep its mode: " + Reason();
     Abandon();
-    return false;
+    return {Status::kIoError, why};
   }
-  return true;
+  return {};
 }
 
 void AtomicFile::Fail(const std::string& what) {
@@ -156,10 +154,9 @@ void AtomicFile::Write(std::string_view bytes) {
   if (buffer_.size() >= kBufferSize) Flush();
 }
 
-bool AtomicFile::Commit(std::string* error) {
+Done AtomicFile::Commit() {
   if (fd_ < 0) {
-    if (error != nullptr) *error = path_ + ": not open for writing";
-    return false;
+    return {Status::kIoError, path_ + ": not open for writing"};
   }
   Flush();
   // On disk before the rename: otherwise a power cut can leave the new name with no contents.
@@ -173,8 +170,7 @@ bool AtomicFile::Commit(std::string* error) {
   if (lock >= 0) close(lock);
   if (!failure_.empty()) {
     temporary_.clear();
-    if (error != nullptr) *error = failure_;
-    return false;
+    return {Status::kIoError, failure_};
   }
   temporary_.clear();
   // The rename lives in the directory: flush it too, or a power cut may undo it.
@@ -190,13 +186,10 @@ bool AtomicFile::Commit(std::string* error) {
     close(dir_fd);
   }
   if (flush_errno != 0) {
-    if (error != nullptr) {
-      *error =
-          path_ + ": written, but its directory was not flushed: " + std::strerror(flush_errno);
-    }
-    return false;
+    return {Status::kIoError,
+            path_ + ": written, but its directory was not flushed: " + std::strerror(flush_errno)};
   }
-  return true;
+  return {};
 }
 
 void AtomicFile::Abandon() {
@@ -207,11 +200,12 @@ void AtomicFile::Abandon() {
   buffer_.clear();
 }
 
-bool WriteFileWhole(const std::string& path, std::string_view bytes, std::string* error) {
+Done WriteFileWhole(const std::string& path, std::string_view bytes) {
   AtomicFile file;
-  if (!file.Open(path, error)) return false;
+  Done opened = file.Open(path);
+  if (!opened.ok()) return opened;
   file.Write(bytes);
-  return file.Commit(error);
+  return file.Commit();
 }
 
 }  // namespace palpa::hal::linux_files

@@ -11,31 +11,29 @@
 
 namespace palpa::hal::linux_gpio {
 
-std::unique_ptr<GpioEdgeInput> GpioEdgeInput::Open(const std::string& spec, bool active_low,
-                                                   std::string* error) {
+Opened<std::unique_ptr<GpioEdgeInput>> GpioEdgeInput::Open(const std::string& spec,
+                                                           bool active_low) {
   auto found = FindGpioLine(spec);
-  if (!found.ok()) {
-    *error = found.message;
-    return nullptr;
-  }
+  if (!found.ok()) return {found.status, found.message};
   gpiod_chip* chip = found.value.chip;
   gpiod_line* line = found.value.line;
   // The flag makes the kernel report levels and edges as asserted/released, not as high/low.
   const int flags = active_low ? GPIOD_LINE_REQUEST_FLAG_ACTIVE_LOW : 0;
   if (gpiod_line_request_both_edges_events_flags(line, "palpa", flags) != 0) {
-    *error = "'" + spec + "': cannot watch the line's edges (" + std::strerror(errno) +
-             "; is it used by another program, or can the chip not interrupt?)";
+    const std::string why = "'" + spec + "': cannot watch the line's edges (" +
+                            std::strerror(errno) +
+                            "; is it used by another program, or can the chip not interrupt?)";
     gpiod_chip_close(chip);
-    return nullptr;
+    return {Status::kIoError, why};
   }
   const int fd = gpiod_line_event_get_fd(line);
   // Non-blocking: the tick reads what is queued and never waits for an edge.
   if (fd < 0 || fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) | O_NONBLOCK) != 0) {
-    *error = "'" + spec + "': cannot make the line's event file non-blocking (" +
-             std::strerror(errno) + ")";
+    const std::string why = "'" + spec + "': cannot make the line's event file non-blocking (" +
+                            std::strerror(errno) + ")";
     gpiod_line_release(line);
     gpiod_chip_close(chip);
-    return nullptr;
+    return {Status::kIoError, why};
   }
   return std::unique_ptr<GpioEdgeInput>(new GpioEdgeInput(spec, chip, line, fd));
 }

@@ -32,16 +32,13 @@ ModbusAioModule::~ModbusAioModule() {
   modbus_free(ctx_);
 }
 
-std::unique_ptr<ModbusAioModule> ModbusAioModule::Open(const ModbusAioConfig& config,
-                                                       std::string* error) {
+Opened<std::unique_ptr<ModbusAioModule>> ModbusAioModule::Open(const ModbusAioConfig& config) {
   std::unique_ptr<ModbusAioModule> m(new ModbusAioModule(config));
   m->ctx_ = config.tcp ? modbus_new_tcp(config.host.c_str(), config.port)
                        : modbus_new_rtu(config.host.c_str(), config.baud, config.parity,
                                         config.data_bits, config.stop_bits);
-  if (m->ctx_ == nullptr) {
-    *error = config.Describe() + ": " + modbus_strerror(errno);
-    return nullptr;
-  }
+  if (m->ctx_ == nullptr)
+    return {Status::kBadValue, config.Describe() + ": " + modbus_strerror(errno)};
   modbus_set_slave(m->ctx_, config.unit);
   const auto ms = static_cast<uint32_t>(config.response_timeout_ms);
   modbus_set_response_timeout(m->ctx_, ms / 1000, (ms % 1000) * 1000);
@@ -53,26 +50,20 @@ std::unique_ptr<ModbusAioModule> ModbusAioModule::Open(const ModbusAioConfig& co
                                   {c.watchdog_type_at, kWriteTelegramWatchdog},
                                   {c.fallback_at, kFallbackToZero}};
   for (const auto& [address, value] : settings) {
-    if (m->WriteCodes(address, &value, 1) != Status::kOk) {
-      *error = m->last_error_;
-      return nullptr;
-    }
+    if (const Status s = m->WriteCodes(address, &value, 1); s != Status::kOk)
+      return {s, m->last_error_};
     uint16_t back = 0;
     if (modbus_read_registers(m->ctx_, address, 1, &back) != 1) {
-      m->Fail("reading back " + Hex(address));
-      *error = m->last_error_;
-      return nullptr;
+      const Status s = m->Fail("reading back " + Hex(address));
+      return {s, m->last_error_};
     }
     if (back != value) {
-      *error = config.Describe() + ": register " + Hex(address) + " holds " + std::to_string(back) +
-               " after writing " + std::to_string(value) + " (not a " + c.name + "?)";
-      return nullptr;
+      return {Status::kUnsupported, config.Describe() + ": register " + Hex(address) + " holds " +
+                                        std::to_string(back) + " after writing " +
+                                        std::to_string(value) + " (not a " + c.name + "?)"};
     }
   }
-  if (m->WriteSafe() != Status::kOk) {
-    *error = m->last_error_;
-    return nullptr;
-  }
+  if (const Status s = m->WriteSafe(); s != Status::kOk) return {s, m->last_error_};
   return m;
 }
 

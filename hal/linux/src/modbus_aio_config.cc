@@ -12,10 +12,10 @@ namespace {
 using nlohmann::json;
 constexpr const char* kSection = "analog_module";
 
-// Reads one optional field; false with *error when it is there but wrong.
+// Reads one optional field; false when it is there but wrong, failure() then naming it.
 class Fields {
  public:
-  Fields(const json& object, std::string* error) : object_(object), error_(error) {}
+  explicit Fields(const json& object) : object_(object) {}
 
   bool Int(const char* key, int lo, int hi, int* out) {
     const auto it = object_.find(key);
@@ -57,44 +57,47 @@ class Fields {
       bool found = false;
       for (const char* k : known) found = found || key == k;
       if (!found) {
-        *error_ = where + "." + key + ": unknown field";
+        failure_ = where + "." + key + ": unknown field";
         return false;
       }
     }
     return true;
   }
   void set_where(std::string where) { where_ = std::move(where); }
+  const std::string& failure() const { return failure_; }
 
  private:
   bool Fail(const char* key, const std::string& expected) {
-    *error_ = where_ + "." + key + ": expected " + expected;
+    failure_ = where_ + "." + key + ": expected " + expected;
     return false;
   }
   const json& object_;
-  std::string* error_;
+  std::string failure_;
   std::string where_;
 };
 
-bool ParseChannels(const json& module, const char* key, bool inputs, ModbusAioConfig* c,
-                   std::string* error) {
+/// Every refusal of a configuration: kBadValue, the words naming the field.
+Done Refused(std::string why) { return {Status::kBadValue, std::move(why)}; }
+
+Done ParseChannels(const json& module, const char* key, bool inputs, ModbusAioConfig* c) {
   const std::string where = std::string(kSection) + "." + key;
   const auto it = module.find(key);
-  if (it == module.end()) return true;
-  if (!it->is_object()) {
-    *error = where + ": expected an object";
-    return false;
-  }
-  Fields f(*it, error);
+  if (it == module.end()) return {};
+  if (!it->is_object()) return Refused(where + ": expected an object");
+  Fields f(*it);
   f.set_where(where);
   const int most = c->module->max_channels;
-  if (inputs) {
-    return f.OnlyKnown(where, {"count", "bits", "words_per_channel"}) &&
-           f.Small("count", 0, most, &c->input_count) && f.Small("bits", 1, 15, &c->input_bits) &&
-           f.Small("words_per_channel", 1, 2, &c->input_words);
-  }
-  return f.OnlyKnown(where, {"count", "bits"}) && f.Small("count", 0, most, &c->output_count) &&
-         f.Small("bits", 1, 15, &c->output_bits);
+  const bool ok = inputs ? f.OnlyKnown(where, {"count", "bits", "words_per_channel"}) &&
+                               f.Small("count", 0, most, &c->input_count) &&
+                               f.Small("bits", 1, 15, &c->input_bits) &&
+                               f.Small("words_per_channel", 1, 2, &c->input_words)
+                         : f.OnlyKnown(where, {"count", "bits"}) &&
+                               f.Small("count", 0, most, &c->output_count) &&
+                               f.Small("bits", 1, 15, &c->output_bits);
+  return ok ? Done{} : Refused(f.failure());
 }
+
+Opened<ModbusAioConfig> Refusal(const Done& refused) { return {refused.status, refused.message}; }
 
 }  // namespace
 
@@ -103,23 +106,19 @@ std::string ModbusAioConfig::Describe() const {
          std::to_string(unit);
 }
 
-std::optional<ModbusAioConfig> ParseModbusAioConfig(const std::string& json_text,
-                                                    std::string* error) {
+Opened<ModbusAioConfig> ParseModbusAioConfig(const std::string& json_text) {
   const json root = json::parse(json_text, nullptr, /*allow_exceptions=*/false);
-  if (root.is_discarded() || !root.is_object()) {
-    *error = "not a JSON object";
-    return std::nullopt;
-  }
-  Fields top(root, error);
-  if (!top.OnlyKnown("(file)", {kSection})) return std::nullopt;
+  if (root.is_discarded() || !root.is_object()) return Refusal(Refused("not a JSON object"));
+  Fields top(root);
+  if (!top.OnlyKnown("(file)", {kSection})) return Refusal(Refused(top.failure()));
   const auto it = root.find(kSection);
   if (it == root.end() || !it->is_object()) {
-    *error = std::string(kSection) + ": expected an object (the analogue I/O module)";
-    return std::nullopt;
+    return Refusal(
+        Refused(std::string(kSection) + ": expected an object (the analogue I/O module)"));
   }
   const json& m = *it;
   ModbusAioConfig c;
-  Fields f(m, error);
+  Fields f(m);
   f.set_where(kSection);
   std::string module_class = c.module->name, transport = "tcp", parity = "N";
   if (!f.OnlyKnown(kSection, {"class", "transport", "host", "port", "device", "baud", "parity",
@@ -127,7 +126,7 @@ std::optional<ModbusAioConfig> ParseModbusAioConfig(const std::string& json_text
                               "watchdog_ms", "outputs", "inputs"}) ||
       !f.Text("class", {kBeckhoffEk9000.name}, &module_class) ||
       !f.Text("transport", {"tcp", "rtu"}, &transport)) {
-    return std::nullopt;
+    return Refusal(Refused(f.failure()));
   }
   c.tcp = transport == "tcp";
   // Fields of the other transport would be silently ignored: refuse them instead.
@@ -135,14 +134,14 @@ std::optional<ModbusAioConfig> ParseModbusAioConfig(const std::string& json_text
   static constexpr const char* kTcpOnly[] = {"host", "port"};
   for (const char* key : kRtuOnly) {
     if (c.tcp && m.contains(key)) {
-      *error = std::string(kSection) + "." + key + ": not a field of transport '" + transport + "'";
-      return std::nullopt;
+      return Refusal(Refused(std::string(kSection) + "." + key + ": not a field of transport '" +
+                             transport + "'"));
     }
   }
   for (const char* key : kTcpOnly) {
     if (!c.tcp && m.contains(key)) {
-      *error = std::string(kSection) + "." + key + ": not a field of transport '" + transport + "'";
-      return std::nullopt;
+      return Refusal(Refused(std::string(kSection) + "." + key + ": not a field of transport '" +
+                             transport + "'"));
     }
   }
   if (!c.tcp) c.host.clear();
@@ -154,33 +153,30 @@ std::optional<ModbusAioConfig> ParseModbusAioConfig(const std::string& json_text
                   f.Int("unit", c.tcp ? 0 : 1, 247, &c.unit) &&
                   f.Int("response_timeout_ms", 1, 5000, &c.response_timeout_ms) &&
                   // The EK9000 takes up to one minute; below the tick's own period it would trip.
-                  f.Int("watchdog_ms", 10, 60000, &c.watchdog_ms) &&
-                  ParseChannels(m, "outputs", false, &c, error) &&
-                  ParseChannels(m, "inputs", true, &c, error);
-  if (!ok) return std::nullopt;
-  if (!c.tcp && c.host.empty()) {
-    *error = std::string(kSection) + ".device: required with transport 'rtu'";
-    return std::nullopt;
+                  f.Int("watchdog_ms", 10, 60000, &c.watchdog_ms);
+  if (!ok) return Refusal(Refused(f.failure()));
+  for (const bool inputs : {false, true}) {
+    const Done channels = ParseChannels(m, inputs ? "inputs" : "outputs", inputs, &c);
+    if (!channels.ok()) return Refusal(channels);
   }
+  if (!c.tcp && c.host.empty())
+    return Refusal(Refused(std::string(kSection) + ".device: required with transport 'rtu'"));
   c.parity = parity[0];
   if (c.watchdog_ms <= c.response_timeout_ms) {
-    *error = std::string(kSection) +
-             ".watchdog_ms: must exceed response_timeout_ms, or one slow answer trips the module";
-    return std::nullopt;
+    return Refusal(Refused(
+        std::string(kSection) +
+        ".watchdog_ms: must exceed response_timeout_ms, or one slow answer trips the module"));
   }
   return c;
 }
 
-std::optional<ModbusAioConfig> LoadModbusAioConfig(const std::string& path, std::string* error) {
+Opened<ModbusAioConfig> LoadModbusAioConfig(const std::string& path) {
   std::ifstream in(path);
-  if (!in) {
-    *error = path + ": cannot read";
-    return std::nullopt;
-  }
+  if (!in) return {Status::kIoError, path + ": cannot read"};
   std::stringstream text;
   text << in.rdbuf();
-  auto c = ParseModbusAioConfig(text.str(), error);
-  if (!c) *error = path + ": " + *error;
+  auto c = ParseModbusAioConfig(text.str());
+  if (!c.ok()) c.message = path + ": " + c.message;
   return c;
 }
 

@@ -21,16 +21,17 @@ bool MagicClose(int fd) {
 
 }  // namespace
 
-std::unique_ptr<WatchdogDevice> WatchdogDevice::Open(const std::string& path, int timeout_s,
-                                                     std::string* error) {
+Opened<std::unique_ptr<WatchdogDevice>> WatchdogDevice::Open(const std::string& path,
+                                                             int timeout_s) {
   if (timeout_s < 0) {
-    *error = path + ": timeout " + std::to_string(timeout_s) + " s (0: the driver's own)";
-    return nullptr;
+    return {Status::kOutOfRange,
+            path + ": timeout " + std::to_string(timeout_s) + " s (0: the driver's own)"};
   }
   const int fd = open(path.c_str(), O_WRONLY | O_CLOEXEC);
   if (fd < 0) {
-    *error = path + ": cannot open the watchdog (" + std::strerror(errno) + ")";
-    return nullptr;
+    const int why = errno;
+    return {why == ENOENT ? Status::kNotFound : Status::kIoError,
+            path + ": cannot open the watchdog (" + std::strerror(why) + ")"};
   }
   int status = 0;
   const bool reset_by_watchdog =
@@ -42,17 +43,16 @@ std::unique_ptr<WatchdogDevice> WatchdogDevice::Open(const std::string& path, in
   }
   int set = timeout_s;
   if (ioctl(fd, WDIOC_SETTIMEOUT, &set) != 0) {
-    *error = path + ": the driver refuses a timeout of " + std::to_string(timeout_s) + " s (" +
-             std::strerror(errno) + ")";
+    const std::string why = path + ": the driver refuses a timeout of " +
+                            std::to_string(timeout_s) + " s (" + std::strerror(errno) + ")";
     MagicClose(fd);
-    return nullptr;
+    return {Status::kOutOfRange, why};
   }
   int got = 0;
   if (ioctl(fd, WDIOC_GETTIMEOUT, &got) != 0 || got != timeout_s) {
-    *error = path + ": asked for a timeout of " + std::to_string(timeout_s) +
-             " s, the driver has " + std::to_string(got) + " s";
     MagicClose(fd);
-    return nullptr;
+    return {Status::kOutOfRange, path + ": asked for a timeout of " + std::to_string(timeout_s) +
+                                     " s, the driver has " + std::to_string(got) + " s"};
   }
   return std::unique_ptr<WatchdogDevice>(
       new WatchdogDevice(path, fd, timeout_s, reset_by_watchdog));

@@ -7,17 +7,15 @@
 namespace palpa::host {
 
 Outcome WriteFileWhole(const std::string& path, std::string_view bytes) {
-  std::string error;
-  if (!hal::linux_files::WriteFileWhole(path, bytes, &error))
-    return Outcome::Fail(Status::kIoError, std::move(error));
+  hal::Done written = hal::linux_files::WriteFileWhole(path, bytes);
+  if (!written.ok()) return Outcome::Fail(written.status, std::move(written.message));
   return {};
 }
 
 Outcome AppendFileLine(const std::string& path, std::string_view line) {
-  std::string error;
   bool repaired = false;
-  if (!hal::linux_files::AppendLine(path, line, &error, &repaired))
-    return Outcome::Fail(Status::kIoError, std::move(error));
+  hal::Done appended = hal::linux_files::AppendLine(path, line, &repaired);
+  if (!appended.ok()) return Outcome::Fail(appended.status, std::move(appended.message));
   Outcome done;
   if (repaired) done.notes.push_back(path + ": cut off a torn last line an interrupted write left");
   return done;

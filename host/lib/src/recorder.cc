@@ -13,8 +13,8 @@ Outcome Device::StartRecording(const std::string& path, RecordLayout layout) {
   std::lock_guard<std::mutex> lock(record_mutex_);
   if (record_) return Outcome{Status::kBusy, "already recording to " + record_path_, {}};
   auto file = std::make_unique<hal::linux_files::AtomicFile>();
-  std::string error;
-  if (!file->Open(path, &error)) return Outcome{Status::kIoError, error, {}};
+  const hal::Done opened = file->Open(path);
+  if (!opened.ok()) return Outcome{opened.status, opened.message, {}};
   record_ = std::move(file);
   record_path_ = path;
   record_layout_ = layout;
@@ -55,10 +55,9 @@ Outcome Device::StopRecording() {
   }
   link_->Unsubscribe(subscription);
   std::lock_guard<std::mutex> lock(record_mutex_);
-  std::string error;
-  const bool ok = record_->Commit(&error);
+  const hal::Done committed = record_->Commit();
   record_.reset();
-  return ok ? Outcome{} : Outcome{Status::kIoError, error, {}};
+  return committed.ok() ? Outcome{} : Outcome{committed.status, committed.message, {}};
 }
 
 }  // namespace palpa::host

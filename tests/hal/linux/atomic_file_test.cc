@@ -43,16 +43,15 @@ TEST(StaleTemporaries, AKilledWritersTemporaryIsRemovedByTheNextWriter) {
   const pid_t child = fork();
   if (child == 0) {
     AtomicFile f;
-    std::string error;
-    if (f.Open(out.string(), &error)) f.Write("half of it");
+    if (f.Open(out.string()).ok()) f.Write("half of it");
     raise(SIGKILL);  // as palpa-sim killed mid-run: no destructor, no Abandon
   }
   int status = 0;
   waitpid(child, &status, 0);
   CHECK(WIFSIGNALED(status));
   LONGS_EQUAL(1, Temporaries());  // what the kill left
-  std::string error;
-  CHECK_TEXT(WriteFileWhole(out.string(), "whole", &error), error.c_str());
+  const auto written = WriteFileWhole(out.string(), "whole");
+  CHECK_TEXT(written.ok(), written.message.c_str());
   LONGS_EQUAL(0, Temporaries());
   STRCMP_EQUAL("whole", palpa::testing::FileText(out).c_str());
 }
@@ -65,20 +64,19 @@ TEST(StaleTemporaries, ALiveWritersTemporaryInAnotherProcessIsKept) {
     close(ready[0]);  // a parent that ends early then ends the child's wait
     close(go[1]);
     AtomicFile f;
-    std::string error;
-    const bool opened = f.Open(out.string(), &error);
+    const bool opened = f.Open(out.string()).ok();
     f.Write("the child's");
     char c = 'r';
     if (write(ready[1], &c, 1) != 1 || read(go[0], &c, 1) != 1) _exit(2);
-    _exit(opened && f.Commit(&error) ? 0 : 1);  // its temporary must still be there to rename
+    _exit(opened && f.Commit().ok() ? 0 : 1);  // its temporary must still be there to rename
   }
   close(ready[1]);  // a child that ends early then ends the read
   close(go[0]);
   char c = 0;
   CHECK(read(ready[0], &c, 1) == 1);
   LONGS_EQUAL(1, Temporaries());
-  std::string error;
-  CHECK_TEXT(WriteFileWhole(out.string(), "the parent's", &error), error.c_str());
+  const auto written = WriteFileWhole(out.string(), "the parent's");
+  CHECK_TEXT(written.ok(), written.message.c_str());
   LONGS_EQUAL(1, Temporaries());  // the child's, untouched
   CHECK(write(go[1], &c, 1) == 1);
   int status = 0;
@@ -101,8 +99,8 @@ TEST(StaleTemporaries, OnlyExactlyThatNameShapeIsRemovedAndNeverALink) {
     std::ofstream(dir / name) << "not a temporary of stamps.json";
   }
   std::ofstream(dir / ".stamps.json.zyxwvu.part") << "a killed writer's";
-  std::string error;
-  CHECK_TEXT(WriteFileWhole(out.string(), "new", &error), error.c_str());
+  const auto written = WriteFileWhole(out.string(), "new");
+  CHECK_TEXT(written.ok(), written.message.c_str());
   CHECK_FALSE(fs::exists(dir / ".stamps.json.zyxwvu.part"));
   CHECK(fs::is_symlink(dir / ".stamps.json.abcdef.part"));
   STRCMP_EQUAL("precious", palpa::testing::FileText(victim).c_str());

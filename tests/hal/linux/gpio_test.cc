@@ -81,12 +81,14 @@ TEST(Gpio, BootPinsHoldBootWhileResetPulsesAndReleaseItBeforeTheReboot) {
 
 TEST(Gpio, TheEStopSeesAPressShorterThanATickAndNeverBlocks) {
   using palpa::hal::linux_gpio::GpioEdgeInput;
-  std::string error;
   fg::state().busy = {"gpiochip0:9"};
-  CHECK(GpioEdgeInput::Open("gpiochip0:9", false, &error) == nullptr);
-  CHECK(error.find("edges") != std::string::npos);
-  auto estop = GpioEdgeInput::Open("gpiochip0:5", false, &error);  // NC contact: high = pressed
-  CHECK_TEXT(estop != nullptr, error.c_str());
+  const auto busy = GpioEdgeInput::Open("gpiochip0:9", false);
+  CHECK(busy.status == palpa::protocol::Status::kIoError && busy.value == nullptr);
+  CHECK_TEXT(busy.message.find("'gpiochip0:9': cannot watch the line's edges") == 0,
+             busy.message.c_str());
+  auto opened = GpioEdgeInput::Open("gpiochip0:5", false);  // NC contact: high = pressed
+  CHECK_TEXT(opened.ok(), opened.message.c_str());
+  auto estop = std::move(opened.value);
   CHECK_TEXT(!estop->Read(), estop->error().c_str());  // nothing queued: the read did not wait
   // Pressed and released between two ticks: the level is back, the rising edge is not lost.
   fg::state().edges["gpiochip0:5"] = {true, false};
@@ -115,8 +117,9 @@ TEST(Gpio, TheEStopSeesAPressShorterThanATickAndNeverBlocks) {
   CHECK(estop->error().find("'gpiochip0:5': reading the line") != std::string::npos);
 
   // Active low: the kernel reports the line's sense, so a short pull to ground is an active edge.
-  auto low = GpioEdgeInput::Open("gpiochip1:2", true, &error);
-  CHECK_TEXT(low != nullptr, error.c_str());
+  auto low_opened = GpioEdgeInput::Open("gpiochip1:2", true);
+  CHECK_TEXT(low_opened.ok(), low_opened.message.c_str());
+  auto low = std::move(low_opened.value);
   fg::state().levels["gpiochip1:2"] = 1;
   CHECK(!low->Read());
   fg::state().edges["gpiochip1:2"] = {false, true};
@@ -127,9 +130,9 @@ TEST(Gpio, TheEStopSeesAPressShorterThanATickAndNeverBlocks) {
 TEST(Gpio, EdgesAreReadInOrderAndWhatDoesNotFitStaysQueued) {
   using palpa::hal::linux_gpio::GpioEdge;
   using palpa::hal::linux_gpio::GpioEdgeInput;
-  std::string error;
-  auto input = GpioEdgeInput::Open("gpiochip0:6", true, &error);
-  CHECK_TEXT(input != nullptr, error.c_str());
+  auto input_opened = GpioEdgeInput::Open("gpiochip0:6", true);
+  CHECK_TEXT(input_opened.ok(), input_opened.message.c_str());
+  auto input = std::move(input_opened.value);
   fg::state().edges["gpiochip0:6"] = {false, true, false};  // pulled to ground, back, again
   GpioEdge edges[2];
   LONGS_EQUAL(2, input->ReadEvents(edges, 2));

@@ -26,9 +26,9 @@ TEST(ModbusAioBoard, AModuleOutageLatchesOutputAndSensorFaults) {
   config.output_count = config.input_count = 8;
   config.input_bits = 14;
   config.response_timeout_ms = 50;
-  std::string error;
-  std::unique_ptr<aio::ModbusAioModule> module = aio::ModbusAioModule::Open(config, &error);
-  CHECK_TEXT(module != nullptr, error.c_str());
+  auto module_opened = aio::ModbusAioModule::Open(config);
+  CHECK_TEXT(module_opened.ok(), module_opened.message.c_str());
+  auto module = std::move(module_opened.value);
 
   const pc::BoardConfig* board_config = pc::FindBoardConfig("thesis-5finger");
   fake::FakeClock clock;

@@ -10,10 +10,10 @@ namespace aio = palpa::hal::linux_aio;
 namespace {
 
 std::string Refusal(const std::string& text) {
-  std::string error;
-  const auto c = aio::ParseModbusAioConfig(text, &error);
-  CHECK_TEXT(!c, ("accepted: " + text).c_str());
-  return error;
+  const auto c = aio::ParseModbusAioConfig(text);
+  CHECK_TEXT(!c.ok(), ("accepted: " + text).c_str());
+  CHECK(c.status == palpa::protocol::Status::kBadValue);
+  return c.message;
 }
 
 }  // namespace
@@ -21,14 +21,13 @@ std::string Refusal(const std::string& text) {
 TEST_GROUP(ModbusAioConfig){};
 
 TEST(ModbusAioConfig, ReadsEveryField) {
-  std::string error;
-  const auto tcp = aio::ParseModbusAioConfig(
+  const auto read_tcp = aio::ParseModbusAioConfig(
       R"({"analog_module": {"class": "beckhoff-ek9000", "transport": "tcp", "host": "10.0.0.5",
           "port": 5020, "unit": 3, "response_timeout_ms": 20, "watchdog_ms": 250,
           "outputs": {"count": 2, "bits": 15}, "inputs": {"count": 8, "bits": 14,
-          "words_per_channel": 1}}})",
-      &error);
-  CHECK_TEXT(tcp.has_value(), error.c_str());
+          "words_per_channel": 1}}})");
+  CHECK_TEXT(read_tcp.ok(), read_tcp.message.c_str());
+  const aio::ModbusAioConfig* tcp = &read_tcp.value;
   CHECK(tcp->tcp);
   STRCMP_EQUAL("tcp:10.0.0.5:5020 unit 3", tcp->Describe().c_str());
   LONGS_EQUAL(20, tcp->response_timeout_ms);
@@ -38,11 +37,11 @@ TEST(ModbusAioConfig, ReadsEveryField) {
   LONGS_EQUAL(8, tcp->input_count);
   LONGS_EQUAL(14, tcp->input_bits);
   LONGS_EQUAL(1, tcp->input_words);
-  const auto rtu = aio::ParseModbusAioConfig(
+  const auto read_rtu = aio::ParseModbusAioConfig(
       R"({"analog_module": {"transport": "rtu", "device": "/dev/ttyUSB0", "baud": 19200,
-          "parity": "E", "stop_bits": 1, "unit": 7}})",
-      &error);
-  CHECK_TEXT(rtu.has_value(), error.c_str());
+          "parity": "E", "stop_bits": 1, "unit": 7}})");
+  CHECK_TEXT(read_rtu.ok(), read_rtu.message.c_str());
+  const aio::ModbusAioConfig* rtu = &read_rtu.value;
   CHECK(!rtu->tcp);
   LONGS_EQUAL('E', rtu->parity);
   LONGS_EQUAL(19200, rtu->baud);
@@ -98,18 +97,19 @@ TEST(ModbusAioConfig, EachRefusalNamesItsField) {
 }
 
 TEST(ModbusAioConfig, AFileThatCannotBeReadIsNamed) {
-  std::string error;
-  CHECK(!aio::LoadModbusAioConfig("/nonexistent/board.json", &error));
-  STRCMP_EQUAL("/nonexistent/board.json: cannot read", error.c_str());
+  const auto missing = aio::LoadModbusAioConfig("/nonexistent/board.json");
+  CHECK(!missing.ok());
+  STRCMP_EQUAL("/nonexistent/board.json: cannot read", missing.message.c_str());
   char path[] = "/tmp/palpa-aio-XXXXXX";
   const int fd = mkstemp(path);
   CHECK(fd >= 0);
   const char text[] = R"({"analog_module": {"unit": 300}})";
   CHECK(write(fd, text, sizeof(text) - 1) == static_cast<ssize_t>(sizeof(text) - 1));
   close(fd);
-  CHECK(!aio::LoadModbusAioConfig(path, &error));
+  const auto refused = aio::LoadModbusAioConfig(path);
+  CHECK(!refused.ok());
   STRCMP_EQUAL(
       (std::string(path) + ": analog_module.unit: expected an integer from 0 to 247").c_str(),
-      error.c_str());
+      refused.message.c_str());
   std::remove(path);
 }

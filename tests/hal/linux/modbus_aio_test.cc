@@ -48,10 +48,9 @@ uint16_t ExpectedCode(uint32_t counts) {
 }
 
 std::unique_ptr<aio::ModbusAioModule> OpenOrFail(const aio::ModbusAioConfig& config) {
-  std::string error;
-  auto m = aio::ModbusAioModule::Open(config, &error);
-  CHECK_TEXT(m != nullptr, error.c_str());
-  return m;
+  auto opened = aio::ModbusAioModule::Open(config);
+  CHECK_TEXT(opened.ok(), opened.message.c_str());
+  return std::move(opened.value);
 }
 
 }  // namespace
@@ -120,8 +119,7 @@ TEST(ModbusAio, KillingTheControllerLeavesTheOutputsAtTheirSafeValues) {
   const uint32_t counts[4] = {1000, 2000, 3000, 4000};
   const pid_t controller = fork();
   if (controller == 0) {  // a controller ticking its outputs every 10 ms until it is killed
-    std::string error;
-    auto m = aio::ModbusAioModule::Open(config, &error);
+    auto m = aio::ModbusAioModule::Open(config).value;
     while (m != nullptr) {
       m->outputs().WriteAll(counts, 4);
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
@@ -200,8 +198,9 @@ TEST(ModbusAio, AnOutageIsAnErrorNeverAStaleValue) {
 TEST(ModbusAio, AModuleThatIsNotThereOrNotAnEk9000IsRefusedAtStart) {
   aio::ModbusAioConfig config;
   config.port = palpa::testing::FreeTcpPort();  // nothing listens there
-  std::string error;
-  CHECK(aio::ModbusAioModule::Open(config, &error) == nullptr);
+  auto refused = aio::ModbusAioModule::Open(config);
+  CHECK(refused.value == nullptr && refused.status == Status::kIoError);
+  std::string error = refused.message;
   const std::string where = "tcp:127.0.0.1:" + std::to_string(config.port) + " unit 1: ";
   CHECK_TEXT(error.rfind(where + "connecting: ", 0) == 0, error.c_str());
   // A Modbus server with another register map (the calibration tests' rig): no watchdog there.
@@ -213,13 +212,15 @@ TEST(ModbusAio, AModuleThatIsNotThereOrNotAnEk9000IsRefusedAtStart) {
   }
   CHECK(WaitUntil(
       [&] {
-        return aio::ModbusAioModule::Open(config, &error) == nullptr &&
-               error.find("connecting") == std::string::npos;
+        refused = aio::ModbusAioModule::Open(config);
+        error = refused.message;
+        return refused.value == nullptr && error.find("connecting") == std::string::npos;
       },
       10));
   kill(other, SIGKILL);
   waitpid(other, nullptr, 0);
   STRCMP_EQUAL((where + "writing 1 at 0x1120: Illegal data address").c_str(), error.c_str());
+  LONGS_EQUAL(static_cast<int>(Status::kIoError), static_cast<int>(refused.status));
 }
 
 TEST(ModbusAio, TheSameModuleOverRtu) {
@@ -253,8 +254,14 @@ TEST(ModbusAio, TheSameModuleOverRtu) {
   config.response_timeout_ms = 200;
   std::unique_ptr<aio::ModbusAioModule> module;
   std::string error;
-  CHECK(WaitUntil([&] { return (module = aio::ModbusAioModule::Open(config, &error)) != nullptr; },
-                  10));
+  CHECK(WaitUntil(
+      [&] {
+        auto opened = aio::ModbusAioModule::Open(config);
+        error = opened.message;
+        module = std::move(opened.value);
+        return module != nullptr;
+      },
+      10));
   CHECK_TEXT(module != nullptr, error.c_str());
   const uint32_t counts[4] = {4095, 2048, 1, 0};
   LONGS_EQUAL(palpa::hal::AnalogOutput::kAllWritten, module->outputs().WriteAll(counts, 4));

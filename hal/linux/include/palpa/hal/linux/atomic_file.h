@@ -6,6 +6,8 @@
 #include <string>
 #include <string_view>
 
+#include "palpa/hal/linux/opened.h"
+
 namespace palpa::hal::linux_files {
 
 /// A file that appears at its path complete or not at all, even across a crash or power cut.
@@ -29,11 +31,12 @@ class AtomicFile {
   AtomicFile(const AtomicFile&) = delete;
   AtomicFile& operator=(const AtomicFile&) = delete;
 
-  /// False with *error ("PATH: reason") when the temporary cannot be made.
-  bool Open(const std::string& path, std::string* error);
+  /// kIoError with "PATH: reason" when the temporary cannot be made.
+  Done Open(const std::string& path);
   void Write(std::string_view bytes);
-  /// False with *error when anything failed since Open; the temporary is removed then.
-  bool Commit(std::string* error);
+  /// kIoError naming the file and the reason when anything failed since Open; the temporary is
+  /// removed then.
+  Done Commit();
   /// Removes the temporary; the target is left as it was.
   void Abandon();
 
@@ -51,8 +54,8 @@ class AtomicFile {
   std::string failure_;  ///< the first failure since Open
 };
 
-/// Writes `bytes` to `path` through an AtomicFile; on failure the old file is untouched and
-/// `error` (when given) names the file and the reason.
-bool WriteFileWhole(const std::string& path, std::string_view bytes, std::string* error = nullptr);
+/// Writes `bytes` to `path` through an AtomicFile; on failure (kIoError) the old file is untouched
+/// and the message names the file and the reason.
+Done WriteFileWhole(const std::string& path, std::string_view bytes);
 
 }  // namespace palpa::hal::linux_files

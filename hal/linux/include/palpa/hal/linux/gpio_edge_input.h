@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "palpa/hal/digital_io.h"
+#include "palpa/hal/linux/opened.h"
 
 struct gpiod_chip;
 struct gpiod_line;
@@ -24,9 +25,9 @@ class GpioEdgeInput final : public DigitalInput {
   /// "CHIP:LINE" as for GpioOutput. Requests the line as an input with both edges reported;
   /// `active_low`: asserted while the line is low (a pulled-up line an E-stop pulls to ground);
   /// false for an E-stop's normally-closed contact to ground, which reads high when pressed or
-  /// when its wire breaks. nullptr with *error naming the chip, the line and the reason.
-  static std::unique_ptr<GpioEdgeInput> Open(const std::string& spec, bool active_low,
-                                             std::string* error);
+  /// when its wire breaks. A failure names the chip, the line and the reason, with GpioOutput's
+  /// statuses: kBadValue, kNotFound, kIoError (the kernel refused to watch the line).
+  static Opened<std::unique_ptr<GpioEdgeInput>> Open(const std::string& spec, bool active_low);
   ~GpioEdgeInput();
   GpioEdgeInput(const GpioEdgeInput&) = delete;
   GpioEdgeInput& operator=(const GpioEdgeInput&) = delete;

@@ -8,6 +8,7 @@
 #include "palpa/hal/analog_input.h"
 #include "palpa/hal/analog_output.h"
 #include "palpa/hal/linux/modbus_aio_config.h"
+#include "palpa/hal/linux/opened.h"
 
 typedef struct _modbus modbus_t;
 
@@ -21,8 +22,10 @@ class ModbusAioModule {
  public:
   /// Connects, arms the module's watchdog (time, retriggered by writes only, outputs to zero on
   /// a timeout), reads those settings back, and writes every output's safe value (zero volts).
-  /// nullptr with *error naming the module, the register and the reason.
-  static std::unique_ptr<ModbusAioModule> Open(const ModbusAioConfig& config, std::string* error);
+  /// A failure names the module, the register and the reason: kBadValue (libmodbus refuses the
+  /// address), kIoError or kTimeout (the module did not answer), kUnsupported (a register holds
+  /// another value: not this module class).
+  static Opened<std::unique_ptr<ModbusAioModule>> Open(const ModbusAioConfig& config);
   ~ModbusAioModule();
   ModbusAioModule(const ModbusAioModule&) = delete;
   ModbusAioModule& operator=(const ModbusAioModule&) = delete;

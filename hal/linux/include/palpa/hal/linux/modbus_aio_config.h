@@ -2,8 +2,9 @@
 #pragma once
 
 #include <cstdint>
-#include <optional>
 #include <string>
+
+#include "palpa/hal/linux/opened.h"
 
 namespace palpa::hal::linux_aio {
 
@@ -52,11 +53,10 @@ struct ModbusAioConfig {
 };
 
 /// Parses the module's JSON object (docs/linux.md). Every field is checked: an unknown field, a
-/// wrong type or a value out of range is refused with *error naming the field ("module.port: ...").
-std::optional<ModbusAioConfig> ParseModbusAioConfig(const std::string& json_text,
-                                                    std::string* error);
+/// wrong type or a value out of range is refused (kBadValue) naming the field ("module.port: ...").
+Opened<ModbusAioConfig> ParseModbusAioConfig(const std::string& json_text);
 
-/// Reads and parses a configuration file; *error names the file.
-std::optional<ModbusAioConfig> LoadModbusAioConfig(const std::string& path, std::string* error);
+/// Reads and parses a configuration file; a refusal names the file (kIoError: it cannot be read).
+Opened<ModbusAioConfig> LoadModbusAioConfig(const std::string& path);
 
 }  // namespace palpa::hal::linux_aio

@@ -6,17 +6,19 @@
 #include <string>
 #include <utility>
 
+#include "palpa/hal/linux/opened.h"
+
 namespace palpa::hal::linux_wdt {
 
 class WatchdogDevice {
  public:
   /// Opens `path` (which starts the watchdog) and sets its timeout, read back from the driver;
-  /// `timeout_s` 0 keeps the driver's own. nullptr with *error naming the path and the reason; a
-  /// timeout the driver refuses or changes is an error, and the watchdog is then stopped again
-  /// (magic close) before returning. A regular file is taken too (with timeout 0): the host tests
-  /// read the kicks ('k') and the magic close ('V') from it.
-  static std::unique_ptr<WatchdogDevice> Open(const std::string& path, int timeout_s,
-                                              std::string* error);
+  /// `timeout_s` 0 keeps the driver's own. A failure names the path and the reason: kNotFound (no
+  /// such device), kIoError (it cannot be opened), kOutOfRange (a negative timeout, or one the
+  /// driver refuses or changes; the watchdog is then stopped again, by magic close, before
+  /// returning). A regular file is taken too (with timeout 0): the host tests read the kicks ('k')
+  /// and the magic close ('V') from it.
+  static Opened<std::unique_ptr<WatchdogDevice>> Open(const std::string& path, int timeout_s);
   /// Without Close(): the device is closed without the magic character and stays armed, so the
   /// machine resets unless another program takes the watchdog over in time.
   ~WatchdogDevice();
