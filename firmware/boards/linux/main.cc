@@ -1,9 +1,6 @@
 // palpa-linux-board: the firmware core on a Linux computer at 1 kHz, with the regulators and
 // sensors on a Modbus analogue I/O module, valves and the E-stop on GPIO, the host on TCP,
 // serial or USB device mode.
-#include <arpa/inet.h>
-#include <netdb.h>
-#include <netinet/in.h>
 #include <signal.h>
 
 #include <cstdio>
@@ -15,6 +12,7 @@
 #include "board_file.h"
 #include "host_link.h"
 #include "linux_io.h"
+#include "palpa/hal/linux/modbus_aio.h"
 #include "palpa/hal/linux/watchdog_device.h"
 #include "process_claim.h"
 #include "realtime.h"
@@ -38,34 +36,9 @@ int Failed(const std::string& why, int code) {
   return code;
 }
 
-/// The IPv4 address a Modbus TCP module's host names, in its one numeric form: the connection
-/// (libmodbus's modbus_new_tcp takes an IPv4 address only) and the claim both use it, so that
-/// `localhost` and `127.0.0.1` are one module. Of several addresses, the first getaddrinfo gives:
-/// the one the connection is then made to, resolved once (a second lookup may order them
-/// otherwise). Empty, with *error naming the host and the file's key, when the name does not
-/// resolve.
-std::string ResolveModuleHost(const std::string& host, std::string* error) {
-  addrinfo hints{};
-  hints.ai_family = AF_INET;
-  hints.ai_socktype = SOCK_STREAM;
-  addrinfo* found = nullptr;
-  const int rc = getaddrinfo(host.c_str(), nullptr, &hints, &found);
-  char text[INET_ADDRSTRLEN] = {};
-  if (rc == 0 && found != nullptr) {
-    const auto* in = reinterpret_cast<const sockaddr_in*>(found->ai_addr);
-    inet_ntop(AF_INET, &in->sin_addr, text, sizeof(text));
-  }
-  if (found != nullptr) freeaddrinfo(found);
-  if (text[0] == '\0') {
-    *error = "analog_module.host: '" + host + "' does not resolve to an IPv4 address (" +
-             (rc != 0 ? gai_strerror(rc) : "no address") + ")";
-  }
-  return text;
-}
-
 /// The lock file for the analogue I/O module: a serial bus is one program's whatever the unit
 /// (the device's real path, so that two names of one port are one), a Modbus TCP module its
-/// address (resolved: ResolveModuleHost), port and unit.
+/// address (resolved: hal::linux_aio::ResolveModuleHost), port and unit.
 std::string ModuleClaimPath(const palpa::hal::linux_aio::ModbusAioConfig& m) {
   std::string key =
       "tcp:" + m.host + ":" + std::to_string(m.port) + " unit " + std::to_string(m.unit);
@@ -100,8 +73,13 @@ int main(int argc, char** argv) {
   auto file = lb::LoadBoardFile(argv[1], &error);
   if (!file) return Failed(error, 2);
   if (file->module.tcp) {
-    file->module.host = ResolveModuleHost(file->module.host, &error);
-    if (file->module.host.empty()) return Failed(std::string(argv[1]) + ": " + error, 1);
+    // Resolved once, for the claim and the connection both, so that `localhost` and `127.0.0.1`
+    // are one module (a second lookup of a name with several addresses may order them otherwise).
+    auto address = palpa::hal::linux_aio::ResolveModuleHost(file->module.host);
+    if (!address.ok()) {
+      return Failed(std::string(argv[1]) + ": analog_module.host: " + address.message, 1);
+    }
+    file->module.host = address.value;
   }
 
   struct sigaction action {};

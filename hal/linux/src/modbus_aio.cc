@@ -1,7 +1,10 @@
 // The Modbus analogue I/O module: watchdog and safe values at start, one transfer per scan.
 #include "palpa/hal/linux/modbus_aio.h"
 
+#include <arpa/inet.h>
 #include <modbus.h>
+#include <netdb.h>
+#include <netinet/in.h>
 
 #include <cerrno>
 #include <cstdio>
@@ -24,6 +27,25 @@ std::string Hex(uint16_t address) {
 
 }  // namespace
 
+Opened<std::string> ResolveModuleHost(const std::string& host) {
+  addrinfo hints{};
+  hints.ai_family = AF_INET;
+  hints.ai_socktype = SOCK_STREAM;
+  addrinfo* found = nullptr;
+  const int rc = getaddrinfo(host.c_str(), nullptr, &hints, &found);
+  char text[INET_ADDRSTRLEN] = {};
+  if (rc == 0 && found != nullptr) {
+    const auto* in = reinterpret_cast<const sockaddr_in*>(found->ai_addr);
+    inet_ntop(AF_INET, &in->sin_addr, text, sizeof(text));
+  }
+  if (found != nullptr) freeaddrinfo(found);
+  if (text[0] == '\0') {
+    return {Status::kNotFound, "'" + host + "' does not resolve to an IPv4 address (" +
+                                   (rc != 0 ? gai_strerror(rc) : "no address") + ")"};
+  }
+  return std::string(text);
+}
+
 ModbusAioModule::ModbusAioModule(const ModbusAioConfig& config) : config_(config) {}
 
 ModbusAioModule::~ModbusAioModule() {
@@ -34,9 +56,15 @@ ModbusAioModule::~ModbusAioModule() {
 
 Opened<std::unique_ptr<ModbusAioModule>> ModbusAioModule::Open(const ModbusAioConfig& config) {
   std::unique_ptr<ModbusAioModule> m(new ModbusAioModule(config));
-  m->ctx_ = config.tcp ? modbus_new_tcp(config.host.c_str(), config.port)
-                       : modbus_new_rtu(config.host.c_str(), config.baud, config.parity,
-                                        config.data_bits, config.stop_bits);
+  if (config.tcp) {
+    // libmodbus (3.1.6) takes an IPv4 literal only: a name is resolved here; messages keep it.
+    const Opened<std::string> address = ResolveModuleHost(config.host);
+    if (!address.ok()) return {address.status, config.Describe() + ": " + address.message};
+    m->ctx_ = modbus_new_tcp(address.value.c_str(), config.port);
+  } else {
+    m->ctx_ = modbus_new_rtu(config.host.c_str(), config.baud, config.parity, config.data_bits,
+                             config.stop_bits);
+  }
   if (m->ctx_ == nullptr)
     return {Status::kBadValue, config.Describe() + ": " + modbus_strerror(errno)};
   modbus_set_slave(m->ctx_, config.unit);

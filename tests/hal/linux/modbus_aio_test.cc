@@ -69,6 +69,25 @@ TEST(ModbusAio, StartArmsTheWatchdogAndWritesTheSafeValues) {
   for (int i = 0; i < 4; ++i) LONGS_EQUAL(0, emulator.Holding(0x0800 + i));
 }
 
+// libmodbus connects to an IPv4 literal only: a host name is resolved first, and one that does
+// not resolve is refused naming it.
+TEST(ModbusAio, AModuleNamedByItsHostIsReachedAndAnUnknownNameRefused) {
+  Emulator emulator("0,0,0,0");
+  CHECK(emulator.up());
+  aio::ModbusAioConfig config = emulator.Config();
+  config.host = "localhost";
+  auto module = OpenOrFail(config);
+  const uint32_t counts[4] = {4095, 0, 0, 0};
+  LONGS_EQUAL(palpa::hal::AnalogOutput::kAllWritten, module->outputs().WriteAll(counts, 4));
+  LONGS_EQUAL(0x7FFF, emulator.Holding(0x0800));
+  config.host = "no-such-module.invalid";  // RFC 6761: never resolves
+  const auto refused = aio::ModbusAioModule::Open(config);
+  CHECK(refused.value == nullptr && refused.status == Status::kNotFound);
+  const std::string where = "tcp:no-such-module.invalid:" + std::to_string(config.port) +
+                            " unit 1: 'no-such-module.invalid' does not resolve to an IPv4 address";
+  CHECK_TEXT(refused.message.rfind(where, 0) == 0, refused.message.c_str());
+}
+
 TEST(ModbusAio, OutputsReachTheRegistersScaledAndInputsReadBackScaled) {
   Emulator emulator("1,2.5,5,10");
   CHECK(emulator.up());

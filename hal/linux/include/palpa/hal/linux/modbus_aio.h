@@ -14,17 +14,22 @@ typedef struct _modbus modbus_t;
 
 namespace palpa::hal::linux_aio {
 
+/// The IPv4 address a Modbus TCP module's host names (a name or a literal), in its one numeric
+/// form: libmodbus's modbus_new_tcp takes an IPv4 literal only. Of several addresses, the first
+/// getaddrinfo gives. kNotFound naming the host when it does not resolve.
+Opened<std::string> ResolveModuleHost(const std::string& host);
+
 /// One module: its outputs and inputs as the HAL's AnalogOutput and AnalogInput. A failed or late
 /// transfer is never hidden: WriteAll names a failed channel (the core latches an output-write
 /// fault) and ReadAll gives kConversionFailed for every channel (an implausible-sensor fault),
 /// never the last good value. After a failure the next call reconnects.
 class ModbusAioModule {
  public:
-  /// Connects, arms the module's watchdog (time, retriggered by writes only, outputs to zero on
-  /// a timeout), reads those settings back, and writes every output's safe value (zero volts).
-  /// A failure names the module, the register and the reason: kBadValue (libmodbus refuses the
-  /// address), kIoError or kTimeout (the module did not answer), kUnsupported (a register holds
-  /// another value: not this module class).
+  /// Connects (a TCP module's host resolved by ResolveModuleHost), arms the module's watchdog
+  /// (time, retriggered by writes only, outputs to zero on a timeout), reads those settings back,
+  /// and writes every output's safe value (zero volts). A failure names the module, the register
+  /// and the reason: kNotFound (a host that does not resolve), kIoError or kTimeout (the module
+  /// did not answer), kUnsupported (a register holds another value: not this module class).
   static Opened<std::unique_ptr<ModbusAioModule>> Open(const ModbusAioConfig& config);
   ~ModbusAioModule();
   ModbusAioModule(const ModbusAioModule&) = delete;
