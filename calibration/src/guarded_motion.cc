@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <string>
 
-#include "palpa/host/link.h"
+#include "palpa/host/fault_text.h"
 #include "procedure_support.h"
 
 namespace palpa::calibration {

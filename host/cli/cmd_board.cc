@@ -8,6 +8,7 @@
 #include "palpa/host/bit_names.h"
 #include "palpa/host/board_json.h"
 #include "palpa/host/device_list.h"
+#include "palpa/host/fault_text.h"
 #include "palpa/host/field_text.h"
 #include "palpa/protocol/faults.h"
 #include "sim_state.h"

@@ -23,6 +23,7 @@
 #include "mini_client.h"
 #include "palpa/hal/linux/watchdog_device.h"
 #include "palpa/host/device.h"
+#include "palpa/host/fault_text.h"
 #include "palpa/protocol/faults.h"
 #include "sim_process.h"
 #include "wait_until.h"

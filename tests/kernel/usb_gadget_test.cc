@@ -18,6 +18,7 @@
 #include "board_behaviour.h"
 #include "palpa/host/device.h"
 #include "palpa/host/device_list.h"
+#include "palpa/host/fault_text.h"
 #include "palpa/protocol/faults.h"
 #include "wait_until.h"
 

@@ -7,6 +7,7 @@
 
 #include "mini_client.h"
 #include "palpa/host/device.h"
+#include "palpa/host/fault_text.h"
 #include "palpa/protocol/faults.h"
 
 #include "CppUTest/TestHarness.h"

@@ -1,7 +1,7 @@
 // Line status and fault bits in words.
 #include "palpa/host/bit_names.h"
 
-#include "palpa/host/link.h"
+#include "palpa/host/fault_text.h"
 #include "palpa/protocol/enums.h"
 #include "palpa/protocol/faults.h"
 

@@ -2,6 +2,7 @@
 #include "palpa/host/board_json.h"
 
 #include "palpa/host/bit_names.h"
+#include "palpa/host/fault_text.h"
 #include "palpa/host/field_text.h"
 
 namespace palpa::host {

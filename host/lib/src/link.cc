@@ -6,23 +6,7 @@
 #include <chrono>
 #include <random>
 
-#include "palpa/protocol/faults.h"
-
 namespace palpa::host {
-
-std::string FaultName(uint8_t fault) {
-  // A newer board may latch a fault this host has no name for: shown, never dropped.
-  return fault < static_cast<uint8_t>(pp::Fault::kCount) ? pp::kFaultNames[fault]
-                                                         : "fault_" + std::to_string(fault);
-}
-
-std::string FaultNames(uint32_t bitmap) {
-  std::string text;
-  for (uint8_t f = 0; f < 32; ++f) {
-    if ((bitmap & (1u << f)) != 0) text += (text.empty() ? "" : ", ") + FaultName(f);
-  }
-  return text.empty() ? "none" : text;
-}
 
 double SteadySeconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();

@@ -11,6 +11,7 @@
 
 #include "board_transport.h"
 #include "palpa/host/bit_names.h"
+#include "palpa/host/fault_text.h"
 #include "palpa/host/fault_transport.h"
 #include "palpa/host/link.h"
 #include "palpa/protocol/faults.h"

@@ -14,6 +14,7 @@
 #include "config_record.h"
 #include "mini_client.h"
 #include "palpa/host/device.h"
+#include "palpa/host/fault_text.h"
 #include "palpa/host/fault_transport.h"
 #include "palpa/host/link.h"
 #include "sim_process.h"

@@ -12,6 +12,7 @@
 #include "board_behaviour.h"
 #include "mini_client.h"
 #include "palpa/host/device.h"
+#include "palpa/host/fault_text.h"
 #include "palpa/protocol/faults.h"
 #include "sim_process.h"
 

@@ -1,4 +1,5 @@
-// Latched faults in words a person can act on: what each means, when it latched, what to do.
+// Latched faults in words a person can act on: their names, what each means, when it latched,
+// what to do.
 #pragma once
 
 #include <cstdint>
@@ -7,6 +8,13 @@
 #include "palpa/protocol/messages_report.h"
 
 namespace palpa::host {
+
+/// One fault id in words: "leak"; an id this build has no name for (a newer board) as "fault_N".
+std::string FaultName(uint8_t fault);
+
+/// A latched-fault bitmap in words: "host_silence, leak", or "none"; a bit this build has no
+/// name for (a newer board) as "fault_N".
+std::string FaultNames(uint32_t bitmap);
 
 /// What to do about a latched fault, e.g. for estop_pin "release the E-stop input".
 std::string FaultRemedy(uint8_t fault);

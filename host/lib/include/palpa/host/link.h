@@ -27,13 +27,6 @@ namespace palpa::host {
 
 namespace pp = palpa::protocol;
 
-/// One fault id in words: "leak"; an id this build has no name for (a newer board) as "fault_N".
-std::string FaultName(uint8_t fault);
-
-/// A latched-fault bitmap in words: "host_silence, leak", or "none"; a bit this build has no
-/// name for (a newer board) as "fault_N".
-std::string FaultNames(uint32_t bitmap);
-
 /// A telemetry frame as received, with the host time it maps to.
 struct TelemetryFrame {
   pp::Telemetry telemetry;
