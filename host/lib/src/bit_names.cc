@@ -27,6 +27,16 @@ std::vector<std::string> FaultList(uint32_t bitmap) {
   return names;
 }
 
+uint32_t FaultBitmap(const std::vector<std::string>& names) {
+  uint32_t bitmap = 0;
+  for (const std::string& name : names) {
+    for (uint8_t f = 0; f < 32; ++f) {
+      if (name == FaultName(f)) bitmap |= 1u << f;
+    }
+  }
+  return bitmap;
+}
+
 std::string JoinNames(const std::vector<std::string>& names, const char* separator,
                       const char* none) {
   std::string text;

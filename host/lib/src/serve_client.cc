@@ -10,6 +10,8 @@
 #include <thread>
 #include <utility>
 
+#include "palpa/host/bit_names.h"
+
 #include <boost/asio/executor_work_guard.hpp>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
@@ -210,10 +212,21 @@ bool ServeClient::Send(std::string text) {
   return outcome.get();
 }
 
+void ServeClient::OnNotification(std::function<bool(const json&)> handler) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  handler_ = std::make_shared<const std::function<bool(const json&)>>(std::move(handler));
+}
+
 void ServeClient::Arrived(const std::string& text) {
   json m = json::parse(text, nullptr, false);
   if (!m.is_object()) return;
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::unique_lock<std::mutex> lock(mutex_);
+  if (!m.contains("id") && handler_ != nullptr) {
+    const auto handler = handler_;  // called unlocked: it may take its own locks
+    lock.unlock();
+    if ((*handler)(m)) return;
+    lock.lock();
+  }
   if (m.contains("id")) {
     answers_.push_back(std::move(m));
   } else {
@@ -259,6 +272,10 @@ Result<json> ServeClient::Call(const std::string& method, const json& params, do
               ? StatusNamed(data["status"].get<std::string>())
               : (code == -32001 || code == -32002 ? Status::kBusy : Status::kInvalidArgument);
       o.message = e.value("message", std::string("refused"));
+      std::vector<std::string> faults;  // the faults it was refused for, by name
+      for (const json& f : data.is_object() ? data.value("faults", json::array()) : json::array())
+        if (f.is_string()) faults.push_back(f.get<std::string>());
+      o.faults = FaultBitmap(faults);
       return o;
     }
     if (closed_) return {Status::kIoError, method + ": palpa serve closed the connection"};

@@ -12,6 +12,8 @@ namespace palpa::host {
 std::vector<std::string> LineStatusList(uint8_t status);
 /// The latched faults, by name ("estop_command"); an unknown one as "fault_N".
 std::vector<std::string> FaultList(uint32_t bitmap);
+/// FaultList's inverse: the bits of the names given (what is not a fault's name is left out).
+uint32_t FaultBitmap(const std::vector<std::string>& names);
 /// Names joined by `separator`, or `none` when there are none ("slewing|raw", "ok").
 std::string JoinNames(const std::vector<std::string>& names, const char* separator,
                       const char* none);

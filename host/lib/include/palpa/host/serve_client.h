@@ -8,6 +8,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -45,6 +46,9 @@ class ServeClient {
   /// the connection closed (closed() says which).
   bool NextNotification(nlohmann::json& out, double timeout_s);
   bool closed();
+  /// Hands each notification to `handler` on the reader thread as it arrives (keep it short);
+  /// one it returns true for is not queued for NextNotification.
+  void OnNotification(std::function<bool(const nlohmann::json&)> handler);
 
  private:
   struct Impl;  ///< the socket and its thread, on Boost.Beast (which stays out of this header)
@@ -57,6 +61,7 @@ class ServeClient {
   std::mutex mutex_;  ///< guards what follows
   std::condition_variable arrived_;
   std::deque<nlohmann::json> answers_, notifications_;
+  std::shared_ptr<const std::function<bool(const nlohmann::json&)>> handler_;
   bool closed_ = false;
   int64_t next_id_ = 1;
 };
