@@ -6,7 +6,7 @@
 #include <thread>
 
 #include "cli.h"
-#include "palpa/host/serve_client.h"
+#include "palpa/host/served_device.h"
 
 namespace palpa::cli {
 namespace {
@@ -56,29 +56,24 @@ int Refused(const std::string& what, const host::Outcome& o) {
 }
 
 /// Every finger or line named exists on the served board (a usage error otherwise, nothing sent).
-int CheckOnServedBoard(host::ServeClient& s, const std::string& what,
+int CheckOnServedBoard(host::ServedDevice& s, const std::string& what,
                        const std::vector<uint8_t>& indices, bool fingers) {
-  const auto info = s.Call("board.info");
-  if (!info.ok()) return Refused(what, info.outcome());
-  const size_t count = info.value[fingers ? "fingers" : "lines"].size();
+  const size_t count = s.board()[fingers ? "fingers" : "lines"].size();
   const host::Outcome on_board =
       CheckOnBoard(indices, static_cast<uint8_t>(count), fingers ? "finger" : "line",
-                   info.value["board"].value("configuration", ""));
+                   s.board()["board"].value("configuration", ""));
   if (!on_board.ok()) return Usage(what, on_board.message + " (nothing was sent)");
   return kExitOk;
 }
 
 /// Takes control: refused (busy) while another client of the server holds it.
-int TakeControl(host::ServeClient& s, const std::string& what) {
-  const auto taken = s.Call("control.take");
-  if (!taken.ok()) return Refused(what, taken.outcome());
-  return kExitOk;
+int TakeControl(host::ServedDevice& s, const std::string& what) {
+  const host::Outcome taken = s.TakeControl();
+  return taken.ok() ? kExitOk : Refused(what, taken);
 }
 
-int Info(host::ServeClient& s, const Context& c) {
-  const auto info = s.Call("board.info");
-  if (!info.ok()) return Refused("info", info.outcome());
-  const json j = NumberedFromOne(info.value);
+int Info(host::ServedDevice& s, const Context& c) {
+  const json j = NumberedFromOne(s.board());
   if (c.json) {
     PrintJson(ordered_json::parse(j.dump()));
     return kExitOk;
@@ -100,8 +95,8 @@ int Info(host::ServeClient& s, const Context& c) {
   return kExitOk;
 }
 
-int Diag(host::ServeClient& s, const Context& c) {
-  const auto diag = s.Call("board.diagnostics");
+int Diag(host::ServedDevice& s, const Context& c) {
+  const auto diag = s.client().Call("board.diagnostics");
   if (!diag.ok()) return Refused("diag", diag.outcome());
   const json j = NumberedFromOne(diag.value);
   if (c.json) {
@@ -117,7 +112,7 @@ int Diag(host::ServeClient& s, const Context& c) {
   return kExitOk;
 }
 
-int Set(host::ServeClient& s, Context& c, std::vector<std::string> args) {
+int Set(host::ServedDevice& s, Context& c, std::vector<std::string> args) {
   const host::Result<double> hold = TakeHold(args);
   if (!hold.ok()) return Usage("set", hold.message);
   if (args.empty()) return Usage("set", "expected at least one F=VALUE, e.g. palpa set 1=L2");
@@ -133,7 +128,7 @@ int Set(host::ServeClient& s, Context& c, std::vector<std::string> args) {
     return Usage("set", o.message);
   if (const int rc = CheckOnServedBoard(s, "set", fingers, true); rc != kExitOk) return rc;
   if (const int rc = TakeControl(s, "set"); rc != kExitOk) return rc;
-  const auto applied = s.Call("board.set", {{"targets", targets}});
+  const auto applied = s.client().Call("board.set", {{"targets", targets}});
   if (!applied.ok()) return Refused("set", applied.outcome());
   const json j = NumberedFromOne(applied.value);
   if (c.json) {
@@ -150,7 +145,7 @@ int Set(host::ServeClient& s, Context& c, std::vector<std::string> args) {
   return kExitOk;
 }
 
-int Line(host::ServeClient& s, Context& c, std::vector<std::string> args) {
+int Line(host::ServedDevice& s, Context& c, std::vector<std::string> args) {
   const host::Result<double> hold = TakeHold(args);
   if (!hold.ok()) return Usage("line", hold.message);
   if (args.empty()) return Usage("line", "expected at least one L=VALUE in kPa");
@@ -166,7 +161,7 @@ int Line(host::ServeClient& s, Context& c, std::vector<std::string> args) {
     return Usage("line", o.message);
   if (const int rc = CheckOnServedBoard(s, "line", lines, false); rc != kExitOk) return rc;
   if (const int rc = TakeControl(s, "line"); rc != kExitOk) return rc;
-  const auto applied = s.Call("board.lines.set", {{"setpoints", setpoints}});
+  const auto applied = s.client().Call("board.lines.set", {{"setpoints", setpoints}});
   if (!applied.ok()) return Refused("line", applied.outcome());
   if (c.json) PrintJson({{"applied", NumberedFromOne(setpoints)}, {"hold_s", hold.value}});
   Hold(c, hold.value);
@@ -174,7 +169,8 @@ int Line(host::ServeClient& s, Context& c, std::vector<std::string> args) {
 }
 
 /// Telemetry through the server: a line per update (--json: a JSON line per sample).
-int Monitor(host::ServeClient& s, const Context& c, const std::vector<std::string>& args) {
+int Monitor(host::ServedDevice& served, const Context& c, const std::vector<std::string>& args) {
+  host::ServeClient& s = served.client();
   double duration_s = 0, rate = 10;
   for (size_t i = 0; i < args.size(); i += 2) {
     const auto value = OptionValue(args, i);
@@ -243,10 +239,9 @@ int RunThroughServe(Context& c, const std::string& command, const std::vector<st
                  "cannot go through palpa serve (--device serve: runs info, diag, set, "
                  "line, monitor, estop and clear; run it where the board is attached)");
   }
-  auto client = host::ServeClient::Connect(c.device_uri);
-  if (!client.ok()) return Fail("", client.status, client.message, kExitConnect);
-  host::ServeClient& s = *client.value;
-  (void)s.Call("server.connection.identify", {{"client_name", "palpa " + command}});
+  auto served = host::ServedDevice::Open(c.device_uri, "palpa " + command);
+  if (!served.ok()) return Fail("", served.status, served.message, kExitConnect);
+  host::ServedDevice& s = *served.value;
   if (command == "info") return Info(s, c);
   if (command == "diag") return Diag(s, c);
   if (command == "set") return Set(s, c, args);
@@ -254,13 +249,12 @@ int RunThroughServe(Context& c, const std::string& command, const std::vector<st
   if (command == "monitor") return Monitor(s, c, args);
   if (!args.empty()) return Usage(command, "takes no arguments");
   if (command == "estop") {  // everyone's right: no control needed
-    const auto r = s.Call("board.estop");
-    return r.ok() ? kExitOk : Refused("estop", r.outcome());
+    const host::Outcome o = s.EStop();
+    return o.ok() ? kExitOk : Refused("estop", o);
   }
-  if (const int rc = TakeControl(s, "clear"); rc != kExitOk) return rc;
-  const auto r = s.Call("board.clear");
-  if (!r.ok()) return Refused("clear", r.outcome());
-  if (c.json) PrintJson({{"cleared", r.value["cleared"]}});
+  const auto cleared = s.ClearFault();  // takes control first
+  if (!cleared.ok()) return Refused("clear", cleared.outcome());
+  if (c.json) PrintJson({{"cleared", cleared.value}});
   return kExitOk;
 }
 

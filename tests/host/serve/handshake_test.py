@@ -96,11 +96,12 @@ def main():
     import palpa as palpa_module
     server = FakeServer()
     # The correct answer passes the upgrade; the fake server then closes, which the first call
-    # (board.info) reports: proof that the refusals below are about the answers alone.
+    # (board.info) reports, naming the address: proof that the refusals below are about the
+    # answers alone.
     server.answer = "correct"
     r = subprocess.run([palpa, "--device", f"serve:127.0.0.1:{server.port}", "--json", "info"],
                        capture_output=True, text=True, timeout=30)
-    if '"message":"board.info: palpa serve' not in r.stdout:
+    if f'"message":"serve:127.0.0.1:{server.port}: board.info: palpa serve' not in r.stdout:
         fail(f"palpa info against a correct upgrade did not pass it: {r.returncode} {r.stdout}")
     try:
         palpa_module.Device(f"serve:127.0.0.1:{server.port}")
