@@ -28,6 +28,7 @@ namespace {
 thread_local std::string g_open_error;
 constexpr size_t kMaxQueuedSamples = PALPA_SAMPLE_QUEUE_LIMIT;
 
+using palpa::c_api::NotThroughServe;
 using palpa::c_api::Report;
 
 /// `text` into the caller's buffer (see palpa.h): kOverflow when it does not fit with its NUL.
@@ -45,10 +46,19 @@ int Invalid(palpa_device* d, std::string message) {
 
 int Set(palpa_device* d, uint8_t finger, ph::TargetKind kind, double value) {
   if (d == nullptr) return static_cast<int>(pp::Status::kInvalidArgument);
-  return Report(d, d->device->Set({ph::FingerRequest{finger, ph::Request{kind, value}}}));
+  const std::vector<ph::FingerRequest> request{{finger, ph::Request{kind, value}}};
+  return Report(d, d->served ? d->served->Set(request) : d->device->Set(request));
 }
 
 }  // namespace
+
+void palpa::c_api::QueueSample(palpa_device* d, const palpa_sample& s) {
+  if (d->samples.size() >= kMaxQueuedSamples) {
+    d->samples.pop_front();
+    ++d->dropped;
+  }
+  d->samples.push_back(s);
+}
 
 extern "C" {
 
@@ -58,6 +68,15 @@ int palpa_open(const char* uri, palpa_device** out) {
     return static_cast<int>(pp::Status::kInvalidArgument);
   }
   *out = nullptr;
+  if (std::strncmp(uri, "serve:", 6) == 0) {
+    auto served = palpa::c_api::OpenServed(uri);
+    if (!served.ok()) {
+      g_open_error = served.message;
+      return static_cast<int>(served.status);
+    }
+    *out = served.value;
+    return PALPA_OK;
+  }
   auto device = ph::Device::Open(uri, ph::DeviceOptions{});
   if (!device.ok()) {
     g_open_error = device.message;
@@ -92,11 +111,7 @@ int palpa_open(const char* uri, palpa_device** out) {
                                                                                : PALPA_UNIT_MM;
         }
       }
-      if (d->samples.size() >= kMaxQueuedSamples) {
-        d->samples.pop_front();
-        ++d->dropped;
-      }
-      d->samples.push_back(s);
+      palpa::c_api::QueueSample(d, s);
     }
     d->arrived.notify_all();
   });
@@ -106,9 +121,13 @@ int palpa_open(const char* uri, palpa_device** out) {
 
 void palpa_close(palpa_device* d) {
   if (d == nullptr) return;
-  d->device->Unsubscribe(d->subscription);
-  d->device->Close();  // the destructor would too; this way before the samples queue goes
-  d->device.reset();
+  if (d->served) {
+    d->served.reset();  // control given up, its reader thread joined: before the queue goes
+  } else {
+    d->device->Unsubscribe(d->subscription);
+    d->device->Close();  // the destructor would too; this way before the samples queue goes
+    d->device.reset();
+  }
   delete d;
 }
 
@@ -131,7 +150,16 @@ const char* palpa_status_name(int status) {
 
 int palpa_get_info(palpa_device* d, palpa_info* info) {
   if (d == nullptr || info == nullptr) return static_cast<int>(pp::Status::kInvalidArgument);
-  const pp::HelloReply b = d->device->info();
+  pp::HelloReply b;
+  bool catalog_matches = false;
+  if (d->served) {  // read now, so its faults are the latched ones
+    auto served = d->served->Info(&catalog_matches);
+    if (!served.ok()) return Report(d, served);
+    b = served.value;
+  } else {
+    b = d->device->info();
+    catalog_matches = d->device->link().catalog_matches();
+  }
   std::memset(info, 0, sizeof(*info));
   info->board_id = b.board_id;
   info->firmware_major = b.firmware_major;
@@ -139,7 +167,7 @@ int palpa_get_info(palpa_device* d, palpa_info* info) {
   info->firmware_patch = b.firmware_patch;
   info->board_kind = static_cast<uint8_t>(b.board_kind);
   info->catalog_hash = b.catalog_hash;
-  info->catalog_matches = d->device->link().catalog_matches() ? 1 : 0;
+  info->catalog_matches = catalog_matches ? 1 : 0;
   info->plant_simulated = b.plant_simulated ? 1 : 0;
   info->time_scale = b.time_scale;
   const std::string name = ph::FieldText(b.config_name);
@@ -169,16 +197,16 @@ int palpa_set_pressure(palpa_device* d, uint8_t finger, double v) {
 }
 
 int palpa_estop(palpa_device* d) {
-  return d == nullptr ? static_cast<int>(pp::Status::kInvalidArgument)
-                      : Report(d, d->device->EStop());
+  if (d == nullptr) return static_cast<int>(pp::Status::kInvalidArgument);
+  return Report(d, d->served ? d->served->EStop() : d->device->EStop());
 }
 int palpa_clear_fault(palpa_device* d) {
-  return d == nullptr ? static_cast<int>(pp::Status::kInvalidArgument)
-                      : Report(d, d->device->ClearFault());
+  if (d == nullptr) return static_cast<int>(pp::Status::kInvalidArgument);
+  return Report(d, d->served ? d->served->ClearFault().outcome() : d->device->ClearFault());
 }
 int palpa_release(palpa_device* d) {
-  return d == nullptr ? static_cast<int>(pp::Status::kInvalidArgument)
-                      : Report(d, d->device->Release());
+  if (d == nullptr) return static_cast<int>(pp::Status::kInvalidArgument);
+  return Report(d, d->served ? d->served->Release() : d->device->Release());
 }
 
 int palpa_read_samples(palpa_device* d, palpa_sample* out, int capacity, int timeout_ms) {
@@ -205,19 +233,29 @@ uint64_t palpa_samples_dropped(const palpa_device* d) {
 
 int palpa_record_start(palpa_device* d, const char* path) {
   if (d == nullptr || path == nullptr) return static_cast<int>(pp::Status::kInvalidArgument);
+  if (d->served) return NotThroughServe(d, "palpa_record_start");
   return Report(d, d->device->StartRecording(path));
 }
 
 int palpa_record_stop(palpa_device* d) {
-  return d == nullptr ? static_cast<int>(pp::Status::kInvalidArgument)
-                      : Report(d, d->device->StopRecording());
+  if (d == nullptr) return static_cast<int>(pp::Status::kInvalidArgument);
+  if (d->served) return NotThroughServe(d, "palpa_record_stop");
+  return Report(d, d->device->StopRecording());
 }
 
 int palpa_config_read(palpa_device* d, char* out, size_t capacity, size_t* length) {
   if (d == nullptr) return static_cast<int>(pp::Status::kInvalidArgument);
-  auto config = d->device->ReadConfig();
-  if (!config.ok()) return Report(d, config);
-  const int status = CopyText(ph::ConfigToJson(config.value).dump(), out, capacity, length);
+  std::string text;
+  if (d->served) {
+    const auto config = d->served->ReadConfig();
+    if (!config.ok()) return Report(d, config);
+    text = config.value.dump();
+  } else {
+    const auto config = d->device->ReadConfig();
+    if (!config.ok()) return Report(d, config);
+    text = ph::ConfigToJson(config.value).dump();
+  }
+  const int status = CopyText(text, out, capacity, length);
   if (status != PALPA_OK) d->error = "palpa_config_read: the configuration does not fit the buffer";
   return status;
 }
@@ -228,6 +266,7 @@ int palpa_config_apply(palpa_device* d, const char* json) {
   const auto patch = ph::ParseJson(json);
   if (!patch.ok())
     return Invalid(d, "palpa_config_apply: " + patch.message + " (nothing was sent)");
+  if (d->served) return Report(d, d->served->ApplyConfig(patch.value, false));
   auto config = d->device->ReadConfig();
   if (!config.ok()) return Report(d, config);
   try {
@@ -239,12 +278,14 @@ int palpa_config_apply(palpa_device* d, const char* json) {
 }
 
 int palpa_config_save(palpa_device* d) {
-  return d == nullptr ? static_cast<int>(pp::Status::kInvalidArgument)
-                      : Report(d, d->device->SaveConfig());
+  if (d == nullptr) return static_cast<int>(pp::Status::kInvalidArgument);
+  return Report(d, d->served ? d->served->ApplyConfig(nlohmann::json::object(), true)
+                             : d->device->SaveConfig());
 }
 
 int palpa_curve_warnings(palpa_device* d, char* out, size_t capacity, size_t* length) {
   if (d == nullptr) return static_cast<int>(pp::Status::kInvalidArgument);
+  if (d->served) return NotThroughServe(d, "palpa_curve_warnings");
   const int status =
       CopyText(ph::CurveWarningsJson(d->device->curve_warnings(), 0).dump(), out, capacity, length);
   if (status != PALPA_OK) d->error = "palpa_curve_warnings: the warnings do not fit the buffer";
@@ -255,6 +296,7 @@ int palpa_calibrate(palpa_device* d, const char* rig, const char* options_json, 
                     size_t capacity, size_t* length) {
   if (rig == nullptr || options_json == nullptr)
     return Invalid(d, "palpa_calibrate: rig and options_json must not be NULL");
+  if (d != nullptr && d->served) return NotThroughServe(d, "palpa_calibrate");
   const auto options = ph::ParseJson(options_json);
   if (!options.ok()) return Invalid(d, "palpa_calibrate: options: " + options.message);
   nlohmann::ordered_json summary;

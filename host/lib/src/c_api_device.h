@@ -11,7 +11,9 @@
 
 #include "palpa/c/palpa.h"
 #include "palpa/host/device.h"
+#include "palpa/host/served_device.h"
 
+/// Either a board this process opened (`device`) or one behind palpa serve (`served`).
 struct palpa_device {
   std::unique_ptr<palpa::host::Device> device;
   std::string error;
@@ -23,6 +25,8 @@ struct palpa_device {
   int subscription = 0;
   std::vector<palpa::host::FingerCurves>
       curves;  ///< for the samples' finger outputs, taken on opening
+  /// Last, so it goes first: its reader thread queues samples under `mutex` until it is joined.
+  std::unique_ptr<palpa::host::ServedDevice> served;
 };
 
 namespace palpa::c_api {
@@ -35,6 +39,20 @@ inline int Report(palpa_device* d, const host::Outcome& o) {
     d->faults = o.faults;
   }
   return static_cast<int>(o.status);
+}
+
+/// `s` at the queue's end, the oldest dropped (and counted) when it is full; d->mutex held.
+void QueueSample(palpa_device* d, const palpa_sample& s);
+
+/// A device behind palpa serve (uri "serve:..."), its telemetry queued from the start.
+host::Result<palpa_device*> OpenServed(const std::string& uri);
+
+/// A call the server's API does not offer, on a served device: unsupported, saying so.
+inline int NotThroughServe(palpa_device* d, const char* function) {
+  d->error = std::string(function) + ": not available through palpa serve (" + d->served->uri() +
+             "): open the board where it is attached to use it";
+  d->faults = 0;
+  return static_cast<int>(protocol::Status::kUnsupported);
 }
 
 }  // namespace palpa::c_api

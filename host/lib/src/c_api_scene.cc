@@ -77,7 +77,8 @@ int palpa_set_fingers(palpa_device* d, const palpa_request* requests, int count,
     }
     list.push_back({r.finger, {static_cast<ph::TargetKind>(r.kind), r.value}});
   }
-  return Report(d, d->device->Set(list, wait != 0));
+  // Through palpa serve a set always returns once the board applied it.
+  return Report(d, d->served ? d->served->Set(list) : d->device->Set(list, wait != 0));
 }
 
 int palpa_scene_open(palpa_device* d, const char* path, palpa_scene** out) {
@@ -85,6 +86,7 @@ int palpa_scene_open(palpa_device* d, const char* path, palpa_scene** out) {
   if (path == nullptr || out == nullptr)
     return Fail(d, pp::Status::kInvalidArgument, "palpa_scene_open: path and out must not be NULL");
   *out = nullptr;
+  if (d->served) return palpa::c_api::NotThroughServe(d, "palpa_scene_open");
   const auto spec = ph::LoadScene(path);
   if (!spec.ok()) return Report(d, spec.outcome());
   auto scene = ph::Scene::Open(spec.value, *d->device);

@@ -2,8 +2,8 @@
 """--device serve:HOST:PORT: the command line and the Python module reach a board through a running
 `palpa serve` — reading needs nothing, acting takes control (refused while another client holds
 it), E-stop is everyone's, and a command's end gives control up and the board is released.
-Numbers as each side numbers: the command line from 1, Python from 0. Checked on palpa-sim's truth
-channel. Usage: remote_test.py PALPA PALPA_SIM PYTHON_PACKAGE_DIR"""
+Numbers as each side numbers: the command line from 1, Python and C from 0. Checked on palpa-sim's
+truth channel. Usage: remote_test.py PALPA PALPA_SIM PYTHON_PACKAGE_DIR SERVE_C_TEST"""
 import json
 import subprocess
 import sys
@@ -103,20 +103,32 @@ def python_module(package_dir, device, sim):
     print("ok  Python: closing gave control up and the board was released")
 
 
+def c_abi(serve_c_test, device, sim):
+    """serve_c_test.c's scenario (its own checks), then the board as closing leaves it."""
+    r = subprocess.run([serve_c_test, device], capture_output=True, text=True, timeout=60)
+    print(r.stdout, end="")
+    if r.returncode != 0:
+        fail(f"the C ABI through the server exited {r.returncode}: {r.stderr}")
+    sim.wait(lambda s: s["board"]["safe"] and s["board"]["faults"] == 0,
+             "the board released, no fault, when the C handles closed")
+    print("ok  C: closing left the board released, no fault latched")
+
+
 def main():
-    palpa, palpa_sim, package_dir = sys.argv[1], sys.argv[2], sys.argv[3]
+    palpa, palpa_sim, package_dir, serve_c_test = sys.argv[1:5]
     sim = Sim(palpa_sim)
     serve = Serve(palpa, sim.address)
     device = f"serve:127.0.0.1:{serve.port}"
     try:
         command_line(palpa, device, sim)
         python_module(package_dir, device, sim)
+        c_abi(serve_c_test, device, sim)
         if not serve.alive():
             fail("the server died")
     finally:
         serve.close()
         sim.close()
-    print("remote_test: the command line and Python watched and controlled through palpa serve")
+    print("remote_test: the command line, Python and C watched and controlled through palpa serve")
 
 
 if __name__ == "__main__":

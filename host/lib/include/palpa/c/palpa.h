@@ -107,8 +107,18 @@ typedef struct {
 } palpa_sample;
 
 /* Opens a device URI ("sim:thesis-5finger", "serial:/dev/ttyACM0", "tcp:HOST:PORT",
-   "hid:1209:0001", "usb:1209:0001"). On failure *out is NULL and palpa_last_error(NULL) says why.
- */
+   "hid:1209:0001", "usb:1209:0001"), or "serve:HOST:PORT[?token=T]": a board behind a running
+   `palpa serve` (docs/serve.md), which several programs watch while one controls it. Through
+   serve: info, palpa_set_* and palpa_set_fingers (always waiting until applied), palpa_estop
+   (anyone's), palpa_clear_fault, palpa_release, palpa_read_samples (every sample, as the server
+   sends them 30 times a second; command_counts 0), the configuration calls and
+   palpa_last_error/palpa_last_faults work as on a board opened here; fingers from 0, as here.
+   The first call that acts on the board takes control, never by force: while another client of
+   the server holds it, the call is refused with PALPA_STATUS_BUSY naming the holder; palpa_close
+   gives control up and the server releases the board. Recording, calibration, curve warnings and
+   scenes are refused with PALPA_STATUS_UNSUPPORTED ("not available through palpa serve").
+   On failure *out is NULL and palpa_last_error(NULL) says why, naming the address: a malformed
+   one (PALPA_STATUS_INVALID_ARGUMENT), one where nothing listens (PALPA_STATUS_UNAVAILABLE). */
 int palpa_open(const char* uri, palpa_device** out);
 /* Ends the session (every output safe at once, no fault latched, the board free for another host)
    and frees the device. A process that exits without it leaves the board to its host-silence
