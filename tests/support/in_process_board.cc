@@ -2,6 +2,9 @@
 #include "in_process_board.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <utility>
 
 #include "palpa/protocol/crc32.h"
 
@@ -20,8 +23,12 @@ sim::SimBoardOptions PlantBoardOptions(const std::string& config, uint32_t unit,
 }
 
 InProcessBoard::InProcessBoard(const sim::SimBoardOptions& options) {
-  std::string error;
-  sim_ = sim::SimBoard::Create(options, link_, &error);
+  auto created = sim::SimBoard::Create(options, link_);
+  if (!created.ok()) {  // a test's own options: say which, rather than run on nothing
+    std::fprintf(stderr, "InProcessBoard: %s\n", created.message.c_str());
+    std::abort();
+  }
+  sim_ = std::move(created.value);
   Send(pp::Hello{kSession, 0}, false);
   Run(5);
 }

@@ -23,8 +23,7 @@ class RawLineSession {
                           const std::function<void(protocol::ConfigureLine&)>& edit = {}) {
     sim::SimBoardOptions o;
     o.plant = plant;
-    std::string error;
-    sim_ = sim::SimBoard::Create(o, link_, &error);
+    sim_ = sim::SimBoard::Create(o, link_).value;  // the default configuration: never refused
     Send(protocol::Hello{1, 0}, false);
     sim_->Advance(5);
     config_ = &sim_->board().config();

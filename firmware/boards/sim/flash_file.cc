@@ -43,12 +43,10 @@ FlashFile::~FlashFile() {
   if (fd_ >= 0) close(fd_);
 }
 
-bool FlashFile::Open(const std::string& path, const std::string& config, std::string* error) {
+hal::Done FlashFile::Open(const std::string& path, const std::string& config) {
+  const std::string where = "--flash " + path + ": ";
   fd_ = open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd_ < 0) {
-    *error = "--flash " + path + ": " + std::strerror(errno);
-    return false;
-  }
+  if (fd_ < 0) return {Status::kIoError, where + std::strerror(errno)};
   struct stat st {};
   fstat(fd_, &st);
   const std::vector<uint8_t> expected = Header(config, flash_.size());
@@ -56,32 +54,30 @@ bool FlashFile::Open(const std::string& path, const std::string& config, std::st
   if (!existed_) {  // a new board: the flash as the factory left it
     if (!WriteAll(fd_, expected.data(), expected.size(), 0) ||
         !WriteAll(fd_, flash_.contents().data(), flash_.size(), kHeaderSize) || fsync(fd_) != 0) {
-      *error = "--flash " + path + ": cannot write: " + std::strerror(errno);
-      return false;
+      return {Status::kIoError, where + "cannot write: " + std::strerror(errno)};
     }
-    return true;
+    return {};
   }
   std::vector<uint8_t> bytes(static_cast<size_t>(st.st_size));
   if (pread(fd_, bytes.data(), bytes.size(), 0) != static_cast<ssize_t>(bytes.size()) ||
       bytes.size() < kHeaderSize || std::memcmp(bytes.data(), kMagic, sizeof(kMagic) - 1) != 0) {
-    *error = "--flash " + path + ": not a palpa-sim flash file";
-    return false;
+    return {Status::kBadValue, where + "not a palpa-sim flash file"};
   }
   const std::string owner(
       reinterpret_cast<const char*>(bytes.data() + kNameAt),
       strnlen(reinterpret_cast<const char*>(bytes.data() + kNameAt), kNameSize));
   if (owner != config) {
-    *error = "--flash " + path + ": the flash of a " + owner + " board, not of a " + config +
-             " one (start it with --config " + owner + ", or give another file)";
-    return false;
+    return {Status::kBadValue, where + "the flash of a " + owner + " board, not of a " + config +
+                                   " one (start it with --config " + owner +
+                                   ", or give another file)"};
   }
   if (std::memcmp(bytes.data(), expected.data(), kHeaderSize) != 0 ||
       !flash_.Restore(bytes.data() + kHeaderSize, bytes.size() - kHeaderSize)) {
-    *error = "--flash " + path + ": " + std::to_string(bytes.size() - kHeaderSize) +
-             " bytes of flash, where this board has " + std::to_string(flash_.size());
-    return false;
+    return {Status::kBadValue, where + std::to_string(bytes.size() - kHeaderSize) +
+                                   " bytes of flash, where this board has " +
+                                   std::to_string(flash_.size())};
   }
-  return true;
+  return {};
 }
 
 Status FlashFile::Persist(uint32_t offset, size_t size) {

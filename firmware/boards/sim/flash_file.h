@@ -6,6 +6,7 @@
 
 #include "palpa/hal/fake/simulated_nor_flash.h"
 #include "palpa/hal/flash.h"
+#include "palpa/hal/linux/opened.h"
 
 namespace palpa::sim {
 
@@ -22,8 +23,9 @@ class FlashFile final : public hal::Flash {
 
   /// Opens PATH for a board with configuration `config`. An existing file's contents replace the
   /// flash's (a file of another configuration or size is refused, naming both); a new file gets
-  /// the flash as it is now (the factory's). False with *error.
-  bool Open(const std::string& path, const std::string& config, std::string* error);
+  /// the flash as it is now (the factory's). Refused, the message starting "--flash PATH: ",
+  /// with kIoError (cannot be opened or written) or kBadValue (not this board's flash file).
+  hal::Done Open(const std::string& path, const std::string& config);
   /// True when Open found the file there already (the board has been powered before).
   bool existed() const { return existed_; }
 

@@ -10,6 +10,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fd_link.h"
@@ -48,15 +49,19 @@ int Failed(const std::string& why, int code) {
 
 /// The board link, the truth channel and the simulated board; an exit code when one cannot open.
 int OpenBoard(Sim& s) {
-  std::string error;
+  std::string error;  // the hosted boards' link says it in words
   if (!s.link.Open(s.cmd.listen, &error)) return Failed(error, 1);
-  if (!s.cmd.truth.empty() && !s.truth.Open(s.cmd.truth, &error)) return Failed(error, 1);
+  if (!s.cmd.truth.empty()) {
+    const palpa::hal::Done opened = s.truth.Open(s.cmd.truth);
+    if (!opened.ok()) return Failed(opened.message, 1);
+  }
   if (!s.cmd.board.flash_file.empty() && s.cmd.board.boot_nonce == 0) {
     // A board with a past: each start is a new boot, and a host must see a new boot nonce.
     s.cmd.board.boot_nonce = std::random_device{}() | 1u;
   }
-  s.board = palpa::sim::SimBoard::Create(s.cmd.board, s.link, &error);
-  if (!s.board) return Failed(error, 2);
+  auto board = palpa::sim::SimBoard::Create(s.cmd.board, s.link);
+  if (!board.ok()) return Failed(board.message, 2);
+  s.board = std::move(board.value);
   return 0;
 }
 
@@ -90,12 +95,10 @@ int OpenRig(Sim& s) {
   }
   s.rig = std::make_unique<palpa::sim::RigModel>(s.board->plant(), s.cmd.rig_finger,
                                                  s.cmd.board.plant.seed * 17u + 5u);
-  std::string error;
-  if ((!s.cmd.rig_modbus.empty() && !s.rig_server.Open(s.cmd.rig_modbus, *s.rig, &error)) ||
-      (!s.cmd.rig_netft.empty() && !s.netft.Open(s.cmd.rig_netft, *s.rig, &error))) {
-    return Failed(error, 1);
-  }
-  return 0;
+  palpa::hal::Done opened;
+  if (!s.cmd.rig_modbus.empty()) opened = s.rig_server.Open(s.cmd.rig_modbus, *s.rig);
+  if (opened.ok() && !s.cmd.rig_netft.empty()) opened = s.netft.Open(s.cmd.rig_netft, *s.rig);
+  return opened.ok() ? 0 : Failed(opened.message, 1);
 }
 
 /// What runs where, on stdout: the lines a launcher waits for.
@@ -202,13 +205,13 @@ void Serve(Sim& s) {
 
 /// The stamp file and the truth stream closed whole; 1 when one could not be.
 int Finish(Sim& s) {
-  std::string error;
   int status = 0;
   if (s.stamps.is_open()) {
     const palpa::hal::Done committed = s.stamps.Commit();
     if (!committed.ok()) status = Failed("--stamp " + committed.message, 1);
   }
-  if (!s.truth.Close(&error)) status = Failed(error, 1);
+  if (const palpa::hal::Done closed = s.truth.Close(); !closed.ok())
+    status = Failed(closed.message, 1);
   std::printf("palpa-sim: stopped\n");
   return status;
 }
@@ -217,12 +220,12 @@ int Finish(Sim& s) {
 
 int main(int argc, char** argv) {
   Sim s;
-  std::string error;
-  if (!palpa::sim::ParseSimCommandLine(std::vector<std::string>(argv + 1, argv + argc), s.cmd,
-                                       &error)) {
-    std::fprintf(stderr, "palpa-sim: %s\n(see palpa-sim --help)\n", error.c_str());
+  auto parsed = palpa::sim::ParseSimCommandLine(std::vector<std::string>(argv + 1, argv + argc));
+  if (!parsed.ok()) {
+    std::fprintf(stderr, "palpa-sim: %s\n(see palpa-sim --help)\n", parsed.message.c_str());
     return 2;
   }
+  s.cmd = std::move(parsed.value);
   if (s.cmd.help) {
     std::fputs(palpa::sim::kSimUsage, stdout);
     return 0;

@@ -47,23 +47,22 @@ RigModbusServer::~RigModbusServer() {
   }
 }
 
-bool RigModbusServer::Open(const std::string& spec, RigModel& rig, std::string* error) {
+hal::Done RigModbusServer::Open(const std::string& spec, RigModel& rig) {
   rig_ = &rig;
   map_ = modbus_mapping_new(0, 0, 40, 40);
   if (spec.rfind("tcp:", 0) == 0) {
     const std::string rest = spec.substr(4);
     const size_t colon = rest.rfind(':');
     if (colon == std::string::npos) {
-      *error = "--rig-modbus " + spec + ": expected tcp:HOST:PORT";
-      return false;
+      return {hal::Status::kBadValue, "--rig-modbus " + spec + ": expected tcp:HOST:PORT"};
     }
     const std::string host = rest.substr(0, colon);
     const int port = std::atoi(rest.substr(colon + 1).c_str());
     ctx_ = modbus_new_tcp(host.c_str(), port);
     listen_fd_ = ctx_ != nullptr ? modbus_tcp_listen(ctx_, 1) : -1;
     if (listen_fd_ < 0) {
-      *error = "--rig-modbus " + spec + ": cannot listen (" + modbus_strerror(errno) + ")";
-      return false;
+      return {hal::Status::kUnavailable,
+              "--rig-modbus " + spec + ": cannot listen (" + modbus_strerror(errno) + ")"};
     }
     sockaddr_in bound{};
     socklen_t size = sizeof(bound);
@@ -73,17 +72,17 @@ bool RigModbusServer::Open(const std::string& spec, RigModel& rig, std::string* 
     rtu_ = true;
     ctx_ = modbus_new_rtu(spec.substr(4).c_str(), 115200, 'N', 8, 1);
     if (ctx_ == nullptr || modbus_set_slave(ctx_, 1) != 0 || modbus_connect(ctx_) != 0) {
-      *error = "--rig-modbus " + spec + ": cannot open (" + modbus_strerror(errno) + ")";
-      return false;
+      return {hal::Status::kUnavailable,
+              "--rig-modbus " + spec + ": cannot open (" + modbus_strerror(errno) + ")"};
     }
     clients_.push_back(Client{modbus_get_socket(ctx_), {}});
     address_ = spec;
   } else {
-    *error = "--rig-modbus " + spec + ": expected tcp:HOST:PORT or rtu:PATH";
-    return false;
+    return {hal::Status::kBadValue,
+            "--rig-modbus " + spec + ": expected tcp:HOST:PORT or rtu:PATH"};
   }
   Refresh();
-  return true;
+  return {};
 }
 
 std::vector<int> RigModbusServer::PollFds() const {

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "palpa/hal/linux/opened.h"
 #include "palpa/hal/sim/rig_model.h"
 
 typedef struct _modbus modbus_t;
@@ -30,7 +31,9 @@ class RigModbusServer {
   static constexpr size_t kMaxClients = 4;
   ~RigModbusServer();
   /// "tcp:HOST:PORT" (0 = any free port) or "rtu:PATH" (a serial device or pty, 115200 8N1).
-  bool Open(const std::string& spec, RigModel& rig, std::string* error);
+  /// Refused naming --rig-modbus: kBadValue for another form, kUnavailable when it cannot be
+  /// listened on or opened.
+  hal::Done Open(const std::string& spec, RigModel& rig);
   const std::string& address() const { return address_; }
   std::vector<int> PollFds() const;
   /// Accepts clients (up to kMaxClients), answers the requests waiting. Over TCP it never

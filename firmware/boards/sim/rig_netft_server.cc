@@ -24,29 +24,27 @@ RigNetFtServer::~RigNetFtServer() {
   if (fd_ >= 0) close(fd_);
 }
 
-bool RigNetFtServer::Open(const std::string& spec, RigModel& rig, std::string* error) {
+hal::Done RigNetFtServer::Open(const std::string& spec, RigModel& rig) {
   rig_ = &rig;
   const size_t colon = spec.rfind(':');
   if (spec.rfind("udp:", 0) != 0 || colon <= 4) {
-    *error = "--rig-netft " + spec + ": expected udp:HOST:PORT";
-    return false;
+    return {hal::Status::kBadValue, "--rig-netft " + spec + ": expected udp:HOST:PORT"};
   }
   sockaddr_in a{};
   a.sin_family = AF_INET;
   a.sin_port = htons(static_cast<uint16_t>(std::atoi(spec.substr(colon + 1).c_str())));
   if (inet_pton(AF_INET, spec.substr(4, colon - 4).c_str(), &a.sin_addr) != 1) {
-    *error = "--rig-netft " + spec + ": not an IPv4 address";
-    return false;
+    return {hal::Status::kBadValue, "--rig-netft " + spec + ": not an IPv4 address"};
   }
   fd_ = socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK, 0);
   if (fd_ < 0 || bind(fd_, reinterpret_cast<sockaddr*>(&a), sizeof(a)) != 0) {
-    *error = "--rig-netft " + spec + ": cannot bind (" + std::strerror(errno) + ")";
-    return false;
+    return {hal::Status::kUnavailable,
+            "--rig-netft " + spec + ": cannot bind (" + std::strerror(errno) + ")"};
   }
   socklen_t size = sizeof(a);
   getsockname(fd_, reinterpret_cast<sockaddr*>(&a), &size);
   address_ = "udp:" + spec.substr(4, colon - 4) + ":" + std::to_string(ntohs(a.sin_port));
-  return true;
+  return {};
 }
 
 void RigNetFtServer::Send() {

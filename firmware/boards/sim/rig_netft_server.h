@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <string>
 
+#include "palpa/hal/linux/opened.h"
 #include "palpa/hal/sim/rig_model.h"
 
 namespace palpa::sim {
@@ -22,8 +23,9 @@ class RigNetFtServer {
   static constexpr double kCountsPerNewton = 1000000;
   static constexpr uint32_t kMaxStreamRecords = 1000;
   ~RigNetFtServer();
-  /// "udp:HOST:PORT" (0 = any free port).
-  bool Open(const std::string& spec, RigModel& rig, std::string* error);
+  /// "udp:HOST:PORT" (0 = any free port). Refused naming --rig-netft: kBadValue for another form,
+  /// kUnavailable when it cannot be bound.
+  hal::Done Open(const std::string& spec, RigModel& rig);
   const std::string& address() const { return address_; }
   int fd() const { return fd_; }
   /// Answers the requests that have arrived (start, stop, bias).

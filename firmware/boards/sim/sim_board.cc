@@ -7,17 +7,15 @@
 
 namespace palpa::sim {
 
-std::unique_ptr<SimBoard> SimBoard::Create(const SimBoardOptions& options, hal::ByteLink& link,
-                                           std::string* error) {
+hal::Opened<std::unique_ptr<SimBoard>> SimBoard::Create(const SimBoardOptions& options,
+                                                        hal::ByteLink& link) {
   const core::BoardConfig* config = core::FindBoardConfig(options.config.c_str());
   if (config == nullptr) {
-    if (error != nullptr) {
-      *error = "--config " + options.config + ": unknown board configuration (known:";
-      for (uint8_t i = 0; i < core::kBoardConfigCount; ++i)
-        *error += std::string(" ") + core::kBoardConfigs[i].name;
-      *error += ")";
-    }
-    return nullptr;
+    std::string known;
+    for (uint8_t i = 0; i < core::kBoardConfigCount; ++i)
+      known += std::string(" ") + core::kBoardConfigs[i].name;
+    return {Status::kBadValue,
+            "--config " + options.config + ": unknown board configuration (known:" + known + ")"};
   }
   std::unique_ptr<SimBoard> sim(new SimBoard());
   sim->plant_ =
@@ -57,11 +55,8 @@ std::unique_ptr<SimBoard> SimBoard::Create(const SimBoardOptions& options, hal::
   sim->storage_ = sim->flash_.get();
   if (!options.flash_file.empty()) {  // the flash as the last run left it, kept from now on
     sim->flash_file_ = std::make_unique<FlashFile>(*sim->flash_);
-    std::string why;
-    if (!sim->flash_file_->Open(options.flash_file, options.config, &why)) {
-      if (error != nullptr) *error = why;
-      return nullptr;
-    }
+    const hal::Done kept = sim->flash_file_->Open(options.flash_file, options.config);
+    if (!kept.ok()) return {kept.status, kept.message};
     sim->storage_ = sim->flash_file_.get();
   }
   sim->BootBoard(protocol::ResetCause::kPowerOn);

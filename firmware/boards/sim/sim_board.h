@@ -15,6 +15,7 @@
 #include "palpa/hal/clock.h"
 #include "palpa/hal/digital_io.h"
 #include "palpa/hal/fake/simulated_nor_flash.h"
+#include "palpa/hal/linux/opened.h"
 #include "palpa/hal/sim/plant.h"
 #include "palpa/hal/sim/sim_io.h"
 
@@ -53,10 +54,10 @@ class PulsedValve final : public hal::DigitalOutput {
 
 class SimBoard {
  public:
-  /// Returns nullptr (and sets *error) when the configuration name is unknown or the flash file
-  /// cannot be used.
-  static std::unique_ptr<SimBoard> Create(const SimBoardOptions& options, hal::ByteLink& link,
-                                          std::string* error);
+  /// The board, or why not: an unknown configuration name (kBadValue, naming the known ones) or a
+  /// flash file that cannot be used (FlashFile::Open's status and words).
+  static hal::Opened<std::unique_ptr<SimBoard>> Create(const SimBoardOptions& options,
+                                                       hal::ByteLink& link);
 
   /// Runs the plant and the board up to virtual time `us` (1 ms plant steps, a board loop pass
   /// at every step).

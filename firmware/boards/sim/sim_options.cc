@@ -53,20 +53,37 @@ const char* const kSimUsage =
 
 namespace {
 
-bool Number(const std::string& name, const std::string& text, double lo, double hi, double& out,
-            std::string* error) {
+using hal::Done;
+using hal::Opened;
+
+/// Every refusal of an argument.
+Done Refused(std::string why) { return {hal::Status::kBadValue, std::move(why)}; }
+
+/// `text` as a number from `lo` to `hi`, into `out` (its type's value of it).
+template <typename T>
+Done Number(const std::string& name, const std::string& text, double lo, double hi, T& out) {
   char* end = nullptr;
-  out = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || !(out >= lo && out <= hi)) {
+  const double n = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !(n >= lo && n <= hi)) {
     char range[64];
     std::snprintf(range, sizeof(range), "%g to %g", lo, hi);
-    *error = name + " " + text + ": expected a number from " + range;
-    return false;
+    return Refused(name + " " + text + ": expected a number from " + range);
   }
-  return true;
+  out = static_cast<T>(n);
+  return {};
 }
 
-bool ParseEffects(const std::string& list, Effects& effects, std::string* error) {
+/// `text` as a whole number from 0 to `hi`, into `out`; anything else is refused with `expected`.
+template <typename T>
+Done Whole(const std::string& name, const std::string& text, int hi, const char* expected, T& out) {
+  double n = 0;
+  if (!Number(name, text, 0, hi, n).ok() || n != static_cast<int>(n))
+    return Refused(name + " " + text + ": " + expected);
+  out = static_cast<T>(n);
+  return {};
+}
+
+Done ParseEffects(const std::string& list, Effects& effects) {
   size_t at = 0;
   while (at <= list.size()) {
     const size_t comma = list.find(',', at);
@@ -77,24 +94,22 @@ bool ParseEffects(const std::string& list, Effects& effects, std::string* error)
     } else if (item == "rate") {
       effects.rate = true;
     } else if (item.rfind("history=", 0) == 0) {
-      double h = 0;
-      if (!Number("--effects history", item.substr(8), 0.0, 0.5, h, error)) return false;
-      effects.history = static_cast<float>(h);
+      const Done history = Number("--effects history", item.substr(8), 0.0, 0.5, effects.history);
+      if (!history.ok()) return history;
     } else {
-      *error = "--effects " + list + ": unknown effect '" + item +
-               "' (expected creep, rate, history=FRACTION)";
-      return false;
+      return Refused("--effects " + list + ": unknown effect '" + item +
+                     "' (expected creep, rate, history=FRACTION)");
     }
     if (comma == std::string::npos) break;
     at = comma + 1;
   }
-  return true;
+  return {};
 }
 
 /// "tcp:HOST:PORT" / "udp:HOST:PORT" (or just the PORT: loopback) checked and written out in
 /// full; a host outside 127.0.0.0/8 only with --allow-remote, and then with a warning.
-bool CheckNetworkAddress(const std::string& option, std::string& spec, bool allow_remote,
-                         std::vector<std::string>& warnings, std::string* error) {
+Done CheckNetworkAddress(const std::string& option, std::string& spec, bool allow_remote,
+                         std::vector<std::string>& warnings) {
   const size_t scheme = spec.find(':') + 1;
   const std::string rest = spec.substr(scheme);
   const size_t colon = rest.rfind(':');
@@ -103,39 +118,79 @@ bool CheckNetworkAddress(const std::string& option, std::string& spec, bool allo
   const std::string where = option + " " + spec + ": ";
   char* end = nullptr;
   const long n = std::strtol(port.c_str(), &end, 10);
-  if (port.empty() || *end != '\0' || n < 0 || n > 65535) {
-    *error = where + "the port must be a number from 0 to 65535";
-    return false;
-  }
+  if (port.empty() || *end != '\0' || n < 0 || n > 65535)
+    return Refused(where + "the port must be a number from 0 to 65535");
   in_addr address{};
-  if (inet_pton(AF_INET, host.c_str(), &address) != 1) {
-    *error = where + "'" + host + "' is not an IPv4 address";
-    return false;
-  }
+  if (inet_pton(AF_INET, host.c_str(), &address) != 1)
+    return Refused(where + "'" + host + "' is not an IPv4 address");
   if ((ntohl(address.s_addr) >> 24) != 127) {
     if (!allow_remote) {
-      *error = where + host +
-               " is not a loopback address: other hosts could reach it, and nothing palpa-sim "
-               "serves is authenticated (--allow-remote serves it anyway)";
-      return false;
+      return Refused(where + host +
+                     " is not a loopback address: other hosts could reach it, and nothing "
+                     "palpa-sim serves is authenticated (--allow-remote serves it anyway)");
     }
     warnings.push_back(option + " " + spec +
                        " is reachable from other hosts: anyone who reaches it can use it, nothing "
                        "there is authenticated");
   }
   spec = spec.substr(0, scheme) + host + ":" + port;
-  return true;
+  return {};
+}
+
+/// `value` as the option `arg` (one that takes a value), into `out`.
+Done TakeOption(const std::string& arg, const std::string& value, SimCommandLine& out) {
+  if (arg == "--config") {
+    out.board.config = value;
+  } else if (arg == "--listen") {
+    out.listen = value;
+  } else if (arg == "--unit") {
+    return Number(arg, value, 0, 1000, out.board.plant.unit);
+  } else if (arg == "--seed") {
+    return Number(arg, value, 0, 4294967295.0, out.board.plant.seed);
+  } else if (arg == "--speed") {
+    return Number(arg, value, 0.01, 100, out.speed);
+  } else if (arg == "--plant") {
+    return Whole(arg, value, 3, "expected a level 0, 1, 2 or 3", out.board.plant.level);
+  } else if (arg == "--effects") {
+    return ParseEffects(value, out.board.plant.effects);
+  } else if (arg == "--truth") {
+    if (value.rfind("file:", 0) != 0 && value.rfind("tcp:", 0) != 0)
+      return Refused("--truth " + value + ": expected file:PATH or tcp:HOST:PORT");
+    out.truth = value;
+  } else if (arg == "--stamp") {
+    if (value.rfind("file:", 0) != 0 || value.size() == 5)
+      return Refused("--stamp " + value + ": expected file:PATH");
+    out.stamp_file = value.substr(5);
+  } else if (arg == "--rig-modbus") {
+    if (value.rfind("tcp:", 0) != 0 && value.rfind("rtu:", 0) != 0)
+      return Refused("--rig-modbus " + value + ": expected tcp:HOST:PORT or rtu:PATH");
+    out.rig_modbus = value;
+  } else if (arg == "--rig-netft") {
+    if (value.rfind("udp:", 0) != 0)
+      return Refused("--rig-netft " + value + ": expected udp:HOST:PORT");
+    out.rig_netft = value;
+  } else if (arg == "--rig-finger") {
+    return Whole(arg, value, 7, "expected a finger 0 to 7", out.rig_finger);
+  } else if (arg == "--flash") {
+    if (value.empty()) return Refused("--flash: expected a file");
+    out.board.flash_file = value;
+  } else if (arg == "--truth-every-ms") {
+    return Number(arg, value, 1, 10000, out.truth_every_ms);
+  } else {
+    return Refused("unknown option '" + arg + "'");
+  }
+  return {};
 }
 
 }  // namespace
 
-bool ParseSimCommandLine(const std::vector<std::string>& args, SimCommandLine& out,
-                         std::string* error) {
+Opened<SimCommandLine> ParseSimCommandLine(const std::vector<std::string>& args) {
+  SimCommandLine out;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
     if (arg == "--help" || arg == "-h") {
       out.help = true;
-      return true;
+      return out;
     }
     if (arg == "--no-static-errors") {
       out.board.plant.static_errors = false;
@@ -145,97 +200,29 @@ bool ParseSimCommandLine(const std::vector<std::string>& args, SimCommandLine& o
       out.allow_remote = true;
       continue;
     }
+    Done taken;
     if (arg.rfind("--", 0) != 0) {
-      *error = "unexpected argument '" + arg + "'";
-      return false;
-    }
-    if (i + 1 >= args.size()) {
-      *error = arg + ": a value is missing";
-      return false;
-    }
-    const std::string& value = args[++i];
-    double n = 0;
-    if (arg == "--config") {
-      out.board.config = value;
-    } else if (arg == "--listen") {
-      out.listen = value;
-    } else if (arg == "--unit") {
-      if (!Number(arg, value, 0, 1000, n, error)) return false;
-      out.board.plant.unit = static_cast<uint32_t>(n);
-    } else if (arg == "--seed") {
-      if (!Number(arg, value, 0, 4294967295.0, n, error)) return false;
-      out.board.plant.seed = static_cast<uint32_t>(n);
-    } else if (arg == "--speed") {
-      if (!Number(arg, value, 0.01, 100, n, error)) return false;
-      out.speed = static_cast<float>(n);
-    } else if (arg == "--plant") {
-      if (!Number(arg, value, 0, 3, n, error) || n != static_cast<int>(n)) {
-        *error = "--plant " + value + ": expected a level 0, 1, 2 or 3";
-        return false;
-      }
-      out.board.plant.level = static_cast<int>(n);
-    } else if (arg == "--effects") {
-      if (!ParseEffects(value, out.board.plant.effects, error)) return false;
-    } else if (arg == "--truth") {
-      if (value.rfind("file:", 0) != 0 && value.rfind("tcp:", 0) != 0) {
-        *error = "--truth " + value + ": expected file:PATH or tcp:HOST:PORT";
-        return false;
-      }
-      out.truth = value;
-    } else if (arg == "--stamp") {
-      if (value.rfind("file:", 0) != 0 || value.size() == 5) {
-        *error = "--stamp " + value + ": expected file:PATH";
-        return false;
-      }
-      out.stamp_file = value.substr(5);
-    } else if (arg == "--rig-modbus") {
-      if (value.rfind("tcp:", 0) != 0 && value.rfind("rtu:", 0) != 0) {
-        *error = "--rig-modbus " + value + ": expected tcp:HOST:PORT or rtu:PATH";
-        return false;
-      }
-      out.rig_modbus = value;
-    } else if (arg == "--rig-netft") {
-      if (value.rfind("udp:", 0) != 0) {
-        *error = "--rig-netft " + value + ": expected udp:HOST:PORT";
-        return false;
-      }
-      out.rig_netft = value;
-    } else if (arg == "--rig-finger") {
-      if (!Number(arg, value, 0, 7, n, error) || n != static_cast<int>(n)) {
-        *error = "--rig-finger " + value + ": expected a finger 0 to 7";
-        return false;
-      }
-      out.rig_finger = static_cast<uint8_t>(n);
-    } else if (arg == "--flash") {
-      if (value.empty()) {
-        *error = "--flash: expected a file";
-        return false;
-      }
-      out.board.flash_file = value;
-    } else if (arg == "--truth-every-ms") {
-      if (!Number(arg, value, 1, 10000, n, error)) return false;
-      out.truth_every_ms = static_cast<uint32_t>(n);
+      taken = Refused("unexpected argument '" + arg + "'");
+    } else if (i + 1 >= args.size()) {
+      taken = Refused(arg + ": a value is missing");
     } else {
-      *error = "unknown option '" + arg + "'";
-      return false;
+      taken = TakeOption(arg, args[++i], out);
     }
+    if (!taken.ok()) return {taken.status, taken.message};
   }
-  if (out.listen.empty()) {
-    *error = "--listen is required (tcp:127.0.0.1:PORT or pty:PATH)";
-    return false;
-  }
+  if (out.listen.empty())
+    return {hal::Status::kBadValue, "--listen is required (tcp:127.0.0.1:PORT or pty:PATH)"};
   const std::pair<const char*, std::string*> addresses[] = {{"--listen", &out.listen},
                                                             {"--truth", &out.truth},
                                                             {"--rig-modbus", &out.rig_modbus},
                                                             {"--rig-netft", &out.rig_netft}};
   for (const auto& [option, spec] : addresses) {
-    if ((spec->rfind("tcp:", 0) == 0 || spec->rfind("udp:", 0) == 0) &&
-        !CheckNetworkAddress(option, *spec, out.allow_remote, out.warnings, error)) {
-      return false;
-    }
+    if (spec->rfind("tcp:", 0) != 0 && spec->rfind("udp:", 0) != 0) continue;
+    const Done checked = CheckNetworkAddress(option, *spec, out.allow_remote, out.warnings);
+    if (!checked.ok()) return {checked.status, checked.message};
   }
   out.board.time_scale = out.speed;
-  return true;
+  return out;
 }
 
 }  // namespace palpa::sim

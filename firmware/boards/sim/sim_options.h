@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "palpa/hal/linux/opened.h"
 #include "sim_board.h"
 
 namespace palpa::sim {
@@ -25,12 +26,11 @@ struct SimCommandLine {
   bool help = false;
 };
 
-/// Parses argv; on a bad argument returns false with a message naming it and what was expected.
-/// Network addresses (--listen, --truth, --rig-modbus, --rig-netft) are IPv4 "HOST:PORT", or a
-/// PORT alone for 127.0.0.1, and come back in that full form; a host outside 127.0.0.0/8 is
-/// refused unless --allow-remote is given, and then it is warned of in `warnings`.
-bool ParseSimCommandLine(const std::vector<std::string>& args, SimCommandLine& out,
-                         std::string* error);
+/// Parses argv; a bad argument is refused (kBadValue) with a message naming it and what was
+/// expected. Network addresses (--listen, --truth, --rig-modbus, --rig-netft) are IPv4
+/// "HOST:PORT", or a PORT alone for 127.0.0.1, and come back in that full form; a host outside
+/// 127.0.0.0/8 is refused unless --allow-remote is given, and then it is warned of in `warnings`.
+hal::Opened<SimCommandLine> ParseSimCommandLine(const std::vector<std::string>& args);
 
 extern const char* const kSimUsage;
 

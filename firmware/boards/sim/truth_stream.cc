@@ -17,26 +17,24 @@ TruthStream::~TruthStream() {
   if (listen_fd_ >= 0) close(listen_fd_);
 }
 
-bool TruthStream::Open(const std::string& spec, std::string* error) {
+hal::Done TruthStream::Open(const std::string& spec) {
   if (spec.rfind("file:", 0) == 0) {
     const hal::Done opened = file_.Open(spec.substr(5));
-    if (!opened.ok()) {
-      *error = "--truth " + opened.message;
-      return false;
-    }
+    if (!opened.ok()) return {opened.status, "--truth " + opened.message};
     address_ = spec;
-    return true;
+    return {};
   }
-  listen_fd_ = hosted::ListenTcp(spec, "--truth", &address_, error);
-  return listen_fd_ >= 0;
+  std::string why;  // the hosted boards' listener says it in words
+  listen_fd_ = hosted::ListenTcp(spec, "--truth", &address_, &why);
+  if (listen_fd_ < 0) return {hal::Status::kUnavailable, why};
+  return {};
 }
 
-bool TruthStream::Close(std::string* error) {
-  if (!file_.is_open()) return true;
+hal::Done TruthStream::Close() {
+  if (!file_.is_open()) return {};
   const hal::Done committed = file_.Commit();
-  if (committed.ok()) return true;
-  *error = "--truth " + committed.message;
-  return false;
+  if (!committed.ok()) return {committed.status, "--truth " + committed.message};
+  return {};
 }
 
 void TruthStream::Pump() {

@@ -15,9 +15,11 @@ class TruthStream {
   ~TruthStream();
   /// "file:PATH" (written whole: the file appears complete when Close puts it in place) or
   /// "tcp:HOST:PORT" (one reader at a time; nothing is kept while none is there).
-  bool Open(const std::string& spec, std::string* error);
-  /// Puts a file in place; false with *error when it could not be written.
-  bool Close(std::string* error);
+  /// Refused naming --truth: the file's status (AtomicFile::Open), or kUnavailable when the port
+  /// cannot be listened on.
+  hal::Done Open(const std::string& spec);
+  /// Puts a file in place; kIoError naming --truth when it could not be written.
+  hal::Done Close();
   const std::string& address() const { return address_; }
   /// Board-side facts for tests that judge the safe state from outside.
   struct BoardFacts {

@@ -1,6 +1,7 @@
 // The simulated board in-process on virtual time: the core driving the plant end to end.
 #include <cmath>
 #include <memory>
+#include <utility>
 
 #include "palpa/hal/fake/fakes.h"
 #include "palpa/protocol/codec.h"
@@ -23,9 +24,9 @@ struct Rig {
     ps::SimBoardOptions o;
     o.config = config;
     o.plant.level = level;
-    std::string error;
-    sim = ps::SimBoard::Create(o, link, &error);
-    CHECK_TEXT(sim != nullptr, error.c_str());
+    auto created = ps::SimBoard::Create(o, link);
+    CHECK_TEXT(created.ok(), created.message.c_str());
+    sim = std::move(created.value);
     Send(pp::Hello{42, 0});
     sim->Advance(2000);
   }
@@ -56,9 +57,12 @@ TEST(SimBoard, UnknownConfigurationIsRefusedWithTheKnownNames) {
   palpa::hal::fake::FakeByteLink link;
   ps::SimBoardOptions o;
   o.config = "thesis-9finger";
-  std::string error;
-  CHECK(ps::SimBoard::Create(o, link, &error) == nullptr);
-  CHECK(error.find("thesis-5finger") != std::string::npos);
+  const auto created = ps::SimBoard::Create(o, link);
+  CHECK(!created.ok() && created.value == nullptr);
+  LONGS_EQUAL(static_cast<int>(pp::Status::kBadValue), static_cast<int>(created.status));
+  CHECK_TEXT(created.message.find("--config thesis-9finger: unknown board configuration") == 0 &&
+                 created.message.find("thesis-5finger") != std::string::npos,
+             created.message.c_str());
 }
 
 TEST(SimBoard, RawSetpointReachesTheChamberWithinTheSensorsAccuracy) {
