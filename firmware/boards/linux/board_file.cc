@@ -14,11 +14,18 @@ namespace {
 
 using nlohmann::json;
 
-/// One object's fields, each optional; every refusal is "WHERE.KEY: expected ...".
+using hal::Done;
+using hal::Opened;
+using hal::Status;
+
+/// Every refusal of the file: a field that is not what it should be.
+constexpr Status kRefused = Status::kBadValue;
+
+/// One object's fields, each optional; every refusal is "WHERE.KEY: expected ...", kept in the
+/// object (refusal()) for its parser to return.
 class Object {
  public:
-  Object(const json& object, std::string where, std::string* error)
-      : object_(object), where_(std::move(where)), error_(error) {}
+  Object(const json& object, std::string where) : object_(object), where_(std::move(where)) {}
 
   bool OnlyKnown(std::initializer_list<const char*> known) {
     for (const auto& item : object_.items()) {
@@ -70,37 +77,45 @@ class Object {
     return where_ + (where_.empty() ? "" : ".") + key;
   }
   bool Fail(const std::string& key, const std::string& index, const std::string& why) {
-    *error_ = Where(key) + index + ": " + why;
+    refusal_ = Where(key) + index + ": " + why;
     return false;
   }
+  /// Fail's words as the parser's answer.
+  Done Refuse(const std::string& key, const std::string& index, const std::string& why) {
+    Fail(key, index, why);
+    return refusal();
+  }
+  bool refused() const { return !refusal_.empty(); }
+  /// The last refusal, or done when none.
+  Done refusal() const { return refused() ? Done(kRefused, refusal_) : Done(); }
   const json& object() const { return object_; }
 
  private:
   const json& object_;
   std::string where_;
-  std::string* error_;
+  std::string refusal_;
 };
 
-bool ParseGpio(const json& gpio, BoardFile& f, std::string* error) {
-  Object o(gpio, "gpio", error);
+Done ParseGpio(const json& gpio, BoardFile& f) {
+  Object o(gpio, "gpio");
   if (!o.OnlyKnown(
           {"supply_enable", "dump_enable", "pump_enable", "valves", "estop", "estop_active"}) ||
       !o.Line("supply_enable", &f.supply_enable) || !o.Line("dump_enable", &f.dump_enable) ||
       !o.Line("pump_enable", &f.pump_enable) || !o.Line("estop", &f.estop)) {
-    return false;
+    return o.refusal();
   }
   std::string active = "high";
-  if (!o.Text("estop_active", &active)) return false;
+  if (!o.Text("estop_active", &active)) return o.refusal();
   if (active != "high" && active != "low")
-    return o.Fail("estop_active", "", "expected high or low");
+    return o.Refuse("estop_active", "", "expected high or low");
   f.estop_active_high = active == "high";
   if (const auto it = gpio.find("valves"); it != gpio.end()) {
-    if (!it->is_array()) return o.Fail("valves", "", "expected an array of CHIP:LINE");
+    if (!it->is_array()) return o.Refuse("valves", "", "expected an array of CHIP:LINE");
     for (size_t i = 0; i < it->size(); ++i) {
       const std::string index = "[" + std::to_string(i) + "]";
-      if (!(*it)[i].is_string()) return o.Fail("valves", index, "expected CHIP:LINE");
+      if (!(*it)[i].is_string()) return o.Refuse("valves", index, "expected CHIP:LINE");
       f.valves.push_back((*it)[i].get<std::string>());
-      if (!o.CheckLine("valves", index, f.valves.back())) return false;
+      if (!o.CheckLine("valves", index, f.valves.back())) return o.refusal();
     }
   }
   // One line driven twice would be two outputs fighting: refused, naming both uses.
@@ -113,27 +128,27 @@ bool ParseGpio(const json& gpio, BoardFile& f, std::string* error) {
     uses.push_back({"valves[" + std::to_string(i) + "]", f.valves[i]});
   for (const auto& [key, spec] : uses) {
     if (!spec.empty() && !seen.insert(spec).second)
-      return o.Fail(key, "", spec + " is already used by another field");
+      return o.Refuse(key, "", spec + " is already used by another field");
   }
-  return true;
+  return {};
 }
+
+/// A refusal as ParseBoardFile's answer: an object's (refusal()) or the file's as a whole.
+Opened<BoardFile> Refused(const Done& why) { return {why.status, why.message}; }
+Opened<BoardFile> Refused(std::string why) { return {kRefused, std::move(why)}; }
 
 }  // namespace
 
-std::optional<BoardFile> ParseBoardFile(const std::string& json_text, std::string* error) {
+Opened<BoardFile> ParseBoardFile(const std::string& json_text) {
   const json root = json::parse(json_text, nullptr, /*allow_exceptions=*/false);
-  if (root.is_discarded() || !root.is_object()) {
-    *error = "not a JSON object";
-    return std::nullopt;
-  }
-  error->clear();  // a child that is not an object says so here (Object::Child)
+  if (root.is_discarded() || !root.is_object()) return Refused("not a JSON object");
   BoardFile f;
-  Object o(root, "", error);
+  Object o(root, "");
   int board_id = 1;
   if (!o.OnlyKnown(
           {"board", "board_id", "link", "analog_module", "gpio", "watchdog", "realtime"}) ||
       !o.Text("board", &f.board) || !o.Int("board_id", 0, 0xFFFFFFFFll, &board_id)) {
-    return std::nullopt;
+    return Refused(o.refusal());
   }
   f.board_id = static_cast<uint32_t>(board_id);
   f.config = core::FindBoardConfig(f.board.c_str());
@@ -141,72 +156,63 @@ std::optional<BoardFile> ParseBoardFile(const std::string& json_text, std::strin
     std::string known;
     for (uint8_t i = 0; i < core::kBoardConfigCount; ++i)
       known += std::string(" ") + core::kBoardConfigs[i].name;
-    *error = "board: unknown board configuration '" + f.board + "' (known:" + known + ")";
-    return std::nullopt;
+    return Refused("board: unknown board configuration '" + f.board + "' (known:" + known + ")");
   }
-  if (!root.contains("analog_module")) {
-    *error = "analog_module: required (the regulators' commands and the sensors)";
-    return std::nullopt;
-  }
+  if (!root.contains("analog_module"))
+    return Refused("analog_module: required (the regulators' commands and the sensors)");
   // The module's own parser, on its object alone: its refusals name analog_module's fields.
   auto module =
       hal::linux_aio::ParseModbusAioConfig(json{{"analog_module", root["analog_module"]}}.dump());
-  if (!module.ok()) {
-    *error = module.message;
-    return std::nullopt;
-  }
+  if (!module.ok()) return {module.status, module.message};
   f.module = module.value;
+  // A child that is not an object is the root's refusal (Object::Child), checked below.
   if (const json* link = o.Child("link")) {
-    Object l(*link, "link", error);
+    Object l(*link, "link");
     if (!l.OnlyKnown({"listen", "baud"}) || !l.Text("listen", &f.listen) ||
         !l.Int("baud", 1200, 4000000, &f.baud)) {
-      return std::nullopt;
+      return Refused(l.refusal());
     }
     if (f.listen.rfind("tcp:", 0) != 0 && f.listen.rfind("pty:", 0) != 0 &&
         f.listen.rfind("tty:", 0) != 0 && f.listen != "usb" && f.listen.rfind("usb:", 0) != 0) {
-      l.Fail("listen", "", "expected tcp:HOST:PORT, pty:PATH, tty:DEVICE, usb or usb:UDC");
-      return std::nullopt;
+      return Refused(
+          l.Refuse("listen", "", "expected tcp:HOST:PORT, pty:PATH, tty:DEVICE, usb or usb:UDC"));
     }
   }
-  if (!error->empty()) return std::nullopt;
-  if (const json* gpio = o.Child("gpio"); gpio != nullptr && !ParseGpio(*gpio, f, error))
-    return std::nullopt;
+  if (o.refused()) return Refused(o.refusal());
+  if (const json* gpio = o.Child("gpio")) {
+    if (const Done parsed = ParseGpio(*gpio, f); !parsed.ok()) return Refused(parsed);
+  }
   if (const json* wd = o.Child("watchdog")) {
-    Object w(*wd, "watchdog", error);
+    Object w(*wd, "watchdog");
     if (!w.OnlyKnown({"device", "timeout_s"}) || !w.Text("device", &f.watchdog) ||
         !w.Int("timeout_s", 1, 600, &f.watchdog_timeout_s)) {
-      return std::nullopt;
+      return Refused(w.refusal());
     }
-    if (f.watchdog.empty()) {
-      w.Fail("device", "", "required in watchdog (e.g. /dev/watchdog)");
-      return std::nullopt;
-    }
+    if (f.watchdog.empty())
+      return Refused(w.Refuse("device", "", "required in watchdog (e.g. /dev/watchdog)"));
   }
   if (const json* rt = o.Child("realtime")) {
-    Object r(*rt, "realtime", error);
+    Object r(*rt, "realtime");
     if (!r.OnlyKnown({"priority"}) || !r.Int("priority", 0, 99, &f.rt_priority))
-      return std::nullopt;
+      return Refused(r.refusal());
   }
-  if (!error->empty()) return std::nullopt;
+  if (o.refused()) return Refused(o.refusal());
   if (f.valves.size() > f.config->line_count) {
-    *error = "gpio.valves: " + std::to_string(f.valves.size()) + " valves, but board " + f.board +
-             " has " + std::to_string(f.config->line_count) + " lines";
-    return std::nullopt;
+    return Refused("gpio.valves: " + std::to_string(f.valves.size()) + " valves, but board " +
+                   f.board + " has " + std::to_string(f.config->line_count) + " lines");
   }
-  if (!FitsTheModule(*f.config, f.board, f.module, error)) return std::nullopt;
+  if (const Done fits = FitsTheModule(*f.config, f.board, f.module); !fits.ok())
+    return Refused(fits);
   return f;
 }
 
-std::optional<BoardFile> LoadBoardFile(const std::string& path, std::string* error) {
+Opened<BoardFile> LoadBoardFile(const std::string& path) {
   std::ifstream in(path);
-  if (!in) {
-    *error = path + ": cannot read";
-    return std::nullopt;
-  }
+  if (!in) return {Status::kIoError, path + ": cannot read"};
   std::stringstream text;
   text << in.rdbuf();
-  auto f = ParseBoardFile(text.str(), error);
-  if (!f) *error = path + ": " + *error;
+  Opened<BoardFile> f = ParseBoardFile(text.str());
+  if (!f.ok()) f.message = path + ": " + f.message;
   return f;
 }
 

@@ -2,12 +2,12 @@
 // analogue I/O module, the GPIO lines, the host link, the watchdog device and real-time settings.
 #pragma once
 
-#include <optional>
 #include <string>
 #include <vector>
 
 #include "palpa/core/board_config.h"
 #include "palpa/hal/linux/modbus_aio_config.h"
+#include "palpa/hal/linux/opened.h"
 
 namespace palpa::linux_board {
 
@@ -30,17 +30,17 @@ struct BoardFile {
   int rt_priority = 50;        ///< SCHED_FIFO priority; 0: not asked for
 };
 
-/// Parses the file's text; every refusal names its field ("gpio.valves[2]: ..."). Checks the board
-/// configuration against the module too (FitsTheModule).
-std::optional<BoardFile> ParseBoardFile(const std::string& json_text, std::string* error);
-/// Reads and parses a file; *error starts with its path.
-std::optional<BoardFile> LoadBoardFile(const std::string& path, std::string* error);
+/// Parses the file's text; every refusal (kBadValue) names its field ("gpio.valves[2]: ...").
+/// Checks the board configuration against the module too (FitsTheModule).
+hal::Opened<BoardFile> ParseBoardFile(const std::string& json_text);
+/// Reads and parses a file; a refusal's message starts with its path (kIoError: unreadable).
+hal::Opened<BoardFile> LoadBoardFile(const std::string& path);
 
 /// Whether `config`'s lines can sit on `module`: no more lines than outputs, sensors within the
 /// inputs, the same resolutions, a 0-10 V signal, and a safe value commanded by 0 V on every line
-/// (the module's only fallback when the controller dies). False with *error naming the line.
-bool FitsTheModule(const core::BoardConfig& config, const std::string& name,
-                   const hal::linux_aio::ModbusAioConfig& module, std::string* error);
+/// (the module's only fallback when the controller dies). Refused (kBadValue) naming the line.
+hal::Done FitsTheModule(const core::BoardConfig& config, const std::string& name,
+                        const hal::linux_aio::ModbusAioConfig& module);
 
 /// The rule of the module's fallback, in one place: FitsTheModule applies it to the file's board
 /// at start, and it is the board's line check (core::BoardIo::line_check), so a host's

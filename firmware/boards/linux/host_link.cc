@@ -5,28 +5,28 @@
 
 namespace palpa::linux_board {
 
-bool HostLink::Open(const std::string& spec, int baud, std::string* error) {
+hal::Done HostLink::Open(const std::string& spec, int baud) {
+  std::string why;  // the gadget's and the hosted boards' links say it in words
   if (spec == "usb" || spec.rfind("usb:", 0) == 0) {
     gadget::GadgetLinkOptions options;
     if (spec.size() > 4) options.udc = spec.substr(4);
     usb_ = std::make_unique<gadget::GadgetLink>();
-    if (!usb_->Open(options, error)) {
-      *error = "link.listen: " + spec + ": " + *error;
+    if (!usb_->Open(options, &why)) {
       usb_.reset();
-      return false;
+      return {hal::Status::kUnavailable, "link.listen: " + spec + ": " + why};
     }
     char id[16];
     std::snprintf(id, sizeof(id), "%04x:%04x", options.identity.vendor, options.identity.product);
     address_ = std::string("usb:") + id;
-    return true;
+    return {};
   }
   fd_ = std::make_unique<hosted::FdLink>();
-  if (!fd_->Open(spec, error, "link.listen", baud)) {
+  if (!fd_->Open(spec, &why, "link.listen", baud)) {
     fd_.reset();
-    return false;
+    return {hal::Status::kUnavailable, why};
   }
   address_ = fd_->address();
-  return true;
+  return {};
 }
 
 void HostLink::Pump() {

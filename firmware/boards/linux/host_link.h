@@ -8,14 +8,15 @@
 #include "fd_link.h"
 #include "gadget_link.h"
 #include "palpa/hal/byte_link.h"
+#include "palpa/hal/linux/opened.h"
 
 namespace palpa::linux_board {
 
 class HostLink {
  public:
-  /// `spec` as the board file's link.listen: tcp:, pty:, tty: or usb / usb:UDC. False with *error
-  /// naming link.listen.
-  bool Open(const std::string& spec, int baud, std::string* error);
+  /// `spec` as the board file's link.listen: tcp:, pty:, tty: or usb / usb:UDC. kUnavailable
+  /// when it cannot be opened, the message naming link.listen.
+  hal::Done Open(const std::string& spec, int baud);
   /// Services the link; never blocks.
   void Pump();
   hal::ByteLink& link();

@@ -4,6 +4,7 @@
 #include <time.h>
 
 #include <cstdio>
+#include <tuple>
 #include <utility>
 
 namespace palpa::linux_board {
@@ -26,45 +27,39 @@ bool EstopInput::DoRead() {
   return asserted;
 }
 
-std::unique_ptr<LinuxIo> LinuxIo::Open(const BoardFile& file, std::string* error) {
+hal::Opened<std::unique_ptr<LinuxIo>> LinuxIo::Open(const BoardFile& file) {
   std::unique_ptr<LinuxIo> io(new LinuxIo());
   // GPIO first, every line low: nothing is powered while the module is reached.
-  auto output = [&](const char* field, const std::string& spec,
-                    std::unique_ptr<hal::linux_gpio::GpioOutput>* out) {
-    if (spec.empty()) return true;
+  auto output = [](const std::string& field, const std::string& spec,
+                   std::unique_ptr<hal::linux_gpio::GpioOutput>& out) -> hal::Done {
+    if (spec.empty()) return {};
     auto opened = hal::linux_gpio::GpioOutput::Open(spec, false);
-    if (!opened.ok()) {
-      *error = std::string("gpio.") + field + ": " + opened.message;
-      return false;
-    }
-    *out = std::move(opened.value);
-    return true;
+    if (!opened.ok()) return {opened.status, "gpio." + field + ": " + opened.message};
+    out = std::move(opened.value);
+    return {};
   };
-  if (!output("supply_enable", file.supply_enable, &io->supply_.line) ||
-      !output("dump_enable", file.dump_enable, &io->dump_.line) ||
-      !output("pump_enable", file.pump_enable, &io->pump_.line)) {
-    return nullptr;
+  for (auto [field, spec, line] : {std::tuple("supply_enable", &file.supply_enable, &io->supply_),
+                                   std::tuple("dump_enable", &file.dump_enable, &io->dump_),
+                                   std::tuple("pump_enable", &file.pump_enable, &io->pump_)}) {
+    if (const hal::Done opened = output(field, *spec, line->line); !opened.ok())
+      return {opened.status, opened.message};
   }
   for (size_t i = 0; i < file.valves.size(); ++i) {
     io->valves_.valves.emplace_back();
     const std::string field = "valves[" + std::to_string(i) + "]";
-    if (!output(field.c_str(), file.valves[i], &io->valves_.valves.back())) return nullptr;
+    if (const hal::Done opened = output(field, file.valves[i], io->valves_.valves.back());
+        !opened.ok())
+      return {opened.status, opened.message};
   }
   if (!file.estop.empty()) {
     // The file names the level that asserts the E-stop; the line is requested in that sense.
     auto estop = hal::linux_gpio::GpioEdgeInput::Open(file.estop,
                                                       /*active_low=*/!file.estop_active_high);
-    if (!estop.ok()) {
-      *error = "gpio.estop: " + estop.message;
-      return nullptr;
-    }
+    if (!estop.ok()) return {estop.status, "gpio.estop: " + estop.message};
     io->estop_.line = std::move(estop.value);
   }
   auto module = hal::linux_aio::ModbusAioModule::Open(file.module);
-  if (!module.ok()) {
-    *error = "analog_module: " + module.message;
-    return nullptr;
-  }
+  if (!module.ok()) return {module.status, "analog_module: " + module.message};
   io->module_ = std::move(module.value);
   return io;
 }
@@ -85,10 +80,10 @@ core::BoardIo LinuxIo::Io(hal::ByteLink& link) {
   return io;
 }
 
-bool LinuxIo::WriteSafe(std::string* error) {
+hal::Done LinuxIo::WriteSafe() {
   // The module first: the regulators vent on 0 V whatever the valves do.
   const bool module_ok = module_->WriteSafe() == protocol::Status::kOk;
-  if (!module_ok) *error = module_->last_error();
+  std::string why = module_ok ? "" : module_->last_error();
   // Each line once, every one tried: a line that refuses is named, not retried.
   std::string refused;
   auto low = [&refused](hal::DigitalOutput& output, const char* name) {
@@ -103,11 +98,10 @@ bool LinuxIo::WriteSafe(std::string* error) {
     refused +=
         (refused.empty() ? "" : ", ") + std::string("gpio.valves[") + std::to_string(valve) + "]";
   }
-  if (!refused.empty()) {
-    const std::string gpio = "GPIO lines not set low: " + refused;
-    *error = module_ok ? gpio : *error + "; " + gpio;
-  }
-  return module_ok && refused.empty();
+  if (module_ok && refused.empty()) return {};
+  if (!refused.empty())
+    why += (module_ok ? "" : "; ") + std::string("GPIO lines not set low: ") + refused;
+  return {hal::Status::kIoError, why};
 }
 
 size_t LinuxIo::gpio_lines() const {

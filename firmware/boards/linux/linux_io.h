@@ -13,6 +13,7 @@
 #include "palpa/hal/linux/gpio_edge_input.h"
 #include "palpa/hal/linux/gpio_output.h"
 #include "palpa/hal/linux/modbus_aio.h"
+#include "palpa/hal/linux/opened.h"
 
 namespace palpa::linux_board {
 
@@ -64,15 +65,16 @@ class EstopInput final : public hal::DigitalInput {
 class LinuxIo {
  public:
   /// Opens the module (its watchdog armed, 0 V written) and every GPIO line at its safe level
-  /// (low: enables off, valves released); nullptr with *error naming the field.
-  static std::unique_ptr<LinuxIo> Open(const BoardFile& file, std::string* error);
+  /// (low: enables off, valves released); refused with the line's or module's status, the
+  /// message naming the field.
+  static hal::Opened<std::unique_ptr<LinuxIo>> Open(const BoardFile& file);
 
   /// The board's hardware; `link` carries the host's bytes.
   core::BoardIo Io(hal::ByteLink& link);
-  /// Everything to its safe value: 0 V on every module output, every GPIO line low. False when
-  /// the module could not be written (its own watchdog then zeroes the outputs) or a GPIO line
-  /// refused its level, *error saying which.
-  bool WriteSafe(std::string* error);
+  /// Everything to its safe value: 0 V on every module output, every GPIO line low. kIoError
+  /// when the module could not be written (its own watchdog then zeroes the outputs) or a GPIO
+  /// line refused its level, the message saying which.
+  hal::Done WriteSafe();
 
   hal::linux_aio::ModbusAioModule& module() { return *module_; }
   size_t gpio_lines() const;

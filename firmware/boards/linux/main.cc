@@ -8,6 +8,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <utility>
 
 #include "board_file.h"
 #include "host_link.h"
@@ -69,17 +70,17 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (argc != 2) return Failed("expected one argument, the board file (see --help)", 2);
-  std::string error;
-  auto file = lb::LoadBoardFile(argv[1], &error);
-  if (!file) return Failed(error, 2);
-  if (file->module.tcp) {
+  auto loaded = lb::LoadBoardFile(argv[1]);
+  if (!loaded.ok()) return Failed(loaded.message, 2);
+  lb::BoardFile& file = loaded.value;
+  if (file.module.tcp) {
     // Resolved once, for the claim and the connection both, so that `localhost` and `127.0.0.1`
     // are one module (a second lookup of a name with several addresses may order them otherwise).
-    auto address = palpa::hal::linux_aio::ResolveModuleHost(file->module.host);
+    auto address = palpa::hal::linux_aio::ResolveModuleHost(file.module.host);
     if (!address.ok()) {
       return Failed(std::string(argv[1]) + ": analog_module.host: " + address.message, 1);
     }
-    file->module.host = address.value;
+    file.module.host = address.value;
   }
 
   struct sigaction action {};
@@ -92,46 +93,48 @@ int main(int argc, char** argv) {
   // (its GPIO lines different or none) is refused here, before it writes 0 V to the outputs the
   // first one drives or rewrites its watchdog. Held until exit; the kernel drops it on any death.
   palpa::hosted::ProcessClaim module_claim;
-  if (!module_claim.Take(ModuleClaimPath(file->module), "analog_module " + file->module.Describe(),
-                         &error))
-    return Failed(error, 1);
-  auto io = lb::LinuxIo::Open(*file, &error);
-  if (!io) return Failed(error, 1);
+  std::string claim_error;  // the hosted boards' claim says it in words
+  if (!module_claim.Take(ModuleClaimPath(file.module), "analog_module " + file.module.Describe(),
+                         &claim_error))
+    return Failed(claim_error, 1);
+  auto opened_io = lb::LinuxIo::Open(file);
+  if (!opened_io.ok()) return Failed(opened_io.message, 1);
+  const std::unique_ptr<lb::LinuxIo> io = std::move(opened_io.value);
+  // Below, a start that fails writes the outputs safe first; its own failure is not the one
+  // reported (the module's watchdog zeroes the outputs anyway).
   lb::HostLink link;
-  if (!link.Open(file->listen, file->baud, &error)) {
-    std::string ignored;
-    io->WriteSafe(&ignored);
-    return Failed(error, 1);
+  if (const palpa::hal::Done opened = link.Open(file.listen, file.baud); !opened.ok()) {
+    io->WriteSafe();
+    return Failed(opened.message, 1);
   }
   std::unique_ptr<palpa::hal::linux_wdt::WatchdogDevice> watchdog;
-  if (!file->watchdog.empty()) {
+  if (!file.watchdog.empty()) {
     auto opened =
-        palpa::hal::linux_wdt::WatchdogDevice::Open(file->watchdog, file->watchdog_timeout_s);
+        palpa::hal::linux_wdt::WatchdogDevice::Open(file.watchdog, file.watchdog_timeout_s);
     if (!opened.ok()) {
-      std::string ignored;
-      io->WriteSafe(&ignored);
+      io->WriteSafe();
       return Failed("watchdog.device: " + opened.message, 1);
     }
     watchdog = std::move(opened.value);
   }
-  const lb::RealTimeReport rt = lb::EnterRealTime(file->rt_priority);
+  const lb::RealTimeReport rt = lb::EnterRealTime(file.rt_priority);
 
   palpa::core::BoardIdentity id;
   id.kind = palpa::protocol::BoardKind::kLinux;
-  id.board_id = file->board_id;
+  id.board_id = file.board_id;
   id.boot_nonce = std::random_device{}() | 1u;  // each start is a new boot to a host
   id.rx_buffer_bytes = 4096;
-  palpa::core::Board board(*file->config, io->Io(link.link()), id);
+  palpa::core::Board board(*file.config, io->Io(link.link()), id);
   board.Start();
 
-  const auto& m = file->module;
+  const auto& m = file.module;
   std::printf(
       "palpa-linux-board: %s, analogue I/O %s (%s, %u outputs, %u inputs), %zu GPIO lines%s\n",
-      file->board.c_str(), m.Describe().c_str(), m.module->name, m.output_count, m.input_count,
+      file.board.c_str(), m.Describe().c_str(), m.module->name, m.output_count, m.input_count,
       io->gpio_lines(), io->gpio_lines() == 0 ? " (none configured)" : "");
-  std::printf("palpa-linux-board: real time: %s\n", rt.Describe(file->rt_priority).c_str());
+  std::printf("palpa-linux-board: real time: %s\n", rt.Describe(file.rt_priority).c_str());
   if (watchdog) {
-    std::printf("palpa-linux-board: watchdog %s, %d s\n", file->watchdog.c_str(),
+    std::printf("palpa-linux-board: watchdog %s, %d s\n", file.watchdog.c_str(),
                 watchdog->timeout_s());
   }
   if (link.stale_gadget_removed())
@@ -149,11 +152,11 @@ int main(int argc, char** argv) {
     link.Pump();
     grid.Advance(lb::MonotonicNs());
   }
-  const bool safe = io->WriteSafe(&error);
+  const palpa::hal::Done safe = io->WriteSafe();
   // After the outputs are safe: a failure above still leaves the reset armed.
   if (watchdog && !watchdog->Close()) Failed(watchdog->error(), 1);
   ReportTicks(board.tick_stats());
-  if (!safe) return Failed("writing the safe outputs: " + error, 1);
+  if (!safe.ok()) return Failed("writing the safe outputs: " + safe.message, 1);
   std::printf("palpa-linux-board: outputs safe, stopped\n");
   return 0;
 }

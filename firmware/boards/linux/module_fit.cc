@@ -17,51 +17,49 @@ const char* SafeValueNotAtZeroVolts(const protocol::ConfigureLine& line) {
          "make the line safe";
 }
 
-bool FitsTheModule(const core::BoardConfig& config, const std::string& name,
-                   const hal::linux_aio::ModbusAioConfig& module, std::string* error) {
+hal::Done FitsTheModule(const core::BoardConfig& config, const std::string& name,
+                        const hal::linux_aio::ModbusAioConfig& module) {
+  const auto refused = [](std::string why) {
+    return hal::Done(hal::Status::kBadValue, std::move(why));
+  };
   // The core writes channels 0..lines-1 in one transfer: a channel the module lacks would fail
   // every write, and the board would only ever latch output_write.
   if (config.line_count > module.output_count) {
-    *error = "board: " + name + " has " + std::to_string(config.line_count) +
-             " lines, but analog_module.outputs.count is " + std::to_string(module.output_count);
-    return false;
+    return refused("board: " + name + " has " + std::to_string(config.line_count) +
+                   " lines, but analog_module.outputs.count is " +
+                   std::to_string(module.output_count));
   }
   for (uint8_t i = 0; i < config.line_count; ++i) {
     const protocol::ConfigureLine& line = config.lines[i];
     const std::string which = "board: " + name + " line " + std::to_string(i);
     if (line.dac_signal != protocol::SignalRange::kVolt0To10) {
-      *error = which + ": its command signal is " +
-               protocol::EnumNames(line.dac_signal)[static_cast<unsigned>(line.dac_signal)] +
-               ", the module's outputs are 0-10V";
-      return false;
+      return refused(which + ": its command signal is " +
+                     protocol::EnumNames(line.dac_signal)[static_cast<unsigned>(line.dac_signal)] +
+                     ", the module's outputs are 0-10V");
     }
     if (line.dac_bits != module.output_bits) {
-      *error = which + ": a " + std::to_string(line.dac_bits) +
-               "-bit command, but analog_module.outputs.bits is " +
-               std::to_string(module.output_bits);
-      return false;
+      return refused(which + ": a " + std::to_string(line.dac_bits) +
+                     "-bit command, but analog_module.outputs.bits is " +
+                     std::to_string(module.output_bits));
     }
     if (line.sensor != protocol::SensorKind::kNone) {
       if (i >= module.input_count) {
-        *error = which + ": its sensor needs input " + std::to_string(i) +
-                 ", but analog_module.inputs.count is " + std::to_string(module.input_count);
-        return false;
+        return refused(which + ": its sensor needs input " + std::to_string(i) +
+                       ", but analog_module.inputs.count is " + std::to_string(module.input_count));
       }
       if (line.adc_bits != module.input_bits) {
-        *error = which + ": a " + std::to_string(line.adc_bits) +
-                 "-bit sensor, but analog_module.inputs.bits is " +
-                 std::to_string(module.input_bits);
-        return false;
+        return refused(which + ": a " + std::to_string(line.adc_bits) +
+                       "-bit sensor, but analog_module.inputs.bits is " +
+                       std::to_string(module.input_bits));
       }
     }
     // The rule a host's change meets too (the board's line check), and what it found here.
     if (const char* why = SafeValueNotAtZeroVolts(line)) {
-      *error = which + ": " + why + " (its safe value, " + std::to_string(line.safe_pa) +
-               " Pa, is code " + std::to_string(SafeValueCode(line)) + ")";
-      return false;
+      return refused(which + ": " + why + " (its safe value, " + std::to_string(line.safe_pa) +
+                     " Pa, is code " + std::to_string(SafeValueCode(line)) + ")");
     }
   }
-  return true;
+  return {};
 }
 
 }  // namespace palpa::linux_board

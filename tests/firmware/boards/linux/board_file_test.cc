@@ -1,19 +1,23 @@
 // palpa-linux-board's configuration file: a full file read, and each refusal naming its field.
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "CppUTest/TestHarness.h"
 #include "board_file.h"
 #include "palpa/core/board_configs.h"
+#include "temp_dir.h"
 
 namespace lb = palpa::linux_board;
 
 namespace {
 
 std::string Refusal(const std::string& text) {
-  std::string error;
-  const auto f = lb::ParseBoardFile(text, &error);
-  CHECK_TEXT(!f, ("accepted: " + text).c_str());
-  return error;
+  const auto f = lb::ParseBoardFile(text);
+  CHECK_TEXT(!f.ok(), ("accepted: " + text).c_str());
+  // A file that is wrong, whichever parser found it (the module's included).
+  LONGS_EQUAL(static_cast<int>(palpa::protocol::Status::kBadValue), static_cast<int>(f.status));
+  return f.message;
 }
 
 // A module that fits thesis-5finger (seven lines, 14-bit sensors), with `extra` fields added.
@@ -28,15 +32,14 @@ std::string File(const std::string& extra) {
 TEST_GROUP(BoardFile){};
 
 TEST(BoardFile, AFullFileIsReadFieldByField) {
-  std::string error;
-  const auto f = lb::ParseBoardFile(
+  const auto parsed = lb::ParseBoardFile(
       File(R"("board_id": 7, "link": {"listen": "tty:/dev/ttyGS0", "baud": 921600},
       "gpio": {"supply_enable": "gpiochip0:17", "dump_enable": "gpiochip0:18",
                "pump_enable": "1:3", "valves": ["gpiochip0:5", "gpiochip0:6"],
                "estop": "gpiochip0:22", "estop_active": "low"},
-      "watchdog": {"device": "/dev/watchdog0", "timeout_s": 2}, "realtime": {"priority": 70})"),
-      &error);
-  CHECK_TEXT(f.has_value(), error.c_str());
+      "watchdog": {"device": "/dev/watchdog0", "timeout_s": 2}, "realtime": {"priority": 70})"));
+  CHECK_TEXT(parsed.ok(), parsed.message.c_str());
+  const lb::BoardFile* f = &parsed.value;
   CHECK(f->config == palpa::core::FindBoardConfig("thesis-5finger"));
   LONGS_EQUAL(7, f->board_id);
   STRCMP_EQUAL("tty:/dev/ttyGS0", f->listen.c_str());
@@ -54,15 +57,14 @@ TEST(BoardFile, AFullFileIsReadFieldByField) {
   LONGS_EQUAL(2, f->watchdog_timeout_s);
   LONGS_EQUAL(70, f->rt_priority);
   // Nothing but the module: no GPIO lines, no watchdog (the host tests' board).
-  const auto bare = lb::ParseBoardFile(File(""), &error);
-  CHECK_TEXT(bare.has_value(), error.c_str());
-  CHECK(bare->valves.empty() && bare->estop.empty() && bare->watchdog.empty());
+  const auto bare = lb::ParseBoardFile(File(""));
+  CHECK_TEXT(bare.ok(), bare.message.c_str());
+  CHECK(bare.value.valves.empty() && bare.value.estop.empty() && bare.value.watchdog.empty());
   // The USB gadget link, on the first device controller or a named one.
   for (const char* usb : {"usb", "usb:dummy_udc.0"}) {
-    const auto g =
-        lb::ParseBoardFile(File(std::string(R"("link": {"listen": ")") + usb + "\"}"), &error);
-    CHECK_TEXT(g.has_value(), error.c_str());
-    STRCMP_EQUAL(usb, g->listen.c_str());
+    const auto g = lb::ParseBoardFile(File(std::string(R"("link": {"listen": ")") + usb + "\"}"));
+    CHECK_TEXT(g.ok(), g.message.c_str());
+    STRCMP_EQUAL(usb, g.value.listen.c_str());
   }
 }
 
@@ -112,16 +114,17 @@ TEST(BoardFile, ALineWhoseSafeValueIsNotZeroVoltsIsRefused) {
   module.output_count = module.input_count = 8;
   module.input_bits = 14;
   palpa::core::BoardConfig config = *palpa::core::FindBoardConfig("thesis-5finger");
-  std::string error;
-  CHECK_TEXT(lb::FitsTheModule(config, "thesis-5finger", module, &error), error.c_str());
+  const palpa::hal::Done fits = lb::FitsTheModule(config, "thesis-5finger", module);
+  CHECK_TEXT(fits.ok(), fits.message.c_str());
   config.lines[2].safe_pa = 20000;  // within its limits, but 2 V on the regulator's command
-  CHECK(!lb::FitsTheModule(config, "edited", module, &error));
+  const palpa::hal::Done refused = lb::FitsTheModule(config, "edited", module);
+  CHECK(!refused.ok());
   // Where (the board, the line), what (the rule a host's change meets too, the value, its code).
   STRCMP_EQUAL(
       (std::string("board: edited line 2: ") + lb::SafeValueNotAtZeroVolts(config.lines[2]) +
        " (its safe value, 20000 Pa, is code 819)")
           .c_str(),
-      error.c_str());
+      refused.message.c_str());
   STRCMP_EQUAL(
       "safe value not commanded by 0 V: the module's fallback (0 V on every output) would not "
       "make the line safe",
@@ -130,7 +133,25 @@ TEST(BoardFile, ALineWhoseSafeValueIsNotZeroVoltsIsRefused) {
         nullptr);
   config = *palpa::core::FindBoardConfig("thesis-5finger");
   config.lines[1].dac_signal = palpa::protocol::SignalRange::kMilliamp4To20;
-  CHECK(!lb::FitsTheModule(config, "edited", module, &error));
-  CHECK_TEXT(error.find("line 1: its command signal is 4-20mA") != std::string::npos,
-             error.c_str());
+  const palpa::hal::Done signal = lb::FitsTheModule(config, "edited", module);
+  CHECK_TEXT(signal.message.find("line 1: its command signal is 4-20mA") != std::string::npos,
+             signal.message.c_str());
+}
+
+TEST(BoardFile, ALoadedFileIsNamedInItsRefusal) {
+  const std::string dir = palpa::testing::MakeTempDir("palpa-board-file");
+  const auto missing = lb::LoadBoardFile(dir + "/none.json");
+  LONGS_EQUAL(static_cast<int>(palpa::protocol::Status::kIoError),
+              static_cast<int>(missing.status));
+  STRCMP_EQUAL((dir + "/none.json: cannot read").c_str(), missing.message.c_str());
+  const std::string path = dir + "/board.json";
+  std::ofstream(path) << File(R"("colour": 1)");
+  const auto wrong = lb::LoadBoardFile(path);
+  LONGS_EQUAL(static_cast<int>(palpa::protocol::Status::kBadValue), static_cast<int>(wrong.status));
+  STRCMP_EQUAL((path + ": colour: unknown field").c_str(), wrong.message.c_str());
+  std::ofstream(path) << File(R"("board_id": 3)");
+  const auto right = lb::LoadBoardFile(path);
+  CHECK_TEXT(right.ok(), right.message.c_str());
+  LONGS_EQUAL(3, right.value.board_id);
+  std::filesystem::remove_all(dir);
 }
