@@ -15,6 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "child_process.h"
 #include "file_text.h"
 #include "palpa/calibration/modbus_devices.h"
 #include "palpa/calibration/rig_file.h"
@@ -173,12 +174,13 @@ TEST(ModbusRig, DriversWorkOverRtuOnAPtyPair) {
   char dir_pattern[] = "/tmp/palpa-rtu-XXXXXX";
   const std::string dir = mkdtemp(dir_pattern);
   const std::string a = dir + "/board", b = dir + "/host";
-  const pid_t socat = fork();
-  if (socat == 0) {
+  const pid_t socat_pid = fork();
+  if (socat_pid == 0) {
     execlp("socat", "socat", ("pty,raw,echo=0,link=" + a).c_str(),
            ("pty,raw,echo=0,link=" + b).c_str(), nullptr);
     _exit(127);
   }
+  pt::ChildProcess socat(socat_pid);
   CHECK(pt::WaitUntil([&] { return access(a.c_str(), F_OK) == 0 && access(b.c_str(), F_OK) == 0; },
                       5));
   {
@@ -189,8 +191,6 @@ TEST(ModbusRig, DriversWorkOverRtuOnAPtyPair) {
     CHECK_TEXT(devices.ok(), devices.message.c_str());
     ExerciseRig(devices.value);
   }
-  kill(socat, SIGTERM);
-  waitpid(socat, nullptr, 0);
 }
 
 TEST(ModbusRig, DriversSpeakStandardModbusToAnIndependentServer) {
@@ -199,12 +199,13 @@ TEST(ModbusRig, DriversSpeakStandardModbusToAnIndependentServer) {
   const int log_fd = mkstemp(log_pattern);
   close(log_fd);
   const std::string log = log_pattern;
-  const pid_t server = fork();
-  if (server == 0) {
+  const pid_t server_pid = fork();
+  if (server_pid == 0) {
     execl("/usr/bin/python3", "python3", PALPA_SOURCE_DIR "/tests/calibration/pymodbus_rig.py",
           std::to_string(port).c_str(), log.c_str(), nullptr);
     _exit(127);
   }
+  pt::ChildProcess server(server_pid);
   const json map = {
       {"address", "modbus-tcp://127.0.0.1:" + std::to_string(port) + "/1"},
       {"word_order", "little"},
@@ -242,8 +243,7 @@ TEST(ModbusRig, DriversSpeakStandardModbusToAnIndependentServer) {
   CHECK(sensor.Read(&newtons).ok());
   DOUBLES_EQUAL(0, newtons, 1e-9);
   CHECK(stage.MoveTo(7.5, 0.25).ok());
-  kill(server, SIGTERM);
-  waitpid(server, nullptr, 0);
+  server.Stop();
   const std::string written = pt::FileText(log);
   // Speed first (250 µm/s), then the target low word first (7500, 0), then the move command.
   CHECK_TEXT(written.find("write 112 250\nwrite 110 7500 0\nwrite 113 5\n") != std::string::npos,

@@ -11,6 +11,7 @@
 #include <string>
 #include <thread>
 
+#include "child_process.h"
 #include "ek9000_process.h"
 #include "palpa/hal/linux/modbus_aio.h"
 #include "sim_process.h"
@@ -145,12 +146,7 @@ TEST(ModbusAio, KillingTheControllerLeavesTheOutputsAtTheirSafeValues) {
     }
     _exit(1);
   }
-  struct Reaper {  // a failed check must not leave the controller running
-    pid_t pid;
-    ~Reaper() {
-      if (pid > 0) kill(pid, SIGKILL), waitpid(pid, nullptr, 0);
-    }
-  } reaper{controller};
+  palpa::testing::ChildProcess controller_process(controller, SIGKILL);
   auto driven = [&] {
     for (int i = 0; i < 4; ++i) {
       if (emulator.Holding(0x0800 + i) != ExpectedCode(counts[i])) return false;
@@ -163,9 +159,7 @@ TEST(ModbusAio, KillingTheControllerLeavesTheOutputsAtTheirSafeValues) {
   CHECK(driven());
   LONGS_EQUAL(0, emulator.Holding(0x1021));
   const auto killed = Clock::now();
-  kill(controller, SIGKILL);
-  waitpid(controller, nullptr, 0);
-  reaper.pid = -1;
+  controller_process.Stop();
   auto safe = [&] {
     for (int i = 0; i < 4; ++i) {
       if (emulator.Holding(0x0800 + i) != 0) return false;
@@ -229,6 +223,7 @@ TEST(ModbusAio, AModuleThatIsNotThereOrNotAnEk9000IsRefusedAtStart) {
           std::to_string(config.port).c_str(), "/dev/null", nullptr);
     _exit(127);
   }
+  palpa::testing::ChildProcess other_server(other, SIGKILL);
   CHECK(WaitUntil(
       [&] {
         refused = aio::ModbusAioModule::Open(config);
@@ -236,8 +231,7 @@ TEST(ModbusAio, AModuleThatIsNotThereOrNotAnEk9000IsRefusedAtStart) {
         return refused.value == nullptr && error.find("connecting") == std::string::npos;
       },
       10));
-  kill(other, SIGKILL);
-  waitpid(other, nullptr, 0);
+  other_server.Stop();
   STRCMP_EQUAL((where + "writing 1 at 0x1120: Illegal data address").c_str(), error.c_str());
   LONGS_EQUAL(static_cast<int>(Status::kIoError), static_cast<int>(refused.status));
 }
@@ -252,6 +246,7 @@ TEST(ModbusAio, TheSameModuleOverRtu) {
            ("pty,raw,echo=0,link=" + controller_end).c_str(), nullptr);
     _exit(127);
   }
+  palpa::testing::ChildProcess line(socat, SIGKILL);
   CHECK(WaitUntil([&] { return access(controller_end.c_str(), F_OK) == 0; }, 5));
   const pid_t emulator = fork();
   if (emulator == 0) {
@@ -259,13 +254,7 @@ TEST(ModbusAio, TheSameModuleOverRtu) {
           ("rtu:" + module_end).c_str(), "2,4,6,8", nullptr);
     _exit(127);
   }
-  struct Reaper {
-    pid_t a, b;
-    ~Reaper() {
-      kill(a, SIGKILL), waitpid(a, nullptr, 0);
-      kill(b, SIGKILL), waitpid(b, nullptr, 0);
-    }
-  } reaper{emulator, socat};
+  palpa::testing::ChildProcess module_process(emulator, SIGKILL);
   aio::ModbusAioConfig config;
   config.tcp = false;
   config.host = controller_end;
