@@ -162,8 +162,8 @@ RigStatus Run::Chamber() {
     if (!s.ok()) return s;
     st_["chamber"] = json::array();
     if (step.fit.ok) {
-      st_["chamber"].push_back(
-          {step.fit.dead_time_s, step.fit.regulator_tau_s, step.fit.tau_s, step.fit.rms});
+      st_["chamber"].push_back({step.fit.dead_time_s, step.fit.regulator_tau_s, step.fit.tau_s,
+                                step.fit.rms, step.fit.outlet_tau_s, step.fit.outlet_rms});
     }
     if (journal_.save) journal_.save(journal_);
   }
@@ -174,9 +174,13 @@ RigStatus Run::Chamber() {
     m.regulator_tau_s = c[1].get<double>();
     m.chamber_tau_s = std::max(1e-6, c[2].get<double>());
     m.fit_rms = c[3].get<double>();
+    // The tube's lag behind the outlet, the board's (0 where the outlet was not read: the line
+    // is not shaped).
+    m.tube_tau_s = c[4].get<double>();
+    m.tube_fit_rms = c[5].get<double>();
     chamber_ = m;
     out_->csv.push_back(Csv({static_cast<double>(line + 1), m.dead_time_s, m.regulator_tau_s,
-                             m.chamber_tau_s, m.fit_rms},
+                             m.chamber_tau_s, m.fit_rms, m.tube_tau_s, m.tube_fit_rms},
                             "chamber"));
   }
   return {};

@@ -63,6 +63,49 @@ ChamberFit FitChamberStep(const std::vector<std::pair<double, double>>& samples,
   return best;
 }
 
+void FitTubeStep(const std::vector<std::pair<double, double>>& samples,
+                 const std::vector<std::pair<double, double>>& outlet, double mean_pa,
+                 ChamberFit* fit) {
+  constexpr double kAtm = 101325;
+  fit->outlet_tau_s = fit->outlet_rms = 0;
+  if (samples.size() != outlet.size() || samples.empty()) return;
+  const double last_t = samples.back().first;
+  double f0 = 0, f1 = 0, o0 = 0, o1 = 0;
+  int before = 0, tail = 0;
+  for (size_t i = 0; i < samples.size(); ++i) {
+    const double t = samples[i].first;
+    if (t < 0) f0 += samples[i].second, o0 += outlet[i].second, ++before;
+    if (t > last_t - 0.05) f1 += samples[i].second, o1 += outlet[i].second, ++tail;
+  }
+  if (before == 0 || tail == 0) return;
+  f0 /= before, f1 /= tail, o0 /= before, o1 /= tail;
+  if (f1 == f0 || o1 == o0) return;
+  // The chamber the force says, in Pa; the model's against it as a fraction of the step.
+  const double scale = (o1 - o0) / (f1 - f0);
+  auto cost = [&](double k) {
+    double c = o0, sum = 0;
+    int n = 0;
+    for (size_t i = 0; i + 1 < samples.size(); ++i) {
+      const double t = samples[i].first;
+      if (t >= 0) {
+        const double e = (c - (o0 + (samples[i].second - f0) * scale)) / (o1 - o0);
+        sum += e * e, ++n;
+      }
+      // Exact for the outlet held over the sample, the rate at this instant's pressures.
+      const double o = outlet[i].second, dt = samples[i + 1].first - t;
+      const double rate = k * (o + c + 2 * kAtm);
+      c = o + (c - o) * std::exp(-rate * dt);
+    }
+    return n > 0 ? std::sqrt(sum / n) : 1e9;
+  };
+  double best = 1e9;
+  for (double tau = 0.0005; tau <= 2.0; tau *= 1.02) {
+    const double c = cost(1.0 / (tau * 2 * (mean_pa + kAtm)));
+    if (c < best) best = c, fit->outlet_tau_s = tau;
+  }
+  fit->outlet_rms = best;
+}
+
 RigStatus MeasureChamberStep(Rig& rig, uint8_t finger, double zero_mm, const ContactOptions& o,
                              const ChamberStepOptions& options, ChamberStep* out) {
   *out = ChamberStep{};
@@ -100,7 +143,11 @@ RigStatus MeasureChamberStep(Rig& rig, uint8_t finger, double zero_mm, const Con
       s = RigStatus::Fail(Status::kOutOfRange, "force above the rig's limit during the step");
       break;
     }
+    double outlet_kpa = 0;
+    s = rig.board.MeasuredKpa(line, &outlet_kpa);
+    if (!s.ok()) break;
     out->samples.push_back({rig.time.Now() - command, force});
+    out->outlet.push_back({rig.time.Now() - command, 1000 * outlet_kpa});
     rig.time.Wait(options.sample_s);
   }
   rig.board.SetBareLine(line, false);
@@ -115,6 +162,8 @@ RigStatus MeasureChamberStep(Rig& rig, uint8_t finger, double zero_mm, const Con
   } else {
     out->fit = FitChamberStep(out->samples, options.regulator_tau_s, rig.force_noise_n);
     if (!out->fit.ok) out->why = "the force did not follow the step";
+    const double mean_pa = (jamming ? -500 : 500) * (options.from_kpa + options.to_kpa);
+    if (out->fit.ok) FitTubeStep(out->samples, out->outlet, mean_pa, &out->fit);
   }
   return rig.board.SetDrive(finger, 0, 0);
 }

@@ -65,8 +65,9 @@ void CheckJournal(const json& state) {
     if (map.Has("presses")) CheckRows(map.At("presses"), "map.presses", 100000, 11, 1u << 9, false);
   }
   if (o.Has("sweep")) CheckRows(o.At("sweep"), "sweep", 100000, 2, 0, false);
-  // The chamber's fit (dead time, regulator and chamber lags, residual), or none identified.
-  if (o.Has("chamber")) CheckRows(o.At("chamber"), "chamber", 1, 4, 0, false);
+  // The chamber's fit (dead time, regulator and chamber lags, residual, the tube's lag and its
+  // residual), or none identified.
+  if (o.Has("chamber")) CheckRows(o.At("chamber"), "chamber", 1, 6, 0, false);
 }
 
 }  // namespace

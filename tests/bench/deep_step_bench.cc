@@ -37,8 +37,9 @@ DeepStep Run(uint32_t seed, float scale) {
     const auto& correction = u.correction[c.line];
     c.correction_count = static_cast<uint8_t>(correction.size());
     std::copy(correction.begin(), correction.end(), c.correction.begin());
-    if (!u.chamber[c.line].ok || scale <= 0) return;
-    const float lag_s = (c.line == kVacuum ? scale : 1.0f) * u.chamber[c.line].tau_s;
+    if (pb::BoardLagS(u.chamber[c.line]) <= 0 || scale <= 0) return;
+    const float lag_s =
+        (c.line == kVacuum ? scale : 1.0f) * static_cast<float>(pb::BoardLagS(u.chamber[c.line]));
     c.chamber_tau_us = static_cast<uint32_t>(lag_s * 1e6f);
     c.overdrive_pa = 20000;
   });
@@ -86,7 +87,9 @@ void LagsByDepth() {
   std::printf(
       "\nThe chamber lag fitted at depth (the calibration's step measurement, 1.2 s window):\n\n"
       "| unit | step (kPa of vacuum) | mean absolute pressure (kPa) | lag (ms) | × the 5 → 20 "
-      "lag | lag × pressure (ms·kPa) | fit RMS |\n|---|---|---:|---:|---:|---:|---:|\n");
+      "lag | lag × pressure (ms·kPa) | fit RMS | lag behind the outlet (ms) | × pressure (ms·kPa) "
+      "| "
+      "its fit RMS |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   constexpr double kAtmKpa = 101.325;
   for (uint32_t seed : {101u, 102u, 103u}) {
     double shallow = 0;
@@ -99,9 +102,11 @@ void LagsByDepth() {
       }
       const double mean_abs = kAtmKpa - (from + to) / 2;
       if (shallow == 0) shallow = fit.tau_s;
-      std::printf("| %u | %.0f → %.0f | %.1f | %.1f | %.2f | %.0f | %.1f %% |\n", seed, from, to,
-                  mean_abs, 1e3 * fit.tau_s, fit.tau_s / shallow, 1e3 * fit.tau_s * mean_abs,
-                  100 * fit.rms);
+      std::printf(
+          "| %u | %.0f → %.0f | %.1f | %.1f | %.2f | %.0f | %.1f %% | %.1f | %.0f | %.1f %% |\n",
+          seed, from, to, mean_abs, 1e3 * fit.tau_s, fit.tau_s / shallow,
+          1e3 * fit.tau_s * mean_abs, 100 * fit.rms, 1e3 * fit.outlet_tau_s,
+          1e3 * fit.outlet_tau_s * mean_abs, 100 * fit.outlet_rms);
     }
   }
 }
@@ -118,7 +123,7 @@ int main() {
       "| unit | chamber lag (ms) | overdrive ends (ms) | chamber at 100 ms (kPa) | settled "
       "(ms) | overshoot (kPa) |\n|---|---|---:|---:|---:|---:|\n");
   for (uint32_t seed : {101u, 102u, 103u}) {
-    const double identified_ms = 1000.0 * pb::CalibrationFor(seed).chamber[kVacuum].tau_s;
+    const double identified_ms = 1000.0 * pb::BoardLagS(pb::CalibrationFor(seed).chamber[kVacuum]);
     for (float scale : {0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 6.0f}) {
       const DeepStep d = Run(seed, scale);
       char lag[64];

@@ -47,6 +47,11 @@ inline const UnitCalibration& CalibrationFor(uint32_t seed,
   return u;
 }
 
+/// The lag the board shapes a line with: the chamber's behind the outlet (the tube's law), as
+/// the calibration file stores it; 0 (not shaped) where the calibration did not fit it — the lag
+/// behind the regulator model means something else to the board.
+inline double BoardLagS(const calibration::ChamberFit& f) { return f.ok ? f.outlet_tau_s : 0; }
+
 /// RMS of the normalised true chamber response of a step against what `fit` predicts for it.
 inline double PredictionRms(const std::vector<std::pair<double, double>>& truth,
                             const calibration::ChamberFit& fit) {

@@ -82,10 +82,10 @@ struct Variant {
           c.correction[i] = u.correction[c.line][i];
       }
       // Misidentified: the air path's model (the regulator's lag and the chamber's) scaled.
-      if (v.model_scale > 0 && u.chamber[c.line].ok) {
+      if (v.model_scale > 0 && BoardLagS(u.chamber[c.line]) > 0) {
         c.model_tau_us = static_cast<uint32_t>(v.model_scale * c.model_tau_us);
         c.chamber_tau_us =
-            std::max(1u, static_cast<uint32_t>(v.model_scale * u.chamber[c.line].tau_s * 1e6));
+            std::max(1u, static_cast<uint32_t>(v.model_scale * BoardLagS(u.chamber[c.line]) * 1e6));
         c.overdrive_pa = v.overdrive_pa;
       }
     });

@@ -112,6 +112,9 @@ TEST(ThesisProtocol, AHostWhoseReadingsComeLateCalibratesTheSameFilm) {
   LONGS_EQUAL(0, prompt.file.chamber_models[0].line);
   CHECK(prompt.file.chamber_models[0].chamber_tau_s < 0.015);
   CHECK(prompt.file.chamber_models[0].fit_rms < 0.05);
+  // And its lag behind the outlet through the tube's law, the one the board shapes with.
+  CHECK(prompt.file.chamber_models[0].tube_tau_s > 0);
+  CHECK(prompt.file.chamber_models[0].tube_fit_rms < 0.05);
   CHECK(late.file.chamber_models.empty());
   LONGS_EQUAL(prompt.sweep.size(), late.sweep.size());
   double largest = 0, mean = 0;

@@ -26,7 +26,7 @@ inline host::CalibrationFile ExampleCalibration() {
   c.static_inverse = {{0, 0}, {300, 10000}, {1200, 30000}, {2600, 60000}, {4200, 100000}};
   c.regulator_corrections.push_back(
       host::RegulatorCorrection{0, {{0, 0, 0}, {50000, 50600, 49500}, {90000, 90800, 89700}}});
-  c.chamber_models = {host::ChamberModel{0, 0.006, 0.02, 0.005, 0.012}};
+  c.chamber_models = {host::ChamberModel{0, 0.006, 0.02, 0.005, 0.012, 0.0035, 0.015}};
   c.compensator = pp::CompensatorKind::kPrandtlIshlinskii;
   c.compensator_params = {-200, 0.03f, 0, 25000, 0.01f, 0.005f};
   c.quality.residual_rms = 12;
@@ -67,7 +67,7 @@ inline host::CalibrationFile ExampleJammingCalibration() {
   c.regulator_corrections = {
       host::RegulatorCorrection{3, {{2000, 2010, 1990}, {18000, 18050, 17950}}},
       host::RegulatorCorrection{4, {{-10000, -9900, -10100}, {-90000, -89500, -90300}}}};
-  c.chamber_models = {host::ChamberModel{4, 0.003, 0.02, 0.03, 0.01}};
+  c.chamber_models = {host::ChamberModel{4, 0.003, 0.02, 0.047, 0.01, 0.03, 0.012}};
   c.compensator = pp::CompensatorKind::kAsymmetricPi;
   c.compensator_params = {2, 650, 0.004f, 10000, 30000, 0.001f, 0.0005f, 200, 0.3f};
   c.recommended_bias_pa = 20000;

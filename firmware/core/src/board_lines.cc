@@ -20,7 +20,10 @@ void BoardLines::Apply(const BoardConfig& live, uint32_t tick_us, bool has_adc, 
   const float tolerance = static_cast<float>(live.board.sensor_tolerance_pa);
   corrected_ = false;
   for (uint8_t i = 0; i < live.line_count; ++i) {
-    const LineParams& p = params_[i] = MakeLineParams(live.lines[i], tick_us);
+    // Shaping estimates the chamber from the outlet's reading: none without an ADC to read it.
+    protocol::ConfigureLine line = live.lines[i];
+    if (!has_adc) line.chamber_tau_us = 0;
+    const LineParams& p = params_[i] = MakeLineParams(line, tick_us);
     corrected_ = corrected_ || p.correction.count >= 2;
     state_[i].shaping_fell_back = false;  // a new chamber model gets its chance
     ResetLineState(p, state_[i], p.safe_pa);

@@ -57,18 +57,41 @@ LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us)
   p.delay_ticks = static_cast<uint8_t>(dead < kMaxDeadTicks ? dead : kMaxDeadTicks - 1);
   // Step shaping: a model of the chamber's lag, inverted (line_step.h).
   const float chamber_tau = static_cast<float>(line.chamber_tau_us) * 1e-6f;
-  p.shaping = line.chamber_tau_us > 0 && line.overdrive_pa > 0;
-  p.chamber_alpha = p.shaping ? dt / (chamber_tau + dt) : 1.0f;
-  // A chamber slower than the regulator reaches the target without overshoot when the regulator
-  // leads it by this much per Pa it is short (two lags in series: the slow mode then vanishes).
-  const float lead_or_none = (chamber_tau - tau) / (tau + dt);
-  const float lead = p.shaping && lead_or_none > 0 ? lead_or_none : 0.0f;
+  // The chamber is estimated from the outlet's reading: no shaping where no sensor reads it (an
+  // invalid reading of a line with one raises the implausible-sensor fault the same tick).
+  p.shaping = line.chamber_tau_us > 0 && line.overdrive_pa > 0 && p.has_sensor;
   // The regulator model's lag inverted: command = R + (target + lead (target − C) − R) / α,
   // its products taken here, once, instead of every tick.
   const float gain = 1.0f / p.model_alpha;
-  p.shape_target = gain * (1.0f + lead);
-  p.shape_chamber = gain * lead;
+  p.shape_target = gain;
+  p.shape_chamber = 0;
   p.shape_regulator = 1.0f - gain;
+  // The tube's law: dC/dt = k (O − C)(O + C + 2 p_atm), its lag τ = 1 / (k S) with S the sum of
+  // the absolute pressures; chamber_tau_us is the lag at the calibration step's mean pressure
+  // (S = 2 (p_step + p_atm)). The estimate moves by k dt S (O − C) a tick (explicit: dt/τ, not
+  // one lag's dt/(τ + dt)), so the lead that makes it close α of its gap a tick, the regulator
+  // model's own rate, is α τ/dt − 1 at the tube's rate now; over α (the command's 1/α):
+  // 1 / (k dt S) − 1/α. With one lag's lead, (τ − τ_r) / (τ_r + dt) = α τ/dt − (1 − α), the
+  // estimate closed faster than the lead assumed: the regulator model's wanted lead fell faster
+  // than it could follow, and the command crossed the target for a tick as the overdrive ended.
+  // On where the chamber is slower than the regulator at every pressure within the limits (the
+  // lead then never below 0), else no lead.
+  if (p.shaping && chamber_tau > 0 && dt > 0) {
+    const float at = ChamberStepMeanPa(line.kind) + kAtmospherePa;
+    float k_dt = dt / (chamber_tau * 2.0f * at);
+    // Explicit, so at most a tick's full step at the line's highest absolute pressure.
+    const float highest = p.limit_max_pa + kAtmospherePa;
+    if (k_dt * 2.0f * highest > 1.0f) k_dt = 1.0f / (2.0f * highest);
+    p.tube_k_dt = k_dt;
+    const float lead_gain = 1.0f / k_dt;
+    const float lead_offset = gain;
+    if (lead_gain / (2.0f * highest) >= lead_offset) {
+      p.lead_gain = lead_gain;
+      // − lead_offset × (target − chamber), taken into the target's and the chamber's factors.
+      p.shape_target -= lead_offset;
+      p.shape_chamber = lead_offset;
+    }
+  }
   // An overdrive within the trim's dead band would only ever command the target (line_step.h).
   const float overdrive = static_cast<float>(line.overdrive_pa);
   p.overdrive_pa = p.shaping && overdrive > p.dead_band_pa ? overdrive : 0.0f;

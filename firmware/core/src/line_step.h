@@ -39,9 +39,11 @@ inline float FeedForward(const LineParams& p, LineState& s, float previous, floa
 /// it is configured again. Compares only: the signs are taken once, from the step's direction.
 [[gnu::always_inline]] inline void WatchShapedStep(const LineParams& p, LineState& s, float target,
                                                    const LineReading& reading) {
-  if (!reading.valid || target == s.chamber_pa) return;  // no direction: nothing is beyond
+  // The step's direction is the side its overdrive pushed (the chamber estimate follows the
+  // outlet, which the overdrive takes beyond the target: it may pass the target too).
+  if (!reading.valid) return;
   s.hold_reading_pa = reading.pa;  // where the next overdrive starts from, if one starts now
-  const bool up = target > s.chamber_pa;
+  const bool up = s.overdrive_up;
   const float outlet = up ? reading.pa : -reading.pa;
   const float beyond_target = (up ? target : -target) + kShapeFallbackPa;
   const float model = s.reference_pa + s.integrator_pa;
@@ -60,11 +62,15 @@ inline float FeedForward(const LineParams& p, LineState& s, float previous, floa
 /// loop takes over without a bump. The models are open-loop, so nothing the sensor reads can
 /// wind them up or make them ring.
 [[gnu::always_inline]] inline float Shape(const LineParams& p, LineState& s, float target,
-                                          uint8_t& status) {
+                                          const LineReading& reading, uint8_t& status) {
   const float regulator = s.regulator_pa, chamber = s.chamber_pa;
-  // regulator + (target + lead × (target − chamber) − regulator) / α (MakeLineParams).
-  float command =
-      p.shape_target * target - p.shape_chamber * chamber + p.shape_regulator * regulator;
+  // regulator + (target + lead × (target − chamber) − regulator) / α (MakeLineParams), the lead
+  // the tube's at the target: its lag grows as the absolute pressure falls.
+  // The tube's rate now, k (O + C + 2 p_atm): the chamber estimate's below, and the lead's.
+  const float outlet = reading.pa;
+  const float absolute_sum = outlet + chamber + 2 * kAtmospherePa;
+  float command = p.shape_target * target + p.shape_regulator * regulator +
+                  p.shape_chamber * chamber + (target - chamber) * (p.lead_gain / absolute_sum);
   // Held within the overdrive, then within the line's limits (meeting them: `saturated`, the
   // step takes longer than the model asked for). The target is within the limits, so a command
   // held below it can only meet the lower one, above it the upper one. The overdrive is beyond
@@ -91,7 +97,10 @@ inline float FeedForward(const LineParams& p, LineState& s, float previous, floa
     status |= protocol::line_status::kSaturated;
   }
   s.regulator_pa = regulator + p.model_alpha * (command - regulator);
-  s.chamber_pa = chamber + p.chamber_alpha * (s.regulator_pa - chamber);
+  // The chamber from the outlet the sensor reads (a shaped line has one; an invalid reading is
+  // the last valid one, for the tick before the safe state), through the tube's law:
+  // dC/dt = k (O − C)(O + C + 2 p_atm), the difference of the absolute pressures' squares.
+  s.chamber_pa = chamber + p.tube_k_dt * (outlet - chamber) * absolute_sum;
   return command;
 }
 
@@ -132,7 +141,7 @@ template <bool kShaping, bool kCorrection = true>
     held = true;
     direction_from = s.wanted_pa;
     if (s.wanted_pa != slewed) {  // the models run (the overdrive, or the target moved)
-      wanted = line_step::Shape(p, s, slewed, status);
+      wanted = line_step::Shape(p, s, slewed, reading, status);
       s.wanted_pa = wanted;
       if (wanted != slewed) {
         s.steady_pa = kUnbounded;  // no setpoint: the step goes on until the hold ends
@@ -143,6 +152,7 @@ template <bool kShaping, bool kCorrection = true>
         // ticks read nothing). A target that moved without an overdrive leaves the hold as it was.
         s.trim_hold = p.shape_hold_ticks;
         s.start_reading_pa = s.hold_reading_pa;
+        s.overdrive_up = direction_from > slewed;
       }
     } else if (s.trim_hold <= 1) {
       s.trim_hold = 0;

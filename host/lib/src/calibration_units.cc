@@ -53,6 +53,8 @@ constexpr CalibrationField kFields[] = {
     {"chamber_models[].regulator_tau_s", "s", "s", "the regulator's lag the fit assumed"},
     {"chamber_models[].chamber_tau_s", "s", "s", "the chamber's lag behind it"},
     {"chamber_models[].fit_rms", "1", "1", "fit residual, a fraction of the step"},
+    {"chamber_models[].tube_tau_s", "s", "s", "lag behind the outlet, tube's law (v4)"},
+    {"chamber_models[].tube_fit_rms", "1", "1", "its fit residual, a fraction of the step"},
     {"recommended_bias_pa", "Pa", "Pa", "least loop area keeping the range"},
     {"quality.residual_rms", kDeformation, kStiffness, "compensator's fit residual, RMS"},
     {"quality.residual_max", kDeformation, kStiffness, "and largest"},

@@ -127,9 +127,10 @@ TEST(StepShaping, DrivesBeyondTheTargetThenHandsOverWithoutABump) {
 
 TEST(StepShaping, AStepThatComesBackFromBeyondUsesTheCorrectionsOtherBranch) {
   // The regulator's play: approached from below it makes 1 kPa less than from above. A shaped
-  // rising step comes back to its target from above, so it lands on the falling branch.
+  // rising step comes back to its target from above, so it lands on the falling branch. The
+  // sensor reads what the reference says, the trim off.
   pp::ConfigureLine c = ShapedLine();
-  c.sensor = pp::SensorKind::kNone;
+  c.trim_kp = c.trim_ki_per_s = 0;
   c.correction_count = 2;
   c.correction[0] = {0, -1000, 0};
   c.correction[1] = {100000, 99000, 100000};
@@ -137,7 +138,8 @@ TEST(StepShaping, AStepThatComesBackFromBeyondUsesTheCorrectionsOtherBranch) {
     c.overdrive_pa = shaped ? 30000 : 0;
     LineUnderTest line(c, 10000);
     auto& [p, s, out] = line;
-    for (int k = 0; k < 500; ++k) pc::StepLine(p, s, 30000, pc::LineReading{}, out);
+    for (int k = 0; k < 500; ++k)
+      pc::StepLine(p, s, 30000, pc::LineReading{true, 0, s.reference_pa}, out);
     DOUBLES_EQUAL(shaped ? 30000 : 31000, out.command_pa, 1);
   }
 }

@@ -57,6 +57,8 @@ TEST(CalibrationFile, SavesAtomicallyAndReadsBackEveryField) {
   LONGS_EQUAL(49500, back->regulator_corrections[0].points[1].falling_pa);
   LONGS_EQUAL(1, back->chamber_models.size());
   DOUBLES_EQUAL(0.005, back->chamber_models[0].chamber_tau_s, 1e-12);
+  DOUBLES_EQUAL(0.0035, back->chamber_models[0].tube_tau_s, 1e-12);
+  DOUBLES_EQUAL(0.015, back->chamber_models[0].tube_fit_rms, 1e-12);
   STRCMP_EQUAL("", ph::ChamberNote(*back).c_str());
   CHECK(back->compensator == pp::CompensatorKind::kPrandtlIshlinskii);
   LONGS_EQUAL(6, back->compensator_params.size());
@@ -110,6 +112,44 @@ TEST(CalibrationFile, AVersion2FileIsReadWithANoteThatItsStepsAreNotShaped) {
   STRCMP_EQUAL("no chamber model: steps are not shaped", ph::ChamberNote(again.value).c_str());
 }
 
+TEST(CalibrationFile, AVersion3ChamberModelLoadsWithANoteAndShapesNothing) {
+  // Version 3's chamber_tau_s is the lag behind the regulator model; the board now reads
+  // chamber_tau_us as the lag behind the outlet through the tube's law. Never reinterpreted.
+  json j = json::parse(ph::SerializeCalibration(Example()).value);
+  j["schema_version"] = 3;
+  j["chamber_models"][0].erase("tube_tau_s");
+  j["chamber_models"][0].erase("tube_fit_rms");
+  const auto c = ph::ParseCalibration(j.dump());
+  CHECK_TEXT(c.ok(), c.message.c_str());
+  LONGS_EQUAL(1, c.value.chamber_models.size());
+  DOUBLES_EQUAL(0.005, c.value.chamber_models[0].chamber_tau_s, 1e-12);
+  DOUBLES_EQUAL(0, c.value.chamber_models[0].tube_tau_s, 0);
+  STRCMP_EQUAL(
+      "the chamber model of line 0 is a lag behind the regulator (schema version 3), not the "
+      "tube's the board shapes with: steps are not shaped until the finger is calibrated again",
+      ph::ChamberNote(c.value).c_str());
+  // Applied, the line takes its correction and no chamber model: no lag, no overdrive.
+  pp::ConfigureLine line{};
+  line.slew_pa_per_s = 200000;
+  const auto changed = ph::CalibratedLine(c.value, 0, line);
+  CHECK_TEXT(changed.ok() && changed.value, changed.message.c_str());
+  LONGS_EQUAL(3, line.correction_count);
+  LONGS_EQUAL(0, line.chamber_tau_us);
+  LONGS_EQUAL(0, line.overdrive_pa);
+  LONGS_EQUAL(200000, line.slew_pa_per_s);
+  // Written again it is a version 4 file whose model still has no tube lag, and says so.
+  const auto again = ph::ParseCalibration(ph::SerializeCalibration(c.value).value);
+  CHECK_TEXT(again.ok(), again.message.c_str());
+  LONGS_EQUAL(ph::kCalibrationSchemaVersion, again.value.schema_version);
+  DOUBLES_EQUAL(0, again.value.chamber_models[0].tube_tau_s, 0);
+  STRCMP_CONTAINS("steps are not shaped", ph::ChamberNote(again.value).c_str());
+  // A version 3 file cannot carry a tube lag: the field is refused, not read in the old sense.
+  j["chamber_models"][0]["tube_tau_s"] = 0.004;
+  const auto refused = ph::ParseCalibration(j.dump());
+  CHECK_FALSE(refused.ok());
+  STRCMP_CONTAINS("chamber_models[0].tube_tau_s: unknown field", refused.message.c_str());
+}
+
 TEST(CalibrationFile, EveryBadFieldIsNamedByItsPath) {
   struct Case {
     std::function<void(json&)> edit;
@@ -119,9 +159,15 @@ TEST(CalibrationFile, EveryBadFieldIsNamedByItsPath) {
       {[](json& j) { j.erase("date"); }, "date: missing"},
       {[](json& j) { j["date"] = "yesterday"; }, "date: must be UTC"},
       {[](json& j) { j["colour"] = "red"; }, "colour: unknown field"},
-      {[](json& j) { j["schema_version"] = 4; }, "schema_version: 4 is not"},
+      {[](json& j) { j["schema_version"] = 5; }, "schema_version: 5 is not"},
       {[](json& j) { j["recommended_bias_kpa"] = 20; },
-       "recommended_bias_kpa: unknown field in schema version 3"},
+       "recommended_bias_kpa: unknown field in schema version 4"},
+      {[](json& j) { j["chamber_models"][0]["tube_tau_s"] = 0; },
+       "chamber_models[0].tube_tau_s: 0 is outside"},
+      {[](json& j) { j["chamber_models"][0].erase("tube_fit_rms"); },
+       "chamber_models[0].tube_fit_rms: missing"},
+      {[](json& j) { j["chamber_models"][0].erase("tube_tau_s"); },
+       "chamber_models[0].tube_tau_s: missing"},
       {[](json& j) { j["schema_version"] = 2; },
        "chamber_models: unknown field in schema version 2"},
       {[](json& j) { j["chamber_models"][0]["chamber_tau_s"] = 0; },
@@ -222,8 +268,9 @@ TEST(CalibrationFile, DeviceFindsCalibrationsByActuatorSerialAndUploadsThemAtomi
   CHECK(finger.value.compensator == pp::CompensatorKind::kPrandtlIshlinskii);
   LONGS_EQUAL(5, finger.value.inverse_count);
   LONGS_EQUAL(3, d.ReadLine(0).value.correction_count);
-  // The chamber model went with the correction, in the same line record: steps are shaped.
-  LONGS_EQUAL(5000, d.ReadLine(0).value.chamber_tau_us);
+  // The chamber model went with the correction, in the same line record: steps are shaped, with
+  // the tube's lag (not the one behind the regulator model, 5 ms).
+  LONGS_EQUAL(3500, d.ReadLine(0).value.chamber_tau_us);
   LONGS_EQUAL(ph::kShapingOverdrivePa, d.ReadLine(0).value.overdrive_pa);
   LONGS_EQUAL(0, d.ReadLine(0).value.slew_pa_per_s);
   // A chamber model for a line that is not the finger's is refused, naming it.

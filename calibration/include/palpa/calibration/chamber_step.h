@@ -22,6 +22,10 @@ struct ChamberFit {
   double tau_s = 0;  ///< the chamber's
   double rms = 0;    ///< of the normalised response's residuals (0 … 1: a fraction of the step)
   bool ok = false;
+  /// The chamber behind the outlet the board's sensor reads, through a laminar tube
+  /// (dC/dt = k (O − C)(O + C + 2 p_atm)): its lag 1 / (2 k p_abs) at the step's mean pressure;
+  /// 0 where no outlet was read. And the fit's RMS, as `rms`.
+  double outlet_tau_s = 0, outlet_rms = 0;
 };
 
 /// Fits (time from the command in s, reading) samples: the reading before the command is the
@@ -29,6 +33,14 @@ struct ChamberFit {
 /// model (ConfigureLine::model_tau_us). Not ok when the step is lost in the noise.
 ChamberFit FitChamberStep(const std::vector<std::pair<double, double>>& samples,
                           double regulator_tau_s, double noise = 0.0);
+
+/// Fits the tube law's lag at `mean_pa` (gauge) to the force samples (as FitChamberStep) and the
+/// outlet's readings through the same step ((s, Pa gauge)); sets fit->outlet_tau_s and
+/// outlet_rms. The force is taken as the chamber's pressure scaled: from the outlet's before the
+/// command to its mean over the last 50 ms.
+void FitTubeStep(const std::vector<std::pair<double, double>>& samples,
+                 const std::vector<std::pair<double, double>>& outlet, double mean_pa,
+                 ChamberFit* fit);
 
 /// What the fit predicts, 0 … 1 of the step, `t` seconds after the command.
 double ChamberResponse(const ChamberFit& fit, double t);
@@ -55,6 +67,7 @@ struct ChamberStep {
   ChamberFit fit;  ///< not ok: no model (`why` says why); the run goes on without one
   std::string why;
   std::vector<std::pair<double, double>> samples;  ///< (s from the command on the rig's clock, N)
+  std::vector<std::pair<double, double>> outlet;   ///< (s, Pa): the board's sensor, the same times
 };
 
 /// Holds the finger's driven line at `from`, finds its surface, presses in, steps the bare line to

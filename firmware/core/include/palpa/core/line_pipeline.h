@@ -26,6 +26,15 @@ inline constexpr float kShapeFallbackPa = 2000;
 /// line's trim from learning each step's transient (docs/performance.md, "The slew default").
 inline constexpr float kFallbackSlewPaPerS = 200000;
 
+/// The atmosphere the chamber's tube law takes gauge pressures from (Pa absolute).
+inline constexpr float kAtmospherePa = 101325;
+
+/// The mean gauge pressure of the calibration's chamber step for a line of `kind`, where its lag
+/// (ConfigureLine::chamber_tau_us) holds: 5 → 20 kPa of vacuum, 20 → 40 kPa.
+constexpr float ChamberStepMeanPa(protocol::LineKind kind) {
+  return kind == protocol::LineKind::kVacuum ? -12500.0f : 30000.0f;
+}
+
 /// Per-line constants, derived once from a ConfigureLine when it is applied.
 struct LineParams {
   bool has_sensor = false;
@@ -53,14 +62,16 @@ struct LineParams {
   float model_alpha = 1;  ///< regulator-model lag per tick
   /// The regulator model's dead time in ticks (at most kMaxDeadTicks - 1).
   uint8_t delay_ticks = 0;
-  /// Step shaping, on when the chamber's lag is known and an overdrive allowed: the command that
-  /// brings the regulator model in one tick to the target led by the chamber's lead, as
-  /// shape_target × target − shape_chamber × chamber model + shape_regulator × regulator model
-  /// (line_step.h; one product and two multiply-adds a tick), the chamber model's lag per tick,
-  /// how far beyond the target the command may go, and how many ticks the trim holds after the
-  /// command last left the target (dead time + settling).
+  /// Step shaping, on when the chamber's lag is known, an overdrive allowed and a sensor reads
+  /// the outlet: the command that brings the regulator model in one tick to the target led by
+  /// the chamber's lead, as shape_target × target + shape_chamber × chamber estimate +
+  /// shape_regulator × regulator model + (target − chamber) × lead_gain / (O + C + 2 p_atm)
+  /// (line_step.h), the chamber estimated from the outlet's reading through the tube's law
+  /// (tube_k_dt: k × the tick, 1/Pa), how far beyond the target the command may go, and how
+  /// many ticks the trim holds after the command last left the target (dead time + settling).
   bool shaping = false;
-  float shape_target = 1, shape_chamber = 0, shape_regulator = 0, chamber_alpha = 1;
+  float shape_target = 1, shape_chamber = 0, shape_regulator = 0;
+  float tube_k_dt = 0, lead_gain = 0;
   float overdrive_pa = 0;
   uint16_t shape_hold_ticks = 0;
   Correction correction{};  ///< the regulator correction, with its lookup tables
@@ -99,6 +110,8 @@ struct LineState {
   /// so the line's steps are unshaped until it is configured again (ResetLineState keeps it, the
   /// board's Diagnostics says it).
   bool shaping_fell_back = false;
+  /// Shaping: the side of the target the last overdrive pushed toward (the watch's direction).
+  bool overdrive_up = false;
   /// How far beyond the target a shaped step's command may go: the line's overdrive, none once
   /// shaping fell back (its steps then end where they start: no extra test on the step's path).
   float overdrive_pa = 0;

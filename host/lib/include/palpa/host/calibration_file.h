@@ -15,11 +15,14 @@
 
 namespace palpa::host {
 
-/// Version 3: the chamber models (step shaping). Version 2: one unit per quantity, the board's
-/// (calibration_units.h). Older files are still read: version 1's units (kPa, mm, N/mm and N
-/// beside the board's Pa, µm and mN/mm) converted on loading, and neither carries a chamber model
-/// (the finger's steps are not shaped until it is calibrated again; ChamberNote says so).
-inline constexpr int kCalibrationSchemaVersion = 3;
+/// Version 4: the chamber models' lag behind the outlet through the tube's law, the one the board
+/// shapes steps with (version 3's models hold only the lag behind the regulator model: loaded,
+/// never applied, ChamberNote says so). Version 3: the chamber models. Version 2: one unit per
+/// quantity, the board's (calibration_units.h). Older files are still read: version 1's units (kPa,
+/// mm, N/mm and N beside the board's Pa, µm and mN/mm) converted on loading, and neither carries a
+/// chamber model (the finger's steps are not shaped until it is calibrated again; ChamberNote says
+/// so).
+inline constexpr int kCalibrationSchemaVersion = 4;
 /// The largest valid calibration (1024 grid points, 256 curve points, every optional part,
 /// pretty-printed) is about 310 KiB.
 inline constexpr FileLimits kCalibrationFileLimits{"calibration file", 1024 * 1024};
@@ -82,14 +85,18 @@ struct RegulatorCorrection {
 
 /// A line's chamber dynamics, fitted to its step response on the rig (docs/calibration.md): dead
 /// time, the regulator's lag the fit assumed (the line's model_tau_us) and the chamber's behind
-/// it. Applying the calibration gives the line chamber_tau_us and the overdrive bound, so the
-/// board shapes its steps.
+/// it; and (version 4 on) the chamber's lag behind the outlet the board's sensor reads, through
+/// the tube's law, at the step's mean pressure. Applying the calibration gives the line the
+/// tube's lag as chamber_tau_us and the overdrive bound, so the board shapes its steps; a model
+/// without the tube's lag (an older file's) shapes nothing (ChamberNote says so).
 struct ChamberModel {
   uint8_t line = 0;
   double dead_time_s = 0;
   double regulator_tau_s = 0;
   double chamber_tau_s = 0;
-  double fit_rms = 0;  ///< of the normalised step response: a fraction of the step
+  double fit_rms = 0;       ///< of the normalised step response: a fraction of the step
+  double tube_tau_s = 0;    ///< 0: not identified (a file of version 3 or older)
+  double tube_fit_rms = 0;  ///< the tube fit's, a fraction of the step
 };
 
 /// How far beyond its target a calibrated line's shaped step may drive the regulator.
@@ -125,7 +132,7 @@ struct CalibrationFile {
   std::vector<protocol::InversePoint> static_inverse;
   std::vector<RegulatorCorrection>
       regulator_corrections;                 ///< one per line of the finger, at most two
-  std::vector<ChamberModel> chamber_models;  ///< version 3 on; at most two
+  std::vector<ChamberModel> chamber_models;  ///< version 3 on (the tube's lag: 4); at most two
   protocol::CompensatorKind compensator = protocol::CompensatorKind::kNone;
   std::vector<float> compensator_params;
   std::optional<double> recommended_bias_pa;
