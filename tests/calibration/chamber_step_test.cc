@@ -34,6 +34,37 @@ TEST(ChamberStep, TheFitRecoversADeadTimeAndLagThroughNoise) {
   CHECK_FALSE(cal::FitChamberStep(samples, 0.02, 0.002).ok);
 }
 
+TEST(ChamberStep, TheTubeFitRecoversItsConstantFromTheOutletAndTheForce) {
+  // A vacuum step 5 → 20 kPa: the outlet's reading lags the command, the chamber follows it
+  // through a laminar tube (its lag 40 ms at the step's mean pressure, −12.5 kPa), the force is
+  // the chamber scaled and offset, both read through noise.
+  constexpr double kAtm = 101325, kMean = -12500, kTau = 0.04;
+  const double k = 1 / (kTau * 2 * (kMean + kAtm));
+  std::mt19937 rng(5);
+  std::normal_distribution<double> force_noise(0, 0.002), outlet_noise(0, 50);
+  std::vector<std::pair<double, double>> force, outlet;
+  double chamber = -5000;
+  for (int i = -100; i < 600; ++i) {
+    const double t = i * 0.001;
+    const double o = t < 0.005 ? -5000 : -20000 + 15000 * std::exp(-(t - 0.005) / 0.02);
+    force.push_back({t, 0.2 - 1e-5 * chamber + force_noise(rng)});
+    outlet.push_back({t, o + outlet_noise(rng)});
+    for (int sub = 0; sub < 10; ++sub)  // the tube, finer than the readings
+      chamber += 1e-4 * k * (o - chamber) * (o + chamber + 2 * kAtm);
+  }
+  cal::ChamberFit f;
+  cal::FitTubeStep(force, outlet, kMean, &f);
+  DOUBLES_EQUAL(kTau, f.outlet_tau_s, 0.002);
+  CHECK(f.outlet_rms < 0.02);
+  // The same chamber read at another mean pressure is another lag: the law's, not one lag.
+  cal::FitTubeStep(force, outlet, -70000, &f);
+  DOUBLES_EQUAL(kTau * (kMean + kAtm) / (-70000 + kAtm), f.outlet_tau_s, 0.006);
+  // Readings that do not pair up give no fit.
+  outlet.pop_back();
+  cal::FitTubeStep(force, outlet, kMean, &f);
+  DOUBLES_EQUAL(0, f.outlet_tau_s, 0);
+}
+
 namespace {
 
 /// The fit of the true chamber pressure through the same step on the same unit: what the
