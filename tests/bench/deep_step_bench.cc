@@ -124,13 +124,13 @@ int main() {
       "(ms) | overshoot (kPa) |\n|---|---|---:|---:|---:|---:|\n");
   for (uint32_t seed : {101u, 102u, 103u}) {
     const double identified_ms = 1000.0 * pb::BoardLagS(pb::CalibrationFor(seed).chamber[kVacuum]);
-    for (float scale : {0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 6.0f}) {
+    for (float scale : {0.0f, 0.8f, 0.9f, 1.0f, 1.1f, 1.25f, 1.5f, 2.0f, 4.0f}) {
       const DeepStep d = Run(seed, scale);
       char lag[64];
       if (scale == 0)
         std::snprintf(lag, sizeof(lag), "not shaped");
       else
-        std::snprintf(lag, sizeof(lag), "%.0f (identified × %.0f)", scale * identified_ms, scale);
+        std::snprintf(lag, sizeof(lag), "%.0f (identified × %.2g)", scale * identified_ms, scale);
       char settled[32];
       std::snprintf(settled, sizeof(settled), "%.0f", d.settle_ms);
       std::printf("| %u | %s | %d | %.1f | %s | %.2f |\n", seed, lag, d.overdrive_ends_ms,
