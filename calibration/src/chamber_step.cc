@@ -99,7 +99,7 @@ void FitTubeStep(const std::vector<std::pair<double, double>>& samples,
     return n > 0 ? std::sqrt(sum / n) : 1e9;
   };
   double best = 1e9;
-  for (double tau = 0.0005; tau <= 2.0; tau *= 1.02) {
+  for (double tau = 0.0005; tau <= 2.0; tau *= 1.005) {
     const double c = cost(1.0 / (tau * 2 * (mean_pa + kAtm)));
     if (c < best) best = c, fit->outlet_tau_s = tau;
   }
