@@ -11,32 +11,49 @@
 namespace palpa::host {
 
 LineDynamics DynamicsOf(const protocol::ConfigureLine& line) {
-  return {line.model_dead_time_us * 1e-6, line.model_tau_us * 1e-6, line.chamber_tau_us * 1e-6,
-          static_cast<double>(line.overdrive_pa)};
+  return {line.model_dead_time_us * 1e-6,
+          line.model_tau_us * 1e-6,
+          line.chamber_tau_us * 1e-6,
+          static_cast<double>(line.overdrive_pa),
+          line.kind == protocol::LineKind::kVacuum,
+          static_cast<double>(line.limit_max_pa)};
 }
 
 double HalfStepTime(const LineDynamics& m, double step_pa) {
-  // The board's models at a tenth of its tick: a delay line for the dead time, then two lags.
-  constexpr double dt = 1e-4;
+  // The board's models at a tenth of its tick: a delay line for the dead time, the regulator's
+  // lag, and the chamber behind the outlet through the tube's law (line_pipeline.cc):
+  // dC/dt = k (O − C)(O + C + 2 p_atm), chamber_tau_s its lag at the calibration step's mean
+  // pressure. A vacuum step goes down, where the tube is slower.
+  constexpr double dt = 1e-4, board_dt = 1e-3, atm = 101325;
   const double step = std::fabs(step_pa);
   if (!(step > 0)) return m.dead_time_s;
+  const double target = m.vacuum ? -step : step;
   const bool shaped = m.chamber_tau_s > 0 && m.overdrive_pa > 0;
-  const double lead =
-      shaped ? std::max(0.0, (m.chamber_tau_s - m.regulator_tau_s) / (m.regulator_tau_s + dt))
-             : 0.0;
+  const double mean_pa = m.vacuum ? -12500 : 30000;  // the calibration step's
+  const double k = m.chamber_tau_s > 0 ? 1 / (m.chamber_tau_s * 2 * (mean_pa + atm)) : 0;
+  // The board leads the regulator only where the chamber is slower than it at every pressure
+  // within the line's limits (at its highest absolute pressure, the tube's fastest).
+  const bool lead = shaped && 1 / (k * 2 * (m.limit_max_pa + atm)) >= m.regulator_tau_s + board_dt;
   const size_t dead = static_cast<size_t>(std::lround(m.dead_time_s / dt));
   std::vector<double> delayed(dead + 1, 0.0);
   double regulator = 0, chamber = 0;
-  for (size_t k = 0; k < static_cast<size_t>(10.0 / dt); ++k) {
-    double command = step + lead * (step - chamber);
-    if (shaped) command = std::clamp(command, step - m.overdrive_pa, step + m.overdrive_pa);
-    delayed[k % delayed.size()] = command;
-    const double in = delayed[(k + 1) % delayed.size()];  // the command `dead` steps ago
+  for (size_t k_step = 0; k_step < static_cast<size_t>(10.0 / dt); ++k_step) {
+    // The lead that closes the chamber at the regulator's rate: its lag now over the
+    // regulator's, less one (the board's, in continuous time).
+    const double tube_tau = k > 0 ? 1 / (k * (regulator + chamber + 2 * atm)) : 0;
+    const double lead_now =
+        lead ? std::max(0.0, tube_tau / (m.regulator_tau_s + board_dt) - 1) : 0.0;
+    double command = target + lead_now * (target - chamber);
+    if (shaped) command = std::clamp(command, target - m.overdrive_pa, target + m.overdrive_pa);
+    delayed[k_step % delayed.size()] = command;
+    const double in = delayed[(k_step + 1) % delayed.size()];  // the command `dead` steps ago
     regulator =
         m.regulator_tau_s > 0 ? regulator + dt / (m.regulator_tau_s + dt) * (in - regulator) : in;
-    chamber = m.chamber_tau_s > 0 ? chamber + dt / (m.chamber_tau_s + dt) * (regulator - chamber)
-                                  : regulator;
-    if (chamber >= step / 2) return (static_cast<double>(k) + 1) * dt;
+    // Exact for the outlet held over the step, at this instant's rate.
+    chamber = k > 0 ? regulator + (chamber - regulator) *
+                                      std::exp(-dt * k * (regulator + chamber + 2 * atm))
+                    : regulator;
+    if (std::fabs(chamber) >= step / 2) return (static_cast<double>(k_step) + 1) * dt;
   }
   return 10.0;
 }

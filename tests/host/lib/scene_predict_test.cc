@@ -35,22 +35,34 @@ TEST(ScenePredict, HalfStepTimes) {
   // steps: within a few of them).
   DOUBLES_EQUAL(0.005 + 0.02 * std::log(2.0), ph::HalfStepTime({0.005, 0.02, 0, 0}, 30000), 3e-4);
   DOUBLES_EQUAL(0.005, ph::HalfStepTime({0.005, 0, 0, 0}, 30000), 2e-4);
-  // Two equal lags: 1 − (1 + t/τ)e^(−t/τ) = ½ at t = 1.67835 τ.
-  DOUBLES_EQUAL(1.67835 * 0.02, ph::HalfStepTime({0, 0.02, 0.02, 0}, 30000), 3e-4);
+  // Two equal lags cross half at 1.67835 τ. The chamber's is the tube's: 20 ms at the
+  // calibration step's mean pressure (30 kPa), 1.296 × that at atmosphere (the absolute
+  // pressures' sum 2 × 101.3 kPa against 2 × 131.3 kPa), so a step 0 → 30 kPa takes longer than
+  // two lags of 20 ms and less than a chamber lag of 26 ms throughout would.
+  const double rising = ph::HalfStepTime({0, 0.02, 0.02, 0}, 30000);
+  CHECK(rising > 1.67835 * 0.02 + 3e-4);
+  CHECK(rising < 1.67835 * 0.02 * 1.296);
+  // A vacuum line's chamber, the same lag identified (at 12.5 kPa of vacuum), is slower the
+  // deeper it goes: a step to −80 kPa takes longer than one to +80 kPa (one lag: the same).
+  ph::LineDynamics vacuum{0, 0.02, 0.02, 0, true, 0};
+  CHECK(ph::HalfStepTime(vacuum, 80000) > 1.2 * ph::HalfStepTime({0, 0.02, 0.02, 0}, 80000));
   // Shaped with room to overdrive (the board's lead on the chamber model): far faster than the
   // chamber's lag alone would allow, never faster than dead time and the regulator's lag.
   const ph::LineDynamics shaped{0.005, 0.02, 0.05, 1e9};
   CHECK(ph::HalfStepTime(shaped, 30000) > 0.005 + 0.02 * std::log(2.0));
   CHECK(ph::HalfStepTime(shaped, 30000) < 0.005 + 0.05 * std::log(2.0));
   // Held within a 20 kPa overdrive: a 30 kPa step is partly shaped, a 100 kPa step much less —
-  // between the regulator's time and the unshaped one, longer the larger the step.
+  // between the regulator's time and the unshaped one, longer the larger the step (though the
+  // tube is faster at the larger step's higher pressure: unshaped, it is the quicker one).
   const ph::LineDynamics bounded{0.005, 0.02, 0.05, 20000};
   const double unshaped = ph::HalfStepTime({0.005, 0.02, 0.05, 0}, 30000);
+  const double unshaped_large = ph::HalfStepTime({0.005, 0.02, 0.05, 0}, 100000);
   const double small = ph::HalfStepTime(bounded, 30000), large = ph::HalfStepTime(bounded, 100000);
   CHECK(small > ph::HalfStepTime(shaped, 30000) + 1e-3);
   CHECK(small < large);
-  CHECK(large < unshaped);
-  DOUBLES_EQUAL(unshaped, ph::HalfStepTime({0.005, 0.02, 0.05, 0}, 100000), 1e-9);
+  CHECK(small < unshaped);
+  CHECK(large < unshaped_large);
+  CHECK(unshaped_large < unshaped);
 }
 
 TEST(ScenePredict, DisplayDelayFromTheCalibratedLine) {

@@ -16,17 +16,23 @@
 namespace palpa::host {
 
 /// A line's dynamics as its calibration configured it: the regulator model's dead time and lag
-/// (model_dead_time_us, model_tau_us), the chamber's identified lag (chamber_tau_us) and the
-/// overdrive a shaped step may use (overdrive_pa; 0: steps not shaped).
+/// (model_dead_time_us, model_tau_us), the chamber's identified lag behind the outlet
+/// (chamber_tau_us: the tube's law's at the calibration step's mean pressure, which depends on
+/// the line's kind), the overdrive a shaped step may use (overdrive_pa; 0: steps not shaped) and
+/// the line's upper limit (where the board decides whether to lead the regulator).
 struct LineDynamics {
   double dead_time_s = 0, regulator_tau_s = 0, chamber_tau_s = 0, overdrive_pa = 0;
+  bool vacuum = false;
+  double limit_max_pa = 100000;
 };
 LineDynamics DynamicsOf(const protocol::ConfigureLine& line);
 
-/// The time the line's model takes to bring its chamber half-way through a step of `step_pa`:
-/// the board's own step shaping (line_step.h: the command led by the chamber model's lag, held
-/// within the overdrive beyond the target) through dead time, regulator lag and chamber lag,
-/// simulated. Half, because an edge is felt when the stiffness is half-way across it.
+/// The time the line's model takes to bring its chamber half-way through a step of `step_pa`
+/// from atmosphere (down on a vacuum line): the board's own step shaping (line_step.h: the
+/// command led by the chamber's lag at the tube's rate now, held within the overdrive beyond the
+/// target) through dead time, regulator lag and the tube's law, simulated. Half, because an edge
+/// is felt when the stiffness is half-way across it. The regulator here has no flow limit: the
+/// board's estimate follows the outlet's reading, which this model takes to be the regulator's.
 double HalfStepTime(const LineDynamics& line, double step_pa);
 
 /// HalfStepTime of a line's calibrated configuration — the calibrated model, never a measurement
