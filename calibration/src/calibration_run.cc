@@ -180,8 +180,10 @@ RigStatus Run::Chamber() {
     m.tube_fit_rms = c[5].get<double>();
     chamber_ = m;
     out_->csv.push_back(Csv({static_cast<double>(line + 1), m.dead_time_s, m.regulator_tau_s,
-                             m.chamber_tau_s, m.fit_rms, m.tube_tau_s, m.tube_fit_rms},
+                             m.chamber_tau_s, m.fit_rms},
                             "chamber"));
+    out_->csv.push_back(
+        Csv({static_cast<double>(line + 1), m.tube_tau_s, m.tube_fit_rms, 0, 0}, "chamber-tube"));
   }
   return {};
 }
