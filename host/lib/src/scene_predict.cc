@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "number_text.h"
+#include "palpa/core/board.h"
+#include "palpa/core/line_pipeline.h"
 
 namespace palpa::host {
 
@@ -19,43 +21,77 @@ LineDynamics DynamicsOf(const protocol::ConfigureLine& line) {
           static_cast<double>(line.limit_max_pa)};
 }
 
-double HalfStepTime(const LineDynamics& m, double step_pa) {
-  // The board's models at a tenth of its tick: a delay line for the dead time, the regulator's
-  // lag, and the chamber behind the outlet through the tube's law (line_pipeline.cc):
-  // dC/dt = k (O − C)(O + C + 2 p_atm), chamber_tau_s its lag at the calibration step's mean
-  // pressure. A vacuum step goes down, where the tube is slower.
-  constexpr double dt = 1e-4, board_dt = 1e-3, atm = 101325;
-  const double step = std::fabs(step_pa);
-  if (!(step > 0)) return m.dead_time_s;
-  const double target = m.vacuum ? -step : step;
-  const bool shaped = m.chamber_tau_s > 0 && m.overdrive_pa > 0;
-  const double mean_pa = m.vacuum ? -12500 : 30000;  // the calibration step's
-  const double k = m.chamber_tau_s > 0 ? 1 / (m.chamber_tau_s * 2 * (mean_pa + atm)) : 0;
-  // The board leads the regulator only where the chamber is slower than it at every pressure
-  // within the line's limits (at its highest absolute pressure, the tube's fastest).
-  const bool lead = shaped && 1 / (k * 2 * (m.limit_max_pa + atm)) >= m.regulator_tau_s + board_dt;
-  const size_t dead = static_cast<size_t>(std::lround(m.dead_time_s / dt));
-  std::vector<double> delayed(dead + 1, 0.0);
-  double regulator = 0, chamber = 0;
-  for (size_t k_step = 0; k_step < static_cast<size_t>(10.0 / dt); ++k_step) {
-    // The lead that closes the chamber at the regulator's rate: its lag now over the
-    // regulator's, less one (the board's, in continuous time).
-    const double tube_tau = k > 0 ? 1 / (k * (regulator + chamber + 2 * atm)) : 0;
-    const double lead_now =
-        lead ? std::max(0.0, tube_tau / (m.regulator_tau_s + board_dt) - 1) : 0.0;
-    double command = target + lead_now * (target - chamber);
-    if (shaped) command = std::clamp(command, target - m.overdrive_pa, target + m.overdrive_pa);
-    delayed[k_step % delayed.size()] = command;
-    const double in = delayed[(k_step + 1) % delayed.size()];  // the command `dead` steps ago
-    regulator =
-        m.regulator_tau_s > 0 ? regulator + dt / (m.regulator_tau_s + dt) * (in - regulator) : in;
-    // Exact for the outlet held over the step, at this instant's rate.
+double HalfStepTime(const protocol::ConfigureLine& configured, double step_pa) {
+  // The board's own line step (MakeLineParams, StepLine: the slew limit, the shaped step's lead,
+  // its overdrive held within the line's limits, the chamber estimated from the outlet through the
+  // tube's law, at the board's tick) against the calibrated model as the plant: the command held
+  // over each tick, its dead time, the regulator's lag, and the chamber behind the outlet through
+  // the tube's law, dC/dt = k (O − C)(O + C + 2 p_atm), at a tenth of the tick. The regulator is
+  // asked for the pressure the step wants: without the static correction or the trim, which
+  // only make the real regulator's outlet what the model's is.
+  constexpr uint32_t tick_us = core::Board::kTickUs;
+  constexpr int substeps = 10;
+  constexpr double atm = core::kAtmospherePa;
+  const double dt = tick_us * 1e-6 / substeps;
+  protocol::ConfigureLine line = configured;
+  line.correction_count = 0;
+  line.trim_kp = 0, line.trim_ki_per_s = 0, line.trim_authority_pa = 0;
+  const core::LineParams p = core::MakeLineParams(line, tick_us);
+  const double signed_step =
+      line.kind == protocol::LineKind::kVacuum ? -std::fabs(step_pa) : std::fabs(step_pa);
+  const double target = std::clamp(signed_step, static_cast<double>(p.limit_min_pa),
+                                   static_cast<double>(p.limit_max_pa));
+  const double half = std::fabs(target) / 2;
+  const double dead_s = line.model_dead_time_us * 1e-6, tau = line.model_tau_us * 1e-6;
+  if (!(half > 0)) return dead_s;
+  const double k =
+      line.chamber_tau_us > 0
+          ? 1 / (line.chamber_tau_us * 1e-6 * 2 * (core::ChamberStepMeanPa(line.kind) + atm))
+          : 0;
+  core::LineState s;
+  core::ResetLineState(p, s, 0);
+  const size_t dead = static_cast<size_t>(std::lround(dead_s / dt));
+  std::vector<double> delayed(dead + 1, 0.0);  // the commands of the last `dead` substeps
+  double regulator = 0, chamber = 0, command = 0;
+  for (size_t n = 0; n < static_cast<size_t>(10.0 / dt); ++n) {
+    if (n % substeps == 0) {
+      core::LineReading reading;
+      reading.valid = p.has_sensor, reading.pa = static_cast<float>(regulator);
+      core::LineOutput out;
+      uint32_t vents = 0;
+      core::StepLine(p, s, static_cast<float>(target), reading, out, &vents);
+      command = out.command_pa;
+    }
+    delayed[n % delayed.size()] = command;
+    const double in = delayed[(n + 1) % delayed.size()];  // the command `dead` substeps ago
+    regulator = tau > 0 ? regulator + dt / (tau + dt) * (in - regulator) : in;
+    // Exact for the outlet held over the substep, at this instant's rate.
     chamber = k > 0 ? regulator + (chamber - regulator) *
                                       std::exp(-dt * k * (regulator + chamber + 2 * atm))
                     : regulator;
-    if (std::fabs(chamber) >= step / 2) return (static_cast<double>(k_step) + 1) * dt;
+    if (std::fabs(chamber) >= half) return (static_cast<double>(n) + 1) * dt;
   }
   return 10.0;
+}
+
+double HalfStepTime(const LineDynamics& m, double step_pa) {
+  // A configuration that says no more than the dynamics: no slew limit, no dead band, a sensor
+  // on the outlet (the board estimates the chamber from it), limits 0 … limit_max_pa, or from
+  // the deepest vacuum on a vacuum line.
+  protocol::ConfigureLine line;
+  line.kind = m.vacuum ? protocol::LineKind::kVacuum : protocol::LineKind::kPressure;
+  const int32_t top = static_cast<int32_t>(std::lround(m.limit_max_pa));
+  line.limit_min_pa = line.command_min_pa = m.vacuum ? protocol::kMinPressurePa : 0;
+  line.limit_max_pa = line.command_max_pa = top;
+  line.sensor = protocol::SensorKind::kAnalog;
+  line.sensor_min_pa = line.limit_min_pa, line.sensor_max_pa = top;
+  line.sensor_counts_min = 0, line.sensor_counts_max = 16383;
+  const auto us = [](double s) { return static_cast<uint32_t>(std::lround(s * 1e6)); };
+  line.model_dead_time_us = us(m.dead_time_s);
+  line.model_tau_us = us(m.regulator_tau_s);
+  line.chamber_tau_us = us(m.chamber_tau_s);
+  line.overdrive_pa = static_cast<int32_t>(std::clamp(m.overdrive_pa, 0.0, 100000.0));
+  return HalfStepTime(line, step_pa);
 }
 
 Result<double> DisplayDelay(const protocol::ConfigureLine& line, double step_pa) {
@@ -65,7 +101,7 @@ Result<double> DisplayDelay(const protocol::ConfigureLine& line, double step_pa)
                 " has no chamber model: its delay is unknown until it is calibrated "
                 "(palpa calibrate), so nothing can be predicted for it"};
   }
-  return HalfStepTime(DynamicsOf(line), step_pa);
+  return HalfStepTime(line, step_pa);
 }
 
 double DriveForOutput(protocol::FingerKind kind, const FingerCurves& curves, double output) {

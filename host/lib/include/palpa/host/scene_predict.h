@@ -27,12 +27,17 @@ struct LineDynamics {
 };
 LineDynamics DynamicsOf(const protocol::ConfigureLine& line);
 
-/// The time the line's model takes to bring its chamber half-way through a step of `step_pa`
-/// from atmosphere (down on a vacuum line): the board's own step shaping (line_step.h: the
-/// command led by the chamber's lag at the tube's rate now, held within the overdrive beyond the
-/// target) through dead time, regulator lag and the tube's law, simulated. Half, because an edge
-/// is felt when the stiffness is half-way across it. The regulator here has no flow limit: the
-/// board's estimate follows the outlet's reading, which this model takes to be the regulator's.
+/// The time the board takes to bring the line's chamber half-way through a step of `step_pa`
+/// from atmosphere (down on a vacuum line), the calibrated model standing for the plant: the
+/// board's own line step (MakeLineParams, StepLine: slew limit, the shaped step's lead and its
+/// overdrive held within the line's limits, the chamber estimated from the outlet through the
+/// tube's law) run at the board's tick against dead time, the regulator's lag and the tube's law,
+/// simulated. Half, because an edge is felt when the stiffness is half-way across it. The
+/// regulator has no flow limit: the board's estimate follows the outlet's reading, which this
+/// model takes to be the regulator's.
+double HalfStepTime(const protocol::ConfigureLine& line, double step_pa);
+/// The same for dynamics alone: no slew limit, a sensor on the outlet, limits from atmosphere
+/// (from the deepest vacuum on a vacuum line) to limit_max_pa.
 double HalfStepTime(const LineDynamics& line, double step_pa);
 
 /// HalfStepTime of a line's calibrated configuration — the calibrated model, never a measurement
