@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "palpa/core/line_pipeline.h"
+
 namespace palpa::calibration {
 using host::Status;
 
@@ -66,7 +68,7 @@ ChamberFit FitChamberStep(const std::vector<std::pair<double, double>>& samples,
 void FitTubeStep(const std::vector<std::pair<double, double>>& samples,
                  const std::vector<std::pair<double, double>>& outlet, double mean_pa,
                  ChamberFit* fit) {
-  constexpr double kAtm = 101325;
+  constexpr double kAtm = core::kAtmospherePa;  // the atmosphere the board's estimate takes
   fit->outlet_tau_s = fit->outlet_rms = 0;
   if (samples.size() != outlet.size() || samples.empty()) return;
   const double last_t = samples.back().first;
