@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "palpa/core/line_pipeline.h"
+#include "palpa/host/chamber_tube.h"
 
 namespace palpa::calibration {
 using host::Status;
@@ -66,9 +66,8 @@ ChamberFit FitChamberStep(const std::vector<std::pair<double, double>>& samples,
 }
 
 void FitTubeStep(const std::vector<std::pair<double, double>>& samples,
-                 const std::vector<std::pair<double, double>>& outlet, double mean_pa,
+                 const std::vector<std::pair<double, double>>& outlet, protocol::LineKind kind,
                  ChamberFit* fit) {
-  constexpr double kAtm = core::kAtmospherePa;  // the atmosphere the board's estimate takes
   fit->outlet_tau_s = fit->outlet_rms = 0;
   if (samples.size() != outlet.size() || samples.empty()) return;
   const double last_t = samples.back().first;
@@ -93,16 +92,16 @@ void FitTubeStep(const std::vector<std::pair<double, double>>& samples,
         const double e = (c - (o0 + (samples[i].second - f0) * scale)) / (o1 - o0);
         sum += e * e, ++n;
       }
-      // Exact for the outlet held over the sample, the rate at this instant's pressures.
-      const double o = outlet[i].second, dt = samples[i + 1].first - t;
-      const double rate = k * (o + c + 2 * kAtm);
-      c = o + (c - o) * std::exp(-rate * dt);
+      // The outlet held over the sample, as the board's estimate takes it.
+      c = host::TubeChamberAfter(c, outlet[i].second, k, samples[i + 1].first - t);
     }
     return n > 0 ? std::sqrt(sum / n) : 1e9;
   };
+  // k found through the lag at the board's reference, whatever the step's own pressures: the
+  // board converts the stored lag back to k there.
   double best = 1e9;
   for (double tau = 0.0005; tau <= 2.0; tau *= 1.005) {
-    const double c = cost(1.0 / (tau * 2 * (mean_pa + kAtm)));
+    const double c = cost(host::TubeConstant(kind, tau));
     if (c < best) best = c, fit->outlet_tau_s = tau;
   }
   fit->outlet_rms = best;
@@ -164,8 +163,8 @@ RigStatus MeasureChamberStep(Rig& rig, uint8_t finger, double zero_mm, const Con
   } else {
     out->fit = FitChamberStep(out->samples, options.regulator_tau_s, rig.force_noise_n);
     if (!out->fit.ok) out->why = "the force did not follow the step";
-    const double mean_pa = (jamming ? -500 : 500) * (options.from_kpa + options.to_kpa);
-    if (out->fit.ok) FitTubeStep(out->samples, out->outlet, mean_pa, &out->fit);
+    const auto kind = jamming ? protocol::LineKind::kVacuum : protocol::LineKind::kPressure;
+    if (out->fit.ok) FitTubeStep(out->samples, out->outlet, kind, &out->fit);
   }
   return rig.board.SetDrive(finger, 0, 0);
 }

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <utility>
 
+#include "palpa/host/chamber_tube.h"
 #include "steps_calibration.h"
 #include "steps_measure.h"
 
@@ -102,11 +103,14 @@ void LagsByDepth() {
       }
       const double mean_abs = kAtmKpa - (from + to) / 2;
       if (shallow == 0) shallow = fit.tau_s;
+      // The fit stores the tube's lag at the board's reference; here, at the step's own mean.
+      const double k = palpa::host::TubeConstant(pp::LineKind::kVacuum, fit.outlet_tau_s);
+      const double outlet_lag_s = 1 / (2 * k * 1e3 * mean_abs);
       std::printf(
           "| %u | %.0f → %.0f | %.1f | %.1f | %.2f | %.0f | %.1f %% | %.1f | %.0f | %.1f %% |\n",
           seed, from, to, mean_abs, 1e3 * fit.tau_s, fit.tau_s / shallow,
-          1e3 * fit.tau_s * mean_abs, 100 * fit.rms, 1e3 * fit.outlet_tau_s,
-          1e3 * fit.outlet_tau_s * mean_abs, 100 * fit.outlet_rms);
+          1e3 * fit.tau_s * mean_abs, 100 * fit.rms, 1e3 * outlet_lag_s,
+          1e3 * outlet_lag_s * mean_abs, 100 * fit.outlet_rms);
     }
   }
 }

@@ -9,6 +9,7 @@
 #include "number_text.h"
 #include "palpa/core/board.h"
 #include "palpa/core/line_pipeline.h"
+#include "palpa/host/chamber_tube.h"
 
 namespace palpa::host {
 
@@ -31,7 +32,6 @@ double HalfStepTime(const protocol::ConfigureLine& configured, double step_pa) {
   // only make the real regulator's outlet what the model's is.
   constexpr uint32_t tick_us = core::Board::kTickUs;
   constexpr int substeps = 10;
-  constexpr double atm = core::kAtmospherePa;
   const double dt = tick_us * 1e-6 / substeps;
   protocol::ConfigureLine line = configured;
   line.correction_count = 0;
@@ -44,10 +44,7 @@ double HalfStepTime(const protocol::ConfigureLine& configured, double step_pa) {
   const double half = std::fabs(target) / 2;
   const double dead_s = line.model_dead_time_us * 1e-6, tau = line.model_tau_us * 1e-6;
   if (!(half > 0)) return dead_s;
-  const double k =
-      line.chamber_tau_us > 0
-          ? 1 / (line.chamber_tau_us * 1e-6 * 2 * (core::ChamberStepMeanPa(line.kind) + atm))
-          : 0;
+  const double k = TubeConstant(line.kind, line.chamber_tau_us * 1e-6);
   core::LineState s;
   core::ResetLineState(p, s, 0);
   const size_t dead = static_cast<size_t>(std::lround(dead_s / dt));
@@ -65,10 +62,7 @@ double HalfStepTime(const protocol::ConfigureLine& configured, double step_pa) {
     delayed[n % delayed.size()] = command;
     const double in = delayed[(n + 1) % delayed.size()];  // the command `dead` substeps ago
     regulator = tau > 0 ? regulator + dt / (tau + dt) * (in - regulator) : in;
-    // Exact for the outlet held over the substep, at this instant's rate.
-    chamber = k > 0 ? regulator + (chamber - regulator) *
-                                      std::exp(-dt * k * (regulator + chamber + 2 * atm))
-                    : regulator;
+    chamber = TubeChamberAfter(chamber, regulator, k, dt);
     if (std::fabs(chamber) >= half) return (static_cast<double>(n) + 1) * dt;
   }
   return 10.0;

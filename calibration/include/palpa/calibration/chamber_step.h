@@ -11,6 +11,7 @@
 
 #include "palpa/calibration/procedures.h"
 #include "palpa/calibration/rig.h"
+#include "palpa/protocol/messages_config.h"
 
 namespace palpa::calibration {
 
@@ -23,8 +24,9 @@ struct ChamberFit {
   double rms = 0;    ///< of the normalised response's residuals (0 … 1: a fraction of the step)
   bool ok = false;
   /// The chamber behind the outlet the board's sensor reads, through a laminar tube
-  /// (dC/dt = k (O − C)(O + C + 2 p_atm)): its lag 1 / (2 k p_abs) at the step's mean pressure;
-  /// 0 where no outlet was read. And the fit's RMS, as `rms`.
+  /// (dC/dt = k (O − C)(O + C + 2 p_atm)): its lag 1 / (2 k (p_ref + p_atm)) at the board's
+  /// reference p_ref (core::ChamberStepMeanPa), whatever step found k; 0 where no outlet was
+  /// read. And the fit's RMS, as `rms`.
   double outlet_tau_s = 0, outlet_rms = 0;
 };
 
@@ -34,12 +36,13 @@ struct ChamberFit {
 ChamberFit FitChamberStep(const std::vector<std::pair<double, double>>& samples,
                           double regulator_tau_s, double noise = 0.0);
 
-/// Fits the tube law's lag at `mean_pa` (gauge) to the force samples (as FitChamberStep) and the
-/// outlet's readings through the same step ((s, Pa gauge)); sets fit->outlet_tau_s and
-/// outlet_rms. The force is taken as the chamber's pressure scaled: from the outlet's before the
-/// command to its mean over the last 50 ms.
+/// Fits the tube law's constant to the force samples (as FitChamberStep) and the outlet's
+/// readings through the same step ((s, Pa gauge)) of a line of `kind`, a grid of its lag at the
+/// board's reference 0.5 % apart; sets fit->outlet_tau_s (that lag) and outlet_rms. The force is
+/// taken as the chamber's pressure scaled: from the outlet's before the command to its mean over
+/// the last 50 ms.
 void FitTubeStep(const std::vector<std::pair<double, double>>& samples,
-                 const std::vector<std::pair<double, double>>& outlet, double mean_pa,
+                 const std::vector<std::pair<double, double>>& outlet, protocol::LineKind kind,
                  ChamberFit* fit);
 
 /// What the fit predicts, 0 … 1 of the step, `t` seconds after the command.
@@ -55,8 +58,9 @@ struct ChamberStepOptions {
 };
 
 /// The step each kind is identified with: 20 → 40 kPa on a film; 5 → 20 kPa of vacuum under
-/// granules, where their air is fastest (deeper, it flows slower: a lag identified there would
-/// lead small steps too far).
+/// granules, where their air is fastest (deeper, it flows slower: the lag behind the regulator
+/// model identified there would lead small steps too far; the tube's lag is the board's
+/// reference's from any step). Their mean pressures are the board's reference.
 inline ChamberStepOptions ChamberStepFor(bool jamming) {
   ChamberStepOptions o;
   if (jamming) o.from_kpa = 5, o.to_kpa = 20;
