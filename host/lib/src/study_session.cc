@@ -135,7 +135,7 @@ Result<std::vector<SettleLine>> StudyLines(Device& device, const Study& study,
       const auto line = device.ReadLine(l);
       if (!line.ok()) return line.outcome();
       const double tau = line.value.chamber_tau_us * 1e-6;
-      lines.push_back({l, tau});
+      lines.push_back({l, tau, line.value.kind});
       (*settle)[device.LineName(l)] =
           tau > 0 ? nlohmann::ordered_json(Num(tau) + " s chamber model")
                   : nlohmann::ordered_json("no chamber model: the outlet alone");

@@ -4,13 +4,16 @@
 #include <chrono>
 #include <cmath>
 
+#include "palpa/host/chamber_tube.h"
 #include "palpa/host/stiffness_map.h"
 
 namespace palpa::host {
 
 SettleRule::SettleRule(std::vector<SettleLine> lines, double tolerance_pa, double band_pa,
                        double hold_s)
-    : lines_(std::move(lines)), tolerance_pa_(tolerance_pa), band_pa_(band_pa), hold_s_(hold_s) {}
+    : lines_(std::move(lines)), tolerance_pa_(tolerance_pa), band_pa_(band_pa), hold_s_(hold_s) {
+  for (const SettleLine& l : lines_) tube_k_.push_back(TubeConstant(l.kind, l.tau_s));
+}
 
 void SettleRule::Restart() {
   // The chamber estimates run on: a restarted rule still knows where each chamber was.
@@ -33,9 +36,9 @@ void SettleRule::Add(double t_s, const std::vector<double>& outlet_pa,
   std::vector<double> outlets;
   for (size_t k = 0; k < lines_.size(); ++k) {
     const double outlet = outlet_pa[lines_[k].line];
-    // The chamber behind the outlet: the calibrated model's first-order lag, stepped per tick.
-    const double tau = lines_[k].tau_s;
-    chamber_pa_[k] += (tau > 0 ? dt / (tau + dt) : 1.0) * (outlet - chamber_pa_[k]);
+    // The chamber behind the outlet through the tube, as the board estimates it, per tick: a
+    // deep vacuum's chamber follows slower than a shallow one's.
+    chamber_pa_[k] = TubeChamberAfter(chamber_pa_[k], outlet, tube_k_[k], dt);
     near = near && std::fabs(outlet - setpoint_pa[lines_[k].line]) <= band_pa_ &&
            std::fabs(chamber_pa_[k] - outlet) <= tolerance_pa_;
     outlets.push_back(outlet);

@@ -1,7 +1,7 @@
 // The board's clock and the settle rule, fed by telemetry: settled when every driven line's outlet
 // reading has stayed within the tolerance of itself for the hold time, near its setpoint (within
-// the band a regulator's static error leaves), with its chamber — the outlet through the
-// calibrated chamber model's lag — caught up with it.
+// the band a regulator's static error leaves), with its chamber — the outlet through the tube's
+// law with the line's calibrated constant, as the board estimates it — caught up with it.
 #pragma once
 
 #include <condition_variable>
@@ -32,6 +32,7 @@ class SettleRule {
  private:
   std::vector<SettleLine> lines_;
   double tolerance_pa_, band_pa_, hold_s_;
+  std::vector<double> tube_k_;  ///< per line: the tube's constant (0: the outlet alone)
   std::vector<double> chamber_pa_;
   std::deque<std::pair<double, std::vector<double>>> steady_;  ///< (t, outlets) since within_since_
   bool started_ = false;

@@ -19,6 +19,7 @@
 #include "CppUTest/TestHarness.h"
 
 namespace ph = palpa::host;
+namespace pp = palpa::protocol;
 namespace fs = std::filesystem;
 
 namespace {
@@ -96,17 +97,34 @@ ph::StudyRunOptions Session(const std::string& participant) {
 
 TEST_GROUP(StudySettle){};
 
-TEST(StudySettle, TheChamberModelDelaysTheSettleBehindTheOutlet) {
-  // An outlet that steps at once: alone it settles at the step; a chamber 0.1 s behind it is
-  // within 0.5 kPa of a 10 kPa step after ln(20) τ ≈ 0.30 s.
-  for (const double tau : {0.0, 0.1}) {
-    ph::SettleRule rule({{0, tau}}, 500, 3000, 0.02);
+TEST(StudySettle, TheChamberFollowsTheOutletThroughTheTubesLaw) {
+  // An outlet that steps at once, 80 kPa: alone it settles at the step. Behind it a chamber whose
+  // lag at the board's reference (−12.5 kPa vacuum, +30 kPa pressure) is 50 ms, through
+  // dC/dt = k (O − C)(O + C + 2 p_atm); in absolute u = C + p_atm, w = O + p_atm that is
+  // du/dt = k (w² − u²), so u/w's artanh (below w) or arcoth (above) grows at k w: the chamber is
+  // within 0.5 kPa after 0.19 s of pressure but 0.84 s of vacuum, the same size. One lag of
+  // 50 ms would call both settled at ln(160) × 50 ms = 0.25 s.
+  constexpr double kAtm = 101325, kTau = 0.05, kTolerance = 500;
+  const auto settled = [](pp::LineKind kind, double tau, double target) {
+    ph::SettleRule rule({{0, tau, kind}}, kTolerance, 3000, 0.02);
     rule.Add(0, {0}, {0});
     rule.Restart();
-    for (double t = 0.001; t < 2 && !rule.settled_s(); t += 0.001) rule.Add(t, {10000}, {10000});
+    for (double t = 0.001; t < 2 && !rule.settled_s(); t += 0.001) rule.Add(t, {target}, {target});
     CHECK(rule.settled_s().has_value());
-    DOUBLES_EQUAL(tau == 0 ? 0.001 : 0.1 * std::log(20.0), *rule.settled_s(), 0.003);
-  }
+    return *rule.settled_s();
+  };
+  const auto law = [&](double reference, double target) {
+    const double k = 1 / (kTau * 2 * (reference + kAtm)), w = target + kAtm;
+    const auto f = [w](double u) { return 0.5 * std::log(std::fabs((w + u) / (w - u))); };
+    const double end = w + (kAtm > w ? kTolerance : -kTolerance);
+    return (f(end) - f(kAtm)) / (k * w);
+  };
+  DOUBLES_EQUAL(0.001, settled(pp::LineKind::kPressure, 0, 80000), 1e-9);
+  const double pressure = settled(pp::LineKind::kPressure, kTau, 80000);
+  const double vacuum = settled(pp::LineKind::kVacuum, kTau, -80000);
+  DOUBLES_EQUAL(law(30000, 80000), pressure, 0.003);
+  DOUBLES_EQUAL(law(-12500, -80000), vacuum, 0.005);
+  CHECK(vacuum > 3 * pressure);
 }
 
 TEST(StudySettle, SteadyNearTheSetpointForTheHold) {

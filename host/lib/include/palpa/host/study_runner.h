@@ -94,7 +94,10 @@ struct StudyRunOptions {
 /// The trial's settle moment from its lines' telemetry (study_settle.cc).
 struct SettleLine {
   uint8_t line = 0;
-  double tau_s = 0;  ///< the calibrated chamber model's lag; 0: none (the outlet alone)
+  /// The line's chamber_tau_us: the tube's lag at the board's reference pressure for its kind
+  /// (host/chamber_tube.h); 0: none (the outlet alone).
+  double tau_s = 0;
+  protocol::LineKind kind = protocol::LineKind::kPressure;
 };
 
 /// Runs (or with resume continues) the session. Refuses, before anything is set: a study the
