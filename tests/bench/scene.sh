@@ -8,7 +8,8 @@
 # each input rendered as it is and ahead of the fingers' calibrated delay — error, edge lag at B and
 # at every cube face any finger crosses either way, and how much prediction changes each edge's
 # lag. Then input sample → DAC write latency through the scene on palpa-sim in real time, on one
-# clock. Figures recorded in docs/scenes.md.
+# clock (the fingers calibrated: steps shaped, the chamber estimated from the outlet). Figures
+# recorded in docs/scenes.md.
 set -eu
 cd "$(dirname "$0")/../.."
 build/default/tests/bench/palpa_scene_bench docs/examples/scene_three_cube.json

@@ -3,7 +3,9 @@
 // dispatched and when the DAC is first written with it; the host stamps each sample on the same
 // clock just before Scene::Feed renders it and sends every finger's target in one frame.
 // Samples come at a pen tablet's 100 Hz with a random phase against the board's tick, the input
-// sweeping the tissue at 30 mm/s.
+// sweeping the tissue at 30 mm/s. The board is a held-out unit whose fingers are calibrated as
+// palpa calibrate does (on an in-process rig of the same unit, as the scene bench) and applied
+// as the host applies the files: its lines' steps shaped, the chamber estimated from the outlet.
 //   palpa_scene_latency_bench SCENE.json [SAMPLES]
 #include <unistd.h>
 
@@ -17,7 +19,9 @@
 
 #include "generation_stamps.h"
 #include "palpa/host/device.h"
+#include "palpa/host/field_text.h"
 #include "palpa/host/scene.h"
+#include "scene_pass.h"
 #include "sim_process.h"
 
 namespace pb = palpa::bench;
@@ -32,14 +36,36 @@ int main(int argc, char** argv) {
   const auto spec = ph::LoadScene(argv[1]);
   if (!spec.ok()) return std::fprintf(stderr, "%s\n", spec.message.c_str()), 1;
   const std::string stamps = "/tmp/palpa-scene-latency-" + std::to_string(getpid()) + ".txt";
+  constexpr const char* kConfig = "thesis-pneumatic-3";
+  const std::string unit = std::to_string(pb::kUnit);
   palpa::testing::SimProcess sim;
-  if (!sim.Start({"--config", "thesis-pneumatic-3", "--speed", "1", "--listen", "tcp:127.0.0.1:0",
-                  "--stamp", "file:" + stamps})) {
+  if (!sim.Start({"--config", kConfig, "--unit", unit, "--seed", unit, "--speed", "1", "--listen",
+                  "tcp:127.0.0.1:0", "--stamp", "file:" + stamps})) {
     std::fprintf(stderr, "palpa-sim did not start: %s\n", sim.output().c_str());
     return 1;
   }
-  auto device = ph::Device::Open(sim.address(), {});
+  ph::DeviceOptions options;
+  options.use_calibrations = false;  // the files made here, not what this machine holds
+  auto device = ph::Device::Open(sim.address(), options);
   if (!device.ok()) return std::fprintf(stderr, "%s\n", device.message.c_str()), 1;
+  for (const uint8_t f : spec.value.board_fingers) {
+    const ph::CalibrationFile* made = pb::ScenePass::FingerCalibrationFor(kConfig, f);
+    if (made == nullptr) return 1;
+    ph::CalibrationFile file = *made;
+    const auto finger = device.value->ReadFinger(f);
+    if (!finger.ok()) return std::fprintf(stderr, "%s\n", finger.message.c_str()), 1;
+    file.actuator_serial = ph::FieldText(finger.value.actuator_serial);  // the same unit's
+    const ph::Outcome applied = device.value->ApplyCalibration(f, file);
+    if (!applied.ok())
+      return std::fprintf(stderr, "finger %u: %s\n", f, applied.message.c_str()), 1;
+    // What the board now runs: a shaped line estimates its chamber from the outlet.
+    const auto line = device.value->ReadLine(finger.value.line_a);
+    if (!line.ok()) return std::fprintf(stderr, "%s\n", line.message.c_str()), 1;
+    if (line.value.chamber_tau_us == 0 || line.value.overdrive_pa == 0)
+      return std::fprintf(stderr, "finger %u: its line is not shaped\n", f), 1;
+    std::printf("finger %u: line %u shaped, the tube's lag %.1f ms\n", f, finger.value.line_a + 1,
+                line.value.chamber_tau_us * 1e-3);
+  }
   auto scene = ph::Scene::Open(spec.value, *device.value);
   if (!scene.ok()) return std::fprintf(stderr, "%s\n", scene.message.c_str()), 1;
   // The first sample switches the fingers to target mode (a command round trip): not measured.
@@ -67,8 +93,8 @@ int main(int argc, char** argv) {
   if (l.total.empty()) return std::fprintf(stderr, "no stamps matched\n"), 1;
   std::printf(
       "== input sample -> DAC write through the scene %s, palpa-sim --speed 1 over TCP "
-      "(loopback), %zu of %d samples stamped ==\n",
-      spec.value.name.c_str(), l.total.size(), samples);
+      "(loopback), unit %u calibrated, %zu of %d samples stamped ==\n",
+      spec.value.name.c_str(), pb::kUnit, l.total.size(), samples);
   pb::PrintLatency("sample -> DAC write", l.total);
   pb::PrintLatency("  of which render + link", l.link);
   pb::PrintLatency("  of which tick quantisation", l.tick);
