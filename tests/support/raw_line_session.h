@@ -73,6 +73,8 @@ class RawLineSession {
   uint32_t PlantVents() const { return sim_->plant().line_vents(); }
   bool Safe() const { return sim_->board().safe(); }
   sim::Plant& plant() { return sim_->plant(); }
+  /// The line's configuration as the board runs it (after `edit`).
+  const protocol::ConfigureLine& Config(uint8_t line) const { return config_->lines[line]; }
   /// The line's shaped steps fell back to unshaped ones (its outlet ran ahead of the model).
   bool ShapingFellBack(uint8_t line) const {
     return sim_->board().line_state(line).shaping_fell_back;
