@@ -107,6 +107,8 @@ LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us)
   // command is 0 already).
   const bool holds_atmosphere = p.limit_min_pa <= 0 && p.limit_max_pa >= 0;
   p.vent_bit = p.shaping && holds_atmosphere && p.regulator_min_pa > 0 ? 1u << line.line : 0u;
+  p.vent_high_bit = p.limit_max_pa == 0 ? p.vent_bit : 0u;
+  p.model_from_outlet_high = p.vent_high_bit != 0 ? 1.0f : 0.0f;
   MakeCorrection(line.correction.data(), line.correction_count, p.correction);
   p.safe_counts = CountsFor(p, p.safe_pa);
   p.zero_counts = CountsFor(p, 0);

@@ -59,11 +59,14 @@ inline float FeedForward(const LineParams& p, LineState& s, float previous, floa
 /// `status`). The models then move by that
 /// command, so the chamber model closes in on the target as fast as the bound allows without
 /// passing it; within the trim's dead band the command is the target itself, and the steady-state
-/// loop takes over without a bump. The models are open-loop, so nothing the sensor reads can
-/// wind them up or make them ring.
+/// loop takes over without a bump. The regulator model is open-loop but where a vacuum line's
+/// command is held at its upper limit, atmosphere (below); the sensor's reading sets nothing the
+/// command follows while it is held there, so nothing winds the model up or makes it ring.
 [[gnu::always_inline]] inline float Shape(const LineParams& p, LineState& s, float target,
-                                          const LineReading& reading, uint8_t& status) {
-  const float regulator = s.regulator_pa, chamber = s.chamber_pa;
+                                          const LineReading& reading, uint8_t& status,
+                                          uint32_t& vents) {
+  const float chamber = s.chamber_pa;
+  float regulator = s.regulator_pa;
   // regulator + (target + lead × (target − chamber) − regulator) / α (MakeLineParams), the lead
   // the tube's at the target: its lag grows as the absolute pressure falls.
   // The tube's rate now, k (O + C + 2 p_atm): the chamber estimate's below, and the lead's.
@@ -95,6 +98,14 @@ inline float FeedForward(const LineParams& p, LineState& s, float previous, floa
   } else if (above) {
     command = p.limit_max_pa;
     status |= protocol::line_status::kSaturated;
+    // A vacuum line's step back toward atmosphere held at 0 kPa: its pilot can go no further and
+    // its exhaust closes over a 10 kPa band, so the outlet lags the model's lag by kilopascals
+    // near atmosphere, and the overdrive would end with the chamber well short. The dump valve
+    // lets air in with the exhaust, and the model goes on from the outlet the sensor reads
+    // (a pressure line's top limit is no atmosphere: neither; docs/performance.md, "The random
+    // jamming steps' misses").
+    vents |= p.vent_high_bit;
+    regulator += p.model_from_outlet_high * (outlet - regulator);
   }
   s.regulator_pa = regulator + p.model_alpha * (command - regulator);
   // The chamber from the outlet the sensor reads (a shaped line has one; an invalid reading is
@@ -141,7 +152,7 @@ template <bool kShaping, bool kCorrection = true>
     held = true;
     direction_from = s.wanted_pa;
     if (s.wanted_pa != slewed) {  // the models run (the overdrive, or the target moved)
-      wanted = line_step::Shape(p, s, slewed, reading, status);
+      wanted = line_step::Shape(p, s, slewed, reading, status, vents);
       s.wanted_pa = wanted;
       if (wanted != slewed) {
         s.steady_pa = kUnbounded;  // no setpoint: the step goes on until the hold ends

@@ -37,6 +37,18 @@ pp::ConfigureLine ShapedLine(uint32_t chamber_tau_us = 20000, int32_t overdrive_
   return c;
 }
 
+/// A shaped vacuum line 5: its commands from 0 to −100 kPa, its limits −90 … 0 kPa.
+pp::ConfigureLine VacuumLine() {
+  pp::ConfigureLine c = ShapedLine();
+  c.line = 5;
+  c.kind = pp::LineKind::kVacuum;
+  c.command_min_pa = 0;
+  c.command_max_pa = -100000;
+  c.limit_min_pa = -90000;
+  c.limit_max_pa = 0;
+  return c;
+}
+
 /// A regulator (dead time, pilot lag, outlet moving at most `rate` Pa a tick: its valve's flow)
 /// and a chamber lagging the outlet; the sensor reads the outlet, as on the board.
 struct Air {
@@ -324,15 +336,45 @@ TEST(StepShaping, AShapedLineVentsBelowTheRegulatorsMinimumWhereItsLimitsHoldAtm
   pp::ConfigureLine above = c;  // limits that leave atmosphere out: never
   above.limit_min_pa = 2000;
   LONGS_EQUAL(0, vents_at(above, 30000, 0));
-  pp::ConfigureLine vacuum = ShapedLine();  // a vacuum line, toward atmosphere from below
-  vacuum.line = 5;
-  vacuum.kind = pp::LineKind::kVacuum;
-  vacuum.command_min_pa = 0;
-  vacuum.command_max_pa = -100000;
-  vacuum.limit_min_pa = -90000;
-  vacuum.limit_max_pa = 0;
+  const pp::ConfigureLine vacuum = VacuumLine();  // toward atmosphere from below
   LONGS_EQUAL(1u << 5, vents_at(vacuum, -30000, 0));
   LONGS_EQUAL(0, vents_at(vacuum, 0, -30000));
+}
+
+TEST(StepShaping, AVacuumStepHeldAtAtmospheresLimitVentsAndItsModelFollowsTheOutlet) {
+  // A vacuum line's step back toward atmosphere whose overdrive meets the line's upper limit
+  // (0 kPa): its dump valve opens with the regulator's exhaust, and the regulator model starts
+  // from the outlet the sensor reads (the exhaust's band slows it there, not the model's lag). A
+  // pressure line whose overdrive meets its lower limit at 0 kPa does neither.
+  struct Tick {
+    uint32_t vents;
+    float regulator;
+    uint8_t status;
+  };
+  auto first_tick = [](const pp::ConfigureLine& c, float from, float to, float outlet) {
+    LineUnderTest line(c, from);
+    auto& [p, s, out] = line;
+    uint32_t vents = 0;
+    pc::StepLine(p, s, to, pc::LineReading{true, 0, outlet}, out, &vents);
+    return Tick{vents, s.regulator_pa, out.status};
+  };
+  const pp::ConfigureLine vacuum = VacuumLine();
+  const float alpha = 1.0f / 21.0f;  // 1 ms over the model's 20 ms lag + 1 ms
+  const Tick up = first_tick(vacuum, -30000, -5000, -26000);
+  CHECK((up.status & ls::kSaturated) != 0);
+  LONGS_EQUAL(1u << 5, up.vents);
+  DOUBLES_EQUAL(-26000 * (1 - alpha), up.regulator, 1);  // from the outlet, not from −30 kPa
+  const Tick down = first_tick(vacuum, -5000, -30000, -5000);  // toward the pump: neither
+  LONGS_EQUAL(0, down.vents);
+  const Tick within = first_tick(vacuum, -50000, -40000, -48000);  // not held at 0 kPa: neither
+  CHECK_FALSE((within.status & ls::kSaturated) != 0);
+  LONGS_EQUAL(0, within.vents);
+  pp::ConfigureLine pressure = ShapedLine();
+  pressure.line = 2;
+  const Tick falling = first_tick(pressure, 30000, 5000, 26000);
+  CHECK((falling.status & ls::kSaturated) != 0);
+  LONGS_EQUAL(0, falling.vents);
+  DOUBLES_EQUAL(30000 * (1 - alpha), falling.regulator, 1);
 }
 
 TEST(StepShaping, AFallenBackLineSlewsAgain) {

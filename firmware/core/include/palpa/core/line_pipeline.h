@@ -81,6 +81,11 @@ struct LineParams {
   /// closes in proportion to the pressure left (its pilot stops at 0), the dump valve takes the
   /// outlet to atmosphere and no further.
   uint32_t vent_bit = 0;
+  /// A shaped step's command held at the line's upper limit where that is atmosphere (a vacuum
+  /// line's): vent_bit, the dump valve open with the regulator's exhaust, and 1 (else 0), the
+  /// regulator model taken from the outlet's reading (line_step.h).
+  uint32_t vent_high_bit = 0;
+  float model_from_outlet_high = 0;
 };
 
 LineParams MakeLineParams(const protocol::ConfigureLine& line, uint32_t tick_us);
