@@ -151,8 +151,9 @@ RigStatus SimRig::VentAll() {
   return {};
 }
 
-std::vector<std::pair<double, double>> TrueChamberStep(const SimRigOptions& options,
-                                                       double from_kpa, double to_kpa) {
+std::vector<std::pair<double, double>> TrueChamberStep(
+    const SimRigOptions& options, double from_kpa, double to_kpa,
+    std::vector<std::pair<double, double>>* outlet, double after_s) {
   SimRig sim(options);
   const uint8_t finger = options.finger, line = sim.driven_line(finger);
   const bool jamming = sim.jamming(finger);
@@ -163,9 +164,12 @@ std::vector<std::pair<double, double>> TrueChamberStep(const SimRigOptions& opti
   drive(from_kpa);
   sim.Wait(1.0);
   std::vector<std::pair<double, double>> samples;
-  for (int i = -100; i < 600; ++i) {
+  if (outlet) outlet->clear();
+  const auto& regulator = sim.board().sim().plant().regulator(line);
+  for (int i = -100; i < std::lround(after_s * 1000); ++i) {
     if (i == 0) drive(to_kpa);
-    samples.push_back({i * 0.001, sim.board().sim().plant().regulator(line).chamber_pa()});
+    samples.push_back({i * 0.001, regulator.chamber_pa()});
+    if (outlet) outlet->push_back({i * 0.001, regulator.outlet_pa()});
     sim.Wait(0.001);
   }
   return samples;

@@ -89,8 +89,10 @@ class SimRig final : public calibration::RigTime,
 
 /// The true chamber pressure (Pa) of a finger's driven line through a step of the bare line from
 /// `from_kpa` to `to_kpa` (magnitudes; a jamming finger's bias at 20 kPa), on a fresh rig of
-/// `options`' unit: (s from the command, Pa), 0.1 s before it to 0.6 s after, every millisecond.
-std::vector<std::pair<double, double>> TrueChamberStep(const SimRigOptions& options,
-                                                       double from_kpa, double to_kpa);
+/// `options`' unit: (s from the command, Pa), 0.1 s before it to `after_s` after, every
+/// millisecond. `outlet`, if given, gets the true pressure at the regulator's outlet alongside.
+std::vector<std::pair<double, double>> TrueChamberStep(
+    const SimRigOptions& options, double from_kpa, double to_kpa,
+    std::vector<std::pair<double, double>>* outlet = nullptr, double after_s = 0.6);
 
 }  // namespace palpa::testing
