@@ -137,7 +137,7 @@ Result<std::vector<SettleLine>> StudyLines(Device& device, const Study& study,
       const double tau = line.value.chamber_tau_us * 1e-6;
       lines.push_back({l, tau, line.value.kind});
       (*settle)[device.LineName(l)] =
-          tau > 0 ? nlohmann::ordered_json(Num(tau) + " s chamber model")
+          tau > 0 ? nlohmann::ordered_json(Num(tau) + " s tube lag behind the outlet")
                   : nlohmann::ordered_json("no chamber model: the outlet alone");
     }
   }

@@ -197,7 +197,8 @@ TEST(StudyRun, AShortStudyOnTheSimulatedBoardAnsweredByTheSimulatedParticipant) 
   for (const char* key : {"palpa_version", "firmware_version", "catalog_hash", "config_crc",
                           "calibration_files", "board", "sim", "settle"})
     CHECK_TEXT(p.contains(key), key);
-  STRCMP_EQUAL("0.03 s chamber model", p["settle"]["line 1"].get<std::string>().c_str());
+  STRCMP_EQUAL("0.03 s tube lag behind the outlet",
+               p["settle"]["line 1"].get<std::string>().c_str());
 
   const std::vector<nlohmann::json> trials = Trials(o.out_dir);
   LONGS_EQUAL(6, trials.size());
